@@ -1,0 +1,78 @@
+"""CSV writing and work-precision plots shared by the benchmarks."""
+
+from __future__ import annotations
+
+import csv
+import math
+from collections import defaultdict
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+def write_csv(path: Path, rows: Sequence[dict[str, Any]], first: Sequence[str]) -> Path:
+    """Write dict rows with the `first` columns in order, then any other keys alphabetically."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    extra = sorted({k for r in rows for k in r} - set(first))
+    with path.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=[*first, *extra])
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: _fmt(v) for k, v in r.items()})
+    return path
+
+
+def _fmt(v: Any) -> Any:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return v
+
+
+def observed_order(h: Sequence[float], err: Sequence[float]) -> float:
+    """Least-squares slope of log(err) against log(h) (NaN if fewer than 2 usable points)."""
+    h = np.asarray(h, dtype=float)
+    e = np.asarray(err, dtype=float)
+    ok = (h > 0) & (e > 0) & np.isfinite(e)
+    if ok.sum() < 2:
+        return math.nan
+    return float(np.polyfit(np.log(h[ok]), np.log(e[ok]), 1)[0])
+
+
+def work_precision_plot(path: Path, rows: Sequence[dict[str, Any]], title: str) -> Path:
+    """Log-log error vs seconds, one line per (method, quantity), observed order in the legend.
+
+    Rows need `method`, `dt` (the refinement parameter), `error`, `seconds`; optional
+    `quantity` (one panel each) and `param` (what `dt` means, e.g. 'dt', 'h', 'tol').
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    panels: dict[str, list[dict[str, Any]]] = defaultdict(list)
+    for r in rows:
+        panels[str(r.get("quantity", "error"))].append(r)
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.2), squeeze=False)
+    for ax, (quantity, prow) in zip(axes[0], sorted(panels.items())):
+        lines: dict[str, list[dict[str, Any]]] = defaultdict(list)
+        for r in prow:
+            lines[str(r["method"])].append(r)
+        for method, lrows in sorted(lines.items()):
+            lrows = sorted(lrows, key=lambda r: r["seconds"])
+            p = lrows[0].get("param", "dt")
+            order = observed_order([r["dt"] for r in lrows], [r["error"] for r in lrows])
+            label = method if math.isnan(order) else f"{method} (order {order:.2f} in {p})"
+            ax.loglog([r["seconds"] for r in lrows], [max(r["error"], 1e-17) for r in lrows],
+                      "o-", label=label)
+        ax.set_xlabel("wall time [s]")
+        ax.set_ylabel(f"max error: {quantity}")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

@@ -1,0 +1,12 @@
+"""mf_envs: Gymnasium environments whose physics is the moving frame method (Rios 2017).
+
+Importing the package registers the environments with Gymnasium (see `mf_envs.envs`).
+"""
+
+from mf_envs.envs import register_envs
+
+__version__ = "0.1.0"
+
+register_envs()
+
+__all__ = ["register_envs", "__version__"]

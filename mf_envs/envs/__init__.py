@@ -1,0 +1,30 @@
+"""Gymnasium wrappers. `register_envs()` registers every env id whose module is present."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+
+# id -> (entry point, default max_episode_steps or None); each env module owns its episode length
+ENV_SPECS: dict[str, str] = {
+    "GOWEC-v0": "mf_envs.envs.gowec:GOWECEnv",
+    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer:GyroStabilizerEnv",
+    "Inchworm-v0": "mf_envs.envs.inchworm:InchwormEnv",
+}
+
+
+def available_env_ids() -> list[str]:
+    """The env ids whose implementation module exists in this install."""
+    import importlib.util
+
+    return [
+        env_id
+        for env_id, entry in ENV_SPECS.items()
+        if importlib.util.find_spec(entry.split(":")[0]) is not None
+    ]
+
+
+def register_envs() -> None:
+    """Register the available env ids with Gymnasium (idempotent)."""
+    for env_id in available_env_ids():
+        if env_id not in gym.registry:
+            gym.register(id=env_id, entry_point=ENV_SPECS[env_id])

@@ -1,0 +1,94 @@
+"""A small shared base for the mf_envs environments.
+
+Owns what every env does the same way: action validation and scaling from [-1, 1], the control
+step as an integer number of physics substeps, effect resolution, and the numerical-failure
+contract (a state that goes non-finite ends the episode with info["numerical_failure"] = True;
+the observation returned is the last finite one, the reward 0). Physics lives in
+`mf_envs.physics`; subclasses only wire it to spaces, rewards and rendering.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from mf_envs._validate import check_positive
+from mf_envs.effects import resolve_effects
+
+
+class MFEnv(gym.Env):
+    """Base class: subclasses set `action_space`/`observation_space` and call the helpers."""
+
+    metadata: dict[str, Any] = {"render_modes": ["rgb_array", "human"], "render_fps": 30}
+
+    def __init__(
+        self,
+        *,
+        effects: str | Iterable[str] | None,
+        available_effects: Mapping[str, str],
+        default_effects: Iterable[str],
+        control_dt: float,
+        physics_dt: float,
+        render_mode: str | None = None,
+    ) -> None:
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(
+                f"render_mode: must be one of {self.metadata['render_modes']} or None, "
+                f"got {render_mode!r}"
+            )
+        self.render_mode = render_mode
+        self.effects = resolve_effects(effects, available_effects, default_effects)
+        check_positive("control_dt", control_dt)
+        check_positive("physics_dt", physics_dt)
+        # integer substeps; physics_dt is shrunk so that n * physics_dt == control_dt exactly
+        self.n_substeps = max(1, int(np.ceil(control_dt / physics_dt - 1e-9)))
+        self.control_dt = float(control_dt)
+        self.physics_dt = self.control_dt / self.n_substeps
+        self._last_obs: np.ndarray | None = None
+
+    @property
+    def dt(self) -> float:
+        """Control interval in seconds (one `step`)."""
+        return self.control_dt
+
+    # ------------------------------------------------------------------ actions
+    def _validate_action(self, action: Any) -> np.ndarray:
+        """float64 copy of `action` clipped to [-1, 1]; NaN/inf raise ValueError (documented)."""
+        a = np.asarray(action, dtype=np.float64).reshape(self.action_space.shape)
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"action: must be finite, got {action!r}")
+        return np.clip(a, -1.0, 1.0)
+
+    # ------------------------------------------------------------------ numerics
+    def _finish_step(
+        self,
+        obs: np.ndarray,
+        reward: float,
+        terminated: bool,
+        truncated: bool,
+        info: dict[str, Any],
+        state_ok: bool,
+    ) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        """Apply the numerical-failure contract and remember the last finite observation."""
+        obs = np.asarray(obs, dtype=np.float32)
+        ok = bool(state_ok) and bool(np.all(np.isfinite(obs))) and bool(np.isfinite(reward))
+        info["numerical_failure"] = not ok
+        if not ok:
+            obs = (
+                self._last_obs.copy()
+                if self._last_obs is not None
+                else np.zeros(self.observation_space.shape, dtype=np.float32)
+            )
+            return obs, 0.0, True, truncated, info
+        obs = np.clip(obs, self.observation_space.low, self.observation_space.high)
+        self._last_obs = obs
+        return obs, float(reward), bool(terminated), bool(truncated), info
+
+    def _finish_reset(self, obs: np.ndarray) -> np.ndarray:
+        obs = np.asarray(obs, dtype=np.float32)
+        obs = np.clip(obs, self.observation_space.low, self.observation_space.high)
+        self._last_obs = obs
+        return obs

@@ -1,0 +1,1 @@
+"""Physics models as plain functions and frozen parameter dataclasses (no Gymnasium)."""

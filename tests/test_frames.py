@@ -1,0 +1,119 @@
+"""SO(3)/SE(3) kernel against independent truth: scipy's expm, group identities, finite differences."""
+
+import numpy as np
+import pytest
+import scipy.linalg as sla
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from mf_envs.frames import (
+    compose,
+    exp_so3,
+    frame_connection,
+    frame_inverse,
+    hat,
+    log_so3,
+    orthonormality_error,
+    project_to_so3,
+    relative_connection,
+    rot_x,
+    rot_y,
+    rot_z,
+    time_rate_connection,
+    twist_from_time_rate,
+    vee,
+)
+from mf_envs.frames.so3 import exp_so3_nb
+
+vec3 = arrays(np.float64, 3, elements=st.floats(-10, 10, allow_nan=False))
+small_vec3 = arrays(np.float64, 3, elements=st.floats(-1e-5, 1e-5, allow_nan=False))
+
+
+@given(vec3)
+def test_exp_is_rotation(w):
+    R = exp_so3(w)
+    assert orthonormality_error(R) < 1e-13
+    assert abs(np.linalg.det(R) - 1.0) < 1e-13
+
+
+@given(vec3)
+def test_exp_matches_scipy_expm_and_numba_kernel(w):
+    R = exp_so3(w)
+    assert np.allclose(R, sla.expm(hat(w)), atol=1e-12)
+    assert np.allclose(exp_so3_nb(w), R, atol=1e-14)
+
+
+@given(small_vec3)
+def test_small_angle_branch_matches_series(w):
+    # exp(W) = I + W + W^2/2 + W^3/6 + ... to round-off for |w| < 1e-5
+    W = hat(w)
+    ref = np.eye(3) + W + W @ W / 2 + W @ W @ W / 6
+    assert np.allclose(exp_so3(w), ref, atol=1e-16, rtol=0)
+
+
+@given(vec3)
+def test_hat_vee_cross(w):
+    v = np.array([0.3, -1.1, 2.2])
+    assert np.allclose(hat(w) @ v, np.cross(w, v))
+    assert np.allclose(vee(hat(w)), w)
+
+
+@given(arrays(np.float64, 3, elements=st.floats(-1, 1, allow_nan=False)),
+       st.floats(0.0, np.pi - 1e-9))
+def test_log_inverts_exp_on_its_domain(axis, angle):
+    n = np.linalg.norm(axis)
+    if n < 1e-3:
+        axis, n = np.array([0.0, 0.0, 1.0]), 1.0
+    w = axis / n * angle
+    assert np.allclose(log_so3(exp_so3(w)), w, atol=1e-8)
+    # R is recovered to round-off everywhere, including near pi
+    assert np.allclose(exp_so3(log_so3(exp_so3(w))), exp_so3(w), atol=1e-12)
+
+
+def test_elementary_rotations_are_exponentials():
+    for R, e in ((rot_x, 0), (rot_y, 1), (rot_z, 2)):
+        w = np.zeros(3)
+        w[e] = 0.7
+        assert np.allclose(R(0.7), exp_so3(w), atol=1e-15)
+
+
+@settings(max_examples=50)
+@given(vec3, vec3, vec3, vec3, vec3, vec3)
+def test_composition_associative_and_inverse(w1, x1, w2, x2, w3, x3):
+    A, B, C = (frame_connection(exp_so3(w), x) for w, x in ((w1, x1), (w2, x2), (w3, x3)))
+    assert np.allclose(compose(compose(A, B), C), compose(A, compose(B, C)), atol=1e-10)
+    assert np.allclose(frame_inverse(A) @ A, np.eye(4), atol=1e-12)
+    assert np.allclose(frame_inverse(A), np.linalg.inv(A), atol=1e-10)
+    # relative connection recovers the child from the parent (Eq. 7)
+    assert np.allclose(A @ relative_connection(A, B), B, atol=1e-10)
+
+
+def test_time_rate_connection_of_known_motion():
+    """Screw motion R = exp(t hat(w)) R0, x = x0 + v t: Omega = [[R^T dR/dt, R^T x'], [0, 0]]."""
+    w = np.array([0.2, -0.5, 1.3])
+    v = np.array([1.0, 2.0, -0.5])
+    R0 = exp_so3([0.4, 0.1, -0.9])
+    x0 = np.array([3.0, -1.0, 2.0])
+    t, h = 0.8, 1e-6
+
+    def E(s):
+        return frame_connection(exp_so3(s * w) @ R0, x0 + s * v)
+
+    Edot = (E(t + h) - E(t - h)) / (2 * h)
+    omega, vb = twist_from_time_rate(time_rate_connection(E(t), Edot))
+    R = exp_so3(t * w) @ R0
+    # spatial angular velocity w -> body omega = R^T w
+    assert np.allclose(omega, R.T @ w, atol=1e-8)
+    assert np.allclose(vb, R.T @ v, atol=1e-8)
+
+
+def test_project_to_so3_and_bad_shapes():
+    R = exp_so3([0.3, 0.2, 0.1]) + 1e-6 * np.arange(9).reshape(3, 3)
+    P = project_to_so3(R)
+    assert orthonormality_error(P) < 1e-14
+    assert np.linalg.det(P) > 0
+    with pytest.raises(ValueError, match="w"):
+        exp_so3([1.0, 2.0])
+    with pytest.raises(ValueError, match="R"):
+        log_so3(np.eye(2))
