@@ -27,12 +27,39 @@ def _cmd_bench(args: argparse.Namespace) -> list[Path]:
     return mod.run(Path(args.out), quick=args.quick, only=args.scene)
 
 
+def _cmd_render(args: argparse.Namespace) -> list[Path]:
+    from mf_envs.render.cli import render_command
+
+    return render_command(args)
+
+
+def _cmd_train(args: argparse.Namespace) -> list[Path]:
+    from train.cli import train_command
+
+    return train_command(args)
+
+
+def _cmd_evaluate(args: argparse.Namespace) -> list[Path]:
+    from train.cli import evaluate_command
+
+    return evaluate_command(args)
+
+
+class _OneLineParser(argparse.ArgumentParser):
+    """argparse with usage errors as one line on stderr (status 2), pointing to --help."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = _OneLineParser(
         prog="mf-envs",
         description="Moving-frame Gymnasium environments (Rios 2017): demo, benchmarks.",
     )
-    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    sub = p.add_subparsers(
+        dest="command", required=True, metavar="COMMAND", parser_class=_OneLineParser
+    )
 
     d = sub.add_parser("demo", help="run every system's showcase on defaults; writes plots + GIFs")
     d.add_argument("--out", default="mf_envs_demo", help="output folder (default: %(default)s)")
@@ -46,6 +73,30 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--quick", action="store_true", help="a reduced ladder that runs in minutes")
     b.add_argument("--scene", nargs="+", metavar="NAME", help="run only these scene modules")
     b.set_defaults(func=_cmd_bench)
+
+    r = sub.add_parser("render", help="render an episode of an env to a GIF (headless)")
+    r.add_argument("env_id")
+    r.add_argument("--policy", default="baseline", help="baseline | baseline:KIND | ppo | PATH")
+    r.add_argument("--out", required=True, help="output .gif path")
+    r.add_argument("--steps", type=int, default=None, help="number of env steps (default: env's)")
+    r.add_argument("--seed", type=int, default=0)
+    r.set_defaults(func=_cmd_render)
+
+    t = sub.add_parser("train", help="train a PPO agent (Stable-Baselines3) on an env")
+    t.add_argument("env_id")
+    t.add_argument("--timesteps", type=int, default=None, help="default: from the env's config")
+    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--config", default=None, help="YAML hyperparameters (rl-zoo3 format)")
+    t.add_argument("--out", default="runs", help="output folder (default: %(default)s)")
+    t.add_argument("--tensorboard", action="store_true", help="write TensorBoard logs")
+    t.set_defaults(func=_cmd_train)
+
+    e = sub.add_parser("evaluate", help="PPO vs every classical baseline on unseen seeds")
+    e.add_argument("env_id")
+    e.add_argument("--policy", default=None, help="policy path (default: the shipped policy)")
+    e.add_argument("--episodes", type=int, default=5)
+    e.add_argument("--seed", type=int, default=1000, help="first evaluation seed")
+    e.set_defaults(func=_cmd_evaluate)
     return p
 
 
