@@ -7,7 +7,8 @@ A scene module in this package defines
 
 returning rows with at least `scene, method, dt, error, seconds` (plus optional `quantity`,
 `param` = what `dt` means, and anything else). The runner writes `accuracy.csv` and one log-log
-PNG per scene (`accuracy_<scene>.png`).
+PNG per scene (`accuracy_<scene>.png`). A module may also define `plot(out, rows) -> list[Path]`
+for figures of its own (it receives only its own rows).
 """
 
 from __future__ import annotations
@@ -26,10 +27,14 @@ def run(out: Path, quick: bool = False, only: list[str] | None = None) -> list[P
     from tqdm import tqdm
 
     rows: list[dict] = []
+    extra: list[Path] = []
     mods = discover(__name__, only)
     for mod in tqdm(mods, desc="accuracy scenes", unit="module"):
-        rows.extend(mod.rows(quick))
-    written = [write_csv(out / "accuracy.csv", rows, COLUMNS)]
+        mod_rows = mod.rows(quick)
+        rows.extend(mod_rows)
+        if hasattr(mod, "plot"):  # a module's own figures beside the generic ones
+            extra.extend(mod.plot(out, mod_rows))
+    written = [write_csv(out / "accuracy.csv", rows, COLUMNS), *extra]
     by_scene: dict[str, list[dict]] = defaultdict(list)
     for r in rows:
         by_scene[str(r["scene"])].append(r)
