@@ -1,0 +1,408 @@
+"""Numba kernels of the reduced ship + gyro model (the fast paths, Rios 2017 ch. 3 Eqs. 123-128).
+
+Sketch (one gyro; a second one mirrors it with -phi, -psi, Eqs. 98-99, 106-107)::
+
+        e3 (yaw)          ship e^(1), attitude R(t) in SO(3)
+         |   gimbal e^(2) = e^(1) R_2(phi)       precession axis e_2 (athwartships)
+         |   rotor  e^(3) = e^(2) R_3(psi)       spin axis: the gimbal's e_3
+         +----- e1 (roll)
+
+With the gimbal and rotor motions known (prescribed, or a servo state), the ship's rotational
+equations are the balance of the total angular momentum about the centre of mass, in the ship frame:
+
+    H = J(phi) w + h(phi, phi', psi'),     dH/dt|_ship + w x H = M_ext,
+    J(phi) = J^(1) + sum_k R_2(s_k phi) diag(J_g + J_r) R_2(s_k phi)^T,   s_k = +1, -1
+    h = sum_k [ s_k (J_g2 + J_r1) phi' e_2 + J3^(3) psi' (sin phi, 0, s_k cos phi) ].
+
+This is exactly what the B-matrix route (Eqs. 74-75 with delta phi = delta psi = 0, Eq. 115)
+gives for fixed gyro positions and no translation (Eq. 116); with the seed's Eq. 117 it reproduces
+Eqs. 123-128 term by term except (i) Eq. 123's roll inertia, which the seed freezes at its
+phi = 0 value J1 + 2 J2^(2) + J3^(3) (exact: J1 + 2 J2^(2) + J3^(3) (3 - cos 2 phi) / 2), and
+(ii) Eqs. 126/128, which print 2 J2^(2) where the gimbal contributes J2^(2) phi' (w x e_2) once,
+and J3/4 cos 2phi in the yaw w1 phi' term (exact J3/2). `FORM_SEED` steps the seed's equations as
+printed (legible terms; the garbled pitch Eq. 127 is the exact one), `FORM_EXACT` the balance above.
+
+Gimbal drives: prescribed phi(t) (Eqs. 118-119), a rate servo (phi'' = (u - phi') / tau, a
+kinematic actuator: the gyroscopic torque on the gimbal is absorbed by it), or a torque drive in
+which phi is a degree of freedom (the phi-row of Eq. 74, see `ship_accel`).
+
+State y (float64): [w1, w2, w3, phi, phi', x1, x2, x3, v1, v2, v3] (body rates in rad/s, gimbal
+angle/rate of gyro 1 in rad, rad/s; hull CM position/velocity in the inertial frame, m, m/s).
+The attitude R (3x3, inertial <- ship) is rebuilt each step with Rodrigues' formula (ch. 2 Eq. 29)
+inside a Runge-Kutta-Munthe-Kaas step (4th order also in R; the seed's midpoint-Rodrigues update
+is 2nd order, which limits the hydrostatic moment's accuracy, see DESIGN.md ch. 2 notes).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from mf_envs.frames.so3 import exp_so3_nb
+
+# ---- packed parameter vector P (built by ship_model.pack_params) ----
+J1, J2, J3 = 0, 1, 2  # hull inertia (+ A44 in J1 when added_inertia is on)
+D1, D2, D3 = 3, 4, 5  # gimbal + rotor transverse inertias in the gimbal frame
+JR3, PSID, NGYRO, FORM = 6, 7, 8, 9  # rotor polar inertia, spin rate, 1 or 2, form
+K44, GZR, K55 = 10, 11, 12  # roll / pitch stiffness, BM/GM of the wall-sided GZ
+B44, B44Q, B55, B66 = 13, 14, 15, 16  # damping
+GMODE, GAMP, GFREQ, GPHASE = 17, 18, 19, 20  # gimbal mode, Eq. 118/119 amplitude, freq, phase
+TAU, RATEMAX, PHIMAX, LIMITS, TSTOP = 21, 22, 23, 24, 25  # servo lag, limits, end-stop time
+WMODE, WM0, WOMEGA, WPHASE, WF0 = 26, 27, 28, 29, 30  # wave moment mode, M0, omega, phase, heave
+TABDT, JG2, TRANS, MASS, KH, CH, CSS = 31, 32, 33, 34, 35, 36, 37
+KV, TAUMAX, CG, KSTOP = 38, 39, 40, 41  # torque drive: loop gain, torque limit, damping, stop
+N_PARAMS = 42
+
+FORM_EXACT, FORM_SEED = 0, 1
+GIMBAL_SERVO, GIMBAL_SINUSOIDAL, GIMBAL_CONTINUOUS, GIMBAL_TORQUE = 0, 1, 2, 3
+WAVE_NONE, WAVE_REGULAR, WAVE_TABLE = 0, 1, 2
+N_STATE = 11
+
+
+@numba.njit(cache=True)
+def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
+    """(phi, phi', phi'') of gyro 1 at time t: Eq. 119 / Eq. 118 or the rate servo.
+
+    Servo: phi'' = (u_eff - phi') / tau with u_eff the command u (rad/s) clipped to the
+    precession-rate limit and to the end-stop envelope (|phi| <= phi_max approached at
+    rate <= (phi_max - |phi|) / t_stop) when `gimbal_limits` is on.
+    """
+    mode = int(P[GMODE])
+    if mode == GIMBAL_SINUSOIDAL:
+        om = 2.0 * math.pi * P[GFREQ]
+        arg = om * t - P[GPHASE]
+        a = P[GAMP]
+        return a * math.sin(arg), a * om * math.cos(arg), -a * om * om * math.sin(arg)
+    if mode == GIMBAL_CONTINUOUS:
+        rate = 4.0 * P[GAMP] * P[GFREQ]
+        return rate * t, rate, 0.0
+    ue = u
+    if P[LIMITS] > 0.5:
+        rmax = P[RATEMAX]
+        ue = min(max(ue, -rmax), rmax)
+        hi = (P[PHIMAX] - phi) / P[TSTOP]
+        lo = (-P[PHIMAX] - phi) / P[TSTOP]
+        ue = min(max(ue, lo), hi)
+    return phi, phid, (ue - phid) / P[TAU]
+
+
+@numba.njit(cache=True)
+def gimbal_torque(phi: float, phid: float, u: float, P: np.ndarray) -> float:
+    """Torque (N m) on gyro 1's gimbal axis in the torque drive (gyro 2 gets the mirror torque).
+
+    Velocity loop K_v (u - phi') limited to +-tau_max (u clipped to the rate limit with
+    `gimbal_limits`), minus the gimbal damping / brake c_g phi' (effect `gimbal_damping`), plus
+    a spring-damper end stop beyond +-phi_max (`gimbal_limits`).
+    """
+    tau = 0.0
+    if P[KV] > 0.0:
+        ue = u
+        if P[LIMITS] > 0.5:
+            ue = min(max(ue, -P[RATEMAX]), P[RATEMAX])
+        tau = P[KV] * (ue - phid)
+        if P[TAUMAX] > 0.0:
+            tau = min(max(tau, -P[TAUMAX]), P[TAUMAX])
+    tau -= P[CG] * phid
+    if P[LIMITS] > 0.5 and abs(phi) > P[PHIMAX]:
+        over = phi - math.copysign(P[PHIMAX], phi)
+        tau -= P[KSTOP] * over + 2.0 * math.sqrt(P[KSTOP] * P[D2]) * phid
+    return tau
+
+
+@numba.njit(cache=True)
+def external_moment(t: float, w: np.ndarray, R: np.ndarray, P: np.ndarray, tab: np.ndarray):
+    """Hydrostatic, damping and wave moments in the ship frame (N m) and the wave roll moment.
+
+    Roll r = atan2(R32, R33), pitch p = -asin(R31) (z-y-x Euler angles of R).
+    Restoring: -C44 r (linear) or -C44 sin(r) (1 + BM/(2 GM) tan^2 r) (wall-sided GZ);
+    -C55 p in pitch. Damping: -B44 w1 - B44q |w1| w1, -B55 w2, -B66 w3.
+    """
+    m1 = 0.0
+    m2 = 0.0
+    m3 = 0.0
+    if P[K44] > 0.0:
+        r = math.atan2(R[2, 1], R[2, 2])
+        if P[GZR] > 0.0:
+            tr = math.tan(max(min(r, 1.4), -1.4))
+            m1 -= P[K44] * math.sin(r) * (1.0 + 0.5 * P[GZR] * tr * tr)
+        else:
+            m1 -= P[K44] * r
+    if P[K55] > 0.0:
+        m2 -= P[K55] * math.asin(max(min(-R[2, 0], 1.0), -1.0))
+    m1 -= P[B44] * w[0] + P[B44Q] * abs(w[0]) * w[0]
+    m2 -= P[B55] * w[1]
+    m3 -= P[B66] * w[2]
+    mw = 0.0
+    mode = int(P[WMODE])
+    if mode == WAVE_REGULAR:
+        mw = P[WM0] * math.cos(P[WOMEGA] * t + P[WPHASE])
+    elif mode == WAVE_TABLE:
+        mw = table_value(t, tab, 0, P[TABDT])
+    return m1 + mw, m2, m3, mw
+
+
+@numba.njit(cache=True)
+def table_value(t: float, tab: np.ndarray, col: int, h: float) -> float:
+    """Linear interpolation of column `col` of a table sampled every h seconds from t = 0."""
+    s = t / h
+    i = int(math.floor(s))
+    n = tab.shape[0]
+    if i < 0:
+        return tab[0, col]
+    if i >= n - 1:
+        return tab[n - 1, col]
+    f = s - i
+    return (1.0 - f) * tab[i, col] + f * tab[i + 1, col]
+
+
+@numba.njit(cache=True)
+def ship_accel(w, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
+    """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc).
+
+    With `free_gimbal` the gimbal is a degree of freedom driven by the torque tau (N m, per
+    gimbal) and phi'' is solved with the hull (the phi-equation of Eq. 74):
+    one gyro:  d2 (w2' + phi'') = tau + H w_g1 - (d1 - d3) w_g1 w_g3,
+               w_g = (c w1 - s w3, w2, s w1 + c w3) the gimbal's body rates;
+    the pair:  d2 phi'' = tau + H c w1 - (d1 - d3) s c (w1^2 - w3^2).
+    Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'').
+    """
+    n = int(P[NGYRO])
+    c = math.cos(phi)
+    s = math.sin(phi)
+    s2 = 2.0 * s * c
+    c2 = c * c - s * s
+    d1, d2, d3 = P[D1], P[D2], P[D3]
+    dd = d3 - d1
+    H = P[JR3] * P[PSID]
+    # inertia J(phi): xx, yy, zz and xz (xz cancels for two mirrored gyros)
+    jxx = P[J1] + n * (c * c * d1 + s * s * d3)
+    jyy = P[J2] + n * d2
+    jzz = P[J3] + n * (s * s * d1 + c * c * d3)
+    jxz = s * c * dd if n == 1 else 0.0
+    # dJ/dt
+    dxx = n * phid * s2 * dd
+    dzz = -dxx
+    dxz = phid * c2 * dd if n == 1 else 0.0
+    # internal angular momentum h and its rate hd (ship frame)
+    hx = n * H * s
+    hy = d2 * phid if n == 1 else 0.0
+    hz = H * c if n == 1 else 0.0
+    hdx = n * H * phid * c
+    hdz = -H * phid * s if n == 1 else 0.0
+    w1, w2, w3 = w[0], w[1], w[2]
+    # total momentum L = J w + h
+    lx = jxx * w1 + jxz * w3 + hx
+    ly = jyy * w2 + hy
+    lz = jxz * w1 + jzz * w3 + hz
+    r1 = m1 - (dxx * w1 + dxz * w3) - hdx - (w2 * lz - w3 * ly)
+    r2 = m2 - (w3 * lx - w1 * lz)
+    r3 = m3 - (dxz * w1 + dzz * w3) - hdz - (w1 * ly - w2 * lx)
+    if int(P[FORM]) == FORM_SEED:
+        if n == 2:
+            jxx = P[J1] + 2.0 * d1  # Eq. 123: roll inertia frozen at phi = 0
+        else:
+            jg = P[JG2]  # Eqs. 126 and 128 as printed
+            r1 += jg * phid * w3
+            r3 -= (jg - 0.25 * P[JR3] * c2) * phid * w1
+    det = jxx * jzz - jxz * jxz
+    a1 = (jzz * r1 - jxz * r3) / det
+    a3 = (jxx * r3 - jxz * r1) / det
+    if free_gimbal:
+        if n == 1:
+            wg1 = c * w1 - s * w3
+            g = tau + H * wg1 - (d1 - d3) * wg1 * (s * w1 + c * w3)
+            a2 = (r2 - g) / (jyy - d2)  # [jyy d2; d2 d2] [w2'; phi''] = [r2; g]
+            phidd = g / d2 - a2
+        else:
+            phidd = (tau + H * c * w1 - (d1 - d3) * s * c * (w1 * w1 - w3 * w3)) / d2
+            a2 = r2 / jyy
+    else:
+        a2 = (r2 - d2 * phidd) / jyy if n == 1 else r2 / jyy
+    return a1, a2, a3, -n * H * phid * c, phidd
+
+
+@numba.njit(cache=True)
+def deriv(t, y, u, R, P, tab, dy):
+    """dy/dt for state y (module doc) at attitude R; returns (gyro moment, wave moment)."""
+    free = int(P[GMODE]) == GIMBAL_TORQUE
+    if free:
+        phi, phid, phidd = y[3], y[4], 0.0
+        tau = gimbal_torque(phi, phid, u, P)
+    else:
+        phi, phid, phidd = gimbal_motion(t, y[3], y[4], u, P)
+        tau = 0.0
+    m1, m2, m3, mw = external_moment(t, y, R, P, tab)
+    a1, a2, a3, mg, phidd = ship_accel(y, phi, phid, phidd, m1, m2, m3, P, free, tau)
+    dy[0] = a1
+    dy[1] = a2
+    dy[2] = a3
+    dy[3] = phid
+    dy[4] = phidd
+    if P[TRANS] > 0.5:
+        # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
+        fw = 0.0
+        if int(P[WMODE]) == WAVE_REGULAR:
+            fw = P[WF0] * math.sin(P[WOMEGA] * t + P[WPHASE])
+        elif int(P[WMODE]) == WAVE_TABLE:
+            fw = table_value(t, tab, 1, P[TABDT])
+        m = P[MASS]
+        dy[5] = y[8]
+        dy[6] = y[9]
+        dy[7] = y[10]
+        dy[8] = -P[CSS] * y[8] / m
+        dy[9] = -P[CSS] * y[9] / m
+        dy[10] = (fw - P[KH] * y[7] - P[CH] * y[10]) / m
+    else:
+        for i in range(5, dy.shape[0]):
+            dy[i] = 0.0
+    return mg, mw
+
+
+@numba.njit(cache=True)
+def _rot_step(R, th, Rout):
+    """Rout = R exp(hat(th)) (Rodrigues, ch. 2 Eq. 29), 3x3 product written out."""
+    E = exp_so3_nb(th)
+    for i in range(3):
+        for j in range(3):
+            Rout[i, j] = R[i, 0] * E[0, j] + R[i, 1] * E[1, j] + R[i, 2] * E[2, j]
+
+
+@numba.njit(cache=True)
+def _dexpinv(th, w, out):
+    """out = dexp^-1_th(w) = w - th x w / 2 + c(|th|) th x (th x w) (right trivialisation),
+    c = (1 - (x/2) cot(x/2)) / x^2 (series 1/12 + x^2/720 for small x)."""
+    x2 = th[0] * th[0] + th[1] * th[1] + th[2] * th[2]
+    if x2 < 1e-8:
+        c = 1.0 / 12.0 + x2 / 720.0
+    else:
+        x = math.sqrt(x2)
+        c = (1.0 - 0.5 * x / math.tan(0.5 * x)) / x2
+    a0 = th[1] * w[2] - th[2] * w[1]
+    a1 = th[2] * w[0] - th[0] * w[2]
+    a2 = th[0] * w[1] - th[1] * w[0]
+    b0 = th[1] * a2 - th[2] * a1
+    b1 = th[2] * a0 - th[0] * a2
+    b2 = th[0] * a1 - th[1] * a0
+    out[0] = w[0] - 0.5 * a0 + c * b0
+    out[1] = w[1] - 0.5 * a1 + c * b1
+    out[2] = w[2] - 0.5 * a2 + c * b2
+
+
+@numba.njit(cache=True)
+def rk4_step(t, y, R, u, dt, P, tab, out, work, Rs):
+    """One Runge-Kutta-Munthe-Kaas step (RK4 in the rates, the attitude in the Lie algebra):
+    R_stage = R exp(theta_stage), theta' = dexp^-1_theta(w), R_new = R exp(theta_final) with
+    the Rodrigues formula (ch. 2 Eq. 29): 4th order in R and w, R orthogonal to round-off.
+    y and R are updated in place. work: (10, n) scratch, Rs: (3, 3) scratch.
+    out[0], out[1] <- gyro roll moment and wave moment at the end of the step.
+    """
+    n = y.shape[0]
+    k1, k2, k3, k4, ys = work[0], work[1], work[2], work[3], work[4]
+    th, q1, q2 = work[5, 0:3], work[6, 0:3], work[7, 0:3]
+    q3, q4 = work[8, 0:3], work[9, 0:3]
+    deriv(t, y, u, R, P, tab, k1)
+    for i in range(3):
+        q1[i] = y[i]  # dexpinv at theta = 0 is the identity
+        th[i] = 0.5 * dt * q1[i]
+    for i in range(n):
+        ys[i] = y[i] + 0.5 * dt * k1[i]
+    _rot_step(R, th, Rs)
+    deriv(t + 0.5 * dt, ys, u, Rs, P, tab, k2)
+    _dexpinv(th, ys[0:3], q2)
+    for i in range(3):
+        th[i] = 0.5 * dt * q2[i]
+    for i in range(n):
+        ys[i] = y[i] + 0.5 * dt * k2[i]
+    _rot_step(R, th, Rs)
+    deriv(t + 0.5 * dt, ys, u, Rs, P, tab, k3)
+    _dexpinv(th, ys[0:3], q3)
+    for i in range(3):
+        th[i] = dt * q3[i]
+    for i in range(n):
+        ys[i] = y[i] + dt * k3[i]
+    _rot_step(R, th, Rs)
+    deriv(t + dt, ys, u, Rs, P, tab, k4)
+    _dexpinv(th, ys[0:3], q4)
+    for i in range(3):
+        th[i] = dt * (q1[i] + 2.0 * q2[i] + 2.0 * q3[i] + q4[i]) / 6.0
+    for i in range(n):
+        y[i] += dt * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]) / 6.0
+    _rot_step(R, th, Rs)
+    R[:, :] = Rs
+    if int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS:
+        phi, phid, _ = gimbal_motion(t + dt, y[3], y[4], u, P)
+        y[3] = phi
+        y[4] = phid
+    out[0] = -P[NGYRO] * P[JR3] * P[PSID] * y[4] * math.cos(y[3])
+    out[1] = 0.0
+    if int(P[WMODE]) == WAVE_REGULAR:
+        out[1] = P[WM0] * math.cos(P[WOMEGA] * (t + dt) + P[WPHASE])
+    elif int(P[WMODE]) == WAVE_TABLE:
+        out[1] = table_value(t + dt, tab, 0, P[TABDT])
+
+
+@numba.njit(cache=True)
+def advance(t, y, R, u, dt, n_sub, P, tab, out):
+    """n_sub RK4 steps of size dt with the command u held; returns the new time."""
+    work = np.empty((10, y.shape[0]))
+    Rs = np.empty((3, 3))
+    for _ in range(n_sub):
+        rk4_step(t, y, R, u, dt, P, tab, out, work, Rs)
+        t += dt
+    return t
+
+
+@numba.njit(cache=True)
+def simulate_kernel(y0, R0, t_end, dt, P, tab):
+    """Open-loop run (prescribed gimbal, or servo / torque drive with u = 0): t, y, R, moment."""
+    n = int(round(t_end / dt))
+    ts = np.empty(n + 1)
+    ys = np.empty((n + 1, y0.shape[0]))
+    Rs = np.empty((n + 1, 3, 3))
+    mg = np.empty(n + 1)
+    y = y0.copy()
+    R = R0.copy()
+    out = np.zeros(2)
+    work = np.empty((10, y.shape[0]))
+    Rw = np.empty((3, 3))
+    phi, phid, _ = gimbal_motion(0.0, y[3], y[4], 0.0, P)
+    if int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS:
+        y[3] = phi
+        y[4] = phid
+    ts[0] = 0.0
+    ys[0] = y
+    Rs[0] = R
+    mg[0] = -P[NGYRO] * P[JR3] * P[PSID] * y[4] * math.cos(y[3])
+    t = 0.0
+    for k in range(n):
+        rk4_step(t, y, R, 0.0, dt, P, tab, out, work, Rw)
+        t = (k + 1) * dt
+        ts[k + 1] = t
+        ys[k + 1] = y
+        Rs[k + 1] = R
+        mg[k + 1] = out[0]
+    return ts, ys, Rs, mg
+
+
+@numba.njit(cache=True)
+def env_advance(t, y, R, u, dt, n_sub, P, tab, out, obs, high):
+    """`advance`, then the env observation [roll, w1, w2, w3, wrapped phi, phi'] clipped to
+    +-high into the float32 buffer `obs`; returns (new time, state finite)."""
+    t = advance(t, y, R, u, dt, n_sub, P, tab, out)
+    ok = True
+    for i in range(y.shape[0]):
+        if not math.isfinite(y[i]):
+            ok = False
+    for i in range(3):
+        for j in range(3):
+            if not math.isfinite(R[i, j]):
+                ok = False
+    if not ok:
+        return t, False
+    phi = (y[3] + math.pi) % (2.0 * math.pi) - math.pi
+    vals = (math.atan2(R[2, 1], R[2, 2]), y[0], y[1], y[2], phi, y[4])
+    for i in range(6):
+        obs[i] = min(max(vals[i], -high[i]), high[i])
+    return t, True

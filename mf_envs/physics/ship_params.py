@@ -1,0 +1,249 @@
+"""Parameters of a ship with one or two gyroscopic roll stabilizers (Rios 2017, ch. 3 §3.3).
+
+Frozen dataclasses in SI units, validated once in `__post_init__` (ValueError naming the field),
+and presets:
+
+- `seed_test_hull()`: the seed's demonstration values (§3.3.4.1): J^(1) = (1e6, 1e9, 1e10) kg m^2,
+  J2^(2) = 10, J3^(3) = 50 kg m^2, 8050 rpm (they "do not reflect a marine vessel").
+- `small_yacht()`: an 18 t, 12-13 m motor yacht (the default of GyroStabilizer-v0), sized with the
+  usual naval-architecture rules of thumb: roll radius of gyration k44 = 0.38 B (0.35-0.45 B,
+  Fossen 2011, *Handbook of Marine Craft Hydrodynamics and Motion Control*, §4.3 / Faltinsen
+  1990), added roll inertia A44 = 0.2 J44 (10-30 %), GM = 0.9 m, linear roll damping ratio 0.04
+  plus quadratic damping (Himeno 1981 ranges for small craft). Roll period with added inertia
+  T_n = 2 pi sqrt((J44 + A44) / (rho g V GM)) = 3.71 s.
+- `mss_naval_vessel()`: the 51.5 m multipurpose naval vessel of Blanke & Christensen (1993),
+  as coded in Fossen's Marine Systems Simulator (MSS, `VESSELS/navalvessel.m`): displacement
+  357 m^3 (rho = 1014 kg/m^3), I_xx = 2.3763e6, I_zz = 47.934e6 kg m^2, added roll inertia
+  -K_p' = 7.74e5 kg m^2, GM = 1.1 m, linear roll damping -K_p = 5.0e5 N m s, quadratic
+  -K_|p|p = 4.16e5 N m s^2 (roll period 5.64 s). I_yy (not in the model) is taken = I_zz and
+  GM_L from a waterplane estimate (C_wp = 0.75).
+- `SEAKEEPER`: Table 3-1 of the seed (model: rpm, angular momentum N m s, spool-up power W);
+  `seakeeper_gyro(model)` turns a row into a `GyroParams` (rotor polar inertia J3 = H / psi').
+
+The gimbal (precession) axis is the ship's e_2 (athwartships), the rotor spins about the gimbal's
+e_3; with two gyros the second gimbal and rotor turn by -phi and -psi (Eqs. 98-99, 106-107).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
+
+RHO_SEA = 1025.0  # kg/m^3
+G = 9.81  # m/s^2
+RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
+
+# Seed Table 3-1: model -> (rpm, angular momentum H [N m s], spool-up power [W])
+SEAKEEPER: dict[str, tuple[float, float, float]] = {
+    "3DC": (6400.0, 3000.0, 900.0),
+    "5": (10700.0, 5000.0, 2000.0),
+    "9": (9000.0, 9000.0, 2000.0),
+    "16": (6130.0, 16000.0, 3000.0),
+    "26": (5000.0, 26000.0, 3000.0),
+    "35": (5150.0, 35000.0, 5000.0),
+}
+
+
+@dataclass(frozen=True)
+class GyroParams:
+    """One gyro unit: a symmetric gimbal carrying a thin-disk rotor (Eq. 117 by default).
+
+    rotor_inertia: polar J3^(3) of the rotor about its spin axis, kg m^2.
+    rotor_transverse_inertia: J1^(3) = J2^(3) of the rotor, kg m^2 (None -> J3/2, thin disk).
+    gimbal_inertia: J1^(2) = J2^(2) = J3^(2) of the gimbal frame, kg m^2 (symmetric, Eq. 117).
+    rotor_speed: psi' in rad/s (prescribed, constant).
+    """
+
+    rotor_inertia: float = 50.0
+    gimbal_inertia: float = 10.0
+    rotor_speed: float = 8050.0 * RPM
+    rotor_transverse_inertia: float | None = None
+
+    def __post_init__(self) -> None:
+        check_positive("rotor_inertia", self.rotor_inertia)
+        check_nonnegative("gimbal_inertia", self.gimbal_inertia)
+        check_finite("rotor_speed", self.rotor_speed)
+        if self.rotor_transverse_inertia is not None:
+            check_positive("rotor_transverse_inertia", self.rotor_transverse_inertia)
+
+    @property
+    def rotor_j1(self) -> float:
+        """Transverse rotor inertia J1^(3) = J2^(3), kg m^2 (thin disk J3/2 unless given)."""
+        if self.rotor_transverse_inertia is None:
+            return 0.5 * self.rotor_inertia
+        return float(self.rotor_transverse_inertia)
+
+    @property
+    def angular_momentum(self) -> float:
+        """Rotor spin angular momentum H = J3^(3) psi', N m s."""
+        return self.rotor_inertia * self.rotor_speed
+
+
+@dataclass(frozen=True)
+class ShipParams:
+    """Hull and hydrodynamic coefficients (body frame e^(1): e_1 forward/roll, e_2 port/pitch,
+    e_3 up/yaw; about the centre of mass).
+
+    inertia: (J1, J2, J3) principal rigid-body inertia of the hull incl. the gyros' mass, kg m^2.
+    mass: displacement mass, kg (translation effect only).
+    added_roll_inertia: A44, kg m^2 (effect `added_inertia`).
+    roll_stiffness: C44 = rho g V GM, N m/rad (effect `hydrostatic_restoring`).
+    pitch_stiffness: C55 = rho g V GM_L, N m/rad (effect `hydrostatic_restoring`).
+    gz_bm_over_gm: wall-sided GZ = sin(r) (GM + BM/2 tan^2 r); this is BM/GM (0 = linear GM r).
+    roll_damping: B44 linear, N m s/rad; roll_damping_quadratic: B44q, N m s^2/rad^2.
+    pitch_damping, yaw_damping: N m s/rad (effect `roll_damping` switches all three on).
+    heave_stiffness: rho g A_wp, N/m; heave_damping N s/m; surge_sway_damping N s/m (`translation`).
+    """
+
+    inertia: tuple[float, float, float] = (1.0e6, 1.0e9, 1.0e10)
+    mass: float = 1.0e5
+    added_roll_inertia: float = 0.0
+    roll_stiffness: float = 0.0
+    pitch_stiffness: float = 0.0
+    gz_bm_over_gm: float = 0.0
+    roll_damping: float = 0.0
+    roll_damping_quadratic: float = 0.0
+    pitch_damping: float = 0.0
+    yaw_damping: float = 0.0
+    heave_stiffness: float = 0.0
+    heave_damping: float = 0.0
+    surge_sway_damping: float = 0.0
+
+    def __post_init__(self) -> None:
+        inertia = check_positive("inertia", self.inertia)
+        if inertia.shape != (3,):
+            raise ValueError(f"inertia: expected 3 principal inertias, got {self.inertia!r}")
+        check_positive("mass", self.mass)
+        for name in (
+            "added_roll_inertia",
+            "roll_stiffness",
+            "pitch_stiffness",
+            "gz_bm_over_gm",
+            "roll_damping",
+            "roll_damping_quadratic",
+            "pitch_damping",
+            "yaw_damping",
+            "heave_stiffness",
+            "heave_damping",
+            "surge_sway_damping",
+        ):
+            check_nonnegative(name, getattr(self, name))
+
+    def natural_roll_period(self, added_inertia: bool = True) -> float:
+        """T_n = 2 pi sqrt((J1 + A44) / C44) in s (inf without restoring)."""
+        if self.roll_stiffness <= 0.0:
+            return math.inf
+        j = self.inertia[0] + (self.added_roll_inertia if added_inertia else 0.0)
+        return 2.0 * math.pi * math.sqrt(j / self.roll_stiffness)
+
+
+def seakeeper_gyro(model: str = "9", gimbal_inertia: float | None = None) -> GyroParams:
+    """A `GyroParams` for a Seakeeper model of seed Table 3-1 (J3 = H / psi').
+
+    gimbal_inertia: kg m^2; None assumes the gimbal's J2^(2) equals the rotor's J3 (an
+    assumption: Seakeeper does not publish it).
+    """
+    if model not in SEAKEEPER:
+        raise ValueError(f"model: must be one of {sorted(SEAKEEPER)}, got {model!r}")
+    rpm, h, _ = SEAKEEPER[model]
+    speed = rpm * RPM
+    j3 = h / speed
+    return GyroParams(
+        rotor_inertia=j3,
+        gimbal_inertia=j3 if gimbal_inertia is None else gimbal_inertia,
+        rotor_speed=speed,
+    )
+
+
+def seed_test_hull() -> tuple[ShipParams, GyroParams]:
+    """The seed's test values (§3.3.4.1): no hydrostatics, damping or added inertia."""
+    return ShipParams(inertia=(1.0e6, 1.0e9, 1.0e10)), GyroParams(50.0, 10.0, 8050.0 * RPM)
+
+
+def small_yacht(
+    displacement: float = 18000.0,
+    beam: float = 4.2,
+    gm: float = 0.9,
+    gm_longitudinal: float = 25.0,
+    length_wl: float = 11.5,
+) -> ShipParams:
+    """An 18 t planing/semi-displacement motor yacht (12-13 m LOA) by rules of thumb (see module).
+
+    displacement: kg; beam: m; gm, gm_longitudinal: metacentric heights, m; length_wl: m.
+    """
+    check_positive("displacement", displacement)
+    check_positive("beam", beam)
+    check_positive("gm", gm)
+    check_positive("gm_longitudinal", gm_longitudinal)
+    check_positive("length_wl", length_wl)
+    j44 = displacement * (0.38 * beam) ** 2
+    j55 = displacement * (0.25 * length_wl) ** 2
+    j66 = 1.1 * j55
+    a44 = 0.2 * j44
+    c44 = displacement * G * gm
+    c55 = displacement * G * gm_longitudinal
+    zeta = 0.04
+    b44 = 2.0 * zeta * math.sqrt(c44 * (j44 + a44))
+    awp = 0.75 * length_wl * beam  # waterplane area, C_wp = 0.75
+    bm = 0.75 * length_wl * beam**3 / (12.0 * displacement / RHO_SEA)  # I_wp / V
+    return ShipParams(
+        inertia=(j44, j55, j66),
+        mass=displacement,
+        added_roll_inertia=a44,
+        roll_stiffness=c44,
+        pitch_stiffness=c55,
+        gz_bm_over_gm=bm / gm,
+        roll_damping=b44,
+        roll_damping_quadratic=2.5 * b44,
+        pitch_damping=2.0 * 0.2 * math.sqrt(c55 * j55),
+        yaw_damping=0.1 * b44 * j66 / j44,
+        heave_stiffness=RHO_SEA * G * awp,
+        heave_damping=2.0 * 0.2 * math.sqrt(RHO_SEA * G * awp * displacement),
+        surge_sway_damping=0.05 * displacement,
+    )
+
+
+def mss_naval_vessel() -> ShipParams:
+    """The MSS naval vessel (Blanke & Christensen 1993; Fossen MSS `navalvessel.m`), see module."""
+    rho, lpp, beam = 1014.0, 51.5, 8.6
+    vol = 357.0
+    mass = rho * vol
+    c44 = rho * G * vol * 1.1
+    bm_l = 0.75 * lpp**3 * beam / 12.0 / vol  # I_L / V with C_wp = 0.75
+    c55 = rho * G * vol * bm_l
+    j55 = 47.934e6
+    awp = 0.75 * lpp * beam
+    return ShipParams(
+        inertia=(2.3763e6, j55, 47.934e6),
+        mass=mass,
+        added_roll_inertia=7.74e5,
+        roll_stiffness=c44,
+        pitch_stiffness=c55,
+        gz_bm_over_gm=(4.47 - 1.53) / 1.1,  # BM = KM - KB (navalvessel.m)
+        roll_damping=5.0e5,
+        roll_damping_quadratic=4.16e5,
+        pitch_damping=2.0 * 0.2 * math.sqrt(c55 * j55),
+        yaw_damping=0.0,
+        heave_stiffness=rho * G * awp,
+        heave_damping=2.0 * 0.2 * math.sqrt(rho * G * awp * mass),
+        surge_sway_damping=1.96e3,
+    )
+
+
+def capacity_ratio(
+    moment_amplitude: float, angular_momentum: float, omega: float, n_gyros: int, beta_max: float
+) -> float:
+    """M0 / (n H w sin(beta_max)): below 1 the gyros can cancel M0 cos(w t) (DESIGN.md bound).
+
+    The gyro roll moment is n H phi' cos(phi) = n H d(sin phi)/dt; holding the roll at zero needs
+    n H sin(phi) = (M0/w) sin(w t), possible only if M0 / (n H w) <= sin(beta_max).
+    """
+    n = check_int("n_gyros", n_gyros, 1, 2)
+    check_positive("angular_momentum", angular_momentum)
+    check_positive("omega", omega)
+    check_positive("beta_max", beta_max)
+    return abs(moment_amplitude) / (
+        n * angular_momentum * omega * math.sin(min(beta_max, math.pi / 2))
+    )
