@@ -1,0 +1,318 @@
+"""The active three-node C1 beam element of Rios 2017, ch. 4 §4.7-4.8 (Eqs. 68-83, 104-106).
+
+::
+
+      node 1 (5 dofs)            mid node 3 (psi only)          node 2 (5 dofs)
+      z1 z1' z2 z2' psi  o-------------------o-------------------o  z1 z1' z2 z2' psi
+                         S = 0          S = L0/2            S = L0
+
+* z_C(S) = (z1, z2): cubic Hermite in S with nodal values and nodal S-derivatives (Eq. 69), so the
+  discretised curve of centroids is C1 across elements;
+* psi(S): quadratic through the two end nodes and the mid node (Eq. 70);
+* strains (Eq. 74, 75): gamma = R(psi)^T z_C' (gamma_1 - 1 axial, gamma_2 shear), kappa = psi';
+* active constitutive law (Eqs. 51, 53): N1 = EA (gamma_1 - 1), N2 = GA_s gamma_2,
+  M3 = EI (kappa - kappa#);
+* internal force P = int B_T^T (N1, N2, M3) dS (Eqs. 78b, 80b), 4-point Gauss;
+* consistent tangent K = int B_T^T D B_T dS + K_geo, where K_geo is the derivative of B_T at fixed
+  stresses (derived below; B_T depends on psi and on gamma through its third column).
+
+Element dof order (the seed's Eq. 71c): (z1^1, z1'^1, z1^2, z1'^2, z2^1, z2'^1, z2^2, z2'^2,
+psi^1, psi^2, psi^3). Global layout: node j owns dofs 6j..6j+4 = (z1, z1', z2, z2', psi) and
+element e's mid node owns dof 6e+5; n_dof = 6 n_el + 5 and the matrices are banded with
+half-bandwidth 10. Banded storage follows scipy.linalg.solve_banded: ab[10 + i - j, j] = K[i, j].
+
+Geometric stiffness (derivation). With c = cos psi, s = sin psi, Nz' the Hermite derivatives and
+Np the psi shape functions, the virtual strains are
+    d gamma_1 = c dz1' + s dz2' + gamma_2 dpsi,   d gamma_2 = -s dz1' + c dz2' - gamma_1 dpsi.
+Differentiating once more (stresses held fixed):
+    D(d gamma_1) = (-s dz1' + c dz2') Dpsi + (-s Dz1' + c Dz2') dpsi - gamma_1 dpsi Dpsi,
+    D(d gamma_2) = -(c dz1' + s dz2') Dpsi - (c Dz1' + s Dz2') dpsi - gamma_2 dpsi Dpsi,
+so with a = (-s Nz', c Nz', 0), b = (c Nz', s Nz', 0), p = (0, 0, Np):
+    K_geo = N1 (a p^T + p a^T - gamma_1 p p^T) - N2 (b p^T + p b^T + gamma_2 p p^T).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+N_GAUSS = 4
+HALF_BW = 10  # half-bandwidth of the global matrices
+N_BAND = 2 * HALF_BW + 1
+
+# 4-point Gauss-Legendre on [0, 1]
+_XI, _W = np.polynomial.legendre.leggauss(N_GAUSS)
+GAUSS_XI = 0.5 * (_XI + 1.0)
+GAUSS_W = 0.5 * _W
+
+
+def n_dof(n_elements: int) -> int:
+    """Global number of dofs: 5 per end node, 1 per mid node."""
+    return 6 * n_elements + 5
+
+
+def element_dofs(n_elements: int) -> np.ndarray:
+    """(n_el, 11) int: global dof of each element dof in the seed's order (Eq. 71c)."""
+    e = 6 * np.arange(n_elements)[:, None]
+    local = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
+    return e + local[None, :]
+
+
+@numba.njit(cache=True)
+def _shape(xi: float, le: float):
+    """Hermite values/S-derivatives (4,), psi values/S-derivatives (3,) at xi = S/L0.
+
+    Eqs. 69-70 and 73, 75."""
+    nz = np.empty(4)
+    dnz = np.empty(4)
+    npsi = np.empty(3)
+    dnpsi = np.empty(3)
+    nz[0] = 1.0 - 3.0 * xi**2 + 2.0 * xi**3
+    nz[1] = le * xi * (xi - 1.0) ** 2
+    nz[2] = xi**2 * (3.0 - 2.0 * xi)
+    nz[3] = le * xi**2 * (xi - 1.0)
+    dnz[0] = (-6.0 * xi + 6.0 * xi**2) / le
+    dnz[1] = (xi - 1.0) * (3.0 * xi - 1.0)
+    dnz[2] = (6.0 * xi - 6.0 * xi**2) / le
+    dnz[3] = xi * (3.0 * xi - 2.0)
+    npsi[0] = (2.0 * xi - 1.0) * (xi - 1.0)
+    npsi[1] = xi * (2.0 * xi - 1.0)
+    npsi[2] = 4.0 * xi * (1.0 - xi)
+    dnpsi[0] = (4.0 * xi - 3.0) / le
+    dnpsi[1] = (4.0 * xi - 1.0) / le
+    dnpsi[2] = (4.0 - 8.0 * xi) / le
+    return nz, dnz, npsi, dnpsi
+
+
+def shape_functions(xi: float, le: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Public view of the shape functions: (N_z (4,), N_z' (4,), N_psi (3,), N_psi' (3,))."""
+    return _shape(float(xi), float(le))
+
+
+@numba.njit(cache=True)
+def _gp_kinematics(de, le, xi):
+    """Strains and helpers at one Gauss point from the 11 element dofs."""
+    nz, dnz, npsi, dnpsi = _shape(xi, le)
+    dz1 = dnz[0] * de[0] + dnz[1] * de[1] + dnz[2] * de[2] + dnz[3] * de[3]
+    dz2 = dnz[0] * de[4] + dnz[1] * de[5] + dnz[2] * de[6] + dnz[3] * de[7]
+    psi = npsi[0] * de[8] + npsi[1] * de[9] + npsi[2] * de[10]
+    kap = dnpsi[0] * de[8] + dnpsi[1] * de[9] + dnpsi[2] * de[10]
+    c = np.cos(psi)
+    s = np.sin(psi)
+    g1 = c * dz1 + s * dz2
+    g2 = -s * dz1 + c * dz2
+    return nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2
+
+
+@numba.njit(cache=True)
+def assemble_internal(d, le, kappa_sharp, ea, gas, ei, with_tangent):
+    """Internal force P (n_dof,) and banded tangent (21, n_dof) (Eqs. 78b, 80b + K_geo above).
+
+    d: (n_dof,) global dofs [m, -, rad]; le: (n_el,) element lengths [m];
+    kappa_sharp: (n_el, 4) actuation curvature kappa# at the Gauss points [1/m];
+    ea, gas, ei: axial [N], shear [N], bending [N m^2] rigidities.
+    Returns (P, ab, energy): P in N (z dofs) / N m (z', psi dofs), ab = dP/dd banded,
+    energy = stored elastic energy [J].
+    """
+    ne = le.shape[0]
+    nd = d.shape[0]
+    p = np.zeros(nd)
+    ab = np.zeros((N_BAND, nd))
+    energy = 0.0
+    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
+    de = np.empty(11)
+    bt = np.empty((3, 11))
+    a = np.empty(11)
+    b = np.empty(11)
+    pp = np.empty(11)
+    ke = np.empty((11, 11))
+    fe = np.empty(11)
+    for e in range(ne):
+        base = 6 * e
+        for k in range(11):
+            de[k] = d[base + loc[k]]
+        fe[:] = 0.0
+        ke[:, :] = 0.0
+        for g in range(N_GAUSS):
+            nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2 = _gp_kinematics(de, le[e], GAUSS_XI[g])
+            w = GAUSS_W[g] * le[e]
+            n1 = ea * (g1 - 1.0)
+            n2 = gas * g2
+            m3 = ei * (kap - kappa_sharp[e, g])
+            energy += 0.5 * w * (n1 * (g1 - 1.0) + n2 * g2 + m3 * (kap - kappa_sharp[e, g]))
+            bt[:, :] = 0.0
+            a[:] = 0.0
+            b[:] = 0.0
+            pp[:] = 0.0
+            for k in range(4):
+                bt[0, k] = c * dnz[k]
+                bt[0, 4 + k] = s * dnz[k]
+                bt[1, k] = -s * dnz[k]
+                bt[1, 4 + k] = c * dnz[k]
+                a[k] = -s * dnz[k]
+                a[4 + k] = c * dnz[k]
+                b[k] = c * dnz[k]
+                b[4 + k] = s * dnz[k]
+            for k in range(3):
+                bt[0, 8 + k] = g2 * npsi[k]
+                bt[1, 8 + k] = -g1 * npsi[k]
+                bt[2, 8 + k] = dnpsi[k]
+                pp[8 + k] = npsi[k]
+            for i in range(11):
+                fe[i] += w * (bt[0, i] * n1 + bt[1, i] * n2 + bt[2, i] * m3)
+            if with_tangent:
+                for i in range(11):
+                    for j in range(11):
+                        kij = ea * bt[0, i] * bt[0, j] + gas * bt[1, i] * bt[1, j]
+                        kij += ei * bt[2, i] * bt[2, j]
+                        kij += n1 * (a[i] * pp[j] + pp[i] * a[j] - g1 * pp[i] * pp[j])
+                        kij -= n2 * (b[i] * pp[j] + pp[i] * b[j] + g2 * pp[i] * pp[j])
+                        ke[i, j] += w * kij
+        for i in range(11):
+            gi = base + loc[i]
+            p[gi] += fe[i]
+            if with_tangent:
+                for j in range(11):
+                    gj = base + loc[j]
+                    ab[HALF_BW + gi - gj, gj] += ke[i, j]
+    return p, ab, energy
+
+
+@numba.njit(cache=True)
+def assemble_mass(le, m_a, j3):
+    """Consistent mass matrix, banded (21, n_dof) (Eqs. 83, 104-106), by 4-point Gauss (exact).
+
+    m_a: mass per reference length [kg/m]; j3: rotary inertia per length J_3C [kg m].
+    """
+    ne = le.shape[0]
+    nd = 6 * ne + 5
+    ab = np.zeros((N_BAND, nd))
+    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
+    for e in range(ne):
+        base = 6 * e
+        me = np.zeros((11, 11))
+        for g in range(N_GAUSS):
+            nz, dnz, npsi, dnpsi = _shape(GAUSS_XI[g], le[e])
+            w = GAUSS_W[g] * le[e]
+            for i in range(4):
+                for j in range(4):
+                    me[i, j] += w * m_a * nz[i] * nz[j]
+                    me[4 + i, 4 + j] += w * m_a * nz[i] * nz[j]
+            for i in range(3):
+                for j in range(3):
+                    me[8 + i, 8 + j] += w * j3 * npsi[i] * npsi[j]
+        for i in range(11):
+            for j in range(11):
+                gi = base + loc[i]
+                gj = base + loc[j]
+                ab[HALF_BW + gi - gj, gj] += me[i, j]
+    return ab
+
+
+@numba.njit(cache=True)
+def assemble_distributed(le, n_gp, m_gp):
+    """Nodal force of distributed loads (Eq. 81b): n_gp (n_el, 4, 2) inertial-frame line force
+    [N/m] and m_gp (n_el, 4) line couple [N m/m] at the Gauss points -> (n_dof,)."""
+    ne = le.shape[0]
+    nd = 6 * ne + 5
+    f = np.zeros(nd)
+    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
+    for e in range(ne):
+        base = 6 * e
+        for g in range(N_GAUSS):
+            nz, dnz, npsi, dnpsi = _shape(GAUSS_XI[g], le[e])
+            w = GAUSS_W[g] * le[e]
+            for k in range(4):
+                f[base + loc[k]] += w * nz[k] * n_gp[e, g, 0]
+                f[base + loc[4 + k]] += w * nz[k] * n_gp[e, g, 1]
+            for k in range(3):
+                f[base + loc[8 + k]] += w * npsi[k] * m_gp[e, g]
+    return f
+
+
+@numba.njit(cache=True)
+def evaluate_fields(d, le, xis):
+    """Position (n_el, n_xi, 2), psi, kappa, gamma_1, gamma_2 (n_el, n_xi) at local xis."""
+    ne = le.shape[0]
+    nx = xis.shape[0]
+    pos = np.empty((ne, nx, 2))
+    psi_o = np.empty((ne, nx))
+    kap_o = np.empty((ne, nx))
+    g1_o = np.empty((ne, nx))
+    g2_o = np.empty((ne, nx))
+    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
+    de = np.empty(11)
+    for e in range(ne):
+        for k in range(11):
+            de[k] = d[6 * e + loc[k]]
+        for q in range(nx):
+            nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2 = _gp_kinematics(de, le[e], xis[q])
+            pos[e, q, 0] = nz[0] * de[0] + nz[1] * de[1] + nz[2] * de[2] + nz[3] * de[3]
+            pos[e, q, 1] = nz[0] * de[4] + nz[1] * de[5] + nz[2] * de[6] + nz[3] * de[7]
+            psi_o[e, q] = psi
+            kap_o[e, q] = kap
+            g1_o[e, q] = g1
+            g2_o[e, q] = g2
+    return pos, psi_o, kap_o, g1_o, g2_o
+
+
+@numba.njit(cache=True)
+def constrain_band(ab, r, fixed):
+    """In place: rows/columns of the `fixed` dofs (bool (n_dof,)) -> identity, rhs -> 0."""
+    nd = r.shape[0]
+    for j in range(nd):
+        if fixed[j]:
+            r[j] = 0.0
+            for k in range(N_BAND):
+                ab[k, j] = 0.0  # column j
+            for i in range(max(0, j - HALF_BW), min(nd, j + HALF_BW + 1)):
+                ab[HALF_BW + j - i, i] = 0.0  # row j
+            ab[HALF_BW, j] = 1.0
+
+
+def band_to_dense(ab: np.ndarray) -> np.ndarray:
+    """Dense (n, n) matrix from the banded storage used here (for tests and small problems)."""
+    n = ab.shape[1]
+    k = np.zeros((n, n))
+    for i in range(n):
+        for j in range(max(0, i - HALF_BW), min(n, i + HALF_BW + 1)):
+            k[i, j] = ab[HALF_BW + i - j, j]
+    return k
+
+
+@numba.njit(cache=True)
+def band_matvec(ab, x):
+    """y = K x for banded K (21, n)."""
+    n = x.shape[0]
+    y = np.zeros(n)
+    for j in range(n):
+        for i in range(max(0, j - HALF_BW), min(n, j + HALF_BW + 1)):
+            y[i] += ab[HALF_BW + i - j, j] * x[j]
+    return y
+
+
+@numba.njit(cache=True)
+def assemble_line_stiffness(le, dn_gp):
+    """Banded (21, n_dof) derivative of the nodal force of configuration-dependent line loads:
+    dn_gp (n_el, 4, 2, 2) = d n_i / d z_j [N/m^2] at the Gauss points (n acting at z_C), i.e.
+    dF/dd = int N_z^T (dn/dz) N_z dS (Eq. 81b differentiated)."""
+    ne = le.shape[0]
+    nd = 6 * ne + 5
+    ab = np.zeros((N_BAND, nd))
+    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
+    for e in range(ne):
+        base = 6 * e
+        for g in range(N_GAUSS):
+            nz, dnz, npsi, dnpsi = _shape(GAUSS_XI[g], le[e])
+            w = GAUSS_W[g] * le[e]
+            for ci in range(2):
+                for cj in range(2):
+                    c = w * dn_gp[e, g, ci, cj]
+                    if c == 0.0:
+                        continue
+                    for i in range(4):
+                        gi = base + loc[4 * ci + i]
+                        for j in range(4):
+                            gj = base + loc[4 * cj + j]
+                            ab[HALF_BW + gi - gj, gj] += c * nz[i] * nz[j]
+    return ab

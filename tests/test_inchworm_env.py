@@ -1,0 +1,112 @@
+"""Inchworm-v0: API contract, determinism, reward terms, the seed gaits, numerical failure."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import mf_envs  # noqa: F401  (registers the ids)
+from controllers import baseline_kinds, make_baseline
+from mf_envs.physics.beam import NewtonSettings
+
+L = 0.3
+
+
+def test_gymnasium_and_sb3_checkers():
+    check_env(gym.make("Inchworm-v0").unwrapped, skip_render_check=True)
+    sb3 = pytest.importorskip("stable_baselines3.common.env_checker")
+    sb3.check_env(gym.make("Inchworm-v0", effects=("gravity", "inertia", "anchor_switching")))
+
+
+def test_deterministic_under_seed():
+    def roll(seed):
+        env = gym.make("Inchworm-v0")
+        obs, _ = env.reset(seed=seed)
+        rng = np.random.default_rng(5)
+        out = [obs]
+        for _ in range(5):
+            obs, *_ = env.step(rng.uniform(-1, 1, env.action_space.shape).astype(np.float32))
+            out.append(obs)
+        return np.array(out)
+
+    assert np.array_equal(roll(3), roll(3))
+    assert not np.array_equal(roll(3), roll(4))  # the initial actuation noise differs
+
+
+def test_info_keys_and_reward_terms_sum():
+    env = gym.make("Inchworm-v0")
+    _, info = env.reset(seed=0)
+    assert {"x_head", "x_tail", "centerline"} <= set(info)
+    assert info["centerline"].ndim == 2 and info["centerline"].shape[1] == 2
+    _, reward, _, _, info = env.step(env.action_space.sample())
+    assert reward == pytest.approx(info["progress"] + info["effort"], abs=1e-12)
+    assert info["effort"] <= 0.0
+
+
+@pytest.mark.parametrize("kind, per_cycle", [("seed_uniform", 0.5235), ("seed_linear", 0.2170)])
+def test_seed_gaits_advance_head_and_tail(kind, per_cycle):
+    """Both seed gaits (kappa0# = 13) advance head and tail by the stated distance per cycle
+    (body lengths) through the action interface, with no numerical failure."""
+    env = gym.make("Inchworm-v0")
+    ctrl = make_baseline(env, kind)
+    obs, info = env.reset(seed=0, options={"kappa": np.zeros(3)})
+    x0 = np.array([info["x_tail"], info["x_head"]])
+    total = 0.0
+    for _ in range(ctrl.steps_per_cycle):
+        obs, r, term, trunc, info = env.step(ctrl.predict(obs)[0])
+        assert not info["numerical_failure"] and not term
+        total += info["progress"]
+    adv = (np.array([info["x_tail"], info["x_head"]]) - x0) / L
+    assert adv == pytest.approx([per_cycle, per_cycle], rel=2e-3)
+    assert total == pytest.approx(adv[0], rel=1e-9)
+
+
+def test_baselines_registered():
+    assert baseline_kinds("Inchworm-v0")[:1] == ["seed_uniform"]
+    assert "seed_linear" in baseline_kinds("Inchworm-v0")
+
+
+def test_newton_failure_ends_episode():
+    env = gym.make("Inchworm-v0")
+    obs0, _ = env.reset(seed=0)
+    env.unwrapped.sim.settings = NewtonSettings(1e-12, 1e-12, 1, 0)  # no budget at all
+    obs, reward, term, _, info = env.step(-np.ones(env.action_space.shape, np.float32))
+    assert info["numerical_failure"] and term and reward == 0.0
+    assert np.all(np.isfinite(obs))
+
+
+def test_bad_inputs_name_the_parameter():
+    env = gym.make("Inchworm-v0")
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match="action"):
+        env.step(np.array([np.nan, 0, 0, 0], np.float32))
+    for kwargs, name in [
+        ({"n_elements": 0}, "n_elements"),
+        ({"max_curvature": -1.0}, "max_curvature"),
+        ({"youngs_modulus": 0.0}, "youngs_modulus"),
+        ({"effects": ("magnetism",)}, "effects"),
+    ]:
+        with pytest.raises(ValueError, match=name):
+            gym.make("Inchworm-v0", **kwargs)
+
+
+def test_action_shape_follows_anchor_effect_and_inertia_runs():
+    env = gym.make("Inchworm-v0", effects=("gravity", "inertia"))
+    assert env.action_space.shape == (3,)
+    env.reset(seed=1)
+    for _ in range(3):
+        obs, _, term, _, info = env.step(np.array([-0.5, -0.5, -0.5], np.float32))
+        assert not info["numerical_failure"]
+    assert info["x_head"] == pytest.approx(L, abs=1e-9)  # no switching: the head stays put
+
+
+def test_render_rgb_array():
+    env = gym.make("Inchworm-v0", render_mode="rgb_array")
+    env.reset(seed=0)
+    env.step(-np.ones(4, np.float32) * 0.2)
+    frame = env.render()
+    assert frame.dtype == np.uint8 and frame.ndim == 3 and frame.shape[2] == 3
+    assert frame.std() > 1.0
+    env.close()
