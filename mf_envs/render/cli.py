@@ -1,0 +1,106 @@
+"""`mf-envs render ENV_ID [--policy baseline|baseline:KIND|ppo|PATH] --out FILE.gif`.
+
+Runs one episode headless (render_mode="rgb_array") under a baseline controller, the shipped
+PPO policy or a saved SB3 policy, and writes the frames as a GIF. User mistakes raise
+ValueError (the CLI prints them as one line and exits with status 2). Runs longer than
+`MAX_FRAMES` steps record every k-th step (GIF frame rate divided by k, playback speed kept).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+DEFAULT_STEPS = 300
+MAX_FRAMES = 600  # longer runs record every k-th step
+
+
+def _check_env_id(env_id: str) -> None:
+    import gymnasium as gym
+
+    import mf_envs  # noqa: F401  (registers the available ids)
+    from mf_envs.envs import ENV_SPECS, available_env_ids
+
+    if env_id not in ENV_SPECS:
+        raise ValueError(f"env_id: unknown {env_id!r}; known: {', '.join(ENV_SPECS)}")
+    if env_id not in available_env_ids() or env_id not in gym.registry:
+        raise ValueError(
+            f"env_id: {env_id!r} is not available in this install; available: "
+            f"{', '.join(available_env_ids()) or 'none'}"
+        )
+
+
+def make_policy(env: Any, env_id: str, policy: str) -> Any:
+    """An object with `predict(obs, deterministic=True) -> (action, state)` for `policy`:
+    "baseline" (the env's default controller), "baseline:KIND", "ppo" (the shipped policy,
+    `train.load_policy`) or the path of a saved policy (a folder written by `mf-envs train`,
+    or its model.zip)."""
+    if policy == "baseline" or policy.startswith("baseline:"):
+        import controllers
+
+        kind = policy.partition(":")[2] or None
+        try:
+            return controllers.make_baseline(env, kind)
+        except ModuleNotFoundError as exc:  # the env landed before its controllers
+            raise ValueError(f"policy: no baseline controllers for {env_id} yet ({exc})") from exc
+    path = None
+    if policy != "ppo":
+        path = Path(policy)
+        if not path.exists():
+            raise ValueError(
+                f"policy: expected baseline, baseline:KIND, ppo or the path of a saved policy "
+                f"(folder or model.zip), got {policy!r} (no such file)"
+            )
+    try:
+        from train import load_policy
+    except ImportError as exc:
+        raise ValueError(
+            f"policy: {policy!r} needs the train package and its extras "
+            f"(pip install 'mf-envs[train]'): {exc}"
+        ) from exc
+    try:
+        return load_policy(env_id, path)
+    except ImportError as exc:  # stable-baselines3 / torch missing
+        raise ValueError(f"policy: loading a PPO policy needs 'mf-envs[train]' ({exc})") from exc
+
+
+def render_command(args: argparse.Namespace) -> list[Path]:
+    """Render one episode of `args.env_id` to the GIF `args.out`; returns [path]."""
+    import gymnasium as gym
+    from tqdm import tqdm
+
+    from mf_envs.render import save_gif
+
+    _check_env_id(args.env_id)
+    out = Path(args.out)
+    if out.suffix.lower() != ".gif":
+        raise ValueError(f"out: expected a .gif path, got {str(out)!r}")
+    if args.steps is not None and args.steps < 1:
+        raise ValueError(f"steps: must be >= 1, got {args.steps}")
+    env = gym.make(args.env_id, render_mode="rgb_array")
+    try:
+        policy = make_policy(env, args.env_id, args.policy)
+        steps = args.steps or (env.spec.max_episode_steps if env.spec else None) or DEFAULT_STEPS
+        every = max(1, math.ceil(steps / MAX_FRAMES))  # keep memory bounded on long runs
+        obs, _ = env.reset(seed=args.seed)
+        if hasattr(policy, "reset"):
+            policy.reset()
+        frames = [env.render()]
+        for i in tqdm(range(1, steps + 1), desc=f"render {args.env_id}", unit="step"):
+            action, _ = policy.predict(obs, deterministic=True)
+            obs, _, terminated, truncated, info = env.step(action)
+            if info.get("numerical_failure"):  # the state is not finite: nothing to draw
+                msg = f"render {args.env_id}: numerical failure at step {i}, episode ended"
+                tqdm.write(msg, file=sys.stderr)
+                break
+            if i % every == 0 or terminated or truncated:
+                frames.append(env.render())
+            if terminated or truncated:
+                break
+        fps = env.metadata.get("render_fps", 30) / every  # playback speed kept
+    finally:
+        env.close()
+    return [save_gif(frames, out, fps=fps)]
