@@ -16,6 +16,7 @@ from mf_envs.physics.beam import (
     initial_acceleration,
     newmark_step,
     solve_cantilever,
+    solve_static_path,
     timoshenko_cantilever_uniform,
 )
 from mf_envs.physics.beam_reference import SEED_CANTILEVER, elastica_tip, seed_rigidities
@@ -205,6 +206,25 @@ def test_step_halving_reaches_same_solution():
     b = solve_cantilever(1.0, 1e6, 1e6, 1.0, 8, tip_force=(0, -8.0), max_step=0.05)
     assert a.stats.halvings > 0  # the full step does not converge in a few iterations
     assert np.allclose(a.tip_position, b.tip_position, atol=1e-9)
+
+
+@pytest.mark.parametrize("x0", [10.0, 1e3])
+def test_static_solution_far_from_origin(x0):
+    """The same clamped cantilever (elastica alpha = 2) with its root at x0: Newton converges
+    (it failed at 10 m: the tolerance floor ignored the round-off eps |x| / l_e of the strains)
+    and the tip displacement equals the one at the origin (translation invariance)."""
+    ref = solve_cantilever(1.0, 1e7, 1e7, 1.0, 24, tip_force=(0.0, -2.0))
+    model = BeamModel(BeamParams(1.0, 1e7, 1e7, 1.0, 24))
+    fixed = np.zeros(model.n_dof, bool)
+    fixed[clamp_dofs(model, 0)] = True
+    f = np.zeros(model.n_dof)
+    f[model.dof(-1, "z2")] = -2.0
+    d0 = model.straight()
+    d0[0::6] += x0
+    kap = np.zeros(model.gauss_S.shape)
+    d = solve_static_path(model, d0, lambda lam: (kap, lam * f), fixed)
+    tip = model.node_positions(d)[-1] - [x0, 0.0]
+    assert np.allclose(tip, ref.tip_position, rtol=0, atol=1e-9)
 
 
 @pytest.mark.parametrize(

@@ -110,3 +110,58 @@ def test_render_rgb_array():
     assert frame.dtype == np.uint8 and frame.ndim == 3 and frame.shape[2] == 3
     assert frame.std() > 1.0
     env.close()
+
+
+def test_reset_far_from_origin_is_a_translated_copy():
+    """reset(options={"x_tail": 9.0}) must not raise (it did: NewtonDivergence, round-off of
+    absolute nodal x); the episode is the x = 0 episode shifted by 9 m."""
+
+    def roll(x_tail):
+        env = gym.make("Inchworm-v0")
+        ctrl = make_baseline(env, "seed_uniform", steps_per_cycle=4)
+        obs, info = env.reset(seed=2, options={"x_tail": x_tail})
+        out, xs = [obs], [info["x_tail"]]
+        for _ in range(8):
+            obs, _, term, _, info = env.step(ctrl.predict(obs)[0])
+            assert not info["numerical_failure"] and not term
+            out.append(obs)
+            xs.append(info["x_tail"])
+        return np.array(out), np.array(xs)
+
+    obs0, x0 = roll(0.0)
+    obs9, x9 = roll(9.0)
+    assert np.array_equal(obs9, obs0)
+    assert np.allclose(x9 - 9.0, x0, rtol=0, atol=1e-12)
+    assert x0[-1] - x0[0] > 0.5 * L  # two cycles of crawling
+    with pytest.raises(ValueError, match="x_tail"):
+        gym.make("Inchworm-v0").reset(seed=0, options={"x_tail": np.nan})
+
+
+def test_render_after_numerical_failure_shows_last_finite_frame():
+    env = gym.make("Inchworm-v0", render_mode="rgb_array")
+    env.reset(seed=0)
+    env.step(-np.ones(4, np.float32) * 0.2)
+    before = env.render()
+    env.unwrapped.sim.state.d.fill(np.nan)  # the physics state blows up
+    *_, term, _, info = env.step(-np.ones(4, np.float32) * 0.5)
+    assert info["numerical_failure"] and term
+    after = env.render()  # no ValueError: the last finite state is drawn
+    # the same picture below the caption (rows < 40: "step ..., last finite state")
+    assert np.array_equal(after[40:], before[40:]) and after.std() > 1.0
+    env.close()
+
+
+def test_long_seed_gait_episode_crawls_past_10_m():
+    """The training helper's failure (numerical_failure at x_tail ~ 8-10 m): the coarsest seed
+    gait through the env from x = 0 to past 10 m, every cycle advancing by the same distance."""
+    env = gym.make("Inchworm-v0", max_episode_steps=10_000)
+    ctrl = make_baseline(env, "seed_uniform", steps_per_cycle=2)
+    obs, info = env.reset(seed=0, options={"kappa": np.zeros(3)})
+    xs = [info["x_tail"]]
+    while xs[-1] < 10.5:
+        obs, _, term, trunc, info = env.step(ctrl.predict(obs)[0])
+        assert not info["numerical_failure"] and not term and not trunc, info["x_tail"]
+        xs.append(info["x_tail"])
+    per_cycle = np.diff(np.array(xs)[::2])
+    assert len(per_cycle) > 50 and per_cycle[0] > 0.5 * L
+    assert np.allclose(per_cycle, per_cycle[0], rtol=1e-9, atol=0)

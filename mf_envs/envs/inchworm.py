@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_int, check_nonnegative, check_positive
+from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
 from mf_envs.envs.base import MFEnv
 from mf_envs.physics.beam import NewtonDivergence
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS, Inchworm, InchwormParams, kappa_at_gauss
@@ -68,7 +68,9 @@ class InchwormEnv(MFEnv):
 
     ## Episode End
     Truncation after `max_episode_steps` steps. Termination when Newton-Raphson fails even after
-    step halving (info["numerical_failure"] = True).
+    step halving (info["numerical_failure"] = True); render() then draws the last finite state.
+    The physics is translation invariant to round-off at any distance crawled (local
+    coordinates re-centred on the tail, see `mf_envs.physics.inchworm`).
 
     ## Arguments
     | Argument | Default | Meaning |
@@ -159,6 +161,7 @@ class InchwormEnv(MFEnv):
         self._kappa_ctrl = np.zeros(self.n_ctrl)
         self._steps = 0
         self._window = None
+        self._frame_state: dict[str, Any] | None = None  # last finite state, for render()
 
     # ------------------------------------------------------------------ API
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
@@ -183,6 +186,8 @@ class InchwormEnv(MFEnv):
         reward, terms = self._get_rew(x_tail_old, kappa_old, kappa_new)
         obs = self._get_obs() if ok else np.full(self.observation_space.shape, np.nan)
         info = self._get_info(terms, report)
+        if ok:
+            self._remember_frame(info)
         truncated = self._steps >= self.max_episode_steps
         return self._finish_step(obs, reward, False, truncated, info, ok)
 
@@ -198,11 +203,13 @@ class InchwormEnv(MFEnv):
             kappa = np.asarray(options["kappa"], float).reshape(self.n_ctrl)
             if not np.all(np.isfinite(kappa)) or np.any(np.abs(kappa) > self.max_curvature):
                 raise ValueError("options['kappa']: must be finite and within max_curvature")
-        self.sim.reset(x_tail=float(options.get("x_tail", 0.0)))
+        self.sim.reset(x_tail=float(check_finite("options['x_tail']", options.get("x_tail", 0.0))))
         self.sim.actuate(kappa_at_gauss(self.S_ctrl, kappa, self.sim.model.gauss_S), anchor="head")
         self._kappa_ctrl = kappa
         self._steps = 0
         info = self._get_info({"progress": 0.0, "effort": 0.0}, None)
+        self._frame_state = None
+        self._remember_frame(info)
         return self._finish_reset(self._get_obs()), info
 
     # ------------------------------------------------------------------ helpers
@@ -248,17 +255,30 @@ class InchwormEnv(MFEnv):
         return info
 
     # ------------------------------------------------------------------ rendering
+    def _remember_frame(self, info: dict[str, Any]) -> None:
+        """Keep the drawable state if it is finite (after a numerical failure the physics state
+        may be NaN; render() then shows the last finite one)."""
+        keys = ("centerline", "x_head", "x_tail")
+        if all(np.all(np.isfinite(info[k])) for k in keys):
+            self._frame_state = {k: info[k] for k in (*keys, "anchor")}
+            self._frame_state["step"] = self._steps
+
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:
             return None
         from mf_envs.render import draw_inchworm
 
-        sim = self.sim
+        if self._frame_state is None:  # before the first reset: the constructed state
+            sim = self.sim
+            info = {"centerline": sim.centerline(), "x_head": sim.x_head, "x_tail": sim.x_tail}
+            self._remember_frame({**info, "anchor": sim.anchor})
+        fs = self._frame_state
+        note = "" if fs["step"] == self._steps else "  (last finite state)"
         frame = draw_inchworm(
-            centerline=sim.centerline(),
-            x_head=sim.x_head,
-            x_tail=sim.x_tail,
-            text=f"step {self._steps}  tail x = {sim.x_tail:+.3f} m  grip: {sim.anchor}",
+            centerline=fs["centerline"],
+            x_head=fs["x_head"],
+            x_tail=fs["x_tail"],
+            text=f"step {fs['step']}  tail x = {fs['x_tail']:+.3f} m  grip: {fs['anchor']}{note}",
         )
         if self.render_mode == "human":
             from mf_envs.render import HumanWindow

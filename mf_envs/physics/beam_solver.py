@@ -214,9 +214,13 @@ def newton(
     p = model.params
     d = d_start.copy()
     f_ref = p.EI / p.length + float(np.max(np.abs(f_ext * model.u_scale)))
-    # eps1, floored at the round-off level of the axial/shear force terms
+    # eps1, floored at the round-off level of the axial/shear force terms: the strain
+    # z' = sum N_i' z_i of nodes at distance |z| from the origin carries eps |z| / l_e, so the
+    # floor grows with max(L, |z|) (callers far from the origin should use local coordinates)
     eps = np.finfo(float).eps
-    tol_r = max(settings.rtol, 256 * eps * max(p.EA, p.GAs) * p.length / f_ref)
+    reach = max(1.0, float(np.max(np.abs(d[0::6]), initial=0.0)) / p.length)
+    reach = max(reach, float(np.max(np.abs(d[2::6]), initial=0.0)) / p.length)
+    tol_r = max(settings.rtol, 256 * eps * max(p.EA, p.GAs) * p.length * reach / f_ref)
     if dyn is not None:  # a = c_a (d - d_pred) loses digits in the difference
         md = el.band_matvec(model.mass, np.abs(d) + np.abs(dyn.d_pred))
         tol_r = max(tol_r, 256 * eps * dyn.c_a * float(np.max(np.abs(md * model.u_scale))) / f_ref)

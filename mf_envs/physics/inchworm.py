@@ -21,6 +21,14 @@ Effects: gravity (Eq. 99), inertia (off = quasi-static), shear_deformation (off 
 a GA_s penalty of 100x), anchor_switching (Eq. 102; off = the head is held, fig. 4-8), terrain
 (Bekker/Janosi soil of `inchworm_terrain` instead of the kinematic supports; the anchor choice
 then sets which half of the body grips; implies the weight).
+
+Coordinates: the nodal x dofs of `state.d` are relative to a moving origin `x_origin` [m]
+(inertial x = x_origin + local x), re-centred on the tail whenever the body has crawled more
+than a body length from it. The equations are translation invariant, but their discretisation
+in absolute x is not: the strain z' = sum N_i' z_i of nodes at |x| carries a round-off
+eps |x| / l_e, i.e. an axial force error EA eps |x| / l_e that grows with the distance crawled
+until Newton cannot meet its tolerance (with the defaults: failure past ~8 m). Local
+coordinates keep every run bit-identical to the same run started at the origin.
 """
 
 from __future__ import annotations
@@ -30,7 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mf_envs._validate import check_int, check_positive
+from mf_envs._validate import check_finite, check_int, check_positive
 from mf_envs.physics.beam import (
     BeamModel,
     BeamParams,
@@ -156,9 +164,9 @@ class Inchworm:
 
     # ------------------------------------------------------------------ state
     def reset(self, x_tail: float = 0.0) -> None:
-        """Straight, unactuated, at rest, tail at x_tail; head anchored (loading comes first)."""
+        """Straight, unactuated, at rest, tail at x_tail [m]; head anchored (loading first)."""
+        self.x_origin = float(check_finite("x_tail", x_tail))  # local x = 0 at the tail
         d = self.model.straight()
-        d[0::6] += x_tail
         if self.terrain is not None:  # bottom surface on the ground; settling finds the sinkage
             from mf_envs.physics.terrain import plate_sinkage
 
@@ -253,7 +261,21 @@ class Inchworm:
             self.state = NewmarkState(d, np.zeros_like(d), np.zeros_like(d), self.state.t + dt)
             report.iterations, report.halvings = stats.iterations, stats.halvings
         self.kappa = kappa_target
+        self._recenter()
         return report
+
+    def _recenter(self) -> None:
+        """Move the local origin to the tail once it is more than a body length away (a
+        translation of the nodal x dofs and of the soil's slip references; exact physics)."""
+        shift = float(self.state.d[self.model.dof(self.tail, "z1")])
+        if not abs(shift) > self.params.length:  # also skips a non-finite state
+            return
+        d = self.state.d.copy()  # never mutate an array a caller may hold
+        d[0::6] -= shift
+        self.state = NewmarkState(d, self.state.v, self.state.a, self.state.t)
+        self.x_origin += shift
+        if self.terrain is not None:
+            self.terrain.translate(-shift)
 
     def _dynamic(self, k0, k1, dt, n_sub, fixed, report) -> None:
         st = self.state.copy()
@@ -291,16 +313,18 @@ class Inchworm:
     @property
     def x_head(self) -> float:
         """x of the head node (S = L) [m]."""
-        return float(self.state.d[self.model.dof(self.head, "z1")])
+        return self.x_origin + float(self.state.d[self.model.dof(self.head, "z1")])
 
     @property
     def x_tail(self) -> float:
         """x of the tail node (S = 0) [m]."""
-        return float(self.state.d[self.model.dof(self.tail, "z1")])
+        return self.x_origin + float(self.state.d[self.model.dof(self.tail, "z1")])
 
     def centerline(self, per_element: int = 8) -> np.ndarray:
-        """(N, 2) curve of centroids (x, z) [m]."""
-        return self.model.centerline(self.state.d, per_element)
+        """(N, 2) curve of centroids (x, z) [m], inertial frame."""
+        line = self.model.centerline(self.state.d, per_element)
+        line[:, 0] += self.x_origin
+        return line
 
     def end_angles(self) -> tuple[float, float]:
         """Frame angles psi at tail and head [rad] (what an IMU on each foot reads)."""

@@ -57,6 +57,11 @@ class BeamTerrain:
         self.slip = SlipState.at_rest(x)
         self._trial = self.slip
 
+    def translate(self, dx: float) -> None:
+        """Shift the slip references by dx [m] (the beam's local origin moved by -dx)."""
+        self.slip = SlipState(self.slip.j, self.slip.x_ref + dx)
+        self._trial = SlipState(self._trial.j, self._trial.x_ref + dx)
+
     def _gripping(self) -> np.ndarray:
         if self.anchor is None:
             return np.ones_like(self.head_side)
