@@ -10,6 +10,11 @@ ENV_SPECS: dict[str, str] = {
     "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer:GyroStabilizerEnv",
     "Inchworm-v0": "mf_envs.envs.inchworm:InchwormEnv",
 }
+# id -> native batched vector env (`gym.make_vec(id, vectorization_mode="vector_entry_point")`)
+VECTOR_SPECS: dict[str, str] = {
+    "GOWEC-v0": "mf_envs.envs.gowec_vector:GOWECVectorEnv",
+    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer_vector:GyroStabilizerVectorEnv",
+}
 
 
 def available_env_ids() -> list[str]:
@@ -25,6 +30,11 @@ def available_env_ids() -> list[str]:
 
 def register_envs() -> None:
     """Register the available env ids with Gymnasium (idempotent)."""
+    import importlib.util
+
     for env_id in available_env_ids():
         if env_id not in gym.registry:
-            gym.register(id=env_id, entry_point=ENV_SPECS[env_id])
+            vec = VECTOR_SPECS.get(env_id)
+            if vec is not None and importlib.util.find_spec(vec.split(":")[0]) is None:
+                vec = None
+            gym.register(id=env_id, entry_point=ENV_SPECS[env_id], vector_entry_point=vec)

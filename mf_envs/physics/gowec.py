@@ -98,6 +98,15 @@ def buoy_rates(t, amp, om, eps, k, cth, sth, two_d):
     b1 = d eta/d x2, b2 = -d eta/d x1 at the origin (waves.WaveField); two_d = False keeps
     only b1 (rocking about e1 alone, as in Eq. 94).
     """
+    w = np.zeros(3)
+    wd = np.zeros(3)
+    buoy_rates_into(t, amp, om, eps, k, cth, sth, two_d, w, wd)
+    return w, wd
+
+
+@numba.njit(cache=True)
+def buoy_rates_into(t, amp, om, eps, k, cth, sth, two_d, w, wd):
+    """`buoy_rates` writing into the caller's w (3,) and w' (3,) (no allocation in the RK4 loop)."""
     g0 = 0.0
     g1 = 0.0
     g2 = 0.0
@@ -111,12 +120,10 @@ def buoy_rates(t, amp, om, eps, k, cth, sth, two_d):
         g2 += ak * om[i] * om[i] * sa
         g3 -= ak * om[i] ** 3 * ca
     b1d, b1dd = sth * g1, sth * g2
-    w = np.zeros(3)
-    wd = np.zeros(3)
     if not two_d:
-        w[0] = b1d
-        wd[0] = b1dd
-        return w, wd
+        w[0], w[1], w[2] = b1d, 0.0, 0.0
+        wd[0], wd[1], wd[2] = b1dd, 0.0, 0.0
+        return
     b2, b2d, b2dd = -cth * g0, -cth * g1, -cth * g2
     c2, s2 = math.cos(b2), math.sin(b2)
     w[0] = b1d * c2
@@ -125,7 +132,6 @@ def buoy_rates(t, amp, om, eps, k, cth, sth, two_d):
     wd[0] = b1dd * c2 - b1d * s2 * b2d
     wd[1] = b2dd
     wd[2] = b1dd * s2 + b1d * c2 * b2d
-    return w, wd
 
 
 @numba.njit(cache=True)
@@ -147,15 +153,17 @@ def fast_step(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, t
     """
     Ja, Jt, Jg1, Jg2, Jg3 = inert[0], inert[1], inert[2], inert[3], inert[4]
     energy = 0.0
+    w = np.empty(3)
+    wd = np.empty(3)
     for _ in range(n):
-        w, wd = buoy_rates(t, amp, om, eps, k, cth, sth, two_d)
+        buoy_rates_into(t, amp, om, eps, k, cth, sth, two_d, w, wd)
         a1 = gimbal_accel(phi, phid, w, wd, Mg, Ja, Jt, Jg1, Jg2, Jg3, psid)
-        w, wd = buoy_rates(t + 0.5 * dt, amp, om, eps, k, cth, sth, two_d)
+        buoy_rates_into(t + 0.5 * dt, amp, om, eps, k, cth, sth, two_d, w, wd)
         p2, v2 = phi + 0.5 * dt * phid, phid + 0.5 * dt * a1
         a2 = gimbal_accel(p2, v2, w, wd, Mg, Ja, Jt, Jg1, Jg2, Jg3, psid)
         p3, v3 = phi + 0.5 * dt * v2, phid + 0.5 * dt * a2
         a3 = gimbal_accel(p3, v3, w, wd, Mg, Ja, Jt, Jg1, Jg2, Jg3, psid)
-        w, wd = buoy_rates(t + dt, amp, om, eps, k, cth, sth, two_d)
+        buoy_rates_into(t + dt, amp, om, eps, k, cth, sth, two_d, w, wd)
         p4, v4 = phi + dt * v3, phid + dt * a3
         a4 = gimbal_accel(p4, v4, w, wd, Mg, Ja, Jt, Jg1, Jg2, Jg3, psid)
         # energy = Mg * (change of phi), exact for the held torque
@@ -164,7 +172,7 @@ def fast_step(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, t
         phi += dphi
         phid += dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
         t += dt
-    w, _ = buoy_rates(t, amp, om, eps, k, cth, sth, two_d)
+    buoy_rates_into(t, amp, om, eps, k, cth, sth, two_d, w, wd)
     eta = 0.0
     for i in range(amp.shape[0]):
         eta += amp[i] * math.cos(-om[i] * t + eps[i])

@@ -1,0 +1,232 @@
+"""Shared machinery of the native batched vector envs (`gowec_vector`, `gyro_stabilizer_vector`).
+
+A native vector env steps all N sub-envs in ONE compiled call over a batch axis, and reproduces
+`gymnasium.vector.SyncVectorEnv` over N copies of the single env exactly (same observations,
+rewards, flags and batched infos, bit for bit) for the same seeds:
+
+- seeding: `reset(seed=s)` gives sub-env i the seed s + i, `reset(seed=[s_0, ...])` seed s_i, and
+  each sub-env keeps its own `np.random.Generator` for the resets that follow (autoreset);
+- resets (rare: once per episode) go through one "template" instance of the single env: its
+  generator is swapped for sub-env i's, `reset` is called, and the subclass copies the resulting
+  state into row i of the batch arrays (`_load`), so reset semantics cannot drift from the
+  single env's;
+- steps (hot) call a batched numba kernel that calls the single env's scalar physics kernel for
+  every active row (`mf_envs.physics.gowec_batch`, `ship_batch`);
+- autoreset: `AutoresetMode.NEXT_STEP` (Gymnasium's default: the step after a done one resets that
+  sub-env, ignores its action, returns reward 0 and flags False), `SAME_STEP` (reset in the same
+  step; `final_obs`/`final_info` in the info) and `DISABLED` (reset with `options={"reset_mask":
+  m}`), as in `SyncVectorEnv`;
+- infos: Gymnasium's batched layout, {key: (N,) array, "_key": (N,) bool mask}, nested dicts
+  (`reward_terms`) batched recursively.
+
+Rendering is not supported (`render_mode` must be None): render a single env instead.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from mf_envs._validate import check_int
+
+
+def seed_list(seed: int | list[int | None] | None, n: int) -> list[int | None]:
+    """SyncVectorEnv's convention: None -> [None]*n, int s -> [s, s+1, ...], list -> as is."""
+    if seed is None:
+        return [None] * n
+    if isinstance(seed, (int, np.integer)):
+        return [int(seed) + i for i in range(n)]
+    seeds = list(seed)
+    if len(seeds) != n:
+        raise ValueError(f"seed: a list of seeds must have num_envs={n} entries, got {len(seeds)}")
+    return seeds
+
+
+def parse_autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
+    """AutoresetMode from the enum or its value ("NextStep", "SameStep", "Disabled")."""
+    try:
+        return AutoresetMode(mode)
+    except ValueError:
+        raise ValueError(
+            f"autoreset_mode: one of {[m.value for m in AutoresetMode]}, got {mode!r}"
+        ) from None
+
+
+class BatchedVectorEnv(VectorEnv):
+    """Base class: subclasses set `single_env_cls`, allocate their batch arrays in `_alloc(n)`,
+    copy the freshly reset template into row i in `_load(i)`, and implement
+    `_step_batch(actions, active) -> (obs, reward, terminated, truncated, info)` for the rows in
+    `active`: actions (N, *act) float64 already clipped; the batched info must hold every key
+    the single env's step info can have, with its "_key" mask (False where the single env
+    would not report the key, e.g. after a numerical failure); this class merges the resets
+    in and drops keys no row has, as SyncVectorEnv does."""
+
+    single_env_cls: type[gym.Env]
+    metadata: dict[str, Any] = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
+
+    def __init__(
+        self,
+        num_envs: int = 1,
+        *,
+        autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+        render_mode: str | None = None,
+        **env_kwargs: Any,
+    ) -> None:
+        if isinstance(num_envs, bool):
+            raise ValueError(f"num_envs: must be an integer >= 1, got {num_envs!r}")
+        self.num_envs = check_int("num_envs", num_envs, low=1)
+        if render_mode is not None:
+            raise ValueError(
+                f"render_mode: the native vector env does not render (got {render_mode!r}); "
+                "render a single env from gym.make instead"
+            )
+        self.render_mode = None
+        self.autoreset_mode = parse_autoreset_mode(autoreset_mode)
+        self.metadata = {**type(self).metadata, "autoreset_mode": self.autoreset_mode}
+        self.template = self.single_env_cls(**env_kwargs)  # validates every kwarg once
+        self.env_kwargs = dict(env_kwargs)
+        self.single_observation_space = self.template.observation_space
+        self.single_action_space = self.template.action_space
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        n = self.num_envs
+        self._rngs: list[np.random.Generator | None] = [None] * n
+        self._done = np.zeros(n, dtype=bool)  # terminated or truncated at the last step
+        self._obs = np.zeros((n, *self.single_observation_space.shape), dtype=np.float32)
+        self._all = np.ones(n, dtype=bool)
+        self._is_reset = False
+        self._alloc(n)
+
+    # ------------------------------------------------------------------ subclass hooks
+    def _alloc(self, n: int) -> None:
+        raise NotImplementedError
+
+    def _load(self, i: int) -> None:
+        raise NotImplementedError
+
+    def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
+        raise NotImplementedError
+
+    # ------------------------------------------------------------------ resets
+    def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
+        env = self.template
+        env._np_random = self._rngs[i]  # None: a fresh unseeded generator, as in a new env
+        obs, info = env.reset(seed=seed, options=options)
+        self._rngs[i] = env.np_random
+        self._load(i)
+        self._obs[i] = obs
+        return info
+
+    def reset(
+        self,
+        *,
+        seed: int | list[int | None] | None = None,
+        options: dict[str, Any] | None = None,
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Reset all sub-envs, or those in `options["reset_mask"]` ((N,) bool array)."""
+        seeds = seed_list(seed, self.num_envs)
+        options = dict(options) if options is not None else None
+        mask = self._all
+        if options is not None and "reset_mask" in options:
+            mask = np.asarray(options.pop("reset_mask"))
+            if mask.shape != (self.num_envs,) or mask.dtype != np.bool_ or not mask.any():
+                raise ValueError(
+                    f"options: reset_mask must be a ({self.num_envs},) bool array with a True"
+                )
+            if not options:
+                options = None
+        infos: dict[str, Any] = {}
+        for i in np.flatnonzero(mask):
+            infos = self._add_info(infos, self._reset_one(int(i), seeds[i], options), int(i))
+        self._done[mask] = False
+        self._is_reset = True
+        return self._obs.copy(), infos
+
+    # ------------------------------------------------------------------ steps
+    def _check_actions(self, actions: Any) -> np.ndarray:
+        shape = (self.num_envs, *self.single_action_space.shape)
+        a = np.asarray(actions, dtype=np.float64)
+        if a.shape != shape:
+            try:
+                a = a.reshape(shape)
+            except ValueError:
+                raise ValueError(f"actions: expected shape {shape}, got {a.shape}") from None
+        if not np.isfinite(a).all():
+            raise ValueError("actions: must be finite")
+        return np.clip(a, -1.0, 1.0)
+
+    def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict]:
+        if not self._is_reset:
+            raise gym.error.ResetNeeded("call reset() before step()")
+        a = self._check_actions(actions)
+        mode = self.autoreset_mode
+        redo = self._done if mode == AutoresetMode.NEXT_STEP else None
+        active = self._all if redo is None or not redo.any() else ~redo
+        obs, rew, term, trunc, info = self._step_batch(a, active)
+        self._obs[active] = obs[active]
+        masked = bool(term.any())  # failures mask keys out
+        if redo is not None and redo.any():
+            rew[redo], term[redo], trunc[redo] = 0.0, False, False
+            self._merge_resets(info, np.flatnonzero(redo))
+            masked = True
+        done = term | trunc
+        if mode == AutoresetMode.SAME_STEP and done.any():
+            masked = True
+            idx = np.flatnonzero(done)
+            final_obs = np.full(self.num_envs, None, dtype=object)
+            for i in idx:
+                final_obs[i] = self._obs[i].copy()
+            info["final_info"] = _select(info, done)
+            info["_final_info"] = done.copy()
+            info["final_obs"], info["_final_obs"] = final_obs, done.copy()
+            self._merge_resets(info, idx)
+            done = np.zeros_like(done)
+        self._done = done
+        return self._obs.copy(), rew, term, trunc, _prune(info) if masked else info
+
+    def _merge_resets(self, info: dict[str, Any], idx: np.ndarray) -> None:
+        """Reset the sub-envs `idx` now and put their reset infos in place of the step infos."""
+        resets: dict[str, Any] = {}
+        for i in idx:
+            resets = self._add_info(resets, self._reset_one(int(i), None, None), int(i))
+        _overwrite(info, resets, idx)
+
+
+def _select(info: dict[str, Any], rows: np.ndarray) -> dict[str, Any]:
+    """A copy of the batched `info` restricted to `rows` (masks cleared elsewhere)."""
+    out: dict[str, Any] = {}
+    for key, value in info.items():
+        if key.startswith("_") or key in ("final_obs", "final_info"):
+            continue
+        out[key] = _select(value, rows) if isinstance(value, dict) else value.copy()
+        out[f"_{key}"] = info[f"_{key}"] & rows
+    return out
+
+
+def _overwrite(info: dict[str, Any], resets: dict[str, Any], idx: np.ndarray) -> None:
+    """Rows `idx` of `info` take the reset infos: keys absent from a reset info are masked out."""
+    for key in list(info):
+        if key.startswith("_") or key in ("final_obs", "final_info"):
+            continue
+        if key in resets:
+            if isinstance(info[key], dict):
+                _overwrite(info[key], resets[key], idx)
+            else:
+                info[key][idx] = resets[key][idx]
+            info[f"_{key}"][idx] = resets[f"_{key}"][idx]
+        else:
+            info[f"_{key}"][idx] = False
+
+
+def _prune(info: dict[str, Any]) -> dict[str, Any]:
+    """Drop the keys no sub-env has (all-False mask), as SyncVectorEnv never creates them."""
+    for key in [k for k in info if not k.startswith("_")]:
+        if isinstance(info[key], dict):
+            _prune(info[key])
+        if not info[f"_{key}"].any():
+            del info[key], info[f"_{key}"]
+    return info

@@ -1,0 +1,259 @@
+"""Native batched vector envs (`vector_entry_point`): bit-identical to single envs with the same
+seeds across autoresets (against independent `gym.make` envs and against `SyncVectorEnv`),
+per-env seeding, `gym.make_vec` wiring, the SB3 adapter, input validation."""
+
+from __future__ import annotations
+
+import importlib.util
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.vector import AutoresetMode
+
+import mf_envs  # noqa: F401  (registers the envs)
+from mf_envs.envs import VECTOR_SPECS, available_env_ids
+
+VEC_IDS = [
+    i
+    for i in available_env_ids()
+    if i in VECTOR_SPECS and importlib.util.find_spec(VECTOR_SPECS[i].split(":")[0])
+]
+# short episodes so that a few dozen steps cross several autoresets
+SHORT: dict[str, dict[str, Any]] = {
+    "GOWEC-v0": {"n_periods": 1, "steps_per_period": 12},
+    "GyroStabilizer-v0": {"episode_seconds": 0.6},
+}
+# scenes with the most effects on (irregular seas draw per-env random components at reset)
+FULL: dict[str, dict[str, Any]] = {
+    "GOWEC-v0": {
+        "effects": ("gyroscopic", "gimbal_inertia", "buoy_rocking", "wave_2d", "irregular_waves"),
+        "n_components": 8,
+    },
+    "GyroStabilizer-v0": {
+        "effects": (
+            "gyroscopic",
+            "gimbal_inertia",
+            "added_inertia",
+            "hydrostatic_restoring",
+            "roll_damping",
+            "irregular_waves",
+            "gimbal_limits",
+            "translation",
+            "gimbal_damping",
+        ),
+        "n_gyros": 2,
+        "gimbal_drive": "torque",
+        "gimbal_damping": 50.0,
+    },
+}
+# kwargs that blow the state up within a step (numerical-failure path)
+BLOWUP: dict[str, dict[str, Any]] = {
+    "GOWEC-v0": {"max_generator_torque": 1e305},
+    "GyroStabilizer-v0": {"max_precession_rate": 1e300, "effects": ("gyroscopic",)},
+}
+SEEDS = [11, 3, 7]
+
+
+def make_vec(env_id: str, n: int = 3, **kw: Any) -> gym.vector.VectorEnv:
+    return gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point", **kw)
+
+
+def actions(env: gym.vector.VectorEnv, steps: int, seed: int = 0) -> np.ndarray:
+    """Pre-sampled actions (T, N, *act) in [-1.2, 1.2] (clipping is exercised too)."""
+    shape = (steps, env.num_envs, *env.single_action_space.shape)
+    return np.random.default_rng(seed).uniform(-1.2, 1.2, shape).astype(np.float32)
+
+
+def assert_infos_equal(a: dict[str, Any], b: dict[str, Any], where: str = "") -> None:
+    """Batched infos equal: same keys and masks, equal values where the mask is set."""
+    assert set(a) == set(b), (where, set(a) ^ set(b))
+    for key in a:
+        if key.startswith("_"):
+            continue
+        if isinstance(a[key], dict):
+            assert_infos_equal(a[key], b[key], f"{where}{key}.")
+            continue
+        m = a[f"_{key}"]
+        np.testing.assert_array_equal(m, b[f"_{key}"], err_msg=where + key)
+        assert np.asarray(a[key]).dtype == np.asarray(b[key]).dtype, where + key
+        for i in np.flatnonzero(m):
+            np.testing.assert_array_equal(a[key][i], b[key][i], err_msg=f"{where}{key}[{i}]")
+
+
+@pytest.mark.parametrize("kind", ["short", "full"])
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_vector_equals_independent_single_envs(env_id: str, kind: str) -> None:
+    """One vector env reset with seed=[s_i] == N gym.make envs reset with s_i, step by step,
+    through NEXT_STEP autoresets (the env after a done step is reset with its own generator)."""
+    kw = {**SHORT[env_id], **(FULL[env_id] if kind == "full" else {})}
+    vec = make_vec(env_id, **kw)
+    singles = [gym.make(env_id, **kw) for _ in SEEDS]
+    obs_v, info_v = vec.reset(seed=SEEDS)
+    for i, (env, s) in enumerate(zip(singles, SEEDS)):
+        obs, info = env.reset(seed=s)
+        np.testing.assert_array_equal(obs_v[i], obs)
+        for key, value in info.items():
+            if not isinstance(value, dict):
+                assert info_v[key][i] == value, key
+    done = [False] * len(SEEDS)
+    acts = actions(vec, 40)
+    n_resets = 0
+    for t in range(len(acts)):
+        obs_v, rew_v, term_v, trunc_v, info_v = vec.step(acts[t])
+        for i, env in enumerate(singles):
+            if done[i]:
+                obs, info = env.reset()
+                rew, term, trunc = 0.0, False, False
+                n_resets += 1
+            else:
+                obs, rew, term, trunc, info = env.step(acts[t, i])
+            done[i] = term or trunc
+            np.testing.assert_array_equal(obs_v[i], obs, err_msg=f"step {t} env {i}")
+            assert (rew_v[i], term_v[i], trunc_v[i]) == (rew, term, trunc), (t, i)
+            for key, value in info.items():
+                if isinstance(value, dict):
+                    for k, v in value.items():
+                        assert info_v[key][k][i] == v, (t, i, key, k)
+                else:
+                    assert info_v[f"_{key}"][i] and info_v[key][i] == value, (t, i, key)
+    assert n_resets >= 2 * len(SEEDS)
+
+
+@pytest.mark.parametrize("mode", list(AutoresetMode))
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_vector_equals_sync_vector_env(env_id: str, mode: AutoresetMode) -> None:
+    """Same batched output as SyncVectorEnv (info masks, final_obs/final_info included), with a
+    partial reset through options["reset_mask"] that staggers the episodes."""
+    kw = SHORT[env_id]
+    sync = gym.make_vec(env_id, 3, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
+    vec = make_vec(env_id, autoreset_mode=mode, **kw)
+    out_s, out_v = sync.reset(seed=SEEDS), vec.reset(seed=SEEDS)
+    np.testing.assert_array_equal(out_s[0], out_v[0])
+    assert_infos_equal(out_s[1], out_v[1])
+    acts = actions(vec, 30, seed=1)
+    for t in range(len(acts)):
+        if t == 5 or (mode == AutoresetMode.DISABLED and t % 12 == 0 and t > 0):
+            mask = np.array([True, False, True]) if t == 5 else np.ones(3, dtype=bool)
+            out_s = sync.reset(options={"reset_mask": mask})
+            out_v = vec.reset(options={"reset_mask": mask.copy()})
+            np.testing.assert_array_equal(out_s[0], out_v[0])
+            assert_infos_equal(out_s[1], out_v[1])
+        out_s, out_v = sync.step(acts[t]), vec.step(acts[t])
+        for a, b in zip(out_s[:4], out_v[:4]):
+            np.testing.assert_array_equal(a, b, err_msg=f"step {t}")
+        assert_infos_equal(out_s[4], out_v[4], f"step {t}: ")
+
+
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_numerical_failure_matches_single_env(env_id: str) -> None:
+    """A blown-up state ends the episode exactly as MFEnv's contract does in the single env."""
+    kw = {**SHORT[env_id], **BLOWUP[env_id]}
+    for mode in (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP):
+        sync = gym.make_vec(env_id, 3, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
+        vec = make_vec(env_id, autoreset_mode=mode, **kw)
+        sync.reset(seed=SEEDS)
+        vec.reset(seed=SEEDS)
+        acts = np.ones((4, 3, *vec.single_action_space.shape), dtype=np.float32)
+        failures = 0
+        for t in range(len(acts)):
+            out_s, out_v = sync.step(acts[t]), vec.step(acts[t])
+            for a, b in zip(out_s[:4], out_v[:4]):
+                np.testing.assert_array_equal(a, b)
+            assert_infos_equal(out_s[4], out_v[4], f"{mode} step {t}: ")
+            info = out_v[4].get("final_info", out_v[4])
+            failures += int(np.sum(info.get("numerical_failure", [])))
+            assert np.isfinite(out_v[0]).all()
+        assert failures >= 3
+
+
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_per_env_seeding(env_id: str) -> None:
+    """Seeded resets repeat; an int seed s means seeds s, s+1, ...; rows differ."""
+    vec = make_vec(env_id, **SHORT[env_id])
+    acts = actions(vec, 15)
+
+    def rollout(seed: Any) -> np.ndarray:
+        obs = [vec.reset(seed=seed)[0]]
+        obs += [vec.step(a)[0] for a in acts]
+        return np.array(obs)
+
+    a, b, c = rollout(SEEDS), rollout(SEEDS), rollout([5, 6, 7])
+    np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(rollout(5), c)
+    assert not np.array_equal(a[:, 0], a[:, 1])
+    # a sub-env's trajectory depends only on its own seed
+    d = rollout([11, 99, 7])
+    np.testing.assert_array_equal(a[:, [0, 2]], d[:, [0, 2]])
+    assert not np.array_equal(a[:, 1], d[:, 1])
+
+
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_make_vec_vector_entry_point(env_id: str) -> None:
+    spec = gym.spec(env_id)
+    assert spec.vector_entry_point == VECTOR_SPECS[env_id]
+    vec = make_vec(env_id, 4, **SHORT[env_id])
+    cls = type(vec.unwrapped)
+    assert f"{cls.__module__}:{cls.__name__}" == VECTOR_SPECS[env_id]
+    single = gym.make(env_id, **SHORT[env_id])
+    assert vec.single_observation_space == single.observation_space
+    assert vec.single_action_space == single.action_space
+    assert vec.metadata["autoreset_mode"] == AutoresetMode.NEXT_STEP
+    obs, _ = vec.reset(seed=0)
+    assert obs.shape == (4, *single.observation_space.shape) and obs.dtype == np.float32
+    assert vec.observation_space.contains(obs)
+    out = vec.step(vec.action_space.sample())
+    assert out[1].shape == (4,) and out[2].dtype == np.bool_
+    assert vec.unwrapped.state_nbytes() > 0
+
+
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_invalid_arguments(env_id: str) -> None:
+    for bad in (0, -3, 2.5, True, "4", None):
+        with pytest.raises(ValueError, match="num_envs"):
+            make_vec(env_id, bad)
+    with pytest.raises(ValueError, match="autoreset_mode"):
+        make_vec(env_id, 2, autoreset_mode="sometimes")
+    with pytest.raises(ValueError, match="render_mode"):
+        make_vec(env_id, 2, render_mode="rgb_array")
+    vec = make_vec(env_id, 2)
+    with pytest.raises(ValueError, match="seed"):
+        vec.reset(seed=[1, 2, 3])
+    vec.reset(seed=0)
+    act = np.zeros((2, *vec.single_action_space.shape), dtype=np.float32)
+    act[1] = np.nan
+    with pytest.raises(ValueError, match="actions"):
+        vec.step(act)
+    with pytest.raises(ValueError, match="actions"):
+        vec.step(np.zeros((3, 5)))
+
+
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_sb3_adapter_round_trip(env_id: str) -> None:
+    """train.vec.GymVectorToSB3 over the native env == SB3's DummyVecEnv of single envs."""
+    pytest.importorskip("stable_baselines3", reason="stable-baselines3 not installed")
+    from stable_baselines3.common.vec_env import DummyVecEnv
+
+    from train.vec import GymVectorToSB3
+
+    kw = SHORT[env_id]
+    ours = GymVectorToSB3(make_vec(env_id, autoreset_mode=AutoresetMode.SAME_STEP, **kw))
+    ref = DummyVecEnv([lambda: gym.make(env_id, **kw) for _ in SEEDS])
+    ours.seed(4)
+    ref.seed(4)
+    np.testing.assert_array_equal(ours.reset(), ref.reset())
+    acts = actions(ours.venv, 30)
+    ends = 0
+    for a in acts:
+        o1, r1, d1, i1 = ours.step(a)
+        o2, r2, d2, i2 = ref.step(a)
+        np.testing.assert_array_equal(o1, o2)
+        np.testing.assert_array_equal(d1, d2)
+        np.testing.assert_allclose(r1, r2, rtol=1e-6)  # SB3 keeps rewards as float32
+        for x, y in zip(i1, i2):
+            if "terminal_observation" in y:
+                ends += 1
+                np.testing.assert_array_equal(x["terminal_observation"], y["terminal_observation"])
+                assert x["TimeLimit.truncated"] == y["TimeLimit.truncated"]
+    assert ends >= 3
