@@ -164,3 +164,31 @@ def test_baselines_registered_and_pll_design_has_margins():
     assert {"pll", "fixed_rate", "bang_bang"} <= set(baseline_kinds("GOWEC-v0"))
     d = design_pll(2 * math.pi / 6.0)
     assert d.phase_margin > 35 and d.crossover < 2 * math.pi / 6.0
+
+
+def test_overspeed_trip_ends_a_motored_episode_but_not_the_baselines():
+    """Motoring the gimbal at full torque spins it up without bound (no other limit exists);
+    the overspeed trip ends the episode once |phi'| > max_gimbal_rate, and the observation stays
+    inside its bound. The PLL never comes near the trip."""
+    env = gym.make("GOWEC-v0", max_gimbal_rate=30.0)
+    obs, info = env.reset(seed=0)
+    assert info["overspeed"] is False
+    for k in range(env.unwrapped.max_steps):
+        obs, _, terminated, truncated, info = env.step(np.array([1.0], np.float32))
+        assert env.observation_space.contains(obs)
+        if terminated or truncated:
+            break
+    assert terminated and not truncated and info["overspeed"]
+    assert abs(info["gimbal_rate"]) > 30.0 and not info["numerical_failure"]
+    env = gym.make("GOWEC-v0")
+    ctrl = make_baseline(env, "pll")
+    obs, _ = env.reset(seed=3)
+    ctrl.reset()
+    peak = 0.0
+    for _ in range(env.unwrapped.max_steps):
+        obs, _, terminated, truncated, info = env.step(ctrl.predict(obs)[0])
+        peak = max(peak, abs(info["gimbal_rate"]))
+        assert not terminated
+        if truncated:
+            break
+    assert peak < 0.5 * env.unwrapped.max_gimbal_rate

@@ -22,7 +22,7 @@ AVAILABLE_EFFECTS = {
 }
 DEFAULT_EFFECTS = ("gyroscopic", "buoy_rocking", "wave_2d")
 _P = gw.GOWECParams()
-MAX_GIMBAL_RATE = 100.0  # rad/s, observation bound
+MAX_GIMBAL_RATE = 60.0  # rad/s, default overspeed trip (and observation bound)
 MAX_BUOY_RATE = 5.0  # rad/s, observation bound (breaking waves stay below ~1.6 rad/s)
 
 
@@ -54,7 +54,7 @@ class GOWECEnv(MFEnv):
     |-----|-----------------------------|-------|------|-------|
     | 0   | sin(phi), gimbal angle      | -1    | 1    |       |
     | 1   | cos(phi)                    | -1    | 1    |       |
-    | 2   | phi', gimbal rate           | -100  | 100  | rad/s |
+    | 2   | phi', gimbal rate           | -max_gimbal_rate | max_gimbal_rate | rad/s |
     | 3-5 | buoy body rates w1, w2, w3  | -5    | 5    | rad/s |
 
     The wave phase is not observed.
@@ -70,8 +70,11 @@ class GOWECEnv(MFEnv):
     `wave_phase`.
 
     ## Episode End
-    Truncation after `n_periods` wave periods. Termination only on numerical failure
-    (`info["numerical_failure"]`).
+    Truncation after `n_periods` wave periods. Termination on a gimbal overspeed trip,
+    |phi'| > `max_gimbal_rate` (`info["overspeed"]`; a real unit brakes its gimbal: nothing
+    else limits a gimbal that the generator motors, which under a constant full torque spins up
+    without bound), or on numerical failure (`info["numerical_failure"]`). The baselines stay
+    below 18 rad/s.
 
     ## Arguments
     | Argument | Default | Meaning |
@@ -82,6 +85,7 @@ class GOWECEnv(MFEnv):
     | wave_period | 6.0 s | T (irregular: peak period) |
     | wave_direction | pi/2 | theta of Eq. 89 (pi/2 head-on) |
     | max_generator_torque | 10000 N m | action scale |
+    | max_gimbal_rate | 60 rad/s | overspeed trip (ends the episode) and observation bound |
     | n_periods | 20 | episode length in wave periods |
     | steps_per_period | 300 | control steps per wave period |
     | physics_dt | 0.01 s | RK4 substep (rounded to divide the control step) |
@@ -105,6 +109,7 @@ class GOWECEnv(MFEnv):
         wave_direction: float = math.pi / 2,
         max_generator_torque: float = 10000.0,
         n_periods: int = 20,
+        max_gimbal_rate: float = MAX_GIMBAL_RATE,
         effects: Any = None,
         steps_per_period: int = 300,
         physics_dt: float = 0.01,
@@ -122,6 +127,7 @@ class GOWECEnv(MFEnv):
             check_positive("max_generator_torque", max_generator_torque)
         )
         self.n_periods = check_int("n_periods", n_periods, low=1)
+        self.max_gimbal_rate = float(check_positive("max_gimbal_rate", max_gimbal_rate))
         spp = check_int("steps_per_period", steps_per_period, low=4)
         self.n_components = check_int("n_components", n_components, low=1)
         self.gamma = float(check_positive("gamma", gamma))
@@ -142,7 +148,8 @@ class GOWECEnv(MFEnv):
         self.max_steps = self.n_periods * spp
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         hi = np.array(
-            [1, 1, MAX_GIMBAL_RATE, MAX_BUOY_RATE, MAX_BUOY_RATE, MAX_BUOY_RATE], dtype=np.float32
+            [1, 1, self.max_gimbal_rate, MAX_BUOY_RATE, MAX_BUOY_RATE, MAX_BUOY_RATE],
+            dtype=np.float32,
         )
         self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
         self._p_ref = self.analytic_max_power()
@@ -181,15 +188,17 @@ class GOWECEnv(MFEnv):
         reward, terms = self._get_rew(energy)
         truncated = self._steps >= self.max_steps
         if not (math.isfinite(phi) and math.isfinite(phid) and math.isfinite(energy)):
-            info = {"power": 0.0, "reward_terms": terms}
+            info = {"power": 0.0, "reward_terms": terms, "overspeed": False}
             return self._finish_step(self._get_obs(), reward, False, truncated, info, False)
         info = self._info(energy / self.control_dt)
         info["reward_terms"] = terms
         info["numerical_failure"] = False
+        overspeed = abs(phid) > self.max_gimbal_rate
+        info["overspeed"] = overspeed
         # the base class's _finish_step contract, inlined for speed: obs finite and within bounds
         obs = self._get_obs()
         self._last_obs = obs
-        return obs, float(reward), False, truncated, info
+        return obs, float(reward), overspeed, truncated, info
 
     def _torque(self, action: Any) -> float:
         """Generator torque (N m) from the action: NaN/inf -> ValueError, clipped to [-1, 1]."""
@@ -238,6 +247,7 @@ class GOWECEnv(MFEnv):
         self._eta = float(self.wave.elevation(0.0))
         info = self._info(0.0)
         info["reward_terms"] = {"energy": 0.0}
+        info["overspeed"] = False
         return self._finish_reset(self._get_obs()), info
 
     def _info(self, power: float) -> dict[str, Any]:
@@ -254,7 +264,7 @@ class GOWECEnv(MFEnv):
     def _get_obs(self) -> np.ndarray:
         """(sin phi, cos phi, phi', w1, w2, w3), rates clipped to the documented bounds."""
         phi, phid = self.state
-        g, b = MAX_GIMBAL_RATE, MAX_BUOY_RATE
+        g, b = self.max_gimbal_rate, MAX_BUOY_RATE
         w1, w2, w3 = (min(max(x, -b), b) for x in self._w)
         return np.array(
             [math.sin(phi), math.cos(phi), min(max(phid, -g), g), w1, w2, w3], dtype=np.float32

@@ -17,7 +17,7 @@ import numba
 import numpy as np
 
 from mf_envs.envs._vector import BatchedVectorEnv
-from mf_envs.envs.gowec import MAX_BUOY_RATE, MAX_GIMBAL_RATE, GOWECEnv
+from mf_envs.envs.gowec import MAX_BUOY_RATE, GOWECEnv
 from mf_envs.physics.gowec_batch import alloc_batch, batch_fast_step
 
 
@@ -39,7 +39,8 @@ class GOWECVectorEnv(BatchedVectorEnv):
 
     Observations (N, 6) float32, actions (N, 1) in [-1, 1], rewards (N,) float64, infos batched
     as Gymnasium does ({key: (N,) array, "_key": mask}): `power`, `gimbal_angle`, `gimbal_rate`,
-    `buoy_rate`, `wave_elevation`, `time`, `reward_terms` {`energy`}, `numerical_failure`.
+    `buoy_rate`, `wave_elevation`, `time`, `reward_terms` {`energy`}, `numerical_failure`,
+    `overspeed` (the gimbal overspeed trip, which terminates the row as in the single env).
     Memory: `state_nbytes()` bytes for the batch state.
     """
 
@@ -90,10 +91,12 @@ class GOWECVectorEnv(BatchedVectorEnv):
         reward = energy * self._scale
         terms = {"energy": reward.copy()}
         trunc = self._steps >= self.max_steps
-        ok = np.isfinite(b["phi"]) & np.isfinite(b["phid"]) & np.isfinite(energy)
         obs = self._fresh
-        _observe(active, b["phi"], b["phid"], b["w"], MAX_GIMBAL_RATE, MAX_BUOY_RATE, obs)
-        masks = np.ones((9, self.num_envs), dtype=bool)  # one row per info key
+        g = env.max_gimbal_rate
+        _observe(active, b["phi"], b["phid"], b["w"], g, MAX_BUOY_RATE, obs)
+        ok = np.isfinite(b["phi"]) & np.isfinite(b["phid"]) & np.isfinite(energy)
+        overspeed = (np.abs(b["phid"]) > g) & active & ok
+        masks = np.ones((10, self.num_envs), dtype=bool)  # one row per info key
         info: dict[str, Any] = {
             "power": energy / self.control_dt,
             "gimbal_angle": b["phi"].copy(),
@@ -103,11 +106,12 @@ class GOWECVectorEnv(BatchedVectorEnv):
             "time": t,
             "reward_terms": terms,
             "numerical_failure": ~ok,
+            "overspeed": overspeed,
         }
-        terms["_energy"] = masks[8]
+        terms["_energy"] = masks[9]
         for j, key in enumerate(list(info)):
             info[f"_{key}"] = masks[j]
-        term = np.zeros(self.num_envs, dtype=bool)
+        term = overspeed.copy()
         if not ok[active].all():  # MFEnv._finish_step: last finite obs, reward 0, terminated
             bad = ~ok & active
             obs[bad] = self._obs[bad]
