@@ -173,7 +173,7 @@ def test_overspeed_trip_ends_a_motored_episode_but_not_the_baselines():
     env = gym.make("GOWEC-v0", max_gimbal_rate=30.0)
     obs, info = env.reset(seed=0)
     assert info["overspeed"] is False
-    for k in range(env.unwrapped.max_steps):
+    for _ in range(env.unwrapped.max_steps):
         obs, _, terminated, truncated, info = env.step(np.array([1.0], np.float32))
         assert env.observation_space.contains(obs)
         if terminated or truncated:
