@@ -1,0 +1,482 @@
+"""PPO training infrastructure (train/): configs, vector-env adapter, normalised policies,
+smoke runs, domain randomisation, evaluation and the CLI error paths.
+
+Truth used: SB3's own `VecNormalize.normalize_obs` and `PPO.predict` (a second route through the
+library for `load_policy`), Gymnasium's `SyncVectorEnv` + SB3's `DummyVecEnv` on the same seeds
+(for the native-vector adapter), and hand-rolled episodes (for the evaluation loop).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+sb3 = pytest.importorskip("stable_baselines3", reason="stable-baselines3 is not installed")
+
+import mf_envs  # noqa: E402,F401  (registers the env ids)
+from mf_envs.envs import ENV_SPECS, available_env_ids  # noqa: E402
+from train.config import (  # noqa: E402
+    load_hyperparams,
+    parse_policy_kwargs,
+    read_config,
+    resolve_schedules,
+)
+from train.evaluate import episode_metrics, evaluate_controllers, run_episode  # noqa: E402
+from train.policy import POLICY_ROOT, load_policy, save_policy  # noqa: E402
+
+TINY = {"n_steps": 64, "batch_size": 64, "n_epochs": 1, "policy_kwargs": {"net_arch": [8]}}
+SMOKE_IDS = ["Pendulum-v1", *available_env_ids()]
+
+
+# --------------------------------------------------------------------------- configs
+@pytest.mark.parametrize("env_id", ["Pendulum-v1", *ENV_SPECS])
+def test_config_parses_for_every_env(env_id):
+    import inspect
+
+    from stable_baselines3 import PPO
+
+    hp = load_hyperparams(env_id)
+    assert hp.n_timesteps > 0 and 1 <= hp.n_envs <= 2
+    kwargs = resolve_schedules(hp.ppo_kwargs)
+    accepted = set(inspect.signature(PPO.__init__).parameters)
+    assert set(kwargs) <= accepted, set(kwargs) - accepted
+    if callable(kwargs.get("learning_rate")):
+        assert kwargs["learning_rate"](1.0) > kwargs["learning_rate"](0.5) > 0
+
+
+def test_config_errors(tmp_path):
+    bad = tmp_path / "bad.yml"
+    bad.write_text("Pendulum-v1:\n  n_timesteps: 10\n  frame_stack: 4\n")
+    with pytest.raises(ValueError, match="frame_stack"):
+        load_hyperparams("Pendulum-v1", bad)
+    with pytest.raises(ValueError, match="no entry"):
+        load_hyperparams("Nope-v0")
+    with pytest.raises(ValueError, match="no such file"):
+        read_config(tmp_path / "missing.yml")
+    with pytest.raises(ValueError, match="private"):
+        parse_policy_kwargs("dict(a=nn.__class__)")
+    pk = parse_policy_kwargs("dict(net_arch=[8], activation_fn=nn.Tanh)")
+    assert pk["net_arch"] == [8] and pk["activation_fn"].__name__ == "Tanh"
+
+
+# --------------------------------------------------------------------------- vector envs
+def _drive(venv, n_steps, seed):
+    """Step `venv` with seeded random actions; stack obs/reward/done/terminal obs."""
+    rng = np.random.default_rng(seed)
+    venv.seed(seed)
+    out = [venv.reset()]
+    for _ in range(n_steps):
+        a = rng.uniform(-2, 2, size=(venv.num_envs, 1)).astype(np.float32)
+        obs, rew, done, infos = venv.step(a)
+        term = [i.get("terminal_observation", np.zeros(3)) for i in infos]
+        trunc = [i.get("TimeLimit.truncated", False) for i in infos]
+        out += [obs, rew, done, np.array(term), np.array(trunc)]
+    return out
+
+
+@pytest.mark.parametrize("mode", ["SAME_STEP", "DISABLED"])
+def test_native_vector_adapter_matches_dummy_vec_env(mode):
+    from gymnasium.vector import AutoresetMode, SyncVectorEnv
+    from stable_baselines3.common.vec_env import DummyVecEnv
+
+    from train.vec import GymVectorToSB3
+
+    fns = [lambda: gym.make("Pendulum-v1") for _ in range(2)]
+    native = GymVectorToSB3(SyncVectorEnv(fns, autoreset_mode=AutoresetMode[mode]))
+    dummy = DummyVecEnv(fns)
+    a, b = _drive(native, 450, seed=3), _drive(dummy, 450, seed=3)  # crosses 2 time limits
+    assert len(a) == len(b)
+    for x, y in zip(a, b):
+        np.testing.assert_allclose(x, y, rtol=1e-6, atol=1e-6)
+    assert np.sum(b[3::5]) == 4  # both sub-envs truncated twice (200-step limit)
+
+
+def test_make_train_env_uses_native_vector_entry_point():
+    from gymnasium.vector import AutoresetMode, SyncVectorEnv
+
+    from train.vec import make_train_env
+
+    def vector_entry(num_envs=1, **kw):
+        fns = [lambda: gym.make("Pendulum-v1", **kw) for _ in range(num_envs)]
+        return SyncVectorEnv(fns, autoreset_mode=AutoresetMode.SAME_STEP)
+
+    if "TestNativePendulum-v0" not in gym.registry:
+        gym.register(
+            "TestNativePendulum-v0",
+            entry_point="gymnasium.envs.classic_control.pendulum:PendulumEnv",
+            vector_entry_point=vector_entry,
+            max_episode_steps=200,
+        )
+    venv, kind = make_train_env("TestNativePendulum-v0", 2, seed=0, normalize={})
+    assert kind == "native" and venv.num_envs == 2
+    venv.reset()
+    venv.step(np.zeros((2, 1), np.float32))
+    venv.close()
+    # CartPole's native vector env autoresets NEXT_STEP: not adaptable -> SB3's DummyVecEnv
+    venv, kind = make_train_env("CartPole-v1", 2, seed=0)
+    assert kind == "dummy"
+    venv.close()
+
+
+# --------------------------------------------------------------------------- policies
+def _trained_model(tmp_path):
+    """A few PPO updates on Pendulum with VecNormalize, saved with save_policy."""
+    from stable_baselines3 import PPO
+
+    from train.vec import make_train_env
+
+    venv, _ = make_train_env("Pendulum-v1", 2, seed=0, normalize={})
+    model = PPO("MlpPolicy", venv, seed=0, device="cpu", **TINY)
+    model.learn(256)
+    save_policy(tmp_path / "pol", model, venv, {"env_id": "Pendulum-v1", "seed": 0})
+    return model, venv
+
+
+def test_load_policy_on_raw_obs_equals_sb3_on_normalized_obs(tmp_path):
+    from stable_baselines3 import PPO
+    from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+
+    model, venv = _trained_model(tmp_path)
+    assert not np.allclose(venv.obs_rms.mean, 0.0)  # statistics really moved
+    policy = load_policy("Pendulum-v1", tmp_path / "pol")
+    # independent route: SB3's own pickle of VecNormalize + PPO.load
+    vn = VecNormalize.load(
+        str(tmp_path / "pol" / "vecnormalize.pkl"), DummyVecEnv([lambda: gym.make("Pendulum-v1")])
+    )
+    sb3_model = PPO.load(tmp_path / "pol" / "model.zip", device="cpu")
+    env = gym.make("Pendulum-v1")
+    obs, _ = env.reset(seed=7)
+    for _ in range(50):
+        a, state = policy.predict(obs, deterministic=True)
+        assert state is None and env.action_space.contains(a)
+        ref, _ = model.predict(venv.normalize_obs(obs), deterministic=True)  # in memory
+        ref2, _ = sb3_model.predict(vn.normalize_obs(obs), deterministic=True)  # reloaded
+        np.testing.assert_array_equal(a, ref)
+        np.testing.assert_array_equal(a, ref2)
+        obs, *_ = env.step(a)
+    batch = np.stack([env.observation_space.sample() for _ in range(4)])
+    ab, _ = policy.predict(batch)
+    assert ab.shape == (4, 1)
+    # normalisation is not the identity, so skipping it would change the actions
+    raw, _ = sb3_model.predict(batch, deterministic=True)
+    assert not np.allclose(raw, ab)
+
+
+def test_load_policy_errors(tmp_path):
+    _trained_model(tmp_path)
+    with pytest.raises(ValueError, match="trained on Pendulum-v1"):
+        load_policy("CartPole-v1", tmp_path / "pol")
+    with pytest.raises(ValueError, match="no policy"):
+        load_policy("Pendulum-v1", tmp_path / "nothing")
+    with pytest.raises(ValueError, match="no shipped policy"):
+        load_policy("Pendulum-v1")
+
+
+@pytest.mark.parametrize("env_id", sorted(p.name for p in POLICY_ROOT.glob("*") if p.is_dir()))
+def test_shipped_policies_load_and_act(env_id):
+    meta = json.loads((POLICY_ROOT / env_id / "meta.json").read_text())
+    for key in ("command", "seed", "timesteps", "wall_time_s", "evaluation"):
+        assert key in meta
+    policy = load_policy(env_id)
+    env = gym.make(env_id)
+    obs, _ = env.reset(seed=123)
+    a, _ = policy.predict(obs)
+    assert env.action_space.contains(np.asarray(a, dtype=np.float32))
+
+
+# --------------------------------------------------------------------------- smoke runs
+@pytest.mark.parametrize("env_id", SMOKE_IDS)
+def test_smoke_train_then_evaluate(env_id, tmp_path):
+    from train.trainer import train
+
+    res = train(
+        env_id,
+        timesteps=256,
+        seed=1,
+        out=tmp_path,
+        progress_bar=False,
+        eval_episodes=1,
+        final_eval_seeds=(),
+        overrides=TINY,
+    )
+    names = {p.name for p in res.files}
+    assert {"model.zip", "meta.json", "obs_normalization.json"} <= names
+    assert res.meta["timesteps"] >= 256 and res.meta["steps_per_s"] > 0
+    assert (res.run_dir / "evaluations.npz").is_file()
+    policy = load_policy(env_id, res.run_dir)
+    rows = evaluate_controllers(env_id, {"ppo": lambda env: policy}, seeds=[1000])
+    assert {r["metric"] for r in rows} >= {"return", "steps"}
+
+
+# --------------------------------------------------------------------------- evaluation
+class _Zero:
+    def reset(self):
+        pass
+
+    def predict(self, obs, deterministic=True):
+        return np.zeros(1, np.float32), None
+
+
+def test_evaluation_loop_matches_hand_rolled_episodes():
+    rows = evaluate_controllers("Pendulum-v1", {"zero": lambda env: _Zero()}, seeds=[5, 6])
+    returns = []
+    for s in (5, 6):
+        env = gym.make("Pendulum-v1")
+        env.reset(seed=s)
+        total, done = 0.0, False
+        while not done:
+            _, r, term, trunc, _ = env.step(np.zeros(1, np.float32))
+            total += r
+            done = term or trunc
+        returns.append(total)
+    got = {r["metric"]: r for r in rows}
+    assert got["return"]["mean"] == pytest.approx(np.mean(returns))
+    assert got["return"]["std"] == pytest.approx(np.std(returns, ddof=1))
+    assert got["steps"]["mean"] == 200 and got["return"]["n_seeds"] == 2
+
+
+@pytest.mark.parametrize("env_id", available_env_ids())
+def test_env_metrics_from_info(env_id):
+    env = gym.make(env_id)
+    m = run_episode(env_id, env, _ZeroFor(env), seed=0)
+    key = {
+        "GOWEC-v0": "power_ratio",
+        "GyroStabilizer-v0": "rms_roll",
+        "Inchworm-v0": "tail_advance_per_step",
+    }[env_id]
+    assert np.isfinite(m[key])
+    if env_id == "GyroStabilizer-v0":
+        assert m["rms_roll"] <= m["max_abs_roll"]
+
+
+class _ZeroFor(_Zero):
+    def __init__(self, env):
+        self.shape = env.action_space.shape
+
+    def predict(self, obs, deterministic=True):
+        return np.zeros(self.shape, np.float32), None
+
+
+def test_episode_metrics_definitions():
+    class _Env:
+        class unwrapped:  # noqa: N801
+            @staticmethod
+            def analytic_max_power():
+                return 4.0
+
+    infos = [
+        {"x_tail": 1.0},
+        {"power": 1.0, "roll": 0.3, "x_tail": 1.5, "time": 10.0},
+        {"power": 3.0, "roll": -0.4, "x_tail": 2.0, "time": 10.05},
+    ]
+    g = episode_metrics("GOWEC-v0", _Env, [1.0, 2.0], infos)
+    assert g["power_ratio_all"] == pytest.approx(0.5) and g["return"] == 3.0
+    g = episode_metrics("GOWEC-v0", _Env, [0] * 4, [{}] + [{"power": p} for p in (0, 4, 4, 4)])
+    assert g["power_ratio"] == pytest.approx(1.0)  # steady part: the last 3/4 of the steps
+    assert g["power_ratio_all"] == pytest.approx(0.75)
+    s = episode_metrics("GyroStabilizer-v0", _Env, [0, 0], infos)
+    assert s["rms_roll_all"] == pytest.approx(np.sqrt((0.09 + 0.16) / 2))
+    assert s["rms_roll"] == pytest.approx(0.4)  # only after the 10 s transient
+    i = episode_metrics("Inchworm-v0", _Env, [0, 0], infos)
+    assert i["tail_advance_per_step"] == pytest.approx(0.5)
+    anchors = ["head", "head", "tail", "tail", "head", "tail", "head"]  # 2 head->tail switches
+    infos = [{"x_tail": 0.1 * k, "anchor": a} for k, a in enumerate(anchors)]
+    i = episode_metrics("Inchworm-v0", _Env, [0] * 6, infos)
+    assert i["gait_cycles"] == 2 and i["tail_advance_per_cycle"] == pytest.approx(0.3)
+
+
+# --------------------------------------------------------------------------- randomisation
+def test_domain_randomization_redraws_params_deterministically():
+    from train.randomize import DomainRandomization
+
+    def draws(seed):
+        env = DomainRandomization(gym.make("Pendulum-v1"), ranges={"g": (0.8, 1.2), "zz": (1, 2)})
+        out = []
+        obs, info = env.reset(seed=seed)
+        out.append((info["randomized"]["g"], env.unwrapped.g, obs))
+        for _ in range(3):
+            obs, info = env.reset()
+            out.append((info["randomized"]["g"], env.unwrapped.g, obs))
+        return out
+
+    a, b, c = draws(0), draws(0), draws(1)
+    gs = [g for g, _, _ in a]
+    assert all(8.0 <= g <= 12.0 for g in gs) and len(set(gs)) == 4
+    assert all(g == ug for g, ug, _ in a)  # the env really runs with the drawn g
+    for x, y in zip(a, b):
+        assert x[0] == y[0] and np.array_equal(x[2], y[2])
+    assert a[0][0] != c[0][0]
+    with pytest.raises(ValueError, match="none of"):
+        DomainRandomization(gym.make("Pendulum-v1"), ranges={"zz": (1, 2)})
+
+
+def test_shift_scenes_only_use_real_kwargs():
+    from train.randomize import nominal_kwargs, shift_scenes, shifted_kwargs
+
+    assert shifted_kwargs("Pendulum-v1", {"g": 1.5, "zz": 2.0}) == {"g": 15.0}
+    for env_id in available_env_ids():
+        nominal = nominal_kwargs(env_id)
+        for kw in shift_scenes(env_id).values():
+            assert set(kw) <= set(nominal)
+
+
+# --------------------------------------------------------------------------- CLI
+def test_cli_errors_are_one_line(capsys, tmp_path, monkeypatch):
+    from mf_envs.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["evaluate", "Foo-v0"]) == 2
+    assert main(["train", "Foo-v0"]) == 2
+    assert main(["evaluate", "Pendulum-v1", "--policy", str(tmp_path / "none")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 3 and all(line.startswith("mf-envs ") for line in err)
+
+
+def test_cli_evaluate_writes_table_and_csv(tmp_path, monkeypatch, capsys):
+    from mf_envs.cli import main
+
+    _trained_model(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    assert main(["evaluate", "Pendulum-v1", "--policy", "pol", "--episodes", "2"]) == 0
+    out = capsys.readouterr().out
+    assert "ppo" in out and "±" in out
+    csv = Path(tmp_path / "mf_envs_eval" / "Pendulum-v1" / "evaluate.csv").read_text()
+    assert csv.startswith("env_id,scene,controller,metric,mean,std,n_seeds")
+
+
+def test_training_is_reproducible(tmp_path):
+    """Same command, same seed -> bit-identical weights (what lets meta.json's score be re-made)."""
+    import torch
+
+    from train.trainer import train
+
+    def weights(out):
+        res = train(
+            "Pendulum-v1",
+            timesteps=256,
+            seed=4,
+            out=out,
+            progress_bar=False,
+            eval_episodes=1,
+            final_eval_seeds=(),
+            overrides=TINY,
+        )
+        return load_policy("Pendulum-v1", res.run_dir)
+
+    a, b = weights(tmp_path / "a"), weights(tmp_path / "b")
+    for pa, pb in zip(a.model.policy.parameters(), b.model.policy.parameters()):
+        assert torch.equal(pa, pb)
+    np.testing.assert_array_equal(a.normalization.mean, b.normalization.mean)
+
+
+def test_ship_refuses_a_policy_worse_than_the_baseline(tmp_path, monkeypatch):
+    from train import ship
+
+    ev = {
+        "metric": "rms_roll",
+        "higher_is_better": False,
+        "seeds": [1000],
+        "ppo": {"mean": 0.2, "std": 0.0},
+        "baseline:pid": {"mean": 0.1, "std": 0.0},
+    }
+    assert not ship.verdict({"evaluation": ev})[0]
+    ev["ppo"]["mean"] = 0.05
+    assert ship.verdict({"evaluation": ev})[0]
+    (tmp_path / "meta.json").write_text(
+        json.dumps(
+            {"env_id": "GyroStabilizer-v0", "evaluation": {**ev, "ppo": {"mean": 0.3, "std": 0.0}}}
+        )
+    )
+    monkeypatch.setattr("train.trainer.POLICY_ROOT", tmp_path / "never")
+    assert ship.main([str(tmp_path)]) == 2
+    assert not (tmp_path / "never").exists()
+
+
+def test_tensorboard_flag_without_tensorboard_is_a_clear_error(tmp_path, capsys):
+    import importlib.util
+
+    from mf_envs.cli import main
+
+    if importlib.util.find_spec("tensorboard") is not None:
+        pytest.skip("tensorboard is installed; the flag works")
+    args = ["train", "Pendulum-v1", "--timesteps", "64", "--out", str(tmp_path), "--tensorboard"]
+    assert main(args) == 2
+    assert "pip install tensorboard" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())  # refused before training
+
+
+@pytest.mark.parametrize("env_id", available_env_ids())
+def test_domain_randomization_on_mf_envs(env_id):
+    from train.randomize import DomainRandomization, applicable_ranges, nominal_kwargs
+
+    ranges = applicable_ranges(env_id)
+    if not ranges:
+        pytest.skip(f"{env_id} has none of the randomisable kwargs")
+    env = DomainRandomization(gym.make(env_id))
+    nominal = nominal_kwargs(env_id)
+    drawn = []
+    for seed in (0, None):
+        obs, info = env.reset(seed=seed)
+        assert env.observation_space.contains(obs)
+        for k, v in info["randomized"].items():
+            lo, hi = ranges[k]
+            assert lo * nominal[k] <= v <= hi * nominal[k]
+            if isinstance(getattr(env.unwrapped, k, None), float):
+                assert getattr(env.unwrapped, k) == pytest.approx(v)  # really simulated
+        drawn.append(info["randomized"])
+        env.step(env.action_space.sample())
+    assert drawn[0] != drawn[1]
+
+
+@pytest.mark.parametrize(
+    "path", sorted((Path(__file__).parents[1] / "train" / "configs").glob("*.yml")), ids=str
+)
+def test_every_config_file_parses(path):
+    from train.config import import_object
+
+    for env_id in read_config(path):
+        hp = load_hyperparams(env_id, path)
+        for wrapper, _ in hp.env_wrappers:
+            assert callable(import_object(wrapper))
+
+
+NATIVE_IDS = [e for e in available_env_ids() if gym.spec(e).vector_entry_point is not None]
+
+
+@pytest.mark.parametrize("env_id", NATIVE_IDS)
+def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
+    """The env's native vector env (via GymVectorToSB3) and SB3's DummyVecEnv of single envs
+    give bit-identical PPO weights: same seeds, same transitions, same autoreset semantics."""
+    import torch
+    import yaml
+
+    from train.trainer import train
+
+    base = read_config()[env_id]
+    if env_id == "GOWEC-v0":  # 1 wave period per episode (300 steps) keeps the test short
+        base["env_kwargs"] = {"n_periods": 1}
+    policies = {}
+    for mode in ("auto", "dummy"):
+        cfg = tmp_path / f"{mode}.yml"
+        cfg.write_text(yaml.safe_dump({env_id: {**base, "vec_env": mode}}))
+        res = train(
+            env_id,
+            timesteps=256,
+            seed=2,
+            config=cfg,
+            out=tmp_path / mode,
+            progress_bar=False,
+            eval_episodes=1,
+            final_eval_seeds=(),
+            overrides=TINY,
+        )
+        assert res.meta["vectorization"].startswith("native" if mode == "auto" else "dummy")
+        policies[mode] = load_policy(env_id, res.run_dir)
+    a, b = policies["auto"], policies["dummy"]
+    for pa, pb in zip(a.model.policy.parameters(), b.model.policy.parameters()):
+        assert torch.equal(pa, pb)
+    np.testing.assert_array_equal(a.normalization.var, b.normalization.var)

@@ -1,0 +1,186 @@
+"""Per-env PPO hyperparameters in the rl-baselines3-zoo YAML format (`hyperparams/ppo.yml`).
+
+One top-level key per env id. Recognised keys, as in rl-zoo3:
+
+- `n_timesteps` (training budget), `n_envs` (parallel envs), `policy` (e.g. `MlpPolicy`);
+- `normalize`: `true`/`false`, or a string/dict of `VecNormalize` kwargs, e.g.
+  `"{'norm_obs': True, 'norm_reward': False}"`;
+- `policy_kwargs`: a dict, or the zoo's string form
+  `"dict(net_arch=[64, 64], activation_fn=nn.Tanh)"` (evaluated with only `dict`,
+  `nn` = `torch.nn` and `th` = `torch` in scope);
+- `env_wrapper`: dotted path of a `gymnasium.Wrapper`, or `{path: {kwargs}}` (a list of either);
+- `env_kwargs`: `gym.make` kwargs (the zoo takes these on its command line; here they may live
+  in the file so a config alone reproduces a run);
+- `eval_episodes`: episodes per EvalCallback check (the zoo's `--eval-episodes`; default 5);
+- `vec_env`: `auto` (default: the env's native vector env if it has one, else `DummyVecEnv`) or
+  `dummy` (the zoo's `--vec-env dummy`);
+- `learning_rate`/`clip_range` as numbers or the zoo's linear schedules `lin_3e-4`;
+- every other key is passed to `stable_baselines3.PPO` unchanged.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+DEFAULT_CONFIG = Path(__file__).parent / "configs" / "ppo.yml"
+_ZOO_KEYS = (
+    "n_timesteps",
+    "n_envs",
+    "policy",
+    "normalize",
+    "env_wrapper",
+    "env_kwargs",
+    "eval_episodes",
+    "vec_env",
+)
+_UNSUPPORTED = ("frame_stack", "callback", "vec_env_wrapper", "normalize_kwargs")
+
+
+@dataclass(frozen=True)
+class Hyperparams:
+    """Parsed hyperparameters of one env id (see the module docstring for the YAML keys)."""
+
+    env_id: str
+    n_timesteps: int
+    n_envs: int = 1
+    policy: str = "MlpPolicy"
+    normalize: dict[str, Any] | None = None  # VecNormalize kwargs, None = no normalisation
+    env_wrappers: tuple[tuple[str, dict[str, Any]], ...] = ()
+    env_kwargs: dict[str, Any] = field(default_factory=dict)
+    eval_episodes: int = 5
+    vec_env: str = "auto"  # "auto" (native vector env if any) | "dummy"
+    ppo_kwargs: dict[str, Any] = field(default_factory=dict)  # raw, schedules unresolved
+
+
+def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
+    """The whole YAML file as {env_id: {key: value}} (ValueError if missing or malformed)."""
+    p = Path(path) if path is not None else DEFAULT_CONFIG
+    if not p.is_file():
+        raise ValueError(f"config: no such file {str(p)!r}")
+    try:
+        data = yaml.safe_load(p.read_text())
+    except yaml.YAMLError as exc:
+        raise ValueError(f"config: {p} is not valid YAML ({exc})") from exc
+    if not isinstance(data, dict) or not all(isinstance(v, dict) for v in data.values()):
+        raise ValueError(f"config: {p} must map env ids to dicts of hyperparameters")
+    return data
+
+
+def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
+    """Hyperparameters of `env_id` from `path` (default `train/configs/ppo.yml`)."""
+    data = read_config(path)
+    if env_id not in data:
+        raise ValueError(f"config: no entry for {env_id!r} in {path or DEFAULT_CONFIG}")
+    raw = dict(data[env_id])
+    bad = [k for k in _UNSUPPORTED if k in raw]
+    if bad:
+        raise ValueError(f"config: rl-zoo3 keys {bad} are not supported by mf-envs train")
+    if "n_timesteps" not in raw:
+        raise ValueError(f"config: {env_id} needs n_timesteps")
+    ppo = {k: v for k, v in raw.items() if k not in _ZOO_KEYS}
+    if isinstance(ppo.get("policy_kwargs"), str):
+        ppo["policy_kwargs"] = parse_policy_kwargs(ppo["policy_kwargs"])
+    return Hyperparams(
+        env_id=env_id,
+        n_timesteps=int(float(raw["n_timesteps"])),
+        n_envs=int(raw.get("n_envs", 1)),
+        policy=str(raw.get("policy", "MlpPolicy")),
+        normalize=_parse_normalize(raw.get("normalize", False)),
+        env_wrappers=_parse_wrappers(raw.get("env_wrapper")),
+        env_kwargs=dict(raw.get("env_kwargs") or {}),
+        eval_episodes=int(raw.get("eval_episodes", 5)),
+        vec_env=_parse_vec_env(raw.get("vec_env", "auto")),
+        ppo_kwargs=ppo,
+    )
+
+
+def parse_policy_kwargs(text: str) -> dict[str, Any]:
+    """Evaluate the zoo's `"dict(net_arch=[64, 64], activation_fn=nn.Tanh)"` form.
+
+    Only `dict`, `nn` (torch.nn) and `th` (torch) are in scope and no builtins, as in rl-zoo3.
+    """
+    import torch
+    from torch import nn
+
+    tree = ast.parse(text, mode="eval")
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and node.attr.startswith("_"):
+            raise ValueError(f"policy_kwargs: private attribute access in {text!r}")
+    scope = {"__builtins__": {}, "dict": dict, "nn": nn, "th": torch}
+    value = eval(compile(tree, "<policy_kwargs>", "eval"), scope)  # noqa: S307 (zoo format)
+    if not isinstance(value, dict):
+        raise ValueError(f"policy_kwargs: must evaluate to a dict, got {value!r}")
+    return value
+
+
+def resolve_schedules(ppo_kwargs: dict[str, Any]) -> dict[str, Any]:
+    """Turn the zoo's `lin_<x>` strings into SB3 linear schedules (progress 1 -> 0)."""
+    out = dict(ppo_kwargs)
+    for key in ("learning_rate", "clip_range", "clip_range_vf"):
+        v = out.get(key)
+        if isinstance(v, str):
+            if not v.startswith("lin_"):
+                raise ValueError(f"{key}: expected a number or 'lin_<value>', got {v!r}")
+            out[key] = _linear(float(v[4:]))
+        elif v is not None:
+            out[key] = float(v)
+    return out
+
+
+class _linear:  # a picklable linear schedule, as rl-zoo3's linear_schedule
+    def __init__(self, initial: float) -> None:
+        self.initial = initial
+
+    def __call__(self, progress_remaining: float) -> float:
+        return progress_remaining * self.initial
+
+
+def _parse_vec_env(value: Any) -> str:
+    if value not in ("auto", "dummy"):
+        raise ValueError(f"vec_env: expected 'auto' or 'dummy', got {value!r}")
+    return str(value)
+
+
+def _parse_normalize(value: Any) -> dict[str, Any] | None:
+    if isinstance(value, str):
+        value = ast.literal_eval(value)
+    if value is True:
+        return {}
+    if value is False or value is None:
+        return None
+    if isinstance(value, dict):
+        return dict(value)
+    raise ValueError(f"normalize: expected a bool or a dict of VecNormalize kwargs, got {value!r}")
+
+
+def _parse_wrappers(value: Any) -> tuple[tuple[str, dict[str, Any]], ...]:
+    if value is None:
+        return ()
+    items = value if isinstance(value, list) else [value]
+    out = []
+    for item in items:
+        if isinstance(item, str):
+            out.append((item, {}))
+        elif isinstance(item, dict) and len(item) == 1:
+            ((name, kwargs),) = item.items()
+            out.append((str(name), dict(kwargs or {})))
+        else:
+            raise ValueError(
+                f"env_wrapper: expected 'module.Class' or {{path: kwargs}}, got {item!r}"
+            )
+    return tuple(out)
+
+
+def import_object(path: str) -> Any:
+    """`'package.module.Name'` -> the object (ValueError if it does not exist)."""
+    module, _, name = path.rpartition(".")
+    try:
+        return getattr(importlib.import_module(module), name)
+    except (ImportError, AttributeError, ValueError) as exc:
+        raise ValueError(f"env_wrapper: cannot import {path!r} ({exc})") from exc

@@ -1,0 +1,205 @@
+"""Domain randomisation of physical parameters, and parameter shifts for robustness evaluation.
+
+`DomainRandomization(env)` re-makes the wrapped env with `gym.make(env_id, **kwargs)` at every
+reset, each randomised kwarg drawn uniformly in [lo, hi] x its nominal value (the value the env was
+made with, else the constructor default). Only kwargs the env's constructor really takes are
+randomised; the draws come from the wrapper's own seeded generator, so `reset(seed=s)` is
+deterministic. The env's own validation still applies to every draw.
+
+Default ranges (factors of the nominal value), per the issue's robustness item:
+
+| env | kwarg | range | meaning |
+|---|---|---|---|
+| GOWEC-v0 | `wave_period` | 0.8 - 1.2 | wave period +-20 % |
+| GOWEC-v0 | `wave_amplitude` | 0.5 - 1.5 | sea state |
+| GOWEC-v0 | `rotor_speed` | 0.9 - 1.1 | rotor speed |
+| GyroStabilizer-v0 | `wave_period` | 0.8 - 1.2 | wave period +-20 % |
+| GyroStabilizer-v0 | `wave_moment_amplitude` | 0.5 - 1.5 | sea state (regular waves) |
+| GyroStabilizer-v0 | `significant_wave_height` | 0.5 - 1.5 | sea state (irregular_waves) |
+| GyroStabilizer-v0 | `rotor_speed` | 0.9 - 1.1 | rotor speed |
+| Inchworm-v0 | soil kwargs the env has (see `SOIL_KWARGS`) | 0.5 - 1.5 | soil |
+| Inchworm-v0 | `youngs_modulus`, `mass_per_length` | 0.8 - 1.2 | material, payload |
+
+The inchworm's grip is the seed's kinematic anchor switching (Eq. 102), which has no soil
+parameter; soil randomisation applies only if the env grows friction kwargs (`SOIL_KWARGS`).
+
+Use it in training through the YAML `env_wrapper: train.randomize.DomainRandomization`; it must
+be the first wrapper (it is applied to the bare `gym.make` env, below SB3's Monitor).
+"""
+
+from __future__ import annotations
+
+import inspect
+import numbers
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.utils import seeding
+
+Ranges = dict[str, tuple[float, float]]
+
+SOIL_KWARGS = (
+    "friction_coefficient",
+    "static_friction",
+    "kinetic_friction",
+    "friction_forward",
+    "friction_backward",
+    "mu_forward",
+    "mu_backward",
+    "ground_stiffness",
+    "ground_damping",
+)
+DEFAULT_RANGES: dict[str, Ranges] = {
+    "GOWEC-v0": {
+        "wave_period": (0.8, 1.2),
+        "wave_amplitude": (0.5, 1.5),
+        "rotor_speed": (0.9, 1.1),
+    },
+    "GyroStabilizer-v0": {
+        "wave_period": (0.8, 1.2),
+        "wave_moment_amplitude": (0.5, 1.5),
+        "significant_wave_height": (0.5, 1.5),
+        "rotor_speed": (0.9, 1.1),
+    },
+    "Inchworm-v0": {
+        **{k: (0.5, 1.5) for k in SOIL_KWARGS},
+        "youngs_modulus": (0.8, 1.2),
+        "mass_per_length": (0.8, 1.2),
+    },
+}
+# robustness scenes: name -> factors applied to the nominal kwargs (those the env has)
+SHIFTS: dict[str, dict[str, dict[str, float]]] = {
+    "GOWEC-v0": {
+        "wave_period x0.8": {"wave_period": 0.8},
+        "wave_period x1.2": {"wave_period": 1.2},
+        "rotor_speed x0.9": {"rotor_speed": 0.9},
+    },
+    "GyroStabilizer-v0": {
+        "wave_period x0.8": {"wave_period": 0.8},
+        "wave_period x1.2": {"wave_period": 1.2},
+        "sea x1.5": {"wave_moment_amplitude": 1.5},
+    },
+    "Inchworm-v0": {
+        "soil x0.5": {k: 0.5 for k in SOIL_KWARGS},
+        "youngs_modulus x0.8": {"youngs_modulus": 0.8},
+        "mass_per_length x1.2": {"mass_per_length": 1.2},
+    },
+}
+
+
+def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dict[str, float]:
+    """Real-number constructor kwargs of `env_id` -> nominal value.
+
+    Given kwargs win over constructor defaults; a kwarg whose default is not a number (e.g.
+    `wave_period=None`, "resonance") takes the value the env resolved it to, read from the
+    attribute of the same name on a freshly made env, if it has one.
+    """
+    spec = gym.spec(env_id)
+    cls = spec.entry_point if callable(spec.entry_point) else _load(spec.entry_point)
+    params = inspect.signature(cls.__init__).parameters
+    given = {**spec.kwargs, **(env_kwargs or {})}
+    out: dict[str, float] = {}
+    unresolved = []
+    for name, p in params.items():
+        value = given.get(name, p.default)
+        if _is_real(value):
+            out[name] = float(value)
+        elif name not in ("self", "render_mode") and p.kind is p.POSITIONAL_OR_KEYWORD:
+            unresolved.append(name)
+    if unresolved:
+        env = gym.make(env_id, **(env_kwargs or {}))
+        for name in unresolved:
+            value = getattr(env.unwrapped, name, None)
+            if _is_real(value):
+                out[name] = float(value)
+        env.close()
+    return out
+
+
+def _is_real(value: Any) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def applicable_ranges(env_id: str, ranges: Ranges | None = None) -> Ranges:
+    """The subset of `ranges` (default `DEFAULT_RANGES[env_id]`) that are real kwargs of the env."""
+    ranges = DEFAULT_RANGES.get(env_id, {}) if ranges is None else ranges
+    nominal = nominal_kwargs(env_id)
+    for name, (lo, hi) in ranges.items():
+        if not 0 < lo <= hi:
+            raise ValueError(f"ranges: {name} needs 0 < lo <= hi, got ({lo}, {hi})")
+    return {k: tuple(map(float, v)) for k, v in ranges.items() if k in nominal}
+
+
+def shifted_kwargs(env_id: str, factors: dict[str, float]) -> dict[str, float]:
+    """Absolute kwargs for factors x nominal value, for the kwargs `env_id` really has."""
+    nominal = nominal_kwargs(env_id)
+    return {k: f * nominal[k] for k, f in factors.items() if k in nominal}
+
+
+def shift_scenes(env_id: str) -> dict[str, dict[str, float]]:
+    """Robustness scenes of `env_id`: name -> absolute gym.make kwargs (empty ones dropped)."""
+    scenes = {name: shifted_kwargs(env_id, f) for name, f in SHIFTS.get(env_id, {}).items()}
+    return {name: kw for name, kw in scenes.items() if kw}
+
+
+class DomainRandomization(gym.Wrapper):
+    """Re-make the env with randomised physical kwargs at every reset.
+
+    Args:
+        env: an env made with `gym.make(env_id, **kwargs)` (its spec names the id and kwargs).
+        ranges: kwarg -> (lo, hi) factors of the nominal value; default `DEFAULT_RANGES[env_id]`.
+            Names the env does not take are ignored; ValueError if none is left.
+
+    `info["randomized"]` at reset holds the drawn kwargs (SI units); `self.current` too.
+    """
+
+    def __init__(self, env: gym.Env, ranges: Ranges | None = None) -> None:
+        super().__init__(env)
+        if env.spec is None:
+            raise ValueError("env: must be made with gymnasium.make (it has no spec)")
+        self.env_id = env.spec.id
+        self.base_kwargs = dict(env.spec.kwargs)
+        self.ranges = applicable_ranges(self.env_id, ranges)
+        if not self.ranges:
+            raise ValueError(
+                f"ranges: none of {list(ranges or DEFAULT_RANGES.get(self.env_id, {}))}"
+                f" is a real-valued kwarg of {self.env_id}"
+            )
+        self.nominal = {
+            k: v
+            for k, v in nominal_kwargs(self.env_id, self.base_kwargs).items()
+            if k in self.ranges
+        }
+        self.current: dict[str, float] = dict(self.nominal)
+        self._rng: np.random.Generator | None = None
+
+    def sample(self) -> dict[str, float]:
+        """Draw one set of kwargs (uniform factors x nominal) from the wrapper's generator."""
+        assert self._rng is not None
+        return {
+            k: float(self._rng.uniform(lo, hi)) * self.nominal[k]
+            for k, (lo, hi) in self.ranges.items()
+        }
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        if seed is not None or self._rng is None:
+            self._rng, _ = seeding.np_random(seed)
+        self.current = self.sample()
+        old = self.env
+        self.env = gym.make(self.env_id, **{**self.base_kwargs, **self.current})
+        old.close()
+        if self.env.observation_space != old.observation_space:
+            raise ValueError(
+                f"ranges: {self.current} changed the observation space of {self.env_id}"
+            )
+        obs, info = self.env.reset(seed=int(self._rng.integers(2**31 - 1)), options=options)
+        info["randomized"] = dict(self.current)
+        return obs, info
+
+
+def _load(entry_point: str) -> Any:
+    import importlib
+
+    module, _, name = entry_point.partition(":")
+    return getattr(importlib.import_module(module), name)
