@@ -48,11 +48,38 @@ class MFEnv(gym.Env):
         self.control_dt = float(control_dt)
         self.physics_dt = self.control_dt / self.n_substeps
         self._last_obs: np.ndarray | None = None
+        self._window: Any = None  # mf_envs.render.HumanWindow, opened by the first human render
 
     @property
     def dt(self) -> float:
         """Control interval in seconds (one `step`)."""
         return self.control_dt
+
+    # ------------------------------------------------------------------ rendering
+    def render(self) -> np.ndarray | None:
+        """rgb_array: the frame (H, W, 3) uint8 from the subclass's `_draw_frame()`; human: show
+        it in one window (opened on first use; `close()` closes it); None without render_mode."""
+        if self.render_mode is None:
+            return None
+        frame = self._draw_frame()
+        if self.render_mode == "human":
+            from mf_envs.render import HumanWindow
+
+            if self._window is None:
+                name = self.spec.id if self.spec is not None else type(self).__name__
+                self._window = HumanWindow(name)
+            self._window.show(frame)
+            return None
+        return frame
+
+    def _draw_frame(self) -> np.ndarray:
+        """The current frame, uint8 (H, W, 3); each env draws its system with mf_envs.render."""
+        raise TypeError(f"{type(self).__name__} does not define _draw_frame()")
+
+    def close(self) -> None:
+        if self._window is not None:
+            self._window.close()
+            self._window = None
 
     # ------------------------------------------------------------------ actions
     def _validate_action(self, action: Any) -> np.ndarray:

@@ -58,7 +58,8 @@ class InchwormEnv(MFEnv):
     | 2n+4, 2n+5 | ground reaction at tail, head (halves with `terrain`) / body weight | [-20, 20] |
 
     ## Rewards
-    `reward = progress + effort` (both in `info`): `progress` = tail advance this step / L;
+    `reward = progress + effort` (both in `info`, and together in `info["reward_terms"]`):
+    `progress` = tail advance this step / L;
     `effort` = -effort_weight * mean((Delta kappa# / max_curvature)^2) over the control points.
 
     ## Starting State
@@ -160,7 +161,6 @@ class InchwormEnv(MFEnv):
         self._weight = self.params.mass_per_length * self.params.gravity * self.params.length
         self._kappa_ctrl = np.zeros(self.n_ctrl)
         self._steps = 0
-        self._window = None
         self._frame_state: dict[str, Any] | None = None  # last finite state, for render()
 
     # ------------------------------------------------------------------ API
@@ -252,6 +252,7 @@ class InchwormEnv(MFEnv):
             "increments": 0 if report is None else report.increments,
         }
         info.update(terms)
+        info["reward_terms"] = dict(terms)  # the convention shared by every env
         return info
 
     # ------------------------------------------------------------------ rendering
@@ -263,9 +264,7 @@ class InchwormEnv(MFEnv):
             self._frame_state = {k: info[k] for k in (*keys, "anchor")}
             self._frame_state["step"] = self._steps
 
-    def render(self) -> np.ndarray | None:
-        if self.render_mode is None:
-            return None
+    def _draw_frame(self) -> np.ndarray:
         from mf_envs.render import draw_inchworm
 
         if self._frame_state is None:  # before the first reset: the constructed state
@@ -274,22 +273,9 @@ class InchwormEnv(MFEnv):
             self._remember_frame({**info, "anchor": sim.anchor})
         fs = self._frame_state
         note = "" if fs["step"] == self._steps else "  (last finite state)"
-        frame = draw_inchworm(
+        return draw_inchworm(
             centerline=fs["centerline"],
             x_head=fs["x_head"],
             x_tail=fs["x_tail"],
             text=f"step {fs['step']}  tail x = {fs['x_tail']:+.3f} m  grip: {fs['anchor']}{note}",
         )
-        if self.render_mode == "human":
-            from mf_envs.render import HumanWindow
-
-            if self._window is None:
-                self._window = HumanWindow("Inchworm-v0")
-            self._window.show(frame)
-            return None
-        return frame
-
-    def close(self) -> None:
-        if self._window is not None:
-            self._window.close()
-            self._window = None
