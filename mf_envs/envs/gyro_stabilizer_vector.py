@@ -76,11 +76,10 @@ class GyroStabilizerVectorEnv(BatchedVectorEnv):
             active, b["t"], b["y"], b["R"], a0 * self._rate_scale, env.physics_dt,
             env.n_substeps, b["P"], b["tab"], b["out"], obs, self._high, b["ok"],
         )  # fmt: skip
-        # reward terms exactly as GyroStabilizerEnv._get_rew: Python's float power (libm pow,
-        # which differs from x * x in the last bit now and then), on the float32 roll
+        # reward terms exactly as GyroStabilizerEnv._get_rew (q * q on the float32 roll)
         s, w = env.roll_scale, env.effort_weight
-        rolls = obs[:, 0].astype(np.float64).tolist()
-        r_roll = np.array([-((r / s) ** 2) for r in rolls])
+        q = obs[:, 0].astype(np.float64) / s
+        r_roll = -(q * q)
         r_effort = -w * a0 * a0
         reward = r_roll + r_effort
         batch_roll(b["R"], self._roll)

@@ -40,8 +40,6 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.so3 import exp_so3_nb
-
 # ---- packed parameter vector P (built by ship_model.pack_params) ----
 J1, J2, J3 = 0, 1, 2  # hull inertia (+ A44 in J1 when added_inertia is on)
 D1, D2, D3 = 3, 4, 5  # gimbal + rotor transverse inertias in the gimbal frame
@@ -111,6 +109,67 @@ def gimbal_torque(phi: float, phid: float, u: float, P: np.ndarray) -> float:
     return tau
 
 
+_TAN14_SQ = math.tan(1.4) ** 2  # the wall-sided GZ's tan(r) is clipped to |r| <= 1.4 rad
+
+
+@numba.njit(cache=True)
+def _asin(x: float) -> float:
+    """asin(x); for |x| < 0.05 (pitch below 2.9 deg) its Taylor series to x^11 (truncation
+    < 2e-19 |x|, as accurate as libm asin, and a few times cheaper)."""
+    if abs(x) < 0.05:
+        x2 = x * x
+        return x + x * x2 * (
+            1.0 / 6.0
+            + x2 * (3.0 / 40.0 + x2 * (5.0 / 112.0 + x2 * (35.0 / 1152.0 + x2 * 63.0 / 2816.0)))
+        )
+    return math.asin(x)
+
+
+@numba.njit(cache=True)
+def hull_moment(w1, w2, w3, r20, r21, r22, P):
+    """Hydrostatic and damping moments (N m, ship frame) from the body rates (rad/s) and the
+    third row (r20, r21, r22) of the attitude R; see `external_moment`.
+
+    Roll r = atan2(R32, R33) enters the wall-sided GZ only through sin(r) = R32 / |(R32, R33)|
+    and tan(r)^2 = (R32 / R33)^2 (clipped at |r| = 1.4), the same numbers without atan2/sin/tan.
+    """
+    m1 = 0.0
+    m2 = 0.0
+    if P[K44] > 0.0:
+        if P[GZR] > 0.0:
+            hyp = math.sqrt(r21 * r21 + r22 * r22)
+            sr = r21 / hyp if hyp > 0.0 else 0.0
+            t2 = _TAN14_SQ
+            if r22 > 0.0:
+                t2 = min((r21 / r22) * (r21 / r22), _TAN14_SQ)
+            m1 -= P[K44] * sr * (1.0 + 0.5 * P[GZR] * t2)
+        else:
+            m1 -= P[K44] * math.atan2(r21, r22)
+    if P[K55] > 0.0:
+        m2 -= P[K55] * _asin(max(min(-r20, 1.0), -1.0))
+    m1 -= P[B44] * w1 + P[B44Q] * abs(w1) * w1
+    m2 -= P[B55] * w2
+    return m1, m2, -P[B66] * w3
+
+
+@numba.njit(cache=True)
+def wave_loads(t: float, P: np.ndarray, tab: np.ndarray):
+    """(wave roll moment M_e in N m, heave force in N; the force only with `translation`) at t."""
+    mode = int(P[WMODE])
+    trans = P[TRANS] > 0.5
+    mw = 0.0
+    fw = 0.0
+    if mode == WAVE_REGULAR:
+        mw = P[WM0] * math.cos(P[WOMEGA] * t + P[WPHASE])
+        if trans:
+            fw = P[WF0] * math.sin(P[WOMEGA] * t + P[WPHASE])
+    elif mode == WAVE_TABLE:
+        mw = table_value(t, tab, 0, P[TABDT])
+        if trans:
+            fw = table_value(t, tab, 1, P[TABDT])
+    return mw, fw
+
+
 @numba.njit(cache=True)
 def external_moment(t: float, w: np.ndarray, R: np.ndarray, P: np.ndarray, tab: np.ndarray):
     """Hydrostatic, damping and wave moments in the ship frame (N m) and the wave roll moment.
@@ -119,27 +178,8 @@ def external_moment(t: float, w: np.ndarray, R: np.ndarray, P: np.ndarray, tab: 
     Restoring: -C44 r (linear) or -C44 sin(r) (1 + BM/(2 GM) tan^2 r) (wall-sided GZ);
     -C55 p in pitch. Damping: -B44 w1 - B44q |w1| w1, -B55 w2, -B66 w3.
     """
-    m1 = 0.0
-    m2 = 0.0
-    m3 = 0.0
-    if P[K44] > 0.0:
-        r = math.atan2(R[2, 1], R[2, 2])
-        if P[GZR] > 0.0:
-            tr = math.tan(max(min(r, 1.4), -1.4))
-            m1 -= P[K44] * math.sin(r) * (1.0 + 0.5 * P[GZR] * tr * tr)
-        else:
-            m1 -= P[K44] * r
-    if P[K55] > 0.0:
-        m2 -= P[K55] * math.asin(max(min(-R[2, 0], 1.0), -1.0))
-    m1 -= P[B44] * w[0] + P[B44Q] * abs(w[0]) * w[0]
-    m2 -= P[B55] * w[1]
-    m3 -= P[B66] * w[2]
-    mw = 0.0
-    mode = int(P[WMODE])
-    if mode == WAVE_REGULAR:
-        mw = P[WM0] * math.cos(P[WOMEGA] * t + P[WPHASE])
-    elif mode == WAVE_TABLE:
-        mw = table_value(t, tab, 0, P[TABDT])
+    m1, m2, m3 = hull_moment(w[0], w[1], w[2], R[2, 0], R[2, 1], R[2, 2], P)
+    mw = wave_loads(t, P, tab)[0]
     return m1 + mw, m2, m3, mw
 
 
@@ -158,8 +198,9 @@ def table_value(t: float, tab: np.ndarray, col: int, h: float) -> float:
 
 
 @numba.njit(cache=True)
-def ship_accel(w, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
-    """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc).
+def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
+    """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
+    at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame).
 
     With `free_gimbal` the gimbal is a degree of freedom driven by the torque tau (N m, per
     gimbal) and phi'' is solved with the hull (the phi-equation of Eq. 74):
@@ -191,7 +232,6 @@ def ship_accel(w, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
     hz = H * c if n == 1 else 0.0
     hdx = n * H * phid * c
     hdz = -H * phid * s if n == 1 else 0.0
-    w1, w2, w3 = w[0], w[1], w[2]
     # total momentum L = J w + h
     lx = jxx * w1 + jxz * w3 + hx
     ly = jyy * w2 + hy
@@ -224,133 +264,203 @@ def ship_accel(w, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
 
 
 @numba.njit(cache=True)
-def deriv(t, y, u, R, P, tab, dy):
-    """dy/dt for state y (module doc) at attitude R; returns (gyro moment, wave moment)."""
-    free = int(P[GMODE]) == GIMBAL_TORQUE
+def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
+    """(w1', w2', w3', phi', phi'') of the rotational state at attitude third row (r20, r21, r22).
+
+    mw: wave roll moment (N m) at the stage time; pg: (phi, phi', phi'') of a prescribed gimbal
+    at that time (`gimbal_motion`, ignored for the servo and torque drives).
+    """
+    mode = int(P[GMODE])
+    free = mode == GIMBAL_TORQUE
+    tau = 0.0
+    phidd = 0.0
     if free:
-        phi, phid, phidd = y[3], y[4], 0.0
         tau = gimbal_torque(phi, phid, u, P)
+    elif mode == GIMBAL_SERVO:
+        phi, phid, phidd = gimbal_motion(0.0, phi, phid, u, P)
     else:
-        phi, phid, phidd = gimbal_motion(t, y[3], y[4], u, P)
-        tau = 0.0
-    m1, m2, m3, mw = external_moment(t, y, R, P, tab)
-    a1, a2, a3, mg, phidd = ship_accel(y, phi, phid, phidd, m1, m2, m3, P, free, tau)
-    dy[0] = a1
-    dy[1] = a2
-    dy[2] = a3
-    dy[3] = phid
-    dy[4] = phidd
+        phi, phid, phidd = pg
+    m1, m2, m3 = hull_moment(w1, w2, w3, r20, r21, r22, P)
+    a1, a2, a3, _, phidd = ship_accel(w1, w2, w3, phi, phid, phidd, m1 + mw, m2, m3, P, free, tau)
+    return a1, a2, a3, phid, phidd
+
+
+@numba.njit(cache=True)
+def deriv(t, y, u, R, P, tab, dy):
+    """dy/dt for state y (module doc) at attitude R, written into dy; returns the wave moment.
+    (Reference form of the right-hand side that `rk4_step` evaluates stage by stage.)"""
+    mw, fw = wave_loads(t, P, tab)
+    pg = gimbal_motion(t, y[3], y[4], u, P)
+    a = ang_rates(y[0], y[1], y[2], y[3], y[4], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P)
+    for i in range(5):
+        dy[i] = a[i]
+    for i in range(5, dy.shape[0]):
+        dy[i] = 0.0
     if P[TRANS] > 0.5:
         # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
-        fw = 0.0
-        if int(P[WMODE]) == WAVE_REGULAR:
-            fw = P[WF0] * math.sin(P[WOMEGA] * t + P[WPHASE])
-        elif int(P[WMODE]) == WAVE_TABLE:
-            fw = table_value(t, tab, 1, P[TABDT])
-        m = P[MASS]
-        dy[5] = y[8]
-        dy[6] = y[9]
-        dy[7] = y[10]
-        dy[8] = -P[CSS] * y[8] / m
-        dy[9] = -P[CSS] * y[9] / m
-        dy[10] = (fw - P[KH] * y[7] - P[CH] * y[10]) / m
-    else:
-        for i in range(5, dy.shape[0]):
-            dy[i] = 0.0
-    return mg, mw
+        v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
+        dy[5], dy[6], dy[7], dy[8], dy[9], dy[10] = y[8], y[9], y[10], v1, v2, v3
+    return mw
 
 
 @numba.njit(cache=True)
-def _rot_step(R, th, Rout):
-    """Rout = R exp(hat(th)) (Rodrigues, ch. 2 Eq. 29), 3x3 product written out."""
-    E = exp_so3_nb(th)
+def _trans_rates(x3, v1, v2, v3, fw, P):
+    """Hull CM acceleration (m/s^2, inertial): surge/sway damping, heave spring-damper + force."""
+    m = P[MASS]
+    return -P[CSS] * v1 / m, -P[CSS] * v2 / m, (fw - P[KH] * x3 - P[CH] * v3) / m
+
+
+@numba.njit(cache=True)
+def _trans_rk4(y, dt, f0, fh, f1, P):
+    """Classical RK4 of the (decoupled, linear) translation y[5:11] with heave forces f0, fh, f1
+    at t, t + dt/2, t + dt; the same arithmetic as RK4 on the whole state."""
+    h = 0.5 * dt
+    x1, x2, x3, v1, v2, v3 = y[5], y[6], y[7], y[8], y[9], y[10]
+    a1, b1, c1 = _trans_rates(x3, v1, v2, v3, f0, P)
+    p1, q1, s1 = v1 + h * a1, v2 + h * b1, v3 + h * c1
+    a2, b2, c2 = _trans_rates(x3 + h * v3, p1, q1, s1, fh, P)
+    p2, q2, s2 = v1 + h * a2, v2 + h * b2, v3 + h * c2
+    a3, b3, c3 = _trans_rates(x3 + h * s1, p2, q2, s2, fh, P)
+    p3, q3, s3 = v1 + dt * a3, v2 + dt * b3, v3 + dt * c3
+    a4, b4, c4 = _trans_rates(x3 + dt * s2, p3, q3, s3, f1, P)
+    y[5] = x1 + dt * (v1 + 2.0 * p1 + 2.0 * p2 + p3) / 6.0
+    y[6] = x2 + dt * (v2 + 2.0 * q1 + 2.0 * q2 + q3) / 6.0
+    y[7] = x3 + dt * (v3 + 2.0 * s1 + 2.0 * s2 + s3) / 6.0
+    y[8] = v1 + dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0
+    y[9] = v2 + dt * (b1 + 2.0 * b2 + 2.0 * b3 + b4) / 6.0
+    y[10] = v3 + dt * (c1 + 2.0 * c2 + 2.0 * c3 + c4) / 6.0
+
+
+@numba.njit(cache=True)
+def _rodrigues_ab(x2):
+    """a = sin(x)/x, b = (1 - cos x)/x^2 of the angle x = sqrt(x2) (ch. 2 Eq. 29); for x < 0.1
+    their Taylor series to x^8 (truncation < 3e-18, as accurate as libm sin/cos)."""
+    if x2 < 0.01:
+        a = 1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0 - x2 / 362880.0)))
+        b = 0.5 - x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0 - x2 * (1.0 / 40320.0 - x2 / 3628800.0)))
+        return a, b
+    x = math.sqrt(x2)
+    s = math.sin(0.5 * x)
+    return math.sin(x) / x, 2.0 * s * s / x2
+
+
+@numba.njit(cache=True)
+def _rot_row(r0, r1, r2, x, y, z, a, b, x2):
+    """Row (r0, r1, r2) of R times exp(hat(x, y, z)) = I + a W + b W^2 (Rodrigues, Eq. 29)."""
+    e00, e11, e22 = 1.0 + b * (x * x - x2), 1.0 + b * (y * y - x2), 1.0 + b * (z * z - x2)
+    e01, e10 = -a * z + b * x * y, a * z + b * x * y
+    e02, e20 = a * y + b * x * z, -a * y + b * x * z
+    e12, e21 = -a * x + b * y * z, a * x + b * y * z
+    return (
+        r0 * e00 + r1 * e10 + r2 * e20,
+        r0 * e01 + r1 * e11 + r2 * e21,
+        r0 * e02 + r1 * e12 + r2 * e22,
+    )
+
+
+@numba.njit(cache=True)
+def _row3_step(R, x, y, z):
+    """Third row of R exp(hat(x, y, z)): all the stage attitudes enter the moments through."""
+    x2 = x * x + y * y + z * z
+    a, b = _rodrigues_ab(x2)
+    return _rot_row(R[2, 0], R[2, 1], R[2, 2], x, y, z, a, b, x2)
+
+
+@numba.njit(cache=True)
+def _rot_update(R, x, y, z):
+    """R <- R exp(hat(x, y, z)) in place, row by row (no allocation)."""
+    x2 = x * x + y * y + z * z
+    a, b = _rodrigues_ab(x2)
     for i in range(3):
-        for j in range(3):
-            Rout[i, j] = R[i, 0] * E[0, j] + R[i, 1] * E[1, j] + R[i, 2] * E[2, j]
+        R[i, 0], R[i, 1], R[i, 2] = _rot_row(R[i, 0], R[i, 1], R[i, 2], x, y, z, a, b, x2)
 
 
 @numba.njit(cache=True)
-def _dexpinv(th, w, out):
-    """out = dexp^-1_th(w) = w - th x w / 2 + c(|th|) th x (th x w) (right trivialisation),
-    c = (1 - (x/2) cot(x/2)) / x^2 (series 1/12 + x^2/720 for small x)."""
-    x2 = th[0] * th[0] + th[1] * th[1] + th[2] * th[2]
-    if x2 < 1e-8:
-        c = 1.0 / 12.0 + x2 / 720.0
+def _dexpinv(t0, t1, t2, w0, w1, w2):
+    """dexp^-1_th(w) = w - th x w / 2 + c(|th|) th x (th x w) (right trivialisation),
+    c = (1 - (x/2) cot(x/2)) / x^2 (its series 1/12 + x^2/720 + ... to x^8 for x < 0.1, which
+    is accurate to round-off where the closed form cancels)."""
+    x2 = t0 * t0 + t1 * t1 + t2 * t2
+    if x2 < 0.01:
+        c = 1.0 / 12.0 + x2 * (
+            1.0 / 720.0 + x2 * (1.0 / 30240.0 + x2 * (1.0 / 1209600.0 + x2 / 47900160.0))
+        )
     else:
         x = math.sqrt(x2)
         c = (1.0 - 0.5 * x / math.tan(0.5 * x)) / x2
-    a0 = th[1] * w[2] - th[2] * w[1]
-    a1 = th[2] * w[0] - th[0] * w[2]
-    a2 = th[0] * w[1] - th[1] * w[0]
-    b0 = th[1] * a2 - th[2] * a1
-    b1 = th[2] * a0 - th[0] * a2
-    b2 = th[0] * a1 - th[1] * a0
-    out[0] = w[0] - 0.5 * a0 + c * b0
-    out[1] = w[1] - 0.5 * a1 + c * b1
-    out[2] = w[2] - 0.5 * a2 + c * b2
+    a0 = t1 * w2 - t2 * w1
+    a1 = t2 * w0 - t0 * w2
+    a2 = t0 * w1 - t1 * w0
+    b0 = t1 * a2 - t2 * a1
+    b1 = t2 * a0 - t0 * a2
+    b2 = t0 * a1 - t1 * a0
+    return w0 - 0.5 * a0 + c * b0, w1 - 0.5 * a1 + c * b1, w2 - 0.5 * a2 + c * b2
 
 
 @numba.njit(cache=True)
-def rk4_step(t, y, R, u, dt, P, tab, out, work, Rs):
+def rk4_step(t, y, R, u, dt, P, tab, mw0, fw0):
     """One Runge-Kutta-Munthe-Kaas step (RK4 in the rates, the attitude in the Lie algebra):
     R_stage = R exp(theta_stage), theta' = dexp^-1_theta(w), R_new = R exp(theta_final) with
     the Rodrigues formula (ch. 2 Eq. 29): 4th order in R and w, R orthogonal to round-off.
-    y and R are updated in place. work: (10, n) scratch, Rs: (3, 3) scratch.
-    out[0], out[1] <- gyro roll moment and wave moment at the end of the step.
+    y and R are updated in place, without allocation. mw0, fw0: wave moment (N m) and heave
+    force (N) at t (`wave_loads`); returns them at t + dt for the next step.
     """
-    n = y.shape[0]
-    k1, k2, k3, k4, ys = work[0], work[1], work[2], work[3], work[4]
-    th, q1, q2 = work[5, 0:3], work[6, 0:3], work[7, 0:3]
-    q3, q4 = work[8, 0:3], work[9, 0:3]
-    deriv(t, y, u, R, P, tab, k1)
-    for i in range(3):
-        q1[i] = y[i]  # dexpinv at theta = 0 is the identity
-        th[i] = 0.5 * dt * q1[i]
-    for i in range(n):
-        ys[i] = y[i] + 0.5 * dt * k1[i]
-    _rot_step(R, th, Rs)
-    deriv(t + 0.5 * dt, ys, u, Rs, P, tab, k2)
-    _dexpinv(th, ys[0:3], q2)
-    for i in range(3):
-        th[i] = 0.5 * dt * q2[i]
-    for i in range(n):
-        ys[i] = y[i] + 0.5 * dt * k2[i]
-    _rot_step(R, th, Rs)
-    deriv(t + 0.5 * dt, ys, u, Rs, P, tab, k3)
-    _dexpinv(th, ys[0:3], q3)
-    for i in range(3):
-        th[i] = dt * q3[i]
-    for i in range(n):
-        ys[i] = y[i] + dt * k3[i]
-    _rot_step(R, th, Rs)
-    deriv(t + dt, ys, u, Rs, P, tab, k4)
-    _dexpinv(th, ys[0:3], q4)
-    for i in range(3):
-        th[i] = dt * (q1[i] + 2.0 * q2[i] + 2.0 * q3[i] + q4[i]) / 6.0
-    for i in range(n):
+    h = 0.5 * dt
+    pres = int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS
+    mwh, fwh = wave_loads(t + h, P, tab)
+    mw1, fw1 = wave_loads(t + dt, P, tab)
+    w1, w2, w3, ph, pd = y[0], y[1], y[2], y[3], y[4]
+    pg0 = gimbal_motion(t, ph, pd, u, P)
+    pgh = gimbal_motion(t + h, ph, pd, u, P) if pres else pg0
+    pg1 = gimbal_motion(t + dt, ph, pd, u, P) if pres else pg0
+    # stage 1 at R (dexpinv at theta = 0 is the identity)
+    k1 = ang_rates(w1, w2, w3, ph, pd, R[2, 0], R[2, 1], R[2, 2], u, mw0, pg0, P)
+    s0, s1, s2 = w1 + h * k1[0], w2 + h * k1[1], w3 + h * k1[2]
+    r = _row3_step(R, h * w1, h * w2, h * w3)
+    k2 = ang_rates(s0, s1, s2, ph + h * k1[3], pd + h * k1[4], r[0], r[1], r[2], u, mwh, pgh, P)
+    q2 = _dexpinv(h * w1, h * w2, h * w3, s0, s1, s2)
+    # stage 3
+    s0, s1, s2 = w1 + h * k2[0], w2 + h * k2[1], w3 + h * k2[2]
+    r = _row3_step(R, h * q2[0], h * q2[1], h * q2[2])
+    k3 = ang_rates(s0, s1, s2, ph + h * k2[3], pd + h * k2[4], r[0], r[1], r[2], u, mwh, pgh, P)
+    q3 = _dexpinv(h * q2[0], h * q2[1], h * q2[2], s0, s1, s2)
+    # stage 4
+    s0, s1, s2 = w1 + dt * k3[0], w2 + dt * k3[1], w3 + dt * k3[2]
+    r = _row3_step(R, dt * q3[0], dt * q3[1], dt * q3[2])
+    k4 = ang_rates(s0, s1, s2, ph + dt * k3[3], pd + dt * k3[4], r[0], r[1], r[2], u, mw1, pg1, P)
+    q4 = _dexpinv(dt * q3[0], dt * q3[1], dt * q3[2], s0, s1, s2)
+    th = (
+        dt * (w1 + 2.0 * q2[0] + 2.0 * q3[0] + q4[0]) / 6.0,
+        dt * (w2 + 2.0 * q2[1] + 2.0 * q3[1] + q4[1]) / 6.0,
+        dt * (w3 + 2.0 * q2[2] + 2.0 * q3[2] + q4[2]) / 6.0,
+    )
+    for i in range(5):
         y[i] += dt * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]) / 6.0
-    _rot_step(R, th, Rs)
-    R[:, :] = Rs
-    if int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS:
-        phi, phid, _ = gimbal_motion(t + dt, y[3], y[4], u, P)
-        y[3] = phi
-        y[4] = phid
-    out[0] = -P[NGYRO] * P[JR3] * P[PSID] * y[4] * math.cos(y[3])
-    out[1] = 0.0
-    if int(P[WMODE]) == WAVE_REGULAR:
-        out[1] = P[WM0] * math.cos(P[WOMEGA] * (t + dt) + P[WPHASE])
-    elif int(P[WMODE]) == WAVE_TABLE:
-        out[1] = table_value(t + dt, tab, 0, P[TABDT])
+    _rot_update(R, th[0], th[1], th[2])
+    if pres:
+        y[3] = pg1[0]
+        y[4] = pg1[1]
+    if P[TRANS] > 0.5:
+        _trans_rk4(y, dt, fw0, fwh, fw1, P)
+    return mw1, fw1
+
+
+@numba.njit(cache=True)
+def gyro_moment(y, P):
+    """Gyro roll moment -n H phi' cos(phi) (N m, Eq. 123) of state y."""
+    return -P[NGYRO] * P[JR3] * P[PSID] * y[4] * math.cos(y[3])
 
 
 @numba.njit(cache=True)
 def advance(t, y, R, u, dt, n_sub, P, tab, out):
-    """n_sub RK4 steps of size dt with the command u held; returns the new time."""
-    work = np.empty((10, y.shape[0]))
-    Rs = np.empty((3, 3))
+    """n_sub RK4 steps of size dt with the command u held; returns the new time.
+    out[0], out[1] <- gyro roll moment and wave moment (N m) at the end."""
+    mw, fw = wave_loads(t, P, tab)
     for _ in range(n_sub):
-        rk4_step(t, y, R, u, dt, P, tab, out, work, Rs)
+        mw, fw = rk4_step(t, y, R, u, dt, P, tab, mw, fw)
         t += dt
+    out[0] = gyro_moment(y, P)
+    out[1] = mw
     return t
 
 
@@ -364,9 +474,6 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
     mg = np.empty(n + 1)
     y = y0.copy()
     R = R0.copy()
-    out = np.zeros(2)
-    work = np.empty((10, y.shape[0]))
-    Rw = np.empty((3, 3))
     phi, phid, _ = gimbal_motion(0.0, y[3], y[4], 0.0, P)
     if int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS:
         y[3] = phi
@@ -374,15 +481,17 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
     ts[0] = 0.0
     ys[0] = y
     Rs[0] = R
-    mg[0] = -P[NGYRO] * P[JR3] * P[PSID] * y[4] * math.cos(y[3])
+    mg[0] = gyro_moment(y, P)
     t = 0.0
+    mw, fw = wave_loads(t, P, tab)
     for k in range(n):
-        rk4_step(t, y, R, 0.0, dt, P, tab, out, work, Rw)
+        mw, fw = rk4_step(t, y, R, 0.0, dt, P, tab, mw, fw)
         t = (k + 1) * dt
+        mw, fw = wave_loads(t, P, tab)  # t is k dt, not a running sum: recompute
         ts[k + 1] = t
         ys[k + 1] = y
         Rs[k + 1] = R
-        mg[k + 1] = out[0]
+        mg[k + 1] = gyro_moment(y, P)
     return ts, ys, Rs, mg
 
 
