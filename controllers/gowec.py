@@ -40,6 +40,7 @@ import control as ct
 import numpy as np
 
 from controllers import register
+from mf_envs.physics.waves import G, disk_average_factor
 
 SOGI_GAIN = math.sqrt(2.0)
 
@@ -102,9 +103,10 @@ class _GimbalTracker:
         Ja, Jt, _, Jg2, _ = self.inert
         self.J = Jg2 + Jt
         # the gyroscopic stiffness H A / J sets the fastest gimbal motion; A from Eq. 78 at the
-        # nominal wave of the env (a / g w^3)
+        # nominal wave of the env (a / g w^3), times the buoy's waterplane-averaging factor F(k r)
         H = abs(self.inert[0] * self.psid)
-        A = raw.wave_amplitude / 9.81 * self.w0**3
+        F = abs(float(disk_average_factor(self.w0**2 / G * raw.buoy_radius)))
+        A = raw.wave_amplitude / G * self.w0**3 * F
         w_t = min(max(bandwidth_ratio * self.w0, 2.0 * math.sqrt(H * A / self.J)), 0.35 / self.dt)
         self.kp, self.kd, self.torque_pm = design_torque_loop(self.J, self.dt, w_t)
         self.feedforward = feedforward

@@ -112,6 +112,31 @@ def test_eq95_eq88_and_direction():
     assert gw.analytic_max_power(p.rotor_inertia, p.rotor_speed, a, T0, 0.0) == 0.0
 
 
+def test_eq95_with_finite_buoy_and_point_buoy_limit():
+    """Eq. 95 of the waterplane-averaged slope; r -> 0 recovers the seed's Eq. 95 exactly."""
+    p = gw.GOWECParams()
+    a, T0, th = 0.7, 5.0, 1.2
+    seed = 0.5 * abs(p.rotor_speed) * p.rotor_inertia * (a / G) * (2 * math.pi / T0) ** 4
+    seed *= math.sin(th)
+    args = (p.rotor_inertia, p.rotor_speed, a, T0, th)
+    assert gw.analytic_max_power(*args, buoy_radius=0.0) == seed
+    assert gw.analytic_max_power(*args, buoy_radius=1e-6) == pytest.approx(seed, rel=1e-12)
+    # locked gimbal phi = w t on the finite buoy's simulated rate: mean power = Eq. 95 x |F|
+    r, w = 8.0, 2 * math.pi / T0
+    wave = regular_wave(a, T0, direction=th, buoy_radius=r)
+    F = float(wave.slope_response[0])
+    assert 0.75 < F < 0.85  # k r = 1.29 at T = 5 s: a visible reduction
+    t = np.linspace(0, T0, 20001)[:-1]
+    model = gw.GimbalModel(p, wave, SEED_CASE)
+    w1 = np.array([model.rates(ti)[0][0] for ti in t])
+    # the kernel's rate is the averaged-slope rate of the wave field (Eq. 92 x F)
+    np.testing.assert_allclose(w1[:50], [wave.buoy_motion(ti)[1][0] for ti in t[:50]], rtol=1e-12)
+    P_lock = gw.gyroscopic_power(w1, w * t, w, p.angular_momentum).mean()
+    P95 = gw.analytic_max_power(*args, buoy_radius=r)
+    assert P95 == pytest.approx(F * seed, rel=1e-12)
+    assert P_lock == pytest.approx(P95, rel=1e-3)  # |b2| ~ 0.03 rad: cos(b2) ~ 1 - 5e-4
+
+
 def test_fig_3_4_detuning_loses_about_20_percent_at_1_percent():
     r = gw.detuned_mean_power([0.0, 0.04, -0.04], 4.0)
     assert r[0] == pytest.approx(1.0, abs=1e-3)

@@ -7,6 +7,7 @@ import math
 import gymnasium as gym
 import numpy as np
 import pytest
+from scipy.special import j1
 
 import mf_envs  # noqa: F401  (registers the envs)
 from controllers import baseline_kinds, make_baseline
@@ -99,7 +100,30 @@ def test_analytic_max_power_is_eq95_to_round_off():
         rotor_speed=w,
     )
     eq95 = 0.5 * abs(w) * J * (a / G) * (2 * math.pi / T) ** 4 * math.sin(th)
+    # default regular wave: the seed's point buoy, Eq. 95 exactly (API.md)
+    assert env.unwrapped.buoy_radius == 0.0
     assert env.unwrapped.analytic_max_power() == pytest.approx(eq95, rel=1e-15)
+    # a finite buoy: Eq. 95 of the waterplane-averaged slope, x 2 J1(k r)/(k r)
+    env_r = gym.make(
+        "GOWEC-v0",
+        wave_amplitude=a,
+        wave_period=T,
+        wave_direction=th,
+        rotor_inertia=J,
+        rotor_speed=w,
+        buoy_radius=2.5,
+    )
+    kr = (2 * math.pi / T) ** 2 / G * 2.5
+    assert 0 < kr < 1
+    F = 2 * j1(kr) / kr
+    assert env_r.unwrapped.analytic_max_power() == pytest.approx(eq95 * F, rel=1e-14)
+    env_r.reset(seed=0)
+    np.testing.assert_allclose(env_r.unwrapped.wave.slope_response, [F], rtol=1e-14)
+    # irregular seas default to the finite buoy (a point buoy's rates depend on the cut-off)
+    env_i = gym.make("GOWEC-v0", effects=("gyroscopic", "buoy_rocking", "irregular_waves"))
+    assert env_i.unwrapped.buoy_radius == 2.5
+    with pytest.raises(ValueError, match="buoy_radius"):
+        gym.make("GOWEC-v0", buoy_radius=-1.0)
 
 
 def test_observation_does_not_contain_the_wave_phase_and_reset_options_work():
@@ -109,7 +133,10 @@ def test_observation_does_not_contain_the_wave_phase_and_reset_options_work():
     assert obs1[0] == pytest.approx(math.sin(0.3)) and obs1[2] == pytest.approx(0.5)
     assert info1["gimbal_angle"] == 0.3
     # w1 = A cos(w t - eps): with eps = 0 at t = 0 it is the amplitude A of Eq. 78
-    assert info1["buoy_rate"] == pytest.approx((2 * math.pi / 6.0) ** 3 / G)
+    # (x the waterplane-averaging factor F, 1 for the default point buoy of a regular wave)
+    F = float(env.unwrapped.wave.slope_response[0])
+    assert F == 1.0
+    assert info1["buoy_rate"] == pytest.approx(F * (2 * math.pi / 6.0) ** 3 / G)
     obs2, info2 = env.reset(
         seed=0, options=dict(gimbal_angle=0.3, gimbal_rate=0.5, wave_phase=math.pi / 2)
     )
@@ -153,6 +180,8 @@ def test_effects_and_invalid_kwargs():
     _, i1 = env.reset(seed=4)
     _, i2 = env.reset(seed=5)
     assert i1["wave_elevation"] != i2["wave_elevation"]
+    F = env.unwrapped.wave.slope_response  # the irregular sea uses the finite buoy too
+    assert F.shape == (64,) and F.max() < 1 and F.min() < 0.5
     # a still buoy (no rocking): the IMU reads zero
     env = gym.make("GOWEC-v0", effects=("gyroscopic",))
     obs, _ = env.reset(seed=0)

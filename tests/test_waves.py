@@ -126,3 +126,80 @@ def test_bad_inputs():
         W.wavenumber(1.0, depth=0.0)
     with pytest.raises(ValueError, match="period"):
         W.regular_wave(1.0, float("nan"))
+
+
+# ---------------------------------------------------------------------- finite buoy (waterplane)
+def _disk_mean_slope(a, k, r, phase, n=64):
+    """Mean of d eta/d x2 of eta = a cos(k x2 + phase) over the disk |x| <= r, by Gauss-Legendre
+    in radius x trapezoid in angle (independent of the Bessel closed form)."""
+    xg, wg = np.polynomial.legendre.leggauss(n)
+    rho = 0.5 * r * (xg + 1.0)
+    th = np.linspace(0.0, 2 * math.pi, 4 * n, endpoint=False)
+    x2 = rho[:, None] * np.sin(th)[None, :]
+    slope = -a * k * np.sin(k * x2 + phase)
+    ring = slope.mean(axis=1)  # periodic trapezoid = spectral accuracy in angle
+    return float(np.sum(0.5 * r * wg * rho * ring) * 2.0 / r**2)
+
+
+@pytest.mark.parametrize("kr", [1e-3, 0.3, 1.0, 2.5, 3.8317, 5.0, 9.0])
+def test_disk_average_factor_vs_direct_average_over_the_waterplane(kr):
+    a, T, r = 0.9, 6.0, 2.0
+    k = kr / r
+    F = float(W.disk_average_factor(kr))
+    for phase in (0.3, 1.9):  # sin and cos parts of the slope
+        assert _disk_mean_slope(a, k, r, phase) == pytest.approx(
+            F * (-a * k * math.sin(phase)), rel=1e-9, abs=1e-13
+        )
+    # the wave field applies it: slope angles of a finite buoy = F x the point buoy's
+    T = 2 * math.pi / math.sqrt(W.G * k)  # deep water: k = w^2 / g
+    pt, fin = W.regular_wave(a, T), W.regular_wave(a, T, buoy_radius=r)
+    np.testing.assert_allclose(
+        fin.slope_angles(0.7), F * pt.slope_angles(0.7), rtol=1e-9, atol=1e-13
+    )
+    np.testing.assert_allclose(fin.slope_response, [F], rtol=1e-9, atol=1e-13)
+
+
+def test_disk_average_factor_limits():
+    assert W.disk_average_factor(0.0) == 1.0
+    assert float(W.disk_average_factor(1e-5)) == pytest.approx(1.0, abs=1e-10)
+    assert float(W.disk_average_factor(2e-4)) == pytest.approx(1.0 - 0.5e-8, rel=1e-12)
+    assert abs(float(W.disk_average_factor(3.8317059702))) < 1e-9  # first zero of J1
+    big = np.array([50.0, 200.0])
+    assert np.all(np.abs(W.disk_average_factor(big)) < 2.0 * math.sqrt(2 / math.pi) * big**-1.5)
+    with pytest.raises(ValueError, match="buoy_radius"):
+        W.regular_wave(1.0, 6.0, buoy_radius=-1.0)
+    with pytest.raises(ValueError, match="buoy_radius"):
+        W.IrregularSea(W.jonswap_spectrum, 2.0, 6.0, 8, np.random.default_rng(0), buoy_radius=-1)
+
+
+def _rate_moment(hs, tp, r, hi):
+    """int S(w) w^2 (k F(k r))^2 dw over [0.2 wp, hi wp]: variance of the head-on buoy rate."""
+
+    def f(w):
+        k = w * w / W.G
+        return (
+            W.jonswap_spectrum(np.array([w]), hs, tp)[0]
+            * (w * k * W.disk_average_factor(k * r)) ** 2
+        )
+
+    wp = 2 * math.pi / tp
+    return quad(f, 0.2 * wp, hi * wp, limit=400)[0]
+
+
+def test_irregular_sea_buoy_rate_matches_moment_integral_and_converges():
+    hs, tp, r = 2 * math.sqrt(2), 6.0, 2.5
+    m4 = _rate_moment(hs, tp, r, 4.0)
+    # converged in the cut-off with a finite buoy (the default 4 wp ~ S at 1e-3 of its peak) ...
+    assert math.sqrt(m4) == pytest.approx(math.sqrt(_rate_moment(hs, tp, r, 16.0)), rel=0.02)
+    # ... but not for a point buoy: the slope-rate spectrum grows ~ w (the unphysical case)
+    assert _rate_moment(hs, tp, 0.0, 8.0) > 4.0 * _rate_moment(hs, tp, 0.0, 4.0)
+    # converges with the number of components to the moment integral
+    for n, tol in ((32, 0.05), (128, 0.01), (512, 0.005)):
+        sea = W.IrregularSea(W.jonswap_spectrum, hs, tp, n, np.random.default_rng(n), buoy_radius=r)
+        var = 0.5 * np.sum((sea.amplitudes * sea.slope_wavenumbers * sea.omegas) ** 2)
+        assert math.sqrt(var) == pytest.approx(math.sqrt(m4), rel=tol)
+    # the simulated buoy rate (time series of omega_1) has that RMS
+    sea = W.IrregularSea(W.jonswap_spectrum, hs, tp, 128, np.random.default_rng(3), buoy_radius=r)
+    t = np.arange(0.0, 3600.0, 0.1)
+    w1 = sea.slope_angles(t)[0, 1]
+    assert w1.std() == pytest.approx(math.sqrt(m4), rel=0.05)

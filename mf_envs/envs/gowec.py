@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_finite, check_int, check_positive
+from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
 from mf_envs.envs.base import MFEnv
 from mf_envs.physics import gowec as gw
 from mf_envs.physics import waves
@@ -23,6 +23,13 @@ AVAILABLE_EFFECTS = {
 DEFAULT_EFFECTS = ("gyroscopic", "buoy_rocking", "wave_2d")
 _P = gw.GOWECParams()
 MAX_GIMBAL_RATE = 60.0  # rad/s, default overspeed trip (and observation bound)
+# Buoy waterplane radius (m) used by default in irregular seas: a 5 m diameter buoy for one
+# Seakeeper 26 pair (the gyro itself is ~1.2 m across; Seakeeper 26 is fitted on 17-20 m hulls).
+# It averages the wave slope over its waterplane (waves.disk_average_factor): F = 0.99 at
+# T = 6 s (lambda = 56 m), and it stops the buoy following wavelets shorter than itself, without
+# which the buoy rates of a spectrum grow without bound with the spectral cut-off. Regular waves
+# default to the seed's point buoy (r = 0), so that analytic_max_power() is Eq. 95 exactly.
+BUOY_RADIUS = 2.5
 MAX_BUOY_RATE = 5.0  # rad/s, observation bound (breaking waves stay below ~1.6 rad/s)
 
 
@@ -30,7 +37,9 @@ class GOWECEnv(MFEnv):
     """
     ## Description
     One gyroscope of the gyroscopic ocean wave energy converter of Rios (2017, ch. 3.2): a buoy
-    rocks with the slope of the passing wave (Eqs. 77-78, 89-93), a rotor spins at a fixed rate
+    rocks with the slope of the passing wave (Eqs. 77-78, 89-93) averaged over its circular
+    waterplane of radius `buoy_radius` (each component x 2 J1(k r)/(k r), so the buoy ignores
+    wavelets shorter than itself; 0 = the seed's point buoy), a rotor spins at a fixed rate
     psi' inside a gimbal that may turn about the buoy's e2 axis, and a generator on that axis
     applies the torque M_g. The gimbal obeys (exact for the prescribed buoy rotation)
 
@@ -92,6 +101,7 @@ class GOWECEnv(MFEnv):
     | gimbal_inertia | (5, 5, 5) kg m^2 | with the `gimbal_inertia` effect |
     | rotor_transverse_inertia | Ja/2 | with the `gimbal_inertia` effect |
     | n_components, gamma | 64, 3.3 | irregular sea (JONSWAP) |
+    | buoy_radius | None | waterplane radius (m): slope averaged, x 2 J1(kr)/(kr); None = 0 (the seed's point buoy) for regular waves, 2.5 m with irregular_waves |
     | effects | gyroscopic, buoy_rocking, wave_2d | also gimbal_inertia, irregular_waves |
 
     ## Version History
@@ -117,6 +127,7 @@ class GOWECEnv(MFEnv):
         rotor_transverse_inertia: float | None = None,
         n_components: int = 64,
         gamma: float = 3.3,
+        buoy_radius: float | None = None,
         render_mode: str | None = None,
     ) -> None:
         check_positive("wave_amplitude", wave_amplitude)
@@ -145,6 +156,9 @@ class GOWECEnv(MFEnv):
             physics_dt=physics_dt,
             render_mode=render_mode,
         )
+        if buoy_radius is None:
+            buoy_radius = BUOY_RADIUS if "irregular_waves" in self.effects else 0.0
+        self.buoy_radius = float(check_nonnegative("buoy_radius", buoy_radius))
         self.max_steps = self.n_periods * spp
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         hi = np.array(
@@ -157,7 +171,7 @@ class GOWECEnv(MFEnv):
         self.state = np.zeros(2)  # (phi rad, phi' rad/s)
         self._t, self._steps, self._w, self._eta = 0.0, 0, (0.0, 0.0, 0.0), 0.0
         self.wave: waves.WaveField = waves.regular_wave(
-            self.wave_amplitude, self.wave_period, self.wave_direction
+            self.wave_amplitude, self.wave_period, self.wave_direction, buoy_radius=self.buoy_radius
         )
         self.model = gw.GimbalModel(self.params, self.wave, self.effects)
         self._window = None
@@ -166,7 +180,13 @@ class GOWECEnv(MFEnv):
     def analytic_max_power(self) -> float:
         """Eq. 95 (Eq. 86 head-on), W: the locked-gimbal mean power of this wave and rotor.
 
-        Irregular sea: Eq. 95 of the equivalent regular wave (a = Hs / (2 sqrt 2), T = Tp).
+        Both use the buoy's waterplane-averaged slope, factor |2 J1(k r)/(k r)| (r = buoy_radius).
+        Irregular sea: Eq. 95 of the equivalent regular wave (a = Hs / (2 sqrt 2), T = Tp), a
+        fixed scale, not the sea's achievable maximum. Same eta variance (Hs^2/16 = a^2/2), but
+        the JONSWAP sea has shorter components: with buoy_radius = 2.5 m, T = 6 s its RMS buoy
+        rate is 2.7x the regular wave's (converged in the cut-off; a point buoy gives 4.8x at the
+        4 wp cut-off and grows without bound with it), so irregular-sea ratios above 1 are
+        physical. Rewards stay O(1); compare controllers within one scene.
         """
         return gw.analytic_max_power(
             self.params.rotor_inertia,
@@ -174,6 +194,7 @@ class GOWECEnv(MFEnv):
             self.wave_amplitude,
             self.wave_period,
             self.wave_direction,
+            buoy_radius=self.buoy_radius,
         )
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
@@ -234,11 +255,16 @@ class GOWECEnv(MFEnv):
                 self.n_components,
                 rng,
                 self.wave_direction,
+                buoy_radius=self.buoy_radius,
             )
             object.__setattr__(self.wave, "phases", self.wave.phases + phase)
         else:
             self.wave = waves.regular_wave(
-                self.wave_amplitude, self.wave_period, self.wave_direction, phase=phase
+                self.wave_amplitude,
+                self.wave_period,
+                self.wave_direction,
+                phase=phase,
+                buoy_radius=self.buoy_radius,
             )
         self.model = gw.GimbalModel(self.params, self.wave, self.effects)
         self.state = np.array([phi, phid])
@@ -294,6 +320,7 @@ class GOWECEnv(MFEnv):
             wave_x=x,
             wave_z=z,
             wave_direction=self.wave_direction,
+            buoy_radius=self.buoy_radius if self.buoy_radius > 0 else None,
             text=f"t = {self._t:5.1f} s   phi = {phi_wrapped:+.2f} rad   P = {P / 1e3:.2f} kW",
         )
         if self.render_mode == "human":

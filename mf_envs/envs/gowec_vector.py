@@ -66,7 +66,7 @@ class GOWECVectorEnv(BatchedVectorEnv):
         b["t"][i] = 0.0
         wave = env.wave
         b["amp"][i], b["om"][i] = wave.amplitudes, wave.omegas
-        b["eps"][i], b["k"][i] = wave.phases, wave.wavenumbers
+        b["eps"][i], b["k"][i] = wave.phases, model._k  # slope wavenumbers k F(k r)
         b["w"][i] = env._w
         b["eta"][i] = env._eta
         self._steps[i] = 0

@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import check_finite, check_nonnegative, check_positive, check_shape
-from mf_envs.physics.waves import BREAKING_STEEPNESS, G, WaveField
+from mf_envs.physics.waves import BREAKING_STEEPNESS, G, WaveField, disk_average_factor
 
 SQUARE_WAVE_GAIN = 4.0 / math.pi  # ceiling / Eq. 86 (DESIGN.md)
 RPM = 2.0 * math.pi / 60.0
@@ -96,7 +96,8 @@ def buoy_rates(t, amp, om, eps, k, cth, sth, two_d):
     """Body rates w (3,) and w' (3,) of the wave-slope buoy R = rot_x(b1) rot_y(b2).
 
     b1 = d eta/d x2, b2 = -d eta/d x1 at the origin (waves.WaveField); two_d = False keeps
-    only b1 (rocking about e1 alone, as in Eq. 94).
+    only b1 (rocking about e1 alone, as in Eq. 94). k (n,) are the SLOPE wavenumbers
+    k_i F(k_i r) (`WaveField.slope_wavenumbers`: slope averaged over the buoy waterplane).
     """
     w = np.zeros(3)
     wd = np.zeros(3)
@@ -197,7 +198,7 @@ class GimbalModel:
         self.psid = params.rotor_speed if "gyroscopic" in self.effects else 0.0
         rock = "buoy_rocking" in self.effects
         self._amp, self._om = wave.amplitudes, wave.omegas
-        self._eps, self._k = wave.phases, wave.wavenumbers
+        self._eps, self._k = wave.phases, wave.slope_wavenumbers  # k F(k r), waterplane mean
         # a still buoy: zero slope projections (the elevation is still computed)
         self._cth = math.cos(wave.direction) if rock else 0.0
         self._sth = math.sin(wave.direction) if rock else 0.0
@@ -256,18 +257,26 @@ def analytic_max_power(
     period: float,
     direction: float = math.pi / 2,
     g: float = G,
+    buoy_radius: float = 0.0,
 ) -> float:
-    """(P_g)max = 1/2 |psi'| J3 (a/g) (2 pi/T)^4 sin(theta) (W) (Eq. 95; Eq. 86 at theta=pi/2).
+    """(P_g)max = 1/2 |psi'| J3 (a/g) (2 pi/T)^4 sin(theta) |F(k r)| (W) (Eq. 95; Eq. 86 at
+    theta = pi/2), k = (2 pi/T)^2 / g.
 
     The mean power with phi = 2 pi t / T locked to a deep-water regular wave, one gyroscope.
+    F = 2 J1(k r)/(k r) is the waterplane-averaged slope response of a buoy of radius r (m)
+    (`waves.disk_average_factor`): Eq. 95 of the buoy's actual slope amplitude a k |F|.
+    buoy_radius = 0 (point buoy) is the seed's Eq. 95 exactly.
     """
     check_positive("rotor_inertia", rotor_inertia)
     check_finite("rotor_speed", rotor_speed)
     check_positive("amplitude", amplitude)
     check_positive("period", period)
     check_finite("direction", direction)
+    check_nonnegative("buoy_radius", buoy_radius)
+    F = abs(float(disk_average_factor((2.0 * math.pi / period) ** 2 / g * buoy_radius)))
     return (
-        0.5
+        F
+        * 0.5
         * abs(rotor_speed)
         * rotor_inertia
         * (amplitude / g)

@@ -24,9 +24,10 @@ def batch_fast_step(
     Shapes: active (N,) bool; t (N,) s, time at the start of the step; phi (N,) rad, phid (N,)
     rad/s, updated in place; Mg (N,) N m, generator torque held over the step; dt (s) substep,
     n substeps; inert (5,) = (Ja, Jt, Jg1, Jg2, Jg3) kg m^2; psid rad/s; amp, om, eps, k (N, M)
-    wave components (m, rad/s, rad, rad/m) of each row; cth, sth direction projections (0 for a
-    still buoy); two_d: both slope angles. Outputs: energy (N,) J harvested in the step,
-    w (N, 3) buoy body rates rad/s and eta (N,) m wave elevation at the end of the step.
+    wave components (m, rad/s, rad, rad/m) of each row, k being the slope wavenumbers k F(k r)
+    (`WaveField.slope_wavenumbers`); cth, sth direction projections (0 for a still buoy);
+    two_d: both slope angles. Outputs: energy (N,) J harvested in the step, w (N, 3) buoy body
+    rates rad/s and eta (N,) m wave elevation at the end of the step.
     """
     for i in range(active.shape[0]):
         if not active[i]:

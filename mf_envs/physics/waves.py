@@ -11,6 +11,20 @@ The buoy attitude follows the surface normal: R = rot_x(beta1) rot_y(beta2) with
 beta1 = d eta/d x2 (Eq. 90) and beta2 = -d eta/d x1. (The seed's Eq. 91 writes +d eta/d x1; its
 sign is immaterial for the power, which only involves omega_1, but the minus sign is what tilts
 e3 onto the surface normal (-eta_x1, -eta_x2, 1).)
+
+Finite buoy (not in the seed): a buoy of waterplane radius r does not follow waves shorter than
+itself. We model its attitude as following the wave slope AVERAGED over its circular waterplane.
+The slope of a plane wave a cos(k n.x - w t + eps) is itself a plane wave, and the mean of
+exp(i k n.x) over a disk of radius r is (polar coordinates, Bessel's integral J0, then
+int_0^q s J0(s) ds = q J1(q))
+
+    (1 / (pi r^2)) int_0^r int_0^2pi exp(i k rho cos(t)) rho dt drho = 2 J1(k r) / (k r)
+
+(the Airy/circular-aperture factor), so every component's slope (hence the buoy angles, rates
+and accelerations) is scaled by F(k r) = 2 J1(k r)/(k r), -> 1 for k r -> 0 (point buoy, the
+seed's Eqs. 77-78, 90-93; `buoy_radius = 0`). F ~ (k r)^(-3/2) for large k r, which makes the
+slope-rate spectrum w^2 (k F)^2 S(w) integrable: without it (deep water, S ~ w^-5) it grows ~ w
+and the buoy rates of an irregular sea depend on the spectral cut-off.
 """
 
 from __future__ import annotations
@@ -23,8 +37,9 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import quad
+from scipy.special import j1
 
-from mf_envs._validate import check_finite, check_int, check_positive
+from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
 
 G = 9.81  # gravitational acceleration, m/s^2 (ch. 3 Eq. 15)
 RHO_SEA = 1020.0  # sea water density, kg/m^3 (ch. 3 Eq. 15)
@@ -177,17 +192,44 @@ def jonswap_spectrum(omega: ArrayLike, hs: float, tp: float, gamma: float = 3.3)
     return hs * hs * _jonswap_norm(float(gamma)) * _jonswap_shape(w, wp, gamma)
 
 
+# ---------------------------------------------------------------------- finite buoy response
+def disk_average_factor(kr: ArrayLike) -> NDArray[np.float64]:
+    """F = 2 J1(k r) / (k r) (dimensionless): the mean of a plane wave's slope over a disk of
+    radius r, relative to the slope at the centre (module doc). kr = k r >= 0 (k rad/m, r m);
+    F(0) = 1 (series 1 - (kr)^2/8 + ... below 1e-4)."""
+    x = np.asarray(check_nonnegative("kr", kr), dtype=np.float64)
+    small = x < 1e-4
+    xs = np.where(small, 1.0, x)
+    return np.where(small, 1.0 - x * x / 8.0, 2.0 * j1(xs) / xs)
+
+
 # ---------------------------------------------------------------------- wave fields
 @dataclass(frozen=True)
 class WaveField:
     """Long-crested sum of harmonics (Eq. 89): amplitudes a (m), omegas w (rad/s), phases eps
-    (rad), wavenumbers k (rad/m), direction theta (rad from x1; pi/2 = head-on along x2)."""
+    (rad), wavenumbers k (rad/m), direction theta (rad from x1; pi/2 = head-on along x2),
+    buoy_radius r (m) of the waterplane over which the buoy averages the slope (0 = point buoy).
+    """
 
     amplitudes: NDArray[np.float64]
     omegas: NDArray[np.float64]
     phases: NDArray[np.float64]
     wavenumbers: NDArray[np.float64]
     direction: float = math.pi / 2
+    buoy_radius: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_nonnegative("buoy_radius", self.buoy_radius)
+
+    @property
+    def slope_response(self) -> NDArray[np.float64]:
+        """F_i = 2 J1(k_i r)/(k_i r) (n,): waterplane-averaged / point slope of each component."""
+        return disk_average_factor(self.wavenumbers * self.buoy_radius)
+
+    @property
+    def slope_wavenumbers(self) -> NDArray[np.float64]:
+        """k_i F_i (n,) rad/m: the buoy angles are sum a_i k_i F_i (...) (Eqs. 90-93 averaged)."""
+        return self.wavenumbers * self.slope_response
 
     @property
     def components(self) -> tuple[NDArray, NDArray, NDArray]:
@@ -206,9 +248,9 @@ class WaveField:
     def slope_angles(self, t: ArrayLike) -> tuple[NDArray, NDArray, NDArray, NDArray]:
         """(beta1, beta1', beta1'', beta2, ...) at the origin: beta1 = d eta/d x2 (Eq. 90),
         beta2 = -d eta/d x1 (see module doc). Returns (b1, b1d, b1dd), (b2, b2d, b2dd) stacked
-        as an array (2, 3, ...)."""
+        as an array (2, 3, ...). Slopes are averaged over the buoy waterplane (`slope_response`)."""
         arg = self._arg(t, 0.0, 0.0)
-        ak = self.amplitudes * self.wavenumbers
+        ak = self.amplitudes * self.slope_wavenumbers
         sa, ca = np.sin(arg), np.cos(arg)
         w = self.omegas
         # d eta / d(n . x) = -a k sin(arg); time derivatives: d arg/dt = -w
@@ -242,8 +284,10 @@ def regular_wave(
     direction: float = math.pi / 2,
     depth: float = math.inf,
     phase: float = 0.0,
+    buoy_radius: float = 0.0,
 ) -> WaveField:
-    """A single harmonic, eta = a cos(k x.n - w t + phase) (Eqs. 76, 89)."""
+    """A single harmonic, eta = a cos(k x.n - w t + phase) (Eqs. 76, 89); buoy_radius (m) of the
+    slope-averaging waterplane (0 = point buoy)."""
     check_positive("amplitude", amplitude)
     T = float(check_positive("period", period))
     check_finite("direction", direction)
@@ -254,6 +298,7 @@ def regular_wave(
         np.array([float(phase)]),
         wavenumber(w, depth),
         float(direction),
+        float(check_nonnegative("buoy_radius", buoy_radius)),
     )
 
 
@@ -264,6 +309,9 @@ class IrregularSea(WaveField):
     bins over [w_lo, w_hi] = [0.2, 4] wp (or `omega_range`), each harmonic at a random frequency
     inside its bin (avoids the repeat period 2 pi / dw), amplitude a_i = sqrt(2 S(w_i) dw) and
     phase uniform in [0, 2 pi) -- both drawn from `rng` (a numpy Generator) for reproducibility.
+    The default upper bound 4 wp is where JONSWAP (gamma = 3.3) falls to 1e-3 of its peak
+    (4.02 wp); with a finite `buoy_radius` (m) the buoy rates converge well below it (the
+    slope-rate spectrum w^2 (k F)^2 S decays like w^-5), with a point buoy they do not.
     """
 
     def __init__(
@@ -276,6 +324,7 @@ class IrregularSea(WaveField):
         direction: float = math.pi / 2,
         depth: float = math.inf,
         omega_range: tuple[float, float] | None = None,
+        buoy_radius: float = 0.0,
     ) -> None:
         check_positive("hs", hs)
         check_positive("tp", tp)
@@ -292,6 +341,7 @@ class IrregularSea(WaveField):
         w = edges[:-1] + rng.uniform(0.0, 1.0, n) * dw
         a = np.sqrt(2.0 * spectrum_fn(w, hs, tp) * dw)
         eps = rng.uniform(0.0, 2.0 * math.pi, n)
-        super().__init__(a, w, eps, wavenumber(w, depth), float(direction))
+        r = float(check_nonnegative("buoy_radius", buoy_radius))
+        super().__init__(a, w, eps, wavenumber(w, depth), float(direction), r)
         object.__setattr__(self, "hs", float(hs))
         object.__setattr__(self, "tp", float(tp))
