@@ -236,7 +236,6 @@ class GyroStabilizerEnv(MFEnv):
         self._high = OBS_HIGH.astype(np.float64)
         self._y, self._R = initial_state()
         self._t = 0.0
-        self._window = None
 
     # ------------------------------------------------------------------ physics wiring
     def _pack(self, phase: float) -> np.ndarray:
@@ -332,6 +331,8 @@ class GyroStabilizerEnv(MFEnv):
             return self._finish_step(obs, reward, False, truncated, info, False)
         info["numerical_failure"] = False  # MFEnv._finish_step contract, without its overhead
         self._last_obs = obs
+        if self.render_mode is not None:  # what render() draws if the state later blows up
+            self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
         return obs, reward, False, truncated, info
 
     def reset(
@@ -365,6 +366,7 @@ class GyroStabilizerEnv(MFEnv):
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
         self._out[:] = (0.0, mw)
         info = self._get_info({"reward_roll": 0.0, "reward_effort": 0.0})
+        self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
         return self._finish_reset(self._get_obs()), info
 
     # ------------------------------------------------------------------ observation, reward
@@ -397,36 +399,27 @@ class GyroStabilizerEnv(MFEnv):
             "time": self._t,
         }
         info.update(terms)
+        # the convention shared by every env: the named terms that sum to the reward
+        info["reward_terms"] = {"roll": terms["reward_roll"], "effort": terms["reward_effort"]}
         return info
 
     # ------------------------------------------------------------------ rendering
-    def render(self) -> np.ndarray | None:
-        if self.render_mode is None:
-            return None
+    def _draw_frame(self) -> np.ndarray:
         from mf_envs.render import draw_ship
 
-        phi = float(self._y[3])
-        psi = math.fmod(self.gyro.rotor_speed * self._t, 2.0 * math.pi)
+        R, phi, t = self._R, float(self._y[3]), self._t
+        note = ""
+        if not (np.all(np.isfinite(R)) and math.isfinite(phi)):  # after a numerical failure
+            R, phi, t = self._frame_state
+            note = "  (last finite state)"
+        psi = math.fmod(self.gyro.rotor_speed * t, 2.0 * math.pi)
         angles = (phi,) if self.n_gyros == 1 else (phi, -phi)
         rotors = (psi,) if self.n_gyros == 1 else (psi, -psi)
-        roll = math.degrees(math.atan2(self._R[2, 1], self._R[2, 2]))
-        frame = draw_ship(
-            ship_R=self._R.copy(),
+        roll = math.degrees(math.atan2(R[2, 1], R[2, 2]))
+        return draw_ship(
+            ship_R=R.copy(),
             gimbal_angles=angles,
             rotor_angles=rotors,
-            text=f"t = {self._t:5.2f} s  roll = {roll:+5.1f} deg  "
-            f"gimbal = {math.degrees(phi):+5.1f} deg",
+            text=f"t = {t:5.2f} s  roll = {roll:+5.1f} deg  "
+            f"gimbal = {math.degrees(phi):+5.1f} deg{note}",
         )
-        if self.render_mode == "human":
-            from mf_envs.render import HumanWindow
-
-            if self._window is None:
-                self._window = HumanWindow("GyroStabilizer-v0")
-            self._window.show(frame)
-            return None
-        return frame
-
-    def close(self) -> None:
-        if self._window is not None:
-            self._window.close()
-            self._window = None
