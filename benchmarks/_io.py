@@ -64,8 +64,12 @@ def work_precision_plot(path: Path, rows: Sequence[dict[str, Any]], title: str) 
             p = lrows[0].get("param", "dt")
             order = observed_order([r["dt"] for r in lrows], [r["error"] for r in lrows])
             label = method if math.isnan(order) else f"{method} (order {order:.2f} in {p})"
-            ax.loglog([r["seconds"] for r in lrows], [max(r["error"], 1e-17) for r in lrows],
-                      "o-", label=label)
+            ax.loglog(
+                [r["seconds"] for r in lrows],
+                [max(r["error"], 1e-17) for r in lrows],
+                "o-",
+                label=label,
+            )
         ax.set_xlabel("wall time [s]")
         ax.set_ylabel(f"max error: {quantity}")
         ax.grid(True, which="both", alpha=0.3)

@@ -29,9 +29,7 @@ _DEFAULT: dict[str, str] = {}
 class Controller(Protocol):
     def reset(self) -> None: ...
 
-    def predict(
-        self, obs: np.ndarray, deterministic: bool = True
-    ) -> tuple[np.ndarray, None]: ...
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]: ...
 
 
 def register(env_id: str, kind: str, factory: Callable[..., Any], default: bool = False) -> None:

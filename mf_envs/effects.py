@@ -55,7 +55,5 @@ def resolve_effects(
             raise ValueError(f"{param}: expected a tuple of effect names, got {effects!r}") from exc
     bad = [e for e in chosen if not isinstance(e, str) or e not in avail]
     if bad:
-        raise ValueError(
-            f"{param}: unknown effect(s) {bad}; available: {', '.join(sorted(avail))}"
-        )
+        raise ValueError(f"{param}: unknown effect(s) {bad}; available: {', '.join(sorted(avail))}")
     return frozenset(chosen)

@@ -83,14 +83,11 @@ POISON: dict[str, Any] = {
 }
 
 
-def _reward_terms(env_id: str, info: dict) -> dict[str, float] | None:
-    """The named reward terms an env reports in `info` (conventions differ per env)."""
-    if isinstance(info.get("reward_terms"), dict):  # GOWEC-v0
-        return info["reward_terms"]
-    if env_id == "Inchworm-v0":  # documented: reward = progress + effort
-        return {k: info[k] for k in ("progress", "effort")}
-    terms = {k: v for k, v in info.items() if k.startswith("reward_")}  # GyroStabilizer-v0
-    return terms or None
+def _reward_terms(info: dict) -> dict[str, float]:
+    """The named reward terms every env reports as `info["reward_terms"]` (STYLE.md item 8)."""
+    terms = info.get("reward_terms")
+    assert isinstance(terms, dict) and terms, f"info['reward_terms'] missing: {sorted(info)}"
+    return terms
 
 
 pytestmark = pytest.mark.skipif(not ENV_IDS, reason="no env module has landed yet")
@@ -359,9 +356,7 @@ def test_reward_terms_sum_to_reward(env_id, make):
     checked = 0
     for a in _actions(env, 40, seed=2):
         _, r, term, trunc, info = env.step(a)
-        terms = _reward_terms(env_id, info)
-        if terms is None:
-            pytest.skip(f"{env_id} exposes no named reward terms in info")
+        terms = _reward_terms(info)
         assert np.isclose(sum(float(v) for v in terms.values()), r, rtol=1e-6, atol=1e-9)
         checked += 1
         if term or trunc:

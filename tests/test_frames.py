@@ -1,4 +1,4 @@
-"""SO(3)/SE(3) kernel against independent truth: scipy's expm, group identities, finite differences."""
+"""SO(3)/SE(3) kernel against independent truth: scipy's expm, group identities, FD."""
 
 import numpy as np
 import pytest
@@ -59,8 +59,9 @@ def test_hat_vee_cross(w):
     assert np.allclose(vee(hat(w)), w)
 
 
-@given(arrays(np.float64, 3, elements=st.floats(-1, 1, allow_nan=False)),
-       st.floats(0.0, np.pi - 1e-9))
+@given(
+    arrays(np.float64, 3, elements=st.floats(-1, 1, allow_nan=False)), st.floats(0.0, np.pi - 1e-9)
+)
 def test_log_inverts_exp_on_its_domain(axis, angle):
     n = np.linalg.norm(axis)
     if n < 1e-3:

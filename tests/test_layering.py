@@ -9,7 +9,8 @@ def test_physics_imports_no_rl_or_control():
         "import sys, pkgutil, importlib, mf_envs.frames, mf_envs.physics as P\n"
         "for m in pkgutil.iter_modules(P.__path__):\n"
         "    importlib.import_module('mf_envs.physics.' + m.name)\n"
-        "bad = [m for m in ('gymnasium', 'stable_baselines3', 'control', 'torch') if m in sys.modules]\n"
+        "rl = ('gymnasium', 'stable_baselines3', 'control', 'torch')\n"
+        "bad = [m for m in rl if m in sys.modules]\n"
         "print(','.join(bad))\n"
     )
     # importing mf_envs.physics imports mf_envs/__init__ (which registers envs with gymnasium);

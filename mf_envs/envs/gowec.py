@@ -101,7 +101,8 @@ class GOWECEnv(MFEnv):
     | gimbal_inertia | (5, 5, 5) kg m^2 | with the `gimbal_inertia` effect |
     | rotor_transverse_inertia | Ja/2 | with the `gimbal_inertia` effect |
     | n_components, gamma | 64, 3.3 | irregular sea (JONSWAP) |
-    | buoy_radius | None | waterplane radius (m): slope averaged, x 2 J1(kr)/(kr); None = 0 (the seed's point buoy) for regular waves, 2.5 m with irregular_waves |
+    | buoy_radius | None | waterplane radius (m), slope x 2 J1(kr)/(kr); None: 0 (point buoy) |
+    |             |      | for regular waves, 2.5 m with irregular_waves                       |
     | effects | gyroscopic, buoy_rocking, wave_2d | also gimbal_inertia, irregular_waves |
 
     ## Version History
@@ -174,7 +175,6 @@ class GOWECEnv(MFEnv):
             self.wave_amplitude, self.wave_period, self.wave_direction, buoy_radius=self.buoy_radius
         )
         self.model = gw.GimbalModel(self.params, self.wave, self.effects)
-        self._window = None
         self._last_power = 0.0
 
     def analytic_max_power(self) -> float:
@@ -300,9 +300,7 @@ class GOWECEnv(MFEnv):
         r = energy * self._energy_scale
         return r, {"energy": r}
 
-    def render(self) -> np.ndarray | None:
-        if self.render_mode is None:
-            return None
+    def _draw_frame(self) -> np.ndarray:
         from mf_envs.render import draw_gowec
 
         lam = waves.wavelength(self.wave_period)
@@ -313,7 +311,7 @@ class GOWECEnv(MFEnv):
         psi = math.fmod(self.model.psid * self._t, 2 * math.pi)
         P = self._last_power
         phi_wrapped = math.remainder(float(self.state[0]), 2 * math.pi)
-        frame = draw_gowec(
+        return draw_gowec(
             buoy_R=R,
             gimbal_angle=float(self.state[0]),
             rotor_angle=psi,
@@ -323,16 +321,3 @@ class GOWECEnv(MFEnv):
             buoy_radius=self.buoy_radius if self.buoy_radius > 0 else None,
             text=f"t = {self._t:5.1f} s   phi = {phi_wrapped:+.2f} rad   P = {P / 1e3:.2f} kW",
         )
-        if self.render_mode == "human":
-            from mf_envs.render import HumanWindow
-
-            if self._window is None:
-                self._window = HumanWindow("GOWEC-v0")
-            self._window.show(frame)
-            return None
-        return frame
-
-    def close(self) -> None:
-        if self._window is not None:
-            self._window.close()
-            self._window = None

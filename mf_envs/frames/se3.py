@@ -41,7 +41,7 @@ def frame_inverse(E: ArrayLike) -> NDArray[np.float64]:
 
 
 def relative_connection(E_parent: ArrayLike, E_child: ArrayLike) -> NDArray[np.float64]:
-    """E^(child/parent) = (E^(parent))^-1 E^(child): the child frame seen from the parent (Eq. 6)."""
+    """E^(child/parent) = (E^(parent))^-1 E^(child): the child seen from the parent (Eq. 6)."""
     return frame_inverse(E_parent) @ np.asarray(E_child, dtype=np.float64)
 
 
