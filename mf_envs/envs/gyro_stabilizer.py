@@ -38,15 +38,16 @@ OBS_HIGH = np.array([math.pi, 10.0, 10.0, 10.0, math.pi, 20.0], dtype=np.float32
 
 
 class GyroStabilizerEnv(MFEnv):
-    """A ship rolling in waves, stabilized by gyros whose gimbal precession rate is the action.
-
+    """
     ## Description
+    A ship rolling in waves, stabilized by gyros whose gimbal precession rate is the action.
     The hull (3 rotational DOF, surge/sway/heave with the `translation` effect) carries one gyro,
     or two counter-rotating ones (Rios 2017, ch. 3 Eqs. 98-113): a rotor spinning at a fixed
     rate psi' inside a gimbal that precesses about the ship's athwartships axis e_2. Precessing
     at phi' gives the roll moment -n H phi' cos(phi), H = J3 psi' (Eq. 123). The physics is the
     numba fast path of `mf_envs.physics.ship_kernels`, which agrees with the general multibody
-    engine to round-off (`tests/test_ship_engine.py`). Defaults: an 18 t, 12-13 m motor yacht
+    engine to round-off (`tests/test_ship_physics.py::test_fast_path_matches_engine`).
+    Defaults: an 18 t, 12-13 m motor yacht
     (`physics.ship_params.small_yacht`: J44 = 45 850 kg m^2, A44 = 9 170 kg m^2,
     C44 = 158 900 N m/rad, natural roll period 3.70 s) with one Seakeeper 9 (Table 3-1:
     9 000 rpm, H = 9 000 N m s), beam seas at the roll resonance with a wave roll moment of
@@ -57,28 +58,35 @@ class GyroStabilizerEnv(MFEnv):
     "gimbal_inertia" for J2^(2) and "wave_moment" for M_e = M0 cos(2 pi t / T), Figs. 3-10/11).
 
     ## Action Space
-    `Box(-1, 1, (1,), float32)`: precession-rate command of gyro 1 (gyro 2 mirrors it), scaled
-    by `max_precession_rate` (rad/s). A servo with time constant `servo_time_constant` follows
-    it; with `gimbal_limits` it also enforces the rate limit and the end stops +-max_gimbal_angle.
-    With `gimbal_drive="torque"` the gimbal is a degree of freedom and a velocity loop of gain
-    `gimbal_loop_gain` (limited to `max_gimbal_torque`) must fight the gyroscopic torque
-    H omega on the gimbal axis (a stiff loop needs a small `physics_dt`); with gain 0 and
-    `gimbal_damping` it is a passive (braked) stabilizer that ignores the action.
+    `Box(-1, 1, (1,), float32)`:
+
+    | Num | Action                                        | Min | Max | Unit (scaled) |
+    |-----|-----------------------------------------------|-----|-----|---------------|
+    | 0   | precession-rate command / max_precession_rate | -1 | 1 | rad/s |
+
+    The command is for gyro 1 (gyro 2 mirrors it), scaled by `max_precession_rate` (rad/s). A
+    servo with time constant `servo_time_constant` follows it; with `gimbal_limits` it also
+    enforces the rate limit and the end stops +-max_gimbal_angle. With `gimbal_drive="torque"`
+    the gimbal is a degree of freedom and a velocity loop of gain `gimbal_loop_gain` (limited to
+    `max_gimbal_torque`) must fight the gyroscopic torque H omega on the gimbal axis (a stiff
+    loop needs a small `physics_dt`); with gain 0 and `gimbal_damping` it is a passive (braked)
+    stabilizer that ignores the action.
 
     ## Observation Space
     `Box(float32)`, what a real controller measures:
 
-    | idx | observation                          | unit  | bound |
-    |-----|--------------------------------------|-------|-------|
-    | 0   | roll angle (z-y-x Euler angle)       | rad   | pi    |
-    | 1   | roll rate omega_1 (body)             | rad/s | 10    |
-    | 2   | pitch rate omega_2 (body)            | rad/s | 10    |
-    | 3   | yaw rate omega_3 (body)              | rad/s | 10    |
-    | 4   | gimbal angle phi of gyro 1, wrapped  | rad   | pi    |
-    | 5   | gimbal rate phi'                     | rad/s | 20    |
+    | Num | Observation                          | Min  | Max | Unit  |
+    |-----|--------------------------------------|------|-----|-------|
+    | 0   | roll angle (z-y-x Euler angle)       | -pi  | pi  | rad   |
+    | 1   | roll rate omega_1 (body)             | -10  | 10  | rad/s |
+    | 2   | pitch rate omega_2 (body)            | -10  | 10  | rad/s |
+    | 3   | yaw rate omega_3 (body)              | -10  | 10  | rad/s |
+    | 4   | gimbal angle phi of gyro 1, wrapped  | -pi  | pi  | rad   |
+    | 5   | gimbal rate phi'                     | -20  | 20  | rad/s |
 
     ## Rewards
-    `reward = reward_roll + reward_effort` (both in `info`): reward_roll = -(roll / roll_scale)^2,
+    `reward = reward_roll + reward_effort` (both in `info`, and as `info["reward_terms"]`
+    {"roll", "effort"}): reward_roll = -(roll / roll_scale)^2,
     reward_effort = -effort_weight * action^2 (defaults roll_scale = 0.1745 rad = 10 deg,
     effort_weight = 0.01). `info` also has the API keys in SI (`gimbal_angle` unwrapped,
     `gyro_moment` = -n H phi' cos(phi), `wave_moment`) and `time` (s).
@@ -94,7 +102,7 @@ class GyroStabilizerEnv(MFEnv):
     on a numerical failure (`info["numerical_failure"]`).
 
     ## Arguments
-    | kwarg | default | meaning |
+    | Argument | default | meaning |
     |---|---|---|
     | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 |
     | n_gyros | 1 | 1 or 2 (counter-rotating pair) |

@@ -81,7 +81,7 @@ class InchwormEnv(MFEnv):
     | youngs_modulus, shear_modulus | 2.4e9, 0.96e9 | E, G [Pa] |
     | mass_per_length | 0.278 | m_A [kg/m] (J_3C from m_A h^2 / 12) |
     | n_elements | 12 | C1 elements |
-    | max_curvature | 13.0 | largest |kappa#| [1/m] (the seed's kappa0#) |
+    | max_curvature | 13.0 | largest abs(kappa#) [1/m] (the seed's kappa0#) |
     | n_control_points | 3 | actuation control points |
     | control_dt, physics_dt | 0.1, 0.1 | s per step; Newmark step with `inertia` |
     | max_episode_steps | 400 | 10 seed gait cycles |
