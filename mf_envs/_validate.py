@@ -11,6 +11,10 @@ import numpy as np
 
 def check_finite(name: str, value: Any) -> np.ndarray:
     """Return `value` as a float64 array; ValueError naming `name` if any entry is NaN/inf."""
+    if type(value) is float or type(value) is int:  # fast path for scalars (reset hot path)
+        if not math.isfinite(value):
+            raise ValueError(f"{name}: must be finite, got {value!r}")
+        return np.float64(value)
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -23,7 +27,7 @@ def check_finite(name: str, value: Any) -> np.ndarray:
 def check_positive(name: str, value: Any) -> np.ndarray:
     """Finite and > 0 (every entry); returns a float64 array."""
     arr = check_finite(name, value)
-    if not np.all(arr > 0):
+    if not (bool(arr > 0) if arr.ndim == 0 else np.all(arr > 0)):
         raise ValueError(f"{name}: must be > 0, got {value!r}")
     return arr
 
@@ -31,7 +35,7 @@ def check_positive(name: str, value: Any) -> np.ndarray:
 def check_nonnegative(name: str, value: Any) -> np.ndarray:
     """Finite and >= 0 (every entry); returns a float64 array."""
     arr = check_finite(name, value)
-    if not np.all(arr >= 0):
+    if not (bool(arr >= 0) if arr.ndim == 0 else np.all(arr >= 0)):
         raise ValueError(f"{name}: must be >= 0, got {value!r}")
     return arr
 

@@ -175,6 +175,7 @@ class GOWECEnv(MFEnv):
             self.wave_amplitude, self.wave_period, self.wave_direction, buoy_radius=self.buoy_radius
         )
         self.model = gw.GimbalModel(self.params, self.wave, self.effects)
+        self._model0 = self.model  # phase 0; reset() shifts the phase
         self._last_power = 0.0
 
     def analytic_max_power(self) -> float:
@@ -258,15 +259,10 @@ class GOWECEnv(MFEnv):
                 buoy_radius=self.buoy_radius,
             )
             object.__setattr__(self.wave, "phases", self.wave.phases + phase)
-        else:
-            self.wave = waves.regular_wave(
-                self.wave_amplitude,
-                self.wave_period,
-                self.wave_direction,
-                phase=phase,
-                buoy_radius=self.buoy_radius,
-            )
-        self.model = gw.GimbalModel(self.params, self.wave, self.effects)
+            self.model = gw.GimbalModel(self.params, self.wave, self.effects)
+        else:  # the regular wave of __init__ with this episode's phase
+            self.model = self._model0.with_phases([phase])
+            self.wave = self.model.wave
         self.state = np.array([phi, phid])
         self._t, self._steps = 0.0, 0
         self._w = tuple(self.model.rates(0.0)[0])

@@ -30,8 +30,9 @@ motions is 4/pi times that (a square-wave sin(phi)).
 
 from __future__ import annotations
 
+import copy
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numba
 import numpy as np
@@ -203,6 +204,15 @@ class GimbalModel:
         self._cth = math.cos(wave.direction) if rock else 0.0
         self._sth = math.sin(wave.direction) if rock else 0.0
         self._two_d = "wave_2d" in self.effects
+
+    def with_phases(self, phases: ArrayLike) -> GimbalModel:
+        """This model on the same wave with other component phases (rad): what a reset needs,
+        without rebuilding the wave's response factors (a shallow copy; arrays are not shared
+        for writing)."""
+        wave = replace(self.wave, phases=np.asarray(phases, dtype=np.float64))
+        model = copy.copy(self)
+        model.wave, model._eps = wave, wave.phases
+        return model
 
     def step(
         self, t: float, phi: float, phid: float, Mg: float, dt: float, n: int = 1
