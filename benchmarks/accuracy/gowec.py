@@ -53,29 +53,8 @@ def _eq79_rows(dts, t_end):
     law = locking_torque(p, w)
     dt_ref = min(dts) / 16
     ref = simulate_fast(gm, 0.0, w, t_end, dt_ref, law, HOLD)
-    rows = []
-    for dt in dts:
-        for method, fn, model in (
-            ("fast_path", simulate_fast, gm),
-            ("engine", simulate_engine, mb),
-        ):
-            run, sec = (
-                _timed(fn, model, 0.0, w, t_end, dt, law, False, HOLD)
-                if fn is simulate_engine
-                else _timed(fn, model, 0.0, w, t_end, dt, law, HOLD)
-            )
-            rows.append(
-                dict(
-                    scene="gowec",
-                    method=method,
-                    dt=dt,
-                    quantity="phi (Eq. 79 model)",
-                    error=_max_err(run, ref, dt, dt_ref),
-                    seconds=sec,
-                    param="dt",
-                )
-            )
-    return rows
+    models = (("fast_path", simulate_fast, gm), ("engine", simulate_engine, mb))
+    return _dt_ladder(models, w, t_end, dts, law, ref, dt_ref, "phi (Eq. 79 model)")
 
 
 def _real_inertia_rows(dts, t_end):
@@ -92,23 +71,23 @@ def _real_inertia_rows(dts, t_end):
     ref = simulate_fast(
         gw.GimbalModel(p, wave, SEED | {"gimbal_inertia"}), 0.0, w, t_end, dt_ref, law, HOLD
     )
+    models = (("eq81_fast_path", simulate_fast, eq81), ("engine", simulate_engine, truth))
+    return _dt_ladder(models, w, t_end, dts, law, ref, dt_ref, "phi (real inertias)")
+
+
+def _dt_ladder(models, w, t_end, dts, law, ref, dt_ref, quantity):
+    """Rows of max phi error vs wall seconds for (method, simulate function, model) over dts."""
     rows = []
     for dt in dts:
-        for method, fn, model in (
-            ("eq81_fast_path", simulate_fast, eq81),
-            ("engine", simulate_engine, truth),
-        ):
-            run, sec = (
-                _timed(fn, model, 0.0, w, t_end, dt, law, False, HOLD)
-                if fn is simulate_engine
-                else _timed(fn, model, 0.0, w, t_end, dt, law, HOLD)
-            )
+        for method, fn, model in models:
+            extra = (False,) if fn is simulate_engine else ()
+            run, sec = _timed(fn, model, 0.0, w, t_end, dt, law, *extra, HOLD)
             rows.append(
                 dict(
                     scene="gowec",
                     method=method,
                     dt=dt,
-                    quantity="phi (real inertias)",
+                    quantity=quantity,
                     error=_max_err(run, ref, dt, dt_ref),
                     seconds=sec,
                     param="dt",

@@ -31,19 +31,12 @@ from dataclasses import dataclass
 
 from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
 
+# Seed Table 3-1 (model -> rpm, H [N m s], spool-up power [W]) and rad/s per rpm: one table,
+# shared with the GOWEC
+from mf_envs.physics.gowec import RPM, SEAKEEPER
+
 RHO_SEA = 1025.0  # kg/m^3
 G = 9.81  # m/s^2
-RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
-
-# Seed Table 3-1: model -> (rpm, angular momentum H [N m s], spool-up power [W])
-SEAKEEPER: dict[str, tuple[float, float, float]] = {
-    "3DC": (6400.0, 3000.0, 900.0),
-    "5": (10700.0, 5000.0, 2000.0),
-    "9": (9000.0, 9000.0, 2000.0),
-    "16": (6130.0, 16000.0, 3000.0),
-    "26": (5000.0, 26000.0, 3000.0),
-    "35": (5150.0, 35000.0, 5000.0),
-}
 
 
 @dataclass(frozen=True)
