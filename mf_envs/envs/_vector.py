@@ -24,6 +24,7 @@ Rendering is not supported (`render_mode` must be None): render a single env ins
 
 from __future__ import annotations
 
+import abc
 from typing import Any
 
 import gymnasium as gym
@@ -56,7 +57,7 @@ def parse_autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
         ) from None
 
 
-class BatchedVectorEnv(VectorEnv):
+class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
     """Base class: subclasses set `single_env_cls`, allocate their batch arrays in `_alloc(n)`,
     copy the freshly reset template into row i in `_load(i)`, and implement
     `_step_batch(actions, active) -> (obs, reward, terminated, truncated, info)` for the rows in
@@ -102,14 +103,17 @@ class BatchedVectorEnv(VectorEnv):
         self._alloc(n)
 
     # ------------------------------------------------------------------ subclass hooks
+    @abc.abstractmethod
     def _alloc(self, n: int) -> None:
-        raise NotImplementedError
+        """Allocate the batch state arrays for n envs."""
 
+    @abc.abstractmethod
     def _load(self, i: int) -> None:
-        raise NotImplementedError
+        """Copy the template env's freshly reset state into row i."""
 
+    @abc.abstractmethod
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
-        raise NotImplementedError
+        """Advance the active rows: (obs, reward, terminated, truncated, info)."""
 
     # ------------------------------------------------------------------ resets
     def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
