@@ -28,6 +28,8 @@ import math
 import numba
 import numpy as np
 
+from mf_envs.frames.so3 import exp_so3_nb
+
 FIXED, REVOLUTE, PRISMATIC, SPHERICAL, FREE = 0, 1, 2, 3, 4
 NQ = (0, 1, 1, 9, 12)  # configuration slots per joint type
 NU = (0, 1, 1, 3, 6)  # velocity slots per joint type
@@ -74,22 +76,6 @@ def _hat(w):
 
 
 @numba.njit(cache=True)
-def _exp(w):
-    """Rodrigues exp(hat(w)) (ch. 2 Eq. 29) with a Taylor branch for small angles."""
-    th = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-    if th < 1e-4:
-        t2 = th * th
-        a = 1.0 - t2 / 6.0 + t2 * t2 / 120.0
-        b = 0.5 - t2 / 24.0 + t2 * t2 / 720.0
-    else:
-        a = math.sin(th) / th
-        s = math.sin(0.5 * th)
-        b = 2.0 * s * s / (th * th)
-    W = _hat(w)
-    return np.eye(3) + a * W + b * _mm(W, W)
-
-
-@numba.njit(cache=True)
 def _dexpinv_right(th, w):
     """theta' = J_r^-1(theta) omega for R = R0 exp(hat(theta)) with R^T R' = hat(omega)."""
     t = math.sqrt(th[0] * th[0] + th[1] * th[1] + th[2] * th[2])
@@ -110,7 +96,7 @@ def _joint_parts(jt, axis, q, qo, nd):
     Sw = np.zeros((3, nd))
     Sv = np.zeros((3, nd))
     if jt == REVOLUTE:
-        Rj = _exp(axis * q[qo])
+        Rj = exp_so3_nb(axis * q[qo])
         Sw[:, 0] = axis
     elif jt == PRISMATIC:
         xj = axis * q[qo]
@@ -267,7 +253,7 @@ def retract(q0, z, jtype, qoff, uoff, free_joint):
             q[qo] = q0[qo] + z[uo]
         elif jt == SPHERICAL or jt == FREE:
             th = z[uo : uo + 3].copy() if jt == SPHERICAL else z[uo + 3 : uo + 6].copy()
-            Rn = _mm(q0[qo : qo + 9].copy().reshape((3, 3)), _exp(th))
+            Rn = _mm(q0[qo : qo + 9].copy().reshape((3, 3)), exp_so3_nb(th))
             q[qo : qo + 9] = Rn.ravel()
             if jt == FREE:
                 q[qo + 9 : qo + 12] = q0[qo + 9 : qo + 12] + z[uo : uo + 3]
