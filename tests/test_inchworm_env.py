@@ -41,8 +41,10 @@ def test_info_keys_and_reward_terms_sum():
     assert {"x_head", "x_tail", "centerline"} <= set(info)
     assert info["centerline"].ndim == 2 and info["centerline"].shape[1] == 2
     _, reward, _, _, info = env.step(env.action_space.sample())
-    assert reward == pytest.approx(info["progress"] + info["effort"], abs=1e-12)
-    assert info["effort"] <= 0.0
+    assert reward == pytest.approx(
+        info["reward_terms"]["progress"] + info["reward_terms"]["effort"], abs=1e-12
+    )
+    assert info["reward_terms"]["effort"] <= 0.0
 
 
 @pytest.mark.parametrize("kind, per_cycle", [("seed_uniform", 0.5235), ("seed_linear", 0.2170)])
@@ -57,7 +59,7 @@ def test_seed_gaits_advance_head_and_tail(kind, per_cycle):
     for _ in range(ctrl.steps_per_cycle):
         obs, r, term, trunc, info = env.step(ctrl.predict(obs)[0])
         assert not info["numerical_failure"] and not term
-        total += info["progress"]
+        total += info["reward_terms"]["progress"]
     adv = (np.array([info["x_tail"], info["x_head"]]) - x0) / L
     assert adv == pytest.approx([per_cycle, per_cycle], rel=2e-3)
     assert total == pytest.approx(adv[0], rel=1e-9)

@@ -42,7 +42,9 @@ def test_spaces_info_and_reward_terms():
         assert k in info
     for _ in range(20):
         obs, r, term, trunc, info = env.step(env.action_space.sample())
-        assert r == pytest.approx(info["reward_roll"] + info["reward_effort"], abs=1e-12)
+        assert r == pytest.approx(
+            info["reward_terms"]["roll"] + info["reward_terms"]["effort"], abs=1e-12
+        )
         assert info["roll"] == pytest.approx(float(obs[0]), abs=1e-6)
         assert info["roll_rate"] == pytest.approx(float(obs[1]), rel=1e-6, abs=1e-7)
         # gyro roll moment is -n H phi' cos(phi) of the current state (Eq. 123)

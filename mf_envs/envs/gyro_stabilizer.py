@@ -85,9 +85,8 @@ class GyroStabilizerEnv(MFEnv):
     | 5   | gimbal rate phi'                     | -20  | 20  | rad/s |
 
     ## Rewards
-    `reward = reward_roll + reward_effort` (both in `info`, and as `info["reward_terms"]`
-    {"roll", "effort"}): reward_roll = -(roll / roll_scale)^2,
-    reward_effort = -effort_weight * action^2 (defaults roll_scale = 0.1745 rad = 10 deg,
+    `reward = roll + effort`, the terms in `info["reward_terms"]`: roll = -(roll / roll_scale)^2,
+    effort = -effort_weight * action^2 (defaults roll_scale = 0.1745 rad = 10 deg,
     effort_weight = 0.01). `info` also has the API keys in SI (`gimbal_angle` unwrapped,
     `gyro_moment` = -n H phi' cos(phi), `wave_moment`) and `time` (s).
 
@@ -373,7 +372,7 @@ class GyroStabilizerEnv(MFEnv):
         self._t = 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
         self._out[:] = (0.0, mw)
-        info = self._get_info({"reward_roll": 0.0, "reward_effort": 0.0})
+        info = self._get_info({"roll": 0.0, "effort": 0.0})
         self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
         return self._finish_reset(self._get_obs()), info
 
@@ -388,10 +387,10 @@ class GyroStabilizerEnv(MFEnv):
     def _get_rew(self, roll: float, action: float) -> tuple[float, dict[str, float]]:
         q = roll / self.roll_scale
         terms = {
-            "reward_roll": -(q * q),  # q * q, not q ** 2: libm pow, which numpy would not match
-            "reward_effort": -self.effort_weight * action * action,
+            "roll": -(q * q),  # q * q, not q ** 2: libm pow, which numpy would not match
+            "effort": -self.effort_weight * action * action,
         }
-        return terms["reward_roll"] + terms["reward_effort"], terms
+        return terms["roll"] + terms["effort"], terms
 
     def _get_info(self, terms: dict[str, float]) -> dict[str, Any]:
         y, R = self._y, self._R
@@ -406,9 +405,7 @@ class GyroStabilizerEnv(MFEnv):
             "wave_moment": float(self._out[1]),
             "time": self._t,
         }
-        info.update(terms)
-        # the convention shared by every env: the named terms that sum to the reward
-        info["reward_terms"] = {"roll": terms["reward_roll"], "effort": terms["reward_effort"]}
+        info["reward_terms"] = terms  # the convention shared by every env: terms sum to reward
         return info
 
     # ------------------------------------------------------------------ rendering

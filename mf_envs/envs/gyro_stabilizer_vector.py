@@ -30,8 +30,6 @@ INFO_KEYS = (
     "gyro_moment",
     "wave_moment",
     "time",
-    "reward_roll",
-    "reward_effort",
 )
 
 
@@ -41,7 +39,7 @@ class GyroStabilizerVectorEnv(BatchedVectorEnv):
     Observations (N, 6) float32, actions (N, 1) in [-1, 1], rewards (N,) float64, infos batched
     as Gymnasium does ({key: (N,) array, "_key": mask}) with the single env's keys: `roll`,
     `roll_rate`, `pitch_rate`, `yaw_rate`, `gimbal_angle`, `gimbal_rate`, `gyro_moment`,
-    `wave_moment`, `time`, `reward_roll`, `reward_effort`, `reward_terms` {`roll`, `effort`},
+    `wave_moment`, `time`, `reward_terms` {`roll`, `effort`},
     `numerical_failure`.
     Memory: `state_nbytes()` bytes for the batch state (irregular seas add a wave table per env).
     """
@@ -87,13 +85,13 @@ class GyroStabilizerVectorEnv(BatchedVectorEnv):
         y, out = b["y"], b["out"]
         values = (
             self._roll.copy(), y[:, 0].copy(), y[:, 1].copy(), y[:, 2].copy(), y[:, 3].copy(),
-            y[:, 4].copy(), out[:, 0].copy(), out[:, 1].copy(), b["t"].copy(), r_roll, r_effort,
+            y[:, 4].copy(), out[:, 0].copy(), out[:, 1].copy(), b["t"].copy(),
         )  # fmt: skip
         masks = np.ones((len(INFO_KEYS) + 4, self.num_envs), dtype=bool)  # one row per key
         info: dict[str, Any] = {}
         for j, (key, value) in enumerate(zip(INFO_KEYS, values)):
             info[key], info[f"_{key}"] = value, masks[j]
-        terms = {"roll": r_roll.copy(), "_roll": masks[-4], "effort": r_effort.copy()}
+        terms = {"roll": r_roll, "_roll": masks[-4], "effort": r_effort}
         terms["_effort"] = masks[-3]
         info["reward_terms"], info["_reward_terms"] = terms, masks[-2]
         trunc = b["t"] >= env.episode_seconds - 1e-9

@@ -58,7 +58,7 @@ class InchwormEnv(MFEnv):
     | 2n+4, 2n+5 | ground reaction at tail, head (halves with `terrain`) / body weight | [-20, 20] |
 
     ## Rewards
-    `reward = progress + effort` (both in `info`, and together in `info["reward_terms"]`):
+    `reward = progress + effort`, the terms in `info["reward_terms"]`:
     `progress` = tail advance this step / L;
     `effort` = -effort_weight * mean((Delta kappa# / max_curvature)^2) over the control points.
 
@@ -251,8 +251,7 @@ class InchwormEnv(MFEnv):
             "newton_iterations": 0 if report is None else report.iterations,
             "increments": 0 if report is None else report.increments,
         }
-        info.update(terms)
-        info["reward_terms"] = dict(terms)  # the convention shared by every env
+        info["reward_terms"] = terms  # the convention shared by every env: terms sum to reward
         return info
 
     # ------------------------------------------------------------------ rendering
