@@ -4,12 +4,23 @@ from __future__ import annotations
 
 import csv
 import math
+import time
 from collections import defaultdict
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+
+def timed(fn: Any, *args: Any, repeat: int = 1, **kwargs: Any) -> tuple[Any, float]:
+    """(fn(*args, **kwargs), best wall seconds over `repeat` calls) with time.perf_counter."""
+    best, out = math.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn(*args, **kwargs)
+        best = min(best, time.perf_counter() - t0)
+    return out, best
 
 
 def write_csv(path: Path, rows: Sequence[dict[str, Any]], first: Sequence[str]) -> Path:

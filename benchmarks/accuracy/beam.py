@@ -21,11 +21,11 @@ Scenes (the `dt` column is the refinement parameter named in `param`):
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import numpy as np
 
+from benchmarks._io import timed
 from mf_envs.physics.beam import (
     BeamModel,
     BeamParams,
@@ -51,15 +51,6 @@ from mf_envs.physics.inchworm import (
 ORDER = 40
 
 
-def _timed(fn, repeat: int = 2):
-    best, out = np.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return out, best
-
-
 def _row(scene, method, h, err, sec, param, **extra):
     return {
         "scene": scene,
@@ -82,7 +73,7 @@ def _timoshenko(quick: bool) -> list[dict]:
             np.array([c["L"]]), c["L"], ei, gas, c["q0"], alpha * c["kappa0"]
         )[0][0]
         for n in (1, 2, 4) if quick else (1, 2, 4, 8, 16):
-            sol, sec = _timed(
+            sol, sec = timed(
                 lambda n=n, alpha=alpha: solve_cantilever(
                     c["L"],
                     ea,
@@ -91,7 +82,8 @@ def _timoshenko(quick: bool) -> list[dict]:
                     n,
                     distributed_load=(0, -c["q0"]),
                     kappa_sharp=alpha * c["kappa0"],
-                )
+                ),
+                repeat=2,
             )
             err = abs(sol.tip_position[1] - v_ref) / abs(v_p)
             rows.append(
@@ -103,7 +95,9 @@ def _timoshenko(quick: bool) -> list[dict]:
 def _rollup(quick: bool) -> list[dict]:
     rows = []
     for n in (4, 8, 16) if quick else (4, 8, 16, 32, 64):
-        sol, sec = _timed(lambda n=n: solve_cantilever(1.0, 1e4, 1e4, 1.0, n, tip_moment=2 * np.pi))
+        sol, sec = timed(
+            lambda n=n: solve_cantilever(1.0, 1e4, 1e4, 1.0, n, tip_moment=2 * np.pi), repeat=2
+        )
         for q, err in (
             ("tip position / L", np.linalg.norm(sol.tip_position)),
             ("tip angle [rad]", abs(sol.tip_angle - 2 * np.pi)),
@@ -119,8 +113,9 @@ def _elastica(quick: bool) -> list[dict]:
     for alpha in (1.0, 2.0, 5.0, 10.0):
         x, y, _ = elastica_tip(alpha)
         for n in (4, 8, 16) if quick else (4, 8, 16, 32, 64):
-            sol, sec = _timed(
-                lambda n=n, a=alpha: solve_cantilever(1.0, 1e7, 1e7, 1.0, n, tip_force=(0, -a))
+            sol, sec = timed(
+                lambda n=n, a=alpha: solve_cantilever(1.0, 1e7, 1e7, 1.0, n, tip_force=(0, -a)),
+                repeat=2,
             )
             err = float(np.linalg.norm(sol.tip_position - [x, y]))
             rows.append(
@@ -156,7 +151,7 @@ def _newmark(quick: bool) -> list[dict]:
         ref = _vibration(dts[-1] / 16, t_end, gamma)
         for dt in dts:
             try:
-                z, sec = _timed(lambda dt=dt, gamma=gamma: _vibration(dt, t_end, gamma), repeat=1)
+                z, sec = timed(lambda dt=dt, gamma=gamma: _vibration(dt, t_end, gamma), repeat=1)
             except NewtonDivergence:  # the energy instability of the trapezoidal rule
                 rows.append(
                     _row(
@@ -185,7 +180,7 @@ def _newton_tol(quick: bool) -> list[dict]:
     ref = solve(1e-12).tip_position
     rows = []
     for tol in (1e-2, 1e-4, 1e-6) if quick else (1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10):
-        sol, sec = _timed(lambda tol=tol: solve(tol))
+        sol, sec = timed(lambda tol=tol: solve(tol), repeat=2)
         err = float(np.linalg.norm(sol.tip_position - ref))
         rows.append(_row("beam_newton_tol", "Newton eps1 = eps2", tol, err, sec, "tol"))
     return rows
@@ -209,7 +204,7 @@ def _inchworm(quick: bool) -> list[dict]:
             exact = p.length - chord_of_stress_free_shape(
                 lambda s, p=p, peak=peak: peak(s, p.length), p.length
             )
-            hist, sec = _timed(
+            hist, sec = timed(
                 lambda p=p, fn=fn: run_gait(
                     Inchworm(p, effects=frozenset({"anchor_switching"})), fn, 1, 40
                 ),

@@ -15,10 +15,10 @@ chaotic), so that every dt integrates the same sampled-data system.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
+from benchmarks._io import timed
 from mf_envs.physics import gowec as gw
 from mf_envs.physics.gowec_engine import (
     build_engine_model,
@@ -32,12 +32,6 @@ ORDER = 30
 T = 6.0
 SEED = frozenset({"gyroscopic", "buoy_rocking", "wave_2d"})
 HOLD = 0.08  # s, the torque law is sampled and held like a digital controller (every dt divides)
-
-
-def _timed(fn, *args):
-    t0 = time.perf_counter()
-    out = fn(*args)
-    return out, time.perf_counter() - t0
 
 
 def _max_err(run, ref, dt, dt_ref):
@@ -81,7 +75,7 @@ def _dt_ladder(models, w, t_end, dts, law, ref, dt_ref, quantity):
     for dt in dts:
         for method, fn, model in models:
             extra = (False,) if fn is simulate_engine else ()
-            run, sec = _timed(fn, model, 0.0, w, t_end, dt, law, *extra, HOLD)
+            run, sec = timed(fn, model, 0.0, w, t_end, dt, law, *extra, HOLD)
             rows.append(
                 dict(
                     scene="gowec",
@@ -117,7 +111,7 @@ def _power_rows(dts, n_periods):
             # energy of the held torque per step over whole periods / time
             return float(np.sum(out["Mg"][:-1] * np.diff(out["phi"])) / (n_periods * T))
 
-        Pm, sec = _timed(run)
+        Pm, sec = timed(run)
         rows.append(
             dict(
                 scene="gowec",

@@ -26,13 +26,12 @@ README picture (chains of 2, 4, 8 links beside the beam, and the error vs links)
 from __future__ import annotations
 
 import argparse
-import time
 from pathlib import Path
 
 import numpy as np
 from scipy.linalg import eigh
 
-from benchmarks._io import observed_order
+from benchmarks._io import observed_order, timed
 from mf_envs.physics import multilink as ml
 from mf_envs.physics.multilink_elastica import elastica_cantilever
 from mf_envs.physics.multilink_solve import simulate, solve_static
@@ -45,15 +44,6 @@ STATIC_CASES = {
     "tip load alpha=5 vs elastica": {"tip_force": (0.0, -5.0)},
     "uniform load qL^3/EI=3 vs elastica": {"distributed_load": (0.0, -3.0)},
 }
-
-
-def _timed(fn, repeat: int = 3):
-    best, out = np.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return out, best
 
 
 def _row(scene: str, method: str, h: float, err: float, sec: float, param: str, **extra) -> dict:
@@ -93,7 +83,7 @@ def _static_rows(quick: bool) -> list[dict]:
             kw2 = dict(kw)
             if "kappa" in kw2:
                 kw2 = {"theta_sharp": ml.actuation_from_curvature(p, kw2.pop("kappa"))}
-            st, sec = _timed(lambda p=p, kw2=kw2: solve_static(p, **kw2))
+            st, sec = timed(lambda p=p, kw2=kw2: solve_static(p, **kw2), repeat=3)
             err = float(np.linalg.norm(st.tip_position - ref)) / L
             rows.append(
                 _row(
@@ -124,13 +114,14 @@ def _mode_rows(quick: bool) -> list[dict]:
     exact = BETA_L**2 * np.sqrt(EI / (1.0 * L**4))
     for n in _links(quick, 7)[1:]:  # beyond ~256 links eigh's round-off (cond ~ n^4) floors it
         p = ml.chain_from_beam(L, EI, 1.0, n)
-        (w2, sec) = _timed(
+        (w2, sec) = timed(
             lambda p=p, n=n: eigh(
                 ml.stiffness_matrix(p),
                 ml.mass_matrix(p, np.zeros(n)),
                 eigvals_only=True,
                 subset_by_index=[0, 2],
-            )
+            ),
+            repeat=3,
         )
         for i in range(3):
             err = abs(np.sqrt(w2[i]) / exact[i] - 1.0)
@@ -167,7 +158,7 @@ def _dynamic_rows(quick: bool) -> list[dict]:
             if method == "Radau" and n > 8:
                 continue  # a finite-difference Jacobian per step: minutes at n >= 16
             for rtol in rtols:
-                tr, sec = _timed(
+                tr, sec = timed(
                     lambda m=method, r=rtol, p=p, z=z: simulate(
                         p, z, z, 2.0, m, r, r * 1e-3, t_eval
                     ),

@@ -33,6 +33,7 @@ from functools import partial
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from benchmarks._io import timed
 from mf_envs.frames import hat, orthonormality_error
 from mf_envs.physics.rigid_body import (
     METHODS,
@@ -68,15 +69,6 @@ def dop853(J: np.ndarray, w0: np.ndarray, t: np.ndarray, rtol: float) -> tuple[n
     return sol.y[:3].T / J, sol.y[3:].T.reshape(-1, 3, 3)
 
 
-def _best_of(fn, repeats: int = 3):
-    best, out = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
-
-
 def _scene_rows(scene: str, dts: list[float], rtols: list[float]) -> list[dict]:
     J, w0, t_end = SCENES[scene]
     t = np.arange(round(t_end / GRID) + 1) * GRID
@@ -97,10 +89,10 @@ def _scene_rows(scene: str, dts: list[float], rtols: list[float]) -> list[dict]:
         for dt in dts:
             k = round(GRID / dt)
             run = partial(simulate, J, w0, t_end, dt, method, save_every=k)
-            secs, tr = _best_of(run)
+            tr, secs = timed(run, repeat=3)
             add(method, dt, "dt", secs, tr.omega, tr.R)
     for rtol in rtols:
-        secs, (w, R) = _best_of(partial(dop853, J, w0, t, rtol), repeats=1)
+        (w, R), secs = timed(dop853, J, w0, t, rtol)
         add("scipy_DOP853", rtol, "rtol", secs, w, R)
     return rows
 

@@ -23,10 +23,10 @@ Extra columns: `rpm`, `form`.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
+from benchmarks._io import timed
 from mf_envs.physics.ship import (
     RPM,
     SEED_EFFECTS,
@@ -55,12 +55,6 @@ def _err(x: np.ndarray, ref: np.ndarray, t: np.ndarray, t_ref: np.ndarray) -> fl
     return float(np.abs(x - xr).max() / np.abs(ref).max())
 
 
-def _timed(fn, *args, **kwargs):
-    t0 = time.perf_counter()
-    r = fn(*args, **kwargs)
-    return r, time.perf_counter() - t0
-
-
 def _model_scene(
     scene: str,
     ship: ShipParams,
@@ -81,8 +75,8 @@ def _model_scene(
         for form in ("exact", "seed"):
             P = pack_params(ship, gyro, n, EFF, DRIVE, WAVE, form=form)
             simulate(P, dt, dt)  # compile / warm up
-            runs[f"fast_{form}"] = _timed(simulate, P, t_end, dt)
-        runs["engine"] = _timed(simulate_engine, ship, gyro, n, EFF, DRIVE, t_end, dt, WAVE)
+            runs[f"fast_{form}"] = timed(simulate, P, t_end, dt)
+        runs["engine"] = timed(simulate_engine, ship, gyro, n, EFF, DRIVE, t_end, dt, WAVE)
         for method, (r, sec) in runs.items():
             for q, k in quantities.items():
                 rows.append(
@@ -114,8 +108,8 @@ def _yacht_scene(dts, t_end: float) -> list[dict]:
     for dt in dts:
         simulate(P, dt, dt, y0, R0)
         runs = {
-            "fast_exact": _timed(simulate, P, t_end, dt, y0, R0),
-            "engine": _timed(
+            "fast_exact": timed(simulate, P, t_end, dt, y0, R0),
+            "engine": timed(
                 simulate_engine, ship, gyro, 1, eff, drive, t_end, dt, wave, roll0=0.05
             ),
         }
@@ -147,8 +141,8 @@ def _rotor_speed_scene(rpms, dts, t_end: float) -> list[dict]:
         for dt in dts:
             simulate(P, dt, dt, y0, R0)
             runs = {
-                f"engine_{rpm}rpm": _timed(simulate_free_gimbal, ship, gyro, t_end, dt, w0),
-                f"fast_{rpm}rpm": _timed(simulate, P, t_end, dt, y0, R0),
+                f"engine_{rpm}rpm": timed(simulate_free_gimbal, ship, gyro, t_end, dt, w0),
+                f"fast_{rpm}rpm": timed(simulate, P, t_end, dt, y0, R0),
             }
             for method, (r, sec) in runs.items():
                 for q, x, xr in (

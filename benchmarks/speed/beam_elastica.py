@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks._io import timed
 from mf_envs.physics.beam import solve_cantilever
 
 L, R, E, RHO, ALPHA = 1.0, 0.02, 1e6, 1000.0, 2.0
@@ -37,21 +38,12 @@ P = ALPHA * EI / L**2
 TOL = 1e-4
 
 
-def _best(fn, repeat: int = 5) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
 def _ours(n: int) -> tuple[np.ndarray, float]:
     def go():
         return solve_cantilever(L, EA, GAS, EI, n, tip_force=(0.0, -P))
 
     tip = go().tip_position
-    return tip, _best(go)
+    return tip, timed(go, repeat=5)[1]
 
 
 def _elastica(n: int) -> tuple[np.ndarray, float]:
@@ -229,7 +221,7 @@ def _step_vs_elements(quick: bool) -> list[dict]:
             sim.state, sim.kappa = base, np.full(sim.kappa.shape, -13.0)
             sim.actuate(np.full(sim.kappa.shape, -12.8), anchor="head")
 
-        rates[n] = 1.0 / _best(one, 20)
+        rates[n] = 1.0 / timed(one, repeat=20)[1]
     return [
         _row("beam_step_vs_elements", f"n_elements={n}", r, "n_elements=4", rates[4], elements=n)
         for n, r in rates.items()
