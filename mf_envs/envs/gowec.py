@@ -258,8 +258,9 @@ class GOWECEnv(MFEnv):
                 self.wave_direction,
                 buoy_radius=self.buoy_radius,
             )
-            object.__setattr__(self.wave, "phases", self.wave.phases + phase)
-            self.model = gw.GimbalModel(self.params, self.wave, self.effects)
+            sea_model = gw.GimbalModel(self.params, self.wave, self.effects)
+            self.model = sea_model.with_phases(self.wave.phases + phase)
+            self.wave = self.model.wave
         else:  # the regular wave of __init__ with this episode's phase
             self.model = self._model0.with_phases([phase])
             self.wave = self.model.wave

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -206,10 +206,11 @@ class GimbalModel:
         self._two_d = "wave_2d" in self.effects
 
     def with_phases(self, phases: ArrayLike) -> GimbalModel:
-        """This model on the same wave with other component phases (rad): what a reset needs,
-        without rebuilding the wave's response factors (a shallow copy; arrays are not shared
-        for writing)."""
-        wave = replace(self.wave, phases=np.asarray(phases, dtype=np.float64))
+        """This model on the same wave components with other phases (rad): what a reset needs,
+        without rebuilding the response factors (a shallow copy; arrays are not written)."""
+        w = self.wave
+        phases = np.asarray(phases, dtype=np.float64)
+        wave = WaveField(w.amplitudes, w.omegas, phases, w.wavenumbers, w.direction, w.buoy_radius)
         model = copy.copy(self)
         model.wave, model._eps = wave, wave.phases
         return model
