@@ -9,6 +9,7 @@ the observation returned is the last finite one, the reward 0). Physics lives in
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from typing import Any
 
@@ -88,6 +89,16 @@ class MFEnv(gym.Env):
         if not np.all(np.isfinite(a)):
             raise ValueError(f"action: must be finite, got {action!r}")
         return np.clip(a, -1.0, 1.0)
+
+    def _scalar_action(self, action: Any) -> float:
+        """The one action of a Box(-1, 1, (1,)) env as a float in [-1, 1]: the contract of
+        `_validate_action` without its array overhead (the per-step hot path)."""
+        if isinstance(action, np.ndarray) and action.shape == (1,):
+            u = float(action[0])
+            if not math.isfinite(u):
+                raise ValueError(f"action: must be finite, got {action!r}")
+            return -1.0 if u < -1.0 else (1.0 if u > 1.0 else u)
+        return float(self._validate_action(action)[0])
 
     # ------------------------------------------------------------------ numerics
     def _finish_step(

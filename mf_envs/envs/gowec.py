@@ -224,14 +224,7 @@ class GOWECEnv(MFEnv):
 
     def _torque(self, action: Any) -> float:
         """Generator torque (N m) from the action: NaN/inf -> ValueError, clipped to [-1, 1]."""
-        if isinstance(action, np.ndarray) and action.shape == (1,):
-            u = float(action[0])
-            if not math.isfinite(u):
-                raise ValueError(f"action: must be finite, got {action!r}")
-            u = -1.0 if u < -1.0 else (1.0 if u > 1.0 else u)
-        else:
-            u = float(self._validate_action(action)[0])
-        return u * self.max_generator_torque
+        return self._scalar_action(action) * self.max_generator_torque
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None

@@ -302,21 +302,8 @@ class GyroStabilizerEnv(MFEnv):
             self.max_gimbal_angle,
         )
 
-    def _validate_action(self, action: Any) -> np.ndarray:
-        """Same contract as `MFEnv._validate_action` (NaN/inf -> ValueError, clip to [-1, 1]),
-        scalar fast path for the 1-D action."""
-        try:
-            a = float(action[0]) if np.ndim(action) == 1 and len(action) == 1 else None
-        except (TypeError, ValueError):
-            a = None
-        if a is None:
-            return super()._validate_action(action)
-        if not math.isfinite(a):
-            raise ValueError(f"action: must be finite, got {action!r}")
-        return np.array([min(max(a, -1.0), 1.0)])
-
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        a0 = float(self._validate_action(action)[0])
+        a0 = self._scalar_action(action)
         self._t, ok = K.env_advance(
             self._t,
             self._y,
