@@ -15,7 +15,7 @@ BENCH_KINDS = ("accuracy", "speed", "controllers")
 
 
 def _cmd_demo(args: argparse.Namespace) -> list[Path]:
-    from benchmarks import demos
+    from mf_envs.benchmarks import demos
 
     return demos.run(Path(args.out), quick=args.quick, only=args.only)
 
@@ -23,7 +23,7 @@ def _cmd_demo(args: argparse.Namespace) -> list[Path]:
 def _cmd_bench(args: argparse.Namespace) -> list[Path]:
     import importlib
 
-    mod = importlib.import_module(f"benchmarks.{args.kind}")
+    mod = importlib.import_module(f"mf_envs.benchmarks.{args.kind}")
     return mod.run(Path(args.out), quick=args.quick, only=args.scene)
 
 
@@ -34,13 +34,13 @@ def _cmd_render(args: argparse.Namespace) -> list[Path]:
 
 
 def _cmd_train(args: argparse.Namespace) -> list[Path]:
-    from train.cli import train_command
+    from mf_envs.train.cli import train_command
 
     return train_command(args)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> list[Path]:
-    from train.cli import evaluate_command
+    from mf_envs.train.cli import evaluate_command
 
     return evaluate_command(args)
 

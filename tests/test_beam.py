@@ -7,7 +7,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mf_envs.physics import beam_element as el
 from mf_envs.physics.beam import (
     BeamModel,
     BeamParams,
@@ -19,7 +18,8 @@ from mf_envs.physics.beam import (
     solve_static_path,
     timoshenko_cantilever_uniform,
 )
-from mf_envs.physics.beam_reference import SEED_CANTILEVER, elastica_tip, seed_rigidities
+from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam.reference import SEED_CANTILEVER, elastica_tip, seed_rigidities
 
 
 def _fd_tangent(model, d, kap, h=1e-6):

@@ -101,7 +101,7 @@ def test_render_needs_a_gif_path(capsys, tmp_path):
 
 @pytest.mark.parametrize("env_id", available_env_ids())
 def test_render_writes_a_gif(capsys, tmp_path, env_id):
-    import controllers
+    from mf_envs import controllers
 
     try:
         controllers.baseline_kinds(env_id)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from mf_envs.physics import gowec as gw
-from mf_envs.physics.gowec_engine import (
+from mf_envs.physics.gowec.engine import (
     build_engine_model,
     locking_torque,
     simulate_engine,

@@ -10,8 +10,8 @@ import pytest
 from scipy.special import j1
 
 import mf_envs  # noqa: F401  (registers the envs)
-from controllers import baseline_kinds, make_baseline
-from controllers.gowec import design_pll
+from mf_envs.controllers import baseline_kinds, make_baseline
+from mf_envs.controllers.gowec import design_pll
 from mf_envs.physics.gowec import RPM, SEAKEEPER
 from mf_envs.physics.waves import G
 

@@ -8,7 +8,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import mf_envs  # noqa: F401  (registers the ids)
-from controllers import baseline_kinds, make_baseline
+from mf_envs.controllers import baseline_kinds, make_baseline
 from mf_envs.physics.beam import NewtonSettings
 
 L = 0.3

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mf_envs.physics import beam_element as el
+from mf_envs.physics.beam import element as el
 from mf_envs.physics.inchworm import (
     Inchworm,
     InchwormParams,

@@ -7,7 +7,6 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from mf_envs.frames import exp_so3, hat, orthonormality_error, rot_x, rot_y, vee
-from mf_envs.physics import multibody_kernels as K
 from mf_envs.physics.multibody import (
     Body,
     Fixed,
@@ -19,6 +18,7 @@ from mf_envs.physics.multibody import (
     constant_rate,
     harmonic,
 )
+from mf_envs.physics.multibody import kernels as K
 
 
 def _rock(t: float):

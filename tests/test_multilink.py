@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from mf_envs.physics import multilink as ml
-from mf_envs.physics.multilink_elastica import elastica_cantilever
-from mf_envs.physics.multilink_loads import gauss_points, lump_line_load
-from mf_envs.physics.multilink_solve import (
+from mf_envs.physics.multilink.elastica import elastica_cantilever
+from mf_envs.physics.multilink.loads import gauss_points, lump_line_load
+from mf_envs.physics.multilink.solve import (
     accelerations,
     accelerations_reference,
     simulate,

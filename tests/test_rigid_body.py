@@ -10,8 +10,6 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from mf_envs.frames import exp_so3, hat, orthonormality_error, rot_x, rot_z
-from mf_envs.physics import polhode
-from mf_envs.physics import rigid_body_kernels as K
 from mf_envs.physics.rigid_body import (
     METHODS,
     analytic_omega,
@@ -21,6 +19,8 @@ from mf_envs.physics.rigid_body import (
     flight_time,
     simulate,
 )
+from mf_envs.physics.rigid_body import kernels as K
+from mf_envs.physics.rigid_body import polhode as polhode
 
 RACKET_J = np.array([0.0185, 0.0164, 0.00121])
 RACKET_W0 = np.array([0.001, 5.0, 0.001])

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from mf_envs.physics.rigid_body_exact import (
+from mf_envs.physics.rigid_body.exact import (
     analytic_omega,
     complete_k,
     elliptic_solution,

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from mf_envs.physics import polhode
 from mf_envs.physics.rigid_body import elliptic_solution, simulate
+from mf_envs.physics.rigid_body import polhode as polhode
 
 J = np.array([2.0, 1.0, 0.5])  # Fig. 2-5: J1/J2 = 2, J3/J2 = 0.5
 

@@ -238,7 +238,7 @@ def test_bad_parameters_raise():
 @pytest.mark.parametrize("n_gyros", [1, 2])
 def test_free_gimbal_torque_drive_matches_engine(n_gyros):
     """Torque drive with no torque = free gimbals (phi-row of Eq. 74) == engine, 8050 rpm."""
-    from mf_envs.physics.ship_engine import simulate_free_gimbal
+    from mf_envs.physics.ship.engine import simulate_free_gimbal
 
     ship, gyro = seed_test_hull()
     P = pack_params(ship, gyro, n_gyros, SEED_EFFECTS, GimbalDrive("torque"))
@@ -326,7 +326,7 @@ def test_translation_engine_matches_fast_path():
 def test_hard_case_free_gimbal_flips_through_90_at_8050rpm():
     """Free gimbal at 8050 rpm on the seed hull, released at 0.05 rad/s roll: the gimbal swings
     through +-90 deg (cos(phi) -> 0 in the gyro moment) without blow-up; fast == engine."""
-    from mf_envs.physics.ship_engine import simulate_free_gimbal
+    from mf_envs.physics.ship.engine import simulate_free_gimbal
 
     ship, gyro = seed_test_hull()
     P = pack_params(ship, gyro, 1, SEED_EFFECTS, GimbalDrive("torque"))

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import mf_envs  # noqa: F401
-from controllers import baseline_kinds, make_baseline
+from mf_envs.controllers import baseline_kinds, make_baseline
 from mf_envs.physics.ship import (
     RPM,
     SEED_EFFECTS,

@@ -148,7 +148,7 @@ def test_numerical_failure_contract():
 
 def test_hard_case_seed_hull_8050rpm_continuous_gimbal():
     """Seed hull (J3 = 1e10 kg m^2), 8050 rpm, two gyros, gimbal spun through +-90 deg."""
-    from controllers import make_baseline
+    from mf_envs.controllers import make_baseline
 
     env = gym.make(
         ENV_ID,

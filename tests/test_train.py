@@ -19,14 +19,14 @@ sb3 = pytest.importorskip("stable_baselines3", reason="stable-baselines3 is not 
 
 import mf_envs  # noqa: E402,F401  (registers the env ids)
 from mf_envs.envs import ENV_SPECS, available_env_ids  # noqa: E402
-from train.config import (  # noqa: E402
+from mf_envs.train.config import (  # noqa: E402
     load_hyperparams,
     parse_policy_kwargs,
     read_config,
     resolve_schedules,
 )
-from train.evaluate import episode_metrics, evaluate_controllers, run_episode  # noqa: E402
-from train.policy import POLICY_ROOT, load_policy, save_policy  # noqa: E402
+from mf_envs.train.evaluate import episode_metrics, evaluate_controllers, run_episode  # noqa: E402
+from mf_envs.train.policy import POLICY_ROOT, load_policy, save_policy  # noqa: E402
 
 TINY = {"n_steps": 64, "batch_size": 64, "n_epochs": 1, "policy_kwargs": {"net_arch": [8]}}
 SMOKE_IDS = ["Pendulum-v1", *available_env_ids()]
@@ -83,7 +83,7 @@ def test_native_vector_adapter_matches_dummy_vec_env(mode):
     from gymnasium.vector import AutoresetMode, SyncVectorEnv
     from stable_baselines3.common.vec_env import DummyVecEnv
 
-    from train.vec import GymVectorToSB3
+    from mf_envs.train.vec import GymVectorToSB3
 
     fns = [lambda: gym.make("Pendulum-v1") for _ in range(2)]
     native = GymVectorToSB3(SyncVectorEnv(fns, autoreset_mode=AutoresetMode[mode]))
@@ -98,7 +98,7 @@ def test_native_vector_adapter_matches_dummy_vec_env(mode):
 def test_make_train_env_uses_native_vector_entry_point():
     from gymnasium.vector import AutoresetMode, SyncVectorEnv
 
-    from train.vec import make_train_env
+    from mf_envs.train.vec import make_train_env
 
     def vector_entry(num_envs=1, **kw):
         fns = [lambda: gym.make("Pendulum-v1", **kw) for _ in range(num_envs)]
@@ -127,7 +127,7 @@ def _trained_model(tmp_path):
     """A few PPO updates on Pendulum with VecNormalize, saved with save_policy."""
     from stable_baselines3 import PPO
 
-    from train.vec import make_train_env
+    from mf_envs.train.vec import make_train_env
 
     venv, _ = make_train_env("Pendulum-v1", 2, seed=0, normalize={})
     model = PPO("MlpPolicy", venv, seed=0, device="cpu", **TINY)
@@ -191,7 +191,7 @@ def test_shipped_policies_load_and_act(env_id):
 # --------------------------------------------------------------------------- smoke runs
 @pytest.mark.parametrize("env_id", SMOKE_IDS)
 def test_smoke_train_then_evaluate(env_id, tmp_path):
-    from train.trainer import train
+    from mf_envs.train.trainer import train
 
     res = train(
         env_id,
@@ -291,7 +291,7 @@ def test_episode_metrics_definitions():
 
 # --------------------------------------------------------------------------- randomisation
 def test_domain_randomization_redraws_params_deterministically():
-    from train.randomize import DomainRandomization
+    from mf_envs.train.randomize import DomainRandomization
 
     def draws(seed):
         env = DomainRandomization(gym.make("Pendulum-v1"), ranges={"g": (0.8, 1.2), "zz": (1, 2)})
@@ -315,7 +315,7 @@ def test_domain_randomization_redraws_params_deterministically():
 
 
 def test_shift_scenes_only_use_real_kwargs():
-    from train.randomize import nominal_kwargs, shift_scenes, shifted_kwargs
+    from mf_envs.train.randomize import nominal_kwargs, shift_scenes, shifted_kwargs
 
     assert shifted_kwargs("Pendulum-v1", {"g": 1.5, "zz": 2.0}) == {"g": 15.0}
     for env_id in available_env_ids():
@@ -352,7 +352,7 @@ def test_training_is_reproducible(tmp_path):
     """Same command, same seed -> bit-identical weights (what lets meta.json's score be re-made)."""
     import torch
 
-    from train.trainer import train
+    from mf_envs.train.trainer import train
 
     def weights(out):
         res = train(
@@ -374,7 +374,7 @@ def test_training_is_reproducible(tmp_path):
 
 
 def test_ship_refuses_a_policy_worse_than_the_baseline(tmp_path, monkeypatch):
-    from train import ship
+    from mf_envs.train import ship
 
     ev = {
         "metric": "rms_roll",
@@ -391,7 +391,7 @@ def test_ship_refuses_a_policy_worse_than_the_baseline(tmp_path, monkeypatch):
             {"env_id": "GyroStabilizer-v0", "evaluation": {**ev, "ppo": {"mean": 0.3, "std": 0.0}}}
         )
     )
-    monkeypatch.setattr("train.trainer.POLICY_ROOT", tmp_path / "never")
+    monkeypatch.setattr("mf_envs.train.trainer.POLICY_ROOT", tmp_path / "never")
     assert ship.main([str(tmp_path)]) == 2
     assert not (tmp_path / "never").exists()
 
@@ -411,7 +411,7 @@ def test_tensorboard_flag_without_tensorboard_is_a_clear_error(tmp_path, capsys)
 
 @pytest.mark.parametrize("env_id", available_env_ids())
 def test_domain_randomization_on_mf_envs(env_id):
-    from train.randomize import DomainRandomization, applicable_ranges, nominal_kwargs
+    from mf_envs.train.randomize import DomainRandomization, applicable_ranges, nominal_kwargs
 
     ranges = applicable_ranges(env_id)
     if not ranges:
@@ -433,10 +433,12 @@ def test_domain_randomization_on_mf_envs(env_id):
 
 
 @pytest.mark.parametrize(
-    "path", sorted((Path(__file__).parents[1] / "train" / "configs").glob("*.yml")), ids=str
+    "path",
+    sorted((Path(__file__).parents[1] / "mf_envs" / "train" / "configs").glob("*.yml")),
+    ids=str,
 )
 def test_every_config_file_parses(path):
-    from train.config import import_object
+    from mf_envs.train.config import import_object
 
     for env_id in read_config(path):
         hp = load_hyperparams(env_id, path)
@@ -454,7 +456,7 @@ def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
     import torch
     import yaml
 
-    from train.trainer import train
+    from mf_envs.train.trainer import train
 
     base = read_config()[env_id]
     if env_id == "GOWEC-v0":  # 1 wave period per episode (300 steps) keeps the test short

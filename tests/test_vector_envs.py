@@ -239,11 +239,11 @@ def test_invalid_arguments(env_id: str) -> None:
 
 @pytest.mark.parametrize("env_id", VEC_IDS)
 def test_sb3_adapter_round_trip(env_id: str) -> None:
-    """train.vec.GymVectorToSB3 over the native env == SB3's DummyVecEnv of single envs."""
+    """mf_envs.train.vec.GymVectorToSB3 over the native env == SB3's DummyVecEnv of single envs."""
     pytest.importorskip("stable_baselines3", reason="stable-baselines3 not installed")
     from stable_baselines3.common.vec_env import DummyVecEnv
 
-    from train.vec import GymVectorToSB3
+    from mf_envs.train.vec import GymVectorToSB3
 
     kw = SHORT[env_id]
     ours = GymVectorToSB3(make_vec(env_id, autoreset_mode=AutoresetMode.SAME_STEP, **kw))

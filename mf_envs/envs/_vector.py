@@ -11,7 +11,7 @@ rewards, flags and batched infos, bit for bit) for the same seeds:
   state into row i of the batch arrays (`_load`), so reset semantics cannot drift from the
   single env's;
 - steps (hot) call a batched numba kernel that calls the single env's scalar physics kernel for
-  every active row (`mf_envs.physics.gowec_batch`, `ship_batch`);
+  every active row (`mf_envs.physics.gowec.batch`, `ship_batch`);
 - autoreset: `AutoresetMode.NEXT_STEP` (Gymnasium's default: the step after a done one resets that
   sub-env, ignores its action, returns reward 0 and flags False), `SAME_STEP` (reset in the same
   step; `final_obs`/`final_info` in the info) and `DISABLED` (reset with `options={"reset_mask":

@@ -18,7 +18,7 @@ import numpy as np
 
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec import MAX_BUOY_RATE, GOWECEnv
-from mf_envs.physics.gowec_batch import alloc_batch, batch_fast_step
+from mf_envs.physics.gowec.batch import alloc_batch, batch_fast_step
 
 
 @numba.njit(cache=True)

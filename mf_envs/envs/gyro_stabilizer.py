@@ -12,16 +12,16 @@ from gymnasium import spaces
 
 from mf_envs._validate import check_choice, check_finite, check_int, check_positive
 from mf_envs.envs.base import MFEnv
-from mf_envs.physics import ship_kernels as K
-from mf_envs.physics.ship_model import (
+from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.model import (
     SHIP_EFFECTS,
     GimbalDrive,
     WaveLoad,
     initial_state,
     pack_params,
 )
-from mf_envs.physics.ship_params import GyroParams, capacity_ratio, seakeeper_gyro, small_yacht
-from mf_envs.physics.ship_waves import regular_heave_force, wave_table
+from mf_envs.physics.ship.params import GyroParams, capacity_ratio, seakeeper_gyro, small_yacht
+from mf_envs.physics.ship.waves import regular_heave_force, wave_table
 
 DEFAULT_EFFECTS = (
     "gyroscopic",
@@ -45,7 +45,7 @@ class GyroStabilizerEnv(MFEnv):
     or two counter-rotating ones (Rios 2017, ch. 3 Eqs. 98-113): a rotor spinning at a fixed
     rate psi' inside a gimbal that precesses about the ship's athwartships axis e_2. Precessing
     at phi' gives the roll moment -n H phi' cos(phi), H = J3 psi' (Eq. 123). The physics is the
-    numba fast path of `mf_envs.physics.ship_kernels`, which agrees with the general multibody
+    numba fast path of `mf_envs.physics.ship.kernels`, which agrees with the general multibody
     engine to round-off (`tests/test_ship_physics.py::test_fast_path_matches_engine`).
     Defaults: an 18 t, 12-13 m motor yacht
     (`physics.ship_params.small_yacht`: J44 = 45 850 kg m^2, A44 = 9 170 kg m^2,

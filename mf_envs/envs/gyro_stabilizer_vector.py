@@ -17,8 +17,8 @@ import numpy as np
 
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gyro_stabilizer import GyroStabilizerEnv
-from mf_envs.physics import ship_kernels as K
-from mf_envs.physics.ship_batch import alloc_batch, batch_env_advance, batch_roll
+from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.batch import alloc_batch, batch_env_advance, batch_roll
 
 INFO_KEYS = (
     "roll",

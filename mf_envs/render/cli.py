@@ -39,7 +39,7 @@ def make_policy(env: Any, env_id: str, policy: str) -> Any:
     `train.load_policy`) or the path of a saved policy (a folder written by `mf-envs train`,
     or its model.zip)."""
     if policy == "baseline" or policy.startswith("baseline:"):
-        import controllers
+        from mf_envs import controllers
 
         kind = policy.partition(":")[2] or None
         try:
@@ -55,7 +55,7 @@ def make_policy(env: Any, env_id: str, policy: str) -> Any:
                 f"(folder or model.zip), got {policy!r} (no such file)"
             )
     try:
-        from train import load_policy
+        from mf_envs.train import load_policy
     except ImportError as exc:
         raise ValueError(
             f"policy: {policy!r} needs the train package and its extras "

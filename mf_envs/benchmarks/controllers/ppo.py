@@ -1,0 +1,168 @@
+"""PPO rows for `mf-envs bench controllers`: every env with a shipped policy (train/policies/).
+
+Scenes and metrics are each env's own (`benchmarks/controllers/<env>.py`), so PPO rows sit beside
+the baselines' rows of the same scene in `controllers.csv`:
+
+- GOWEC-v0: the `SCENES` of `gowec.py`, metric `power_ratio` (mean power over the last three
+  quarters of the episode / Eq. 95; ceiling 4/pi for regular seas);
+- GyroStabilizer-v0: the scenes of `stabilizer.py`, `rms_roll` after its `SETTLE` and `rr`, the
+  RMS roll reduction against the rotor off on the same seeds (computed with its `_episode`);
+- Inchworm-v0: scene `seed_section` (the defaults), `tail_advance_per_step` (m) and, named as in
+  `inchworm.py`, `tail_advance_per_step_m` and `tail_advance_per_cycle_L` (body lengths per
+  head->tail grip switch); any other env: scene `default`, its primary metric.
+
+The policies were trained on default parameters only: the other scenes measure generalisation.
+Robustness (issue 7 item 4): scenes `shift: ...` run PPO and every classical baseline on shifted
+physical parameters (`train.randomize.SHIFTS`, e.g. wave period x0.8 / x1.2); baselines are made
+for the shifted env (`make_baseline(env)`), i.e. they know whatever they read from it.
+PPO is evaluated on unseen seeds 2000.. (training used 0.., `train`'s own evaluation 1000..).
+`plot` draws each shipped policy's learning curve (its EvalCallback log).
+"""
+
+from __future__ import annotations
+
+import importlib
+from pathlib import Path
+from typing import Any
+
+ORDER = 900  # after the env helpers' own baseline modules
+SEEDS = tuple(range(2000, 2005))
+_BENCH = {"GOWEC-v0": "gowec", "GyroStabilizer-v0": "stabilizer", "Inchworm-v0": "inchworm"}
+DEFAULT_SCENE = {"Inchworm-v0": "seed_section"}  # inchworm.py's name for the defaults
+# train.evaluate metric -> (the env benchmark's metric name, factor): same quantity, their unit
+ALIASES = {
+    "Inchworm-v0": {
+        "tail_advance_per_step": ("tail_advance_per_step_m", 1.0),
+        "tail_advance_per_cycle": ("tail_advance_per_cycle_L", None),  # None: 1 / body length
+    }
+}
+
+
+def shipped_env_ids() -> list[str]:
+    """Env ids that are registered and have a shipped policy."""
+    import mf_envs  # noqa: F401
+    from mf_envs.envs import available_env_ids
+    from mf_envs.train.policy import MODEL_FILE, policy_dir
+
+    return [e for e in available_env_ids() if (policy_dir(e) / MODEL_FILE).is_file()]
+
+
+def env_scenes(env_id: str) -> dict[str, dict[str, Any]]:
+    """Scene name -> gym.make kwargs, as in the env's own controllers benchmark."""
+    mod = _bench_module(env_id)
+    if mod is not None and hasattr(mod, "SCENES"):
+        return dict(mod.SCENES)
+    if mod is not None and hasattr(mod, "_scenes"):
+        return dict(mod._scenes())
+    return {DEFAULT_SCENE.get(env_id, "default"): {}}
+
+
+def rows(quick: bool) -> list[dict[str, Any]]:
+    from mf_envs.train.evaluate import baseline_factories, episodes, primary_metric, summarize
+    from mf_envs.train.policy import load_policy
+    from mf_envs.train.randomize import shift_scenes
+
+    out: list[dict[str, Any]] = []
+    for env_id in shipped_env_ids():
+        policy = load_policy(env_id)
+        keep = {primary_metric(env_id).name, "numerical_failure"}
+        scenes = env_scenes(env_id)
+        shifts = shift_scenes(env_id)
+        if quick:
+            scenes, shifts = dict(list(scenes.items())[:1]), dict(list(shifts.items())[:1])
+        for scene, kwargs in scenes.items():
+            per_seed = episodes(env_id, lambda env, p=policy: p, SEEDS, kwargs)
+            r = summarize(env_id, scene, "ppo", per_seed)
+            out += [dict(x, seeds=_span(SEEDS)) for x in r if x["metric"] in keep]
+            out += _alias_rows(env_id, r)
+            out += _reduction_rows(env_id, scene, kwargs, per_seed)
+        ctrls = {"ppo": lambda env, p=policy: p, **baseline_factories(env_id)}
+        for name, kwargs in shifts.items():
+            for ctrl, factory in ctrls.items():
+                r = summarize(
+                    env_id, f"shift: {name}", ctrl, episodes(env_id, factory, SEEDS, kwargs)
+                )
+                out += [
+                    dict(x, params=_fmt(kwargs), seeds=_span(SEEDS))
+                    for x in r
+                    if x["metric"] in keep
+                ]
+    return out
+
+
+def _alias_rows(env_id: str, rows_: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The same rows under the env benchmark's metric names and units (see ALIASES)."""
+    out = []
+    for r in rows_:
+        if r["metric"] in ALIASES.get(env_id, {}):
+            name, f = ALIASES[env_id][r["metric"]]
+            f = 1.0 / _body_length(env_id) if f is None else f
+            out.append(
+                dict(r, metric=name, mean=r["mean"] * f, std=r["std"] * f, seeds=_span(SEEDS))
+            )
+    return out
+
+
+def _body_length(env_id: str) -> float:
+    import gymnasium as gym
+
+    env = gym.make(env_id)
+    length = float(env.unwrapped.params.length)
+    env.close()
+    return length
+
+
+def _reduction_rows(
+    env_id: str, scene: str, kwargs: dict[str, Any], per_seed: list[dict[str, float]]
+) -> list[dict[str, Any]]:
+    """Stabilizer: RR = 1 - RMS_ppo / RMS_rotor_off per seed (the stabilizer benchmark's `rr`,
+    rotor-off episodes from its own `_episode`)."""
+    mod = _bench_module(env_id)
+    if env_id != "GyroStabilizer-v0" or mod is None:
+        return []
+    import numpy as np
+
+    on = np.array([m["rms_roll"] for m in per_seed])
+    off = np.array([mod._episode(mod._rotor_off(kwargs), None, s)["rms_roll"] for s in SEEDS])
+    rr = 1.0 - on / off
+    base = {"env_id": env_id, "scene": scene, "n_seeds": len(SEEDS), "seeds": _span(SEEDS)}
+    return [
+        {
+            **base,
+            "controller": "ppo",
+            "metric": "rr",
+            "mean": float(rr.mean()),
+            "std": float(rr.std(ddof=1)),
+        },
+    ]
+
+
+def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
+    from mf_envs.train.curves import plot_learning_curves
+    from mf_envs.train.policy import policy_dir
+
+    files = []
+    for env_id in shipped_env_ids():
+        folder = policy_dir(env_id)
+        if (folder / "evaluations.npz").is_file():
+            path = out / f"ppo_learning_curve_{env_id}.png"
+            files.append(plot_learning_curves([folder], path, f"PPO on {env_id}", ["ppo"]))
+    return files
+
+
+def _bench_module(env_id: str) -> Any:
+    name = _BENCH.get(env_id)
+    if name is None:
+        return None
+    try:
+        return importlib.import_module(f"mf_envs.benchmarks.controllers.{name}")
+    except ModuleNotFoundError:
+        return None
+
+
+def _span(seeds: tuple[int, ...]) -> str:
+    return f"{seeds[0]}-{seeds[-1]}"
+
+
+def _fmt(kwargs: dict[str, float]) -> str:
+    return " ".join(f"{k}={v:.4g}" for k, v in kwargs.items())

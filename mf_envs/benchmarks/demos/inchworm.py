@@ -1,0 +1,196 @@
+"""Inchworm showcase (Rios 2017 §4.6-4.10): the active beam, the seed gaits, Inchworm-v0.
+
+Writes into `out`:
+- beam_fig4_5.png          linear active cantilever (seed numbers, Eqs. 65-67): Eq. 65/67 lines
+                           vs the nonlinear C1 beam (dots) for alpha = 0, 0.25, ..., 1
+- beam_rollup.png          roll-up under end moments up to 2 pi EI / L (16 elements)
+- inchworm_fig4_8.png      curling with the head held (no switching), kappa# 0 .. -13 1/m
+- inchworm_fig4_9.png      uniform gait (Eq. 101): snapshots over one cycle, anchors marked
+- inchworm_fig4_10.png     linear gait (Eq. 103, c1 = 0.2, c2 = 0.8): snapshots over one cycle
+- inchworm_progress.png    x_head, x_tail over 3 cycles for both gaits
+- inchworm_seed_uniform.gif  Inchworm-v0 driven by the seed_uniform baseline (mf_envs.render)
+Section: b = 0.02 m, h = 0.01 m, E = 2.4 GPa, G = 0.96 GPa, m_A = 0.278 kg/m, J3C = 0.232e-5 kg m,
+A_s = 5bh/6, L = 0.3 m (our choice), kappa0# = 13 1/m, increments |d kappa#| <= 2h/L^2.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from mf_envs.physics.beam import solve_cantilever, timoshenko_cantilever_uniform
+from mf_envs.physics.inchworm import (
+    Inchworm,
+    InchwormParams,
+    run_gait,
+    seed_linear_kappa,
+    seed_uniform_kappa,
+)
+
+ORDER = 40
+TITLE = "Inchworm (ch. 4): active C1 beam, seed Figs. 4-5, 4-8..4-10, Inchworm-v0"
+KAPPA0 = 13.0
+P = InchwormParams()
+GAITS = {
+    "uniform": lambda S, t: np.full(S.shape, seed_uniform_kappa(t, KAPPA0)),
+    "linear": lambda S, t: seed_linear_kappa(S, t, KAPPA0, P.length),
+}
+FULL = frozenset({"gravity", "shear_deformation", "anchor_switching"})
+
+
+def _plt():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _fig4_5(out: Path) -> Path:
+    from mf_envs.physics.beam.reference import SEED_CANTILEVER as C
+    from mf_envs.physics.beam.reference import seed_rigidities
+
+    ea, gas, ei = seed_rigidities()
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    s = np.linspace(0, C["L"], 200)
+    for alpha in np.linspace(0, 1, 5):
+        v, _ = timoshenko_cantilever_uniform(s, C["L"], ei, gas, C["q0"], alpha * C["kappa0"])
+        sol = solve_cantilever(
+            C["L"], ea, gas, ei, 4, distributed_load=(0, -C["q0"]), kappa_sharp=alpha * C["kappa0"]
+        )
+        line = ax.plot(s / 0.0254, v / 0.0254, label=f"alpha = {alpha:.2f}")[0]
+        pts = sol.centerline[::4]
+        ax.plot(pts[:, 0] / 0.0254, pts[:, 1] / 0.0254, "o", ms=3, color=line.get_color())
+    ax.set(
+        xlabel="S [in]",
+        ylabel="v [in]",
+        title="Active cantilever: Eqs. 65-67 (lines) vs C1 beam, 4 elements (dots)",
+    )
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out / "beam_fig4_5.png", dpi=110)
+    plt.close(fig)
+    return out / "beam_fig4_5.png"
+
+
+def _rollup(out: Path) -> Path:
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(5, 4.5))
+    for frac in (0.25, 0.5, 0.75, 1.0):
+        sol = solve_cantilever(1.0, 1e4, 1e4, 1.0, 16, tip_moment=frac * 2 * np.pi)
+        ax.plot(*sol.centerline.T, label=f"M = {frac:.2f} x 2 pi EI/L")
+    ax.set_aspect("equal")
+    ax.set(title="Roll-up of a cantilever (16 C1 elements)", xlabel="x / L", ylabel="z / L")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out / "beam_rollup.png", dpi=110)
+    plt.close(fig)
+    return out / "beam_rollup.png"
+
+
+def _snapshots(out: Path, name: str, hist, title: str, every: int = 5) -> Path:
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 3.2))
+    cmap = plt.get_cmap("viridis")
+    n = len(hist.centerlines)
+    for i in range(0, n, every):
+        c = hist.centerlines[i]
+        ax.plot(c[:, 0], c[:, 1], color=cmap(i / (n - 1)), lw=1.5)
+        grip = c[-1] if hist.anchors[i] == "head" else c[0]
+        ax.plot(*grip, "k^", ms=5)
+    ax.axhline(0, color="0.4", lw=1)
+    ax.set_aspect("equal")
+    ax.set(title=title, xlabel="x [m]", ylabel="z [m]")
+    fig.tight_layout()
+    path = out / name
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _gif(out: Path, quick: bool) -> Path | None:
+    try:
+        from mf_envs.render import save_gif
+    except ImportError:  # the renderer is optional for the physics demo
+        return None
+    import gymnasium as gym
+
+    import mf_envs  # noqa: F401
+    from mf_envs.controllers import make_baseline
+
+    env = gym.make("Inchworm-v0", render_mode="rgb_array")
+    ctrl = make_baseline(env, "seed_uniform")
+    obs, _ = env.reset(seed=0, options={"kappa": np.zeros(3)})
+    frames = [env.render()]
+    for _ in range(40 if quick else 120):
+        obs, *_ = env.step(ctrl.predict(obs)[0])
+        frames.append(env.render())
+    env.close()
+    return save_gif(frames, out / "inchworm_seed_uniform.gif", fps=15)
+
+
+def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
+    out.mkdir(parents=True, exist_ok=True)
+    files = [_fig4_5(out), _rollup(out)]
+    lines = []
+    curl = run_gait(
+        Inchworm(P, frozenset({"gravity", "shear_deformation"})), GAITS["uniform"], 1, 40
+    )
+    files.append(
+        _snapshots(
+            out,
+            "inchworm_fig4_8.png",
+            type(curl)(
+                curl.t[:21],
+                curl.x_head[:21],
+                curl.x_tail[:21],
+                curl.anchors[:21],
+                curl.centerlines[:21],
+                curl.kappa_sharp[:21],
+                0,
+            ),
+            "Head held: curling, Eq. 101 (fig. 4-8)",
+        )
+    )
+    n_cyc = 2 if quick else 3
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    for name, fn in GAITS.items():
+        hist = run_gait(Inchworm(P, FULL), fn, n_cyc, 40)
+        one = type(hist)(
+            hist.t[:41],
+            hist.x_head[:41],
+            hist.x_tail[:41],
+            hist.anchors[:41],
+            hist.centerlines[:41],
+            hist.kappa_sharp[:41],
+            0,
+        )
+        fig_name = "inchworm_fig4_9.png" if name == "uniform" else "inchworm_fig4_10.png"
+        files.append(
+            _snapshots(out, fig_name, one, f"{name} gait, one cycle (grip = black triangle)")
+        )
+        per = np.diff(hist.x_tail[::40])
+        lines.append(
+            f"{name} gait: tail advance per cycle {per.mean():.5f} m = "
+            f"{per.mean() / P.length:.4f} L; head {np.diff(hist.x_head[::40]).mean():.5f}"
+            f" m; {hist.iterations} Newton iterations for {n_cyc} cycles"
+        )
+        ax.plot(hist.t / (2 * np.pi), hist.x_tail, label=f"{name}: tail")
+        ax.plot(hist.t / (2 * np.pi), hist.x_head, "--", label=f"{name}: head")
+    ax.set(xlabel="cycles", ylabel="x [m]", title="Seed gaits, kappa0# = 13 1/m, L = 0.3 m")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out / "inchworm_progress.png", dpi=110)
+    plt.close(fig)
+    files.append(out / "inchworm_progress.png")
+    gif = _gif(out, quick)
+    if gif is not None:
+        files.append(gif)
+    return files, lines

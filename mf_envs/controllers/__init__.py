@@ -1,0 +1,66 @@
+"""Classical baseline controllers: PLL, PID, LQR (python-control), the seed's open-loop excitations.
+
+`make_baseline(env, kind=None, **params)` returns a controller for that env. A controller has
+`reset()` and `predict(obs, deterministic=True) -> (action, None)`, the same call as an SB3
+policy. Controllers read only the observation (what a real device measures) unless documented.
+
+Each env's controllers live in their own module (`controllers/<module>.py`) and register with
+`register(env_id, kind, factory, default=...)` at import; `make_baseline` imports that module.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from typing import Any, Protocol
+
+import numpy as np
+
+# env id -> module that registers its controllers
+_MODULES = {
+    "GOWEC-v0": "mf_envs.controllers.gowec",
+    "GyroStabilizer-v0": "mf_envs.controllers.stabilizer",
+    "Inchworm-v0": "mf_envs.controllers.inchworm",
+}
+_REGISTRY: dict[str, dict[str, Callable[..., Any]]] = {}
+_DEFAULT: dict[str, str] = {}
+
+
+class Controller(Protocol):
+    def reset(self) -> None: ...
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]: ...
+
+
+def register(env_id: str, kind: str, factory: Callable[..., Any], default: bool = False) -> None:
+    """Register `factory(env, **params) -> Controller` as `kind` for `env_id`."""
+    _REGISTRY.setdefault(env_id, {})[kind] = factory
+    if default or env_id not in _DEFAULT:
+        _DEFAULT[env_id] = kind
+
+
+def _env_id(env: Any) -> str:
+    spec = getattr(env, "spec", None) or getattr(getattr(env, "unwrapped", None), "spec", None)
+    if spec is None:
+        raise ValueError("env: has no spec; create it with gymnasium.make(env_id)")
+    return spec.id
+
+
+def baseline_kinds(env_id: str) -> list[str]:
+    """The controller kinds available for `env_id`, default first."""
+    if env_id not in _MODULES:
+        raise ValueError(f"env_id: no baselines for {env_id!r}; known: {sorted(_MODULES)}")
+    importlib.import_module(_MODULES[env_id])
+    kinds = list(_REGISTRY.get(env_id, {}))
+    default = _DEFAULT.get(env_id)
+    return sorted(kinds, key=lambda k: (k != default, k))
+
+
+def make_baseline(env: Any, kind: str | None = None, **params: Any) -> Any:
+    """A baseline controller for `env` (a gymnasium env made with `gym.make`)."""
+    env_id = _env_id(env)
+    kinds = baseline_kinds(env_id)
+    kind = kinds[0] if kind is None else kind
+    if kind not in kinds:
+        raise ValueError(f"kind: {kind!r} is not a baseline for {env_id}; available: {kinds}")
+    return _REGISTRY[env_id][kind](env, **params)

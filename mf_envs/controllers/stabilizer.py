@@ -1,0 +1,252 @@
+"""Baselines for GyroStabilizer-v0: PID, LQR (python-control), the seed's Eqs. 118-119.
+
+All read only the observation [roll, roll rate, pitch rate, yaw rate, gimbal angle, gimbal rate]
+and return the precession-rate command in [-1, 1] (times `max_precession_rate` inside the env).
+The gyro roll moment is -n H phi' cos(phi) (Eq. 123), so a command phi' = k omega_1 adds the
+roll damping n H k: every feedback law below is built on that sign.
+
+PID tuning procedure (model-based, then checked on the env; python-control has no auto-tuner):
+1. Roll model J_eff r'' + B r' + C r = M_w - n H phi' (small phi), J_eff = J1 (+ A44),
+   C = C44 (0 without hydrostatics), w_n = sqrt(C / J_eff).
+2. Proportional gain on the roll rate for a target gyro damping ratio zeta_g:
+   kp = 2 zeta_g sqrt(C J_eff) / (n H) (rad/s of precession per rad/s of roll rate).
+3. Integral gain (on the integrated roll rate, i.e. a roll-angle term acting as added stiffness)
+   ki = ki_ratio w_n kp; gimbal centering kc = centering_ratio w_n (1/s), so the gimbal drifts
+   back to zero on a time scale several roll periods long; derivative kd = 0 by default.
+4. Scan zeta_g in {0.25, 0.5, 1, 1.5, 2}, ki_ratio in {0, 0.1, 0.25, 0.5} and centering_ratio
+   in {0.1, 0.15, 0.3} on the default scene (yacht at resonance, rotor on, seeds 0-2, RMS roll
+   after 10 s) and keep the best RMS roll among the gains whose gimbal stays >= 5 % inside the
+   end stops: zeta_g = 1, ki_ratio = 0.1, centering_ratio = 0.3 (RMS roll reduction 0.908;
+   zeta_g >= 1.5 reduces more, 0.94, but rides the end stops). The gains then scale with the
+   ship (steps 2-3); `benchmarks/controllers/stabilizer.py` reports other scenes.
+Anti-windup: the integrator is frozen while the output saturates in the same direction
+(conditional integration) and is clamped to what the rate limit can use.
+Limits: the output is clipped to +-max_precession_rate and, near the end stops, to the rate
+that brings the gimbal to rest at +-max_gimbal_angle (the same envelope the env's servo applies).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mf_envs.controllers import register
+
+ENV_ID = "GyroStabilizer-v0"
+
+
+@dataclass(frozen=True)
+class RollModel:
+    """Roll-gimbal model of the env's defaults: J_eff (kg m^2), C (N m/rad), B (N m s/rad),
+    n H (N m s), servo tau (s), rate and angle limits (rad/s, rad), control dt (s), wave period (s).
+    """
+
+    j_eff: float
+    c: float
+    b: float
+    nh: float
+    tau: float
+    max_rate: float
+    max_angle: float
+    dt: float
+    wave_period: float
+
+    @property
+    def omega_n(self) -> float:
+        """Undamped roll frequency (rad/s); the wave frequency when there is no restoring."""
+        if self.c > 0.0:
+            return math.sqrt(self.c / self.j_eff)
+        return 2.0 * math.pi / self.wave_period
+
+
+def roll_model(env: Any) -> RollModel:
+    """The `RollModel` of a (wrapped) GyroStabilizer env, from its parameters and effects."""
+    u = env.unwrapped
+    eff = u.effects
+    j = u.ship.inertia[0] + (u.ship.added_roll_inertia if "added_inertia" in eff else 0.0)
+    j += u.n_gyros * (u.gyro.gimbal_inertia + u.gyro.rotor_j1)
+    c = u.ship.roll_stiffness if "hydrostatic_restoring" in eff else 0.0
+    b = u.ship.roll_damping if "roll_damping" in eff else 0.0
+    nh = u.n_gyros * u.angular_momentum
+    return RollModel(
+        j,
+        c,
+        b,
+        nh,
+        u.drive.servo_time_constant,
+        u.max_precession_rate,
+        u.max_gimbal_angle,
+        u.control_dt,
+        u.wave_period,
+    )
+
+
+def _stop_envelope(cmd: float, phi: float, m: RollModel, stop_time: float = 0.1) -> float:
+    hi = (m.max_angle - phi) / stop_time
+    lo = (-m.max_angle - phi) / stop_time
+    return min(max(cmd, lo), hi)
+
+
+class PIDStabilizer:
+    """Roll rate -> precession rate PID with gimbal centering, anti-windup and limits (module doc).
+
+    Gains (rad/s per unit of the measured quantity) are computed from the env's parameters by the
+    documented procedure unless given: kp (per rad/s roll rate), ki (per rad of integrated roll
+    rate), kd (per rad/s^2), kc (per rad of gimbal angle).
+    """
+
+    def __init__(
+        self,
+        env: Any,
+        zeta_g: float = 1.0,
+        ki_ratio: float = 0.1,
+        centering_ratio: float = 0.3,
+        kp: float | None = None,
+        ki: float | None = None,
+        kd: float = 0.0,
+        kc: float | None = None,
+    ) -> None:
+        self.m = roll_model(env)
+        if self.m.nh <= 0.0:
+            raise ValueError("env: the PID needs a spinning rotor (effect 'gyroscopic')")
+        wn = self.m.omega_n
+        stiff = math.sqrt(self.m.c * self.m.j_eff) if self.m.c > 0 else self.m.j_eff * wn
+        self.kp = 2.0 * zeta_g * stiff / self.m.nh if kp is None else float(kp)
+        self.ki = ki_ratio * wn * self.kp if ki is None else float(ki)
+        self.kd = float(kd)
+        self.kc = centering_ratio * wn if kc is None else float(kc)
+        self.reset()
+
+    def reset(self) -> None:
+        self.integral = 0.0
+        self.prev_rate: float | None = None
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        m = self.m
+        rate, phi = float(obs[1]), float(obs[4])
+        deriv = 0.0 if self.prev_rate is None else (rate - self.prev_rate) / m.dt
+        self.prev_rate = rate
+        raw = self.kp * rate + self.ki * self.integral + self.kd * deriv - self.kc * phi
+        cmd = _stop_envelope(min(max(raw, -m.max_rate), m.max_rate), phi, m)
+        # conditional integration: integrate unless saturated and pushing further out
+        if not (cmd != raw and raw * rate > 0.0):
+            self.integral += rate * m.dt
+            if self.ki > 0.0:
+                lim = m.max_rate / self.ki
+                self.integral = min(max(self.integral, -lim), lim)
+        return np.array([cmd / m.max_rate], dtype=np.float32), None
+
+
+def roll_gimbal_nlsys(m: RollModel) -> Any:
+    """python-control `nlsys` of the roll-gimbal model: x = [r, r', phi, phi'], u = phi' command.
+
+    J_eff r'' = -C r - B r' - n H phi' cos(phi);  tau phi'' = u - phi'  (the env's servo).
+    """
+    import control as ct
+
+    def update(t: float, x: np.ndarray, u: np.ndarray, params: dict) -> np.ndarray:
+        r, rd, phi, phid = x
+        rdd = (-m.c * r - m.b * rd - m.nh * phid * math.cos(phi)) / m.j_eff
+        return np.array([rd, rdd, phid, (u[0] - phid) / m.tau])
+
+    return ct.nlsys(
+        update,
+        None,
+        inputs=["u"],
+        states=["roll", "roll_rate", "phi", "phi_rate"],
+        outputs=["roll", "roll_rate", "phi", "phi_rate"],
+        name="roll_gimbal",
+    )
+
+
+class LQRStabilizer:
+    """LQR on the linearised roll-gimbal model (ct.nlsys -> ct.linearize -> ct.lqr).
+
+    Q = diag(1/roll_scale^2, 0, 1/gimbal_scale^2, 0), R = 1/max_rate^2 (Bryson's rule); defaults
+    roll_scale = 0.01 rad, gimbal_scale = max_gimbal_angle / 2. `gain` (1, 4) and `poles` (4,)
+    (closed-loop eigenvalues of A - B K) are kept for reporting.
+    """
+
+    def __init__(
+        self,
+        env: Any,
+        roll_scale: float = 0.01,
+        gimbal_scale: float | None = None,
+        rate_scale: float | None = None,
+    ) -> None:
+        import control as ct
+
+        self.m = roll_model(env)
+        if self.m.nh <= 0.0:
+            raise ValueError("env: the LQR needs a spinning rotor (effect 'gyroscopic')")
+        sys = roll_gimbal_nlsys(self.m)
+        lin = ct.linearize(sys, np.zeros(4), np.zeros(1))
+        gs = self.m.max_angle / 2.0 if gimbal_scale is None else gimbal_scale
+        rs = self.m.max_rate if rate_scale is None else rate_scale
+        Q = np.diag([1.0 / roll_scale**2, 0.0, 1.0 / gs**2, 0.0])
+        R = np.array([[1.0 / rs**2]])
+        K, _, poles = ct.lqr(lin.A, lin.B, Q, R)
+        self.A, self.B = np.asarray(lin.A), np.asarray(lin.B)
+        self.gain = np.asarray(K)
+        self.poles = np.asarray(poles)
+
+    def reset(self) -> None:
+        pass
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        m = self.m
+        x = np.array([obs[0], obs[1], obs[4], obs[5]], dtype=np.float64)
+        cmd = -float(self.gain[0] @ x)
+        cmd = _stop_envelope(min(max(cmd, -m.max_rate), m.max_rate), float(obs[4]), m)
+        return np.array([cmd / m.max_rate], dtype=np.float32), None
+
+
+class SeedExcitation:
+    """Open-loop gimbal rate of the seed: "sinusoidal" phi = a sin(2 pi t / T) (Eq. 119) or
+    "continuous" phi = 4 a t / T (Eq. 118); amplitude a (rad), period T (s, default: the env's
+    wave period). The rate at the middle of each control interval is commanded."""
+
+    def __init__(
+        self,
+        env: Any,
+        kind: str,
+        amplitude: float | None = None,
+        period: float | None = None,
+        phase: float = 0.0,
+    ) -> None:
+        u = env.unwrapped
+        self.kind = kind
+        self.amplitude = (
+            (math.pi / 4 if kind == "sinusoidal" else math.pi / 2)
+            if amplitude is None
+            else float(amplitude)
+        )
+        self.period = float(u.wave_period if period is None else period)
+        if self.period <= 0:
+            raise ValueError(f"period: must be > 0, got {period!r}")
+        self.phase = float(phase)
+        self.dt = u.control_dt
+        self.max_rate = u.max_precession_rate
+        self.reset()
+
+    def reset(self) -> None:
+        self.k = 0
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        t = (self.k + 0.5) * self.dt
+        self.k += 1
+        om = 2.0 * math.pi / self.period
+        if self.kind == "sinusoidal":
+            rate = self.amplitude * om * math.cos(om * t - self.phase)
+        else:
+            rate = 4.0 * self.amplitude / self.period
+        return np.array([max(-1.0, min(1.0, rate / self.max_rate))], dtype=np.float32), None
+
+
+register(ENV_ID, "pid", PIDStabilizer, default=True)
+register(ENV_ID, "lqr", LQRStabilizer)
+register(ENV_ID, "sinusoidal", lambda env, **p: SeedExcitation(env, "sinusoidal", **p))
+register(ENV_ID, "continuous", lambda env, **p: SeedExcitation(env, "continuous", **p))

@@ -1,0 +1,60 @@
+"""Batched ship + gyro steps: the scalar fast path `ship_kernels.env_advance` over a batch axis.
+
+One compiled call advances N independent ships (own state, attitude, packed parameters and wave
+table each) by n RK4-Munthe-Kaas substeps. No physics is written here: every row calls
+`mf_envs.physics.ship.kernels.env_advance` (Rios 2017 ch. 3 Eqs. 98-128), so a row is
+bit-identical to a scalar step with the same inputs. Used by `mf_envs.envs.gyro_stabilizer_vector`.
+
+Note on numba's on-disk cache: a cached function is invalidated only when ITS source file
+changes, not when a kernel it calls does; after editing `ship_kernels`, touch this module too
+(or clear `__pycache__`), or `batch_env_advance` keeps running the old kernel (and the vector
+env stops matching the single env bit for bit).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from mf_envs.physics.ship.kernels import env_advance
+
+
+@numba.njit(cache=True)
+def batch_env_advance(active, t, y, R, u, dt, n_sub, P, tab, out, obs, high, ok):
+    """Advance the rows i with active[i] in place; rows not active are left untouched.
+
+    Shapes: active (N,) bool; t (N,) s, time, updated; y (N, N_STATE) state vectors (see
+    `ship_kernels`), R (N, 3, 3) attitudes (inertial <- ship), updated; u (N,) rad/s precession
+    command held over the step; dt (s) substep, n_sub substeps; P (N, N_PARAMS) packed
+    parameters; tab (N, L, 2) wave tables; out (N, 2) N m (gyro roll moment, wave moment);
+    obs (N, 6) float32 env observations clipped to +-high (6,); ok (N,) bool, state finite.
+    """
+    for i in range(active.shape[0]):
+        if not active[i]:
+            continue
+        t[i], ok[i] = env_advance(
+            t[i], y[i], R[i], u[i], dt, n_sub, P[i], tab[i], out[i], obs[i], high
+        )
+
+
+@numba.njit(cache=True)
+def batch_roll(R, out):
+    """Roll r = atan2(R32, R33) (rad, z-y-x Euler angles) of attitudes R (N, 3, 3) into out (N,)
+    (math.atan2 row by row, bit-identical to the scalar `math.atan2` of the single env)."""
+    for i in range(R.shape[0]):
+        out[i] = math.atan2(R[i, 2, 1], R[i, 2, 2])
+
+
+def alloc_batch(n_envs: int, n_state: int, n_params: int, table_shape: tuple[int, int]):
+    """Zeroed batch arrays for `batch_env_advance` (names as its arguments), R = identity."""
+    return {
+        "t": np.zeros(n_envs),
+        "y": np.zeros((n_envs, n_state)),
+        "R": np.tile(np.eye(3), (n_envs, 1, 1)),
+        "P": np.zeros((n_envs, n_params)),
+        "tab": np.zeros((n_envs, *table_shape)),
+        "out": np.zeros((n_envs, 2)),
+        "ok": np.ones(n_envs, dtype=bool),
+    }

@@ -1,0 +1,285 @@
+"""Ship + gyro roll stabilizer model: effects, packing, simulation and named quantities.
+
+The equations are in `ship_kernels` (module doc there: total angular-momentum balance, which is
+the B-matrix result of ch. 3 Eqs. 74-75 with prescribed gimbal and rotor, and the seed's Eqs.
+123-128 as the `form="seed"` fast path). `ship_engine` builds the same ship on the general
+multibody engine (`mf_envs.physics.multibody`) for cross-checks.
+
+Effects (names from `mf_envs.effects`; all off costs nothing: a zero coefficient is skipped):
+
+| effect                 | term                                                             |
+|------------------------|------------------------------------------------------------------|
+| gyroscopic             | rotor spin psi' (off: rotor stopped, gimbal still moves)         |
+| gimbal_inertia         | gimbal frame inertia J^(2) (off: J^(2) = 0)                      |
+| added_inertia          | A44 added to the roll inertia                                    |
+| hydrostatic_restoring  | -C44 r (or wall-sided GZ if BM/GM > 0), -C55 pitch               |
+| roll_damping           | -B44 w1 - B44q abs(w1) w1, -B55 w2, -B66 w3                           |
+| wave_moment            | regular M0 cos(2 pi t / T + phase)                               |
+| irregular_waves        | roll moment from an irregular sea (`ship_waves`), replaces regular |
+| gimbal_limits          | precession-rate limit and end stops on the servo                 |
+| gimbal_damping         | damping / brake c_g phi' on the gimbal axis (torque drive only)  |
+| translation            | hull surge/sway/heave (heave restoring, damping, wave heave force)|
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from mf_envs._validate import (
+    check_choice,
+    check_finite,
+    check_int,
+    check_nonnegative,
+    check_positive,
+)
+from mf_envs.effects import EFFECT_NAMES, resolve_effects
+from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.params import GyroParams, ShipParams
+
+SHIP_EFFECTS: dict[str, str] = {
+    "gimbal_damping": "viscous damping / brake on the gimbal axis (torque drive)",
+}
+SHIP_EFFECTS.update(
+    {
+        name: EFFECT_NAMES[name]
+        for name in (
+            "gyroscopic",
+            "gimbal_inertia",
+            "added_inertia",
+            "hydrostatic_restoring",
+            "roll_damping",
+            "wave_moment",
+            "irregular_waves",
+            "gimbal_limits",
+            "translation",
+        )
+    }
+)
+SEED_EFFECTS = ("gyroscopic", "gimbal_inertia")  # the seed's simplified model (§3.3.4)
+FORMS = ("exact", "seed")
+
+
+@dataclass(frozen=True)
+class GimbalDrive:
+    """How gyro 1's gimbal moves (gyro 2 mirrors it).
+
+    mode: "servo" (rate servo following a precession-rate command u, rad/s),
+          "sinusoidal" (Eq. 119: phi = a sin(2 pi f t - phase)),
+          "continuous" (Eq. 118: phi = 4 a f t),
+          "torque" (the gimbal is a degree of freedom: torque K_v (u - phi') limited to
+          max_torque, damping/brake c_g phi' with `gimbal_damping`; K_v = 0 and c_g > 0 is a
+          passive stabilizer; the gyroscopic torque H w_g1 on the gimbal is resisted only by
+          these, so a stiff loop needs a small dt: K_v dt / (J_g2 + J_r1) < ~2).
+    amplitude a (rad), frequency f (Hz), phase (rad): Eqs. 118-119.
+    servo_time_constant: first-order lag of the servo, s.
+    max_rate: precession-rate limit, rad/s; max_angle: end stops, rad; stop_time: s, the end-stop
+    envelope |phi'| <= (max_angle - |phi|) / stop_time (both only with `gimbal_limits`).
+    Torque drive: loop_gain K_v (N m s/rad), max_torque (N m, 0 = unlimited), damping c_g
+    (N m s/rad), stop_stiffness (N m/rad, spring end stop beyond max_angle, critically damped).
+    """
+
+    mode: str = "servo"
+    amplitude: float = 0.0
+    frequency: float = 0.0
+    phase: float = 0.0
+    servo_time_constant: float = 0.05
+    max_rate: float = 2.0
+    max_angle: float = math.pi / 3
+    stop_time: float = 0.1
+    loop_gain: float = 0.0
+    max_torque: float = 0.0
+    damping: float = 0.0
+    stop_stiffness: float = 1.0e5
+
+    def __post_init__(self) -> None:
+        check_choice("mode", self.mode, ("servo", "sinusoidal", "continuous", "torque"))
+        for name in ("loop_gain", "max_torque", "damping", "stop_stiffness"):
+            check_nonnegative(name, getattr(self, name))
+        check_finite("amplitude", self.amplitude)
+        check_finite("frequency", self.frequency)
+        check_finite("phase", self.phase)
+        check_positive("servo_time_constant", self.servo_time_constant)
+        check_positive("max_rate", self.max_rate)
+        check_positive("max_angle", self.max_angle)
+        check_positive("stop_time", self.stop_time)
+
+
+@dataclass(frozen=True)
+class WaveLoad:
+    """Regular wave roll moment M0 cos(2 pi t / period + phase) (N m, s, rad); heave force
+    amplitude heave_force (N, used with `translation`, in quadrature with the moment)."""
+
+    moment_amplitude: float = 0.0
+    period: float = 10.0
+    phase: float = 0.0
+    heave_force: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_finite("moment_amplitude", self.moment_amplitude)
+        check_positive("period", self.period)
+        check_finite("phase", self.phase)
+        check_finite("heave_force", self.heave_force)
+
+
+def pack_params(
+    ship: ShipParams,
+    gyro: GyroParams,
+    n_gyros: int,
+    effects: Iterable[str] | str | None,
+    drive: GimbalDrive,
+    wave: WaveLoad | None = None,
+    form: str = "exact",
+    table_dt: float = 0.0,
+) -> NDArray[np.float64]:
+    """The packed float64 parameter vector P of `ship_kernels` for this scene.
+
+    `irregular_waves` needs a moment table (see `ship_waves.wave_table`) passed to the kernels
+    with its sampling step `table_dt` (s).
+    """
+    n = check_int("n_gyros", n_gyros, 1, 2)
+    check_choice("form", form, FORMS)
+    eff = resolve_effects(effects, SHIP_EFFECTS, SEED_EFFECTS)
+    P = np.zeros(K.N_PARAMS)
+    P[K.J1 : K.J3 + 1] = ship.inertia
+    if "added_inertia" in eff:
+        P[K.J1] += ship.added_roll_inertia
+    jg = gyro.gimbal_inertia if "gimbal_inertia" in eff else 0.0
+    P[K.D1] = jg + gyro.rotor_j1
+    P[K.D2] = jg + gyro.rotor_j1
+    P[K.D3] = jg + gyro.rotor_inertia
+    P[K.JR3] = gyro.rotor_inertia
+    P[K.JG2] = jg
+    P[K.PSID] = gyro.rotor_speed if "gyroscopic" in eff else 0.0
+    P[K.NGYRO] = n
+    P[K.FORM] = K.FORM_SEED if form == "seed" else K.FORM_EXACT
+    if "hydrostatic_restoring" in eff:
+        P[K.K44] = ship.roll_stiffness
+        P[K.GZR] = ship.gz_bm_over_gm
+        P[K.K55] = ship.pitch_stiffness
+    if "roll_damping" in eff:
+        P[K.B44] = ship.roll_damping
+        P[K.B44Q] = ship.roll_damping_quadratic
+        P[K.B55] = ship.pitch_damping
+        P[K.B66] = ship.yaw_damping
+    P[K.GMODE] = {
+        "servo": K.GIMBAL_SERVO,
+        "sinusoidal": K.GIMBAL_SINUSOIDAL,
+        "continuous": K.GIMBAL_CONTINUOUS,
+        "torque": K.GIMBAL_TORQUE,
+    }[drive.mode]
+    P[K.KV] = drive.loop_gain
+    P[K.TAUMAX] = drive.max_torque
+    P[K.CG] = drive.damping if "gimbal_damping" in eff else 0.0
+    P[K.KSTOP] = drive.stop_stiffness
+    P[K.GAMP] = drive.amplitude
+    P[K.GFREQ] = drive.frequency
+    P[K.GPHASE] = drive.phase
+    P[K.TAU] = drive.servo_time_constant
+    P[K.RATEMAX] = drive.max_rate
+    P[K.PHIMAX] = drive.max_angle
+    P[K.TSTOP] = drive.stop_time
+    P[K.LIMITS] = 1.0 if "gimbal_limits" in eff else 0.0
+    if "irregular_waves" in eff:
+        if table_dt <= 0.0:
+            raise ValueError("table_dt: irregular_waves needs a wave table and its step (s)")
+        P[K.WMODE] = K.WAVE_TABLE
+        P[K.TABDT] = table_dt
+    elif "wave_moment" in eff and wave is not None:
+        P[K.WMODE] = K.WAVE_REGULAR
+        P[K.WM0] = wave.moment_amplitude
+        P[K.WOMEGA] = 2.0 * math.pi / wave.period
+        P[K.WPHASE] = wave.phase
+        P[K.WF0] = wave.heave_force
+    if "translation" in eff:
+        P[K.TRANS] = 1.0
+        P[K.MASS] = ship.mass
+        P[K.KH] = ship.heave_stiffness
+        P[K.CH] = ship.heave_damping
+        P[K.CSS] = ship.surge_sway_damping
+    return P
+
+
+def initial_state(
+    roll: float = 0.0,
+    omega: Iterable[float] = (0.0, 0.0, 0.0),
+    gimbal_angle: float = 0.0,
+    gimbal_rate: float = 0.0,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(y, R): state vector (see `ship_kernels`) and attitude rot_x(roll) (inertial <- ship)."""
+    y = np.zeros(K.N_STATE)
+    y[0:3] = check_finite("omega", omega)
+    y[3] = float(check_finite("gimbal_angle", gimbal_angle))
+    y[4] = float(check_finite("gimbal_rate", gimbal_rate))
+    c, s = math.cos(roll), math.sin(roll)
+    R = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    return y, R
+
+
+@dataclass
+class ShipRun:
+    """A simulated trajectory: t (N,) s; omega (N,3) body rates rad/s; phi, phi_rate (N,) gyro-1
+    gimbal rad, rad/s; R (N,3,3) attitude; roll, pitch (N,) rad; gyro_moment (N,) N m (roll);
+    x (N,3) hull CM position m (translation)."""
+
+    t: NDArray[np.float64]
+    omega: NDArray[np.float64]
+    phi: NDArray[np.float64]
+    phi_rate: NDArray[np.float64]
+    R: NDArray[np.float64]
+    roll: NDArray[np.float64]
+    pitch: NDArray[np.float64]
+    gyro_moment: NDArray[np.float64]
+    x: NDArray[np.float64]
+
+
+def simulate(
+    P: NDArray[np.float64],
+    t_end: float,
+    dt: float,
+    y0: NDArray[np.float64] | None = None,
+    R0: NDArray[np.float64] | None = None,
+    table: NDArray[np.float64] | None = None,
+) -> ShipRun:
+    """Open-loop run of the fast path (prescribed gimbal, or the servo with zero command)."""
+    check_positive("t_end", t_end)
+    check_positive("dt", dt)
+    if y0 is None or R0 is None:
+        y0, R0 = initial_state()
+    tab = np.zeros((1, 2)) if table is None else np.ascontiguousarray(table, dtype=np.float64)
+    t, y, R, mg = K.simulate_kernel(
+        np.asarray(y0, float), np.asarray(R0, float), float(t_end), float(dt), P, tab
+    )
+    return ShipRun(t, y[:, 0:3], y[:, 3], y[:, 4], R, roll_angle(R), pitch_angle(R), mg, y[:, 5:8])
+
+
+def roll_angle(R: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Roll r = atan2(R32, R33) of attitude(s) R (..., 3, 3) (z-y-x Euler angles), rad."""
+    R = np.asarray(R)
+    return np.arctan2(R[..., 2, 1], R[..., 2, 2])
+
+
+def pitch_angle(R: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Pitch p = -asin(R31) of attitude(s) R (..., 3, 3), rad."""
+    R = np.asarray(R)
+    return -np.arcsin(np.clip(R[..., 2, 0], -1.0, 1.0))
+
+
+def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyros: int) -> float:
+    """Gyroscopic roll moment on the hull, -n H phi' cos(phi) (N m; Eq. 123 right-hand side)."""
+    return -n_gyros * angular_momentum * phi_rate * math.cos(phi)
+
+
+def roll_inertia(
+    phi: float, ship: ShipParams, gyro: GyroParams, n_gyros: int, added: bool = False
+) -> float:
+    """Exact roll inertia J_xx(phi) = J1 (+A44) + n [(J_g + J_r1) cos^2 phi + (J_g + J_r3) sin^2
+    phi] (kg m^2); Eq. 123 uses its phi = 0 value."""
+    jg = gyro.gimbal_inertia
+    j = ship.inertia[0] + (ship.added_roll_inertia if added else 0.0)
+    c2, s2 = math.cos(phi) ** 2, math.sin(phi) ** 2
+    return j + n_gyros * ((jg + gyro.rotor_j1) * c2 + (jg + gyro.rotor_inertia) * s2)

@@ -1,0 +1,286 @@
+"""Wire env -> SB3 PPO -> callbacks; save the run; evaluate it against the default baseline.
+
+A run folder `<out>/<env_id>/seed<S>/` holds the policy files described in `train.policy`, a
+`best/` folder (the EvalCallback's best model with the normalisation statistics of that moment),
+`evaluations.npz` and `learning_curve.png`. `ship_run` copies a run into `train/policies/<env_id>/`.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import platform
+import shutil
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+
+from mf_envs.train.config import Hyperparams, import_object, load_hyperparams, resolve_schedules
+from mf_envs.train.evaluate import baseline_factories, evaluate_controllers, primary_metric, score
+from mf_envs.train.policy import (
+    MODEL_FILE,
+    POLICY_ROOT,
+    load_policy,
+    read_meta,
+    save_policy,
+    write_meta,
+)
+
+# unseen seeds: training envs use seed, seed + 1, ...; the EvalCallback env seed + 10_000
+EVAL_SEEDS = tuple(range(1000, 1005))
+EVALS_PER_RUN = 12  # EvalCallback checks per run (learning-curve points)
+SHIP_FILES = (
+    "model.zip",
+    "obs_normalization.json",
+    "vecnormalize.pkl",
+    "evaluations.npz",
+    "meta.json",
+)
+
+
+@dataclass
+class TrainResult:
+    run_dir: Path
+    files: list[Path]
+    meta: dict[str, Any]
+
+
+def check_env_id(env_id: str) -> None:
+    """ValueError (listing the known mf_envs ids) unless `env_id` is a registered Gymnasium id."""
+    import mf_envs  # noqa: F401  (registers the available ids)
+    from mf_envs.envs import ENV_SPECS, available_env_ids
+
+    if env_id in gym.registry:
+        return
+    extra = " (its module is not installed yet)" if env_id in ENV_SPECS else ""
+    raise ValueError(f"env_id: unknown {env_id!r}{extra}; available: {available_env_ids()}")
+
+
+def train(
+    env_id: str,
+    *,
+    timesteps: int | None = None,
+    seed: int = 0,
+    config: str | Path | None = None,
+    out: str | Path = "runs",
+    tensorboard: bool = False,
+    progress_bar: bool = True,
+    eval_episodes: int | None = None,
+    final_eval_seeds: tuple[int, ...] = EVAL_SEEDS,
+    command: str | None = None,
+    overrides: dict[str, Any] | None = None,
+) -> TrainResult:
+    """Train PPO on `env_id` with the YAML hyperparameters; returns the run folder and files.
+
+    `overrides`: PPO kwargs replacing the config's (tests use a tiny `policy_kwargs`).
+    `eval_episodes`: per EvalCallback check (default: the config's `eval_episodes`).
+    `final_eval_seeds`: episodes scored after training for meta.json (empty: skip).
+    """
+    import torch
+    from stable_baselines3 import PPO
+    from stable_baselines3.common.callbacks import EvalCallback
+
+    check_env_id(env_id)
+    hp = load_hyperparams(env_id, config)
+    total = int(timesteps if timesteps is not None else hp.n_timesteps)
+    if total <= 0:
+        raise ValueError(f"timesteps: must be positive, got {total}")
+    tb_dir = _tensorboard_dir(out, env_id) if tensorboard else None
+    run_dir = Path(out) / env_id / f"seed{seed}"
+    run_dir.mkdir(parents=True, exist_ok=True)
+    torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
+
+    venv, vec_kind, eval_env = _make_envs(hp, seed)
+    ppo_kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
+    model = PPO(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **ppo_kwargs)
+    n_steps = int(model.n_steps)
+    on_best = _SaveNormalization(run_dir / "best")
+    eval_cb = EvalCallback(
+        eval_env,
+        n_eval_episodes=eval_episodes or hp.eval_episodes,
+        eval_freq=max(total // (EVALS_PER_RUN * hp.n_envs), n_steps),
+        log_path=str(run_dir),
+        best_model_save_path=str(run_dir / "best"),
+        callback_on_new_best=on_best,
+        deterministic=True,
+        verbose=0,
+    )
+    t0 = time.perf_counter()
+    model.learn(total_timesteps=total, callback=eval_cb, progress_bar=progress_bar)
+    wall = time.perf_counter() - t0
+    meta = {
+        "env_id": env_id,
+        "command": command or _command(env_id, timesteps, seed, config),
+        "seed": seed,
+        "timesteps": int(model.num_timesteps),
+        "wall_time_s": round(wall, 2),
+        "steps_per_s": round(model.num_timesteps / wall, 1),
+        "vectorization": f"{vec_kind} x{hp.n_envs}",
+        "selected": "final",
+        "hyperparams": _jsonable_hp(hp, overrides),
+        "versions": _versions(),
+    }
+    vecnorm = venv if hp.normalize is not None else None
+    files = save_policy(run_dir, model, vecnorm, meta)
+    venv.close()
+    eval_env.close()
+    best = run_dir / "best"
+    if (best / "best_model.zip").is_file():
+        (best / "best_model.zip").replace(best / MODEL_FILE)
+        best_meta = {**meta, "selected": "best (EvalCallback return, seeds 10000+)"}
+        best_meta["best_timestep"] = getattr(on_best, "best_timestep", None)
+        best_meta["best_eval_return"] = float(eval_cb.best_mean_reward)
+        files.append(write_meta(best, best_meta))
+    files += _finish_run(env_id, run_dir, final_eval_seeds)
+    return TrainResult(run_dir, files, read_meta(run_dir))
+
+
+def _finish_run(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> list[Path]:
+    """Score the final and the best model on `seeds` into their meta.json; learning curves."""
+    from mf_envs.train.curves import plot_learning_curves
+
+    files = []
+    for folder in (run_dir, run_dir / "best"):
+        if not (folder / MODEL_FILE).is_file():
+            continue
+        meta = read_meta(folder)
+        if seeds:
+            meta["evaluation"] = evaluation_summary(env_id, folder, seeds)
+            write_meta(folder, meta)
+        if (run_dir / "evaluations.npz").is_file():
+            if folder != run_dir:
+                files.append(Path(shutil.copy2(run_dir / "evaluations.npz", folder)))
+            ev = meta.get("evaluation", {})
+            refs = {f"{k} (final eval)": v["return"] for k, v in ev.items() if isinstance(v, dict)}
+            label = f"ppo (EvalCallback); shipped: {meta['selected'].split()[0]}"
+            path = folder / "learning_curve.png"
+            files.append(plot_learning_curves([run_dir], path, env_id, [label], refs))
+    return files
+
+
+def evaluation_summary(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> dict[str, Any]:
+    """Primary metric of the run's policy and of the env's default baseline on `seeds`."""
+    metric = primary_metric(env_id)
+    ctrls: dict[str, Any] = {"ppo": lambda env: load_policy(env_id, run_dir)}
+    baselines = baseline_factories(env_id)
+    if baselines:
+        name = next(iter(baselines))
+        ctrls[name] = baselines[name]
+    rows = evaluate_controllers(env_id, ctrls, seeds)
+    summary: dict[str, Any] = {"metric": metric.name, "higher_is_better": metric.higher_is_better}
+    summary["seeds"] = list(seeds)
+    for name in ctrls:
+        summary[name] = dict(zip(("mean", "std"), score(rows, name, metric.name)))
+        summary[name]["return"] = score(rows, name, "return")[0]
+    return summary
+
+
+def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
+    """Copy a run's policy files into `root/<env_id>/` (the shipped policy); returns them."""
+    run_dir = Path(run_dir)
+    meta = read_meta(run_dir)
+    if "env_id" not in meta:
+        raise ValueError(f"run_dir: {run_dir} has no meta.json with an env_id")
+    dest = root / meta["env_id"]
+    dest.mkdir(parents=True, exist_ok=True)
+    out = []
+    for name in SHIP_FILES:
+        if (run_dir / name).is_file():
+            out.append(Path(shutil.copy2(run_dir / name, dest / name)))
+    return out
+
+
+def _make_envs(hp: Hyperparams, seed: int) -> tuple[Any, str, Any]:
+    """(training VecEnv, its vectorisation label, 1-env evaluation VecEnv on default parameters)."""
+    from mf_envs.train.vec import make_train_env
+
+    wrappers = [
+        functools.partial(import_object(path), **kw) if kw else import_object(path)
+        for path, kw in hp.env_wrappers
+    ]
+    venv, kind = make_train_env(
+        hp.env_id,
+        hp.n_envs,
+        seed,
+        hp.env_kwargs,
+        wrappers=wrappers,
+        normalize=hp.normalize,
+        prefer_native=hp.vec_env == "auto",
+    )
+    norm_eval = None if hp.normalize is None else {**hp.normalize, "norm_reward": False}
+    # the same wrapper layout as training (SB3 syncs the VecNormalize stats layer by layer)
+    eval_env, _ = make_train_env(
+        hp.env_id,
+        1,
+        seed + 10_000,
+        hp.env_kwargs,
+        normalize=norm_eval,
+        prefer_native=kind == "native",
+    )
+    if norm_eval is not None:
+        eval_env.training = False
+    return venv, kind, eval_env
+
+
+class _SaveNormalization:
+    """EvalCallback `callback_on_new_best`: save the VecNormalize stats beside `best_model.zip`."""
+
+    def __new__(cls, folder: Path) -> Any:
+        from stable_baselines3.common.callbacks import BaseCallback
+
+        from mf_envs.train.policy import NORM_FILE, ObsNormalization
+
+        class SaveNorm(BaseCallback):
+            def _on_step(self) -> bool:
+                self.best_timestep = int(self.num_timesteps)
+                vn = self.model.get_vec_normalize_env()
+                norm = ObsNormalization.from_vecnormalize(vn) if vn is not None else None
+                if norm is not None:
+                    folder.mkdir(parents=True, exist_ok=True)
+                    (folder / NORM_FILE).write_text(json.dumps(norm.to_json()))
+                return True
+
+        return SaveNorm()
+
+
+def _tensorboard_dir(out: str | Path, env_id: str) -> str:
+    try:
+        import tensorboard  # noqa: F401
+    except ImportError:
+        raise ValueError(
+            "tensorboard: the package is not installed (pip install tensorboard), "
+            "or run without --tensorboard"
+        ) from None
+    return str(Path(out) / env_id / "tensorboard")
+
+
+def _command(env_id: str, timesteps: int | None, seed: int, config: Any) -> str:
+    parts = ["mf-envs", "train", env_id, "--seed", str(seed)]
+    if timesteps is not None:
+        parts += ["--timesteps", str(timesteps)]
+    if config is not None:
+        parts += ["--config", str(config)]
+    return " ".join(parts)
+
+
+def _jsonable_hp(hp: Hyperparams, overrides: dict[str, Any] | None) -> dict[str, Any]:
+    d = asdict(hp)
+    d["ppo_kwargs"] = {**d["ppo_kwargs"], **(overrides or {})}
+    return json.loads(json.dumps(d, default=repr))
+
+
+def _versions() -> dict[str, str]:
+    import numpy
+    import stable_baselines3
+    import torch
+
+    return {
+        "python": platform.python_version(),
+        "stable_baselines3": stable_baselines3.__version__,
+        "torch": torch.__version__,
+        "gymnasium": gym.__version__,
+        "numpy": numpy.__version__,
+    }
