@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 
-# Shared vocabulary (DESIGN.md); models pick the subset that exists for them.
+# Shared vocabulary (docs/design.md); models pick the subset that exists for them.
 EFFECT_NAMES: dict[str, str] = {
     "gyroscopic": "rotor spin coupling (the gyroscopic moment J3 psi' x ...)",
     "gimbal_inertia": "inertia of the gimbal frame itself",

@@ -1,6 +1,6 @@
 """Reliability suite, parametrized over every registered env (`available_env_ids()`): the
 Gymnasium and SB3 checkers, seeding, pickling, input validation, the numerical-failure contract,
-the info keys of API.md, reward terms, rendering and (slow) a long random-action soak."""
+the info keys of docs/api.md, reward terms, rendering and (slow) a long random-action soak."""
 
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ from mf_envs.envs import available_env_ids
 
 ENV_IDS = available_env_ids()
 
-# API.md: info keys every env reports at reset and at every step
+# docs/api.md: info keys every env reports at reset and at every step
 INFO_KEYS: dict[str, tuple[str, ...]] = {
     "GOWEC-v0": ("power", "gimbal_angle", "gimbal_rate", "buoy_rate", "wave_elevation"),
     "GyroStabilizer-v0": (
@@ -38,7 +38,7 @@ INFO_KEYS: dict[str, tuple[str, ...]] = {
     "Inchworm-v0": ("x_head", "x_tail", "centerline"),
 }
 
-# API.md kwargs with one physically invalid value each (the ValueError must name the kwarg)
+# docs/api.md kwargs with one physically invalid value each (the ValueError must name the kwarg)
 INVALID_KWARGS: dict[str, list[tuple[str, Any]]] = {
     "GOWEC-v0": [
         ("rotor_inertia", -1.0),
@@ -84,7 +84,7 @@ POISON: dict[str, Any] = {
 
 
 def _reward_terms(info: dict) -> dict[str, float]:
-    """The named reward terms every env reports as `info["reward_terms"]` (STYLE.md item 8)."""
+    """The named reward terms every env reports as `info["reward_terms"]` (docs/style.md item 8)."""
     terms = info.get("reward_terms")
     assert isinstance(terms, dict) and terms, f"info['reward_terms'] missing: {sorted(info)}"
     return terms
@@ -269,7 +269,7 @@ def _effect_sets(env_id: str) -> list[tuple[str, ...]]:
 @pytest.mark.parametrize("env_id", ENV_IDS)
 def test_every_effect_set_runs_random_actions(env_id):
     """Each effect switched on/off alone (and all, and none): the env builds, resets and takes
-    20 random actions with finite observations, the API.md info keys and no numerical failure."""
+    20 random actions with finite observations, the docs/api.md info keys and no numerical failure."""
     failures = []
     for effects in _effect_sets(env_id):
         env = gym.make(env_id, effects=effects)
@@ -286,7 +286,7 @@ def test_every_effect_set_runs_random_actions(env_id):
     assert not failures, "\n".join(failures)
 
 
-# API.md: reset(options=...) initial-state overrides, checked through the info key of the
+# docs/api.md: reset(options=...) initial-state overrides, checked through the info key of the
 # same name
 RESET_OPTIONS: dict[str, dict[str, float]] = {
     "GOWEC-v0": {"gimbal_angle": 0.3, "gimbal_rate": -0.5},
@@ -410,7 +410,7 @@ def test_random_action_soak(env_id, make):
 @pytest.mark.skipif("GOWEC-v0" not in ENV_IDS, reason="GOWEC-v0 has not landed")
 @pytest.mark.parametrize("theta", [np.pi / 2, np.pi / 3])
 def test_gowec_analytic_max_power_is_eq95(theta, make):
-    """API.md: `analytic_max_power()` is ch.3 Eq. 95,
+    """docs/api.md: `analytic_max_power()` is ch.3 Eq. 95,
     P = 1/2 |psi'| J3 (a / g) (2 pi / T)^4 sin(theta) (Eq. 86 for theta = pi/2)."""
     J3, psid, a, T = 40.0, 600.0, 0.8, 5.0
     env = make(

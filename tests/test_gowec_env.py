@@ -100,7 +100,7 @@ def test_analytic_max_power_is_eq95_to_round_off():
         rotor_speed=w,
     )
     eq95 = 0.5 * abs(w) * J * (a / G) * (2 * math.pi / T) ** 4 * math.sin(th)
-    # default regular wave: the seed's point buoy, Eq. 95 exactly (API.md)
+    # default regular wave: the seed's point buoy, Eq. 95 exactly (docs/api.md)
     assert env.unwrapped.buoy_radius == 0.0
     assert env.unwrapped.analytic_max_power() == pytest.approx(eq95, rel=1e-15)
     # a finite buoy: Eq. 95 of the waterplane-averaged slope, x 2 J1(k r)/(k r)

@@ -1,4 +1,4 @@
-"""Layering (DESIGN.md): frames and physics import no Gymnasium, SB3 or python-control."""
+"""Layering (docs/design.md): frames and physics import no Gymnasium, SB3 or python-control."""
 
 import subprocess
 import sys

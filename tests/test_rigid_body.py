@@ -182,7 +182,7 @@ def test_inertia_scales(scale_exp, method):
     s = 10.0**scale_exp
     base = simulate(RACKET_J, RACKET_W0, 2.0, 0.01, method)
     tr = simulate(s * RACKET_J, RACKET_W0, 2.0, 0.01, method)
-    # same to round-off, amplified up to ~4e7 by the flip (DESIGN.md): 1e-7 relative
+    # same to round-off, amplified up to ~4e7 by the flip (docs/design.md): 1e-7 relative
     assert np.allclose(tr.omega, base.omega, rtol=0, atol=1e-7 * 5.0)
     assert np.allclose(tr.H / s, base.H, rtol=0, atol=1e-7 * np.linalg.norm(base.H[0]))
     exact = analytic_omega(s * RACKET_J, RACKET_W0, tr.t)
@@ -281,7 +281,7 @@ def test_unsorted_inertia_is_the_same_body():
 
 
 def test_blow_up_is_an_error_not_nan():
-    """RK4 is unstable once nu dt > ~2.8 (DESIGN.md): a clear ValueError naming dt, never NaN;
+    """RK4 is unstable once nu dt > ~2.8 (docs/design.md): a clear ValueError naming dt, never NaN;
     the splittings are unconditionally bounded (compositions of rotations)."""
     with pytest.raises(ValueError, match="dt"):
         simulate(RACKET_J, RACKET_W0, 200.0, 0.5, "rk4_rodrigues")

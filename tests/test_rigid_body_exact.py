@@ -109,7 +109,7 @@ def test_analytic_random_bodies(J, w0):
 
 def test_racket_period_and_invariants():
     s = elliptic_solution(RACKET_J, RACKET_W0)
-    assert s.period == pytest.approx(6.767881, abs=1e-6)  # DESIGN.md
+    assert s.period == pytest.approx(6.767881, abs=1e-6)  # docs/design.md
     assert s.axes[1] == 1 and s.side == 1  # intermediate axis e2, D > J2 (circles e1)
     flips = s.flip_times(20.0)
     assert np.allclose(np.diff(flips), s.period / 2, rtol=1e-12)

@@ -25,7 +25,7 @@ the wave phase is never read -- it is estimated from the IMU rate w1 in the obse
 - `fixed_rate`: the seed's phi = 2 pi t / T at the nominal period (Fig. 3-4); the phase is fitted
   once by least squares over the first nominal period, then never corrected.
 - `bang_bang`: the PLL phase with a staircase reference that dwells at phi = +-90 deg and flips
-  through 0/180 deg when w1 peaks, so sin(phi) ~ sign(sin th): the 4/pi ceiling of DESIGN.md.
+  through 0/180 deg when w1 peaks, so sin(phi) ~ sign(sin th): the 4/pi ceiling of docs/design.md.
   The flip half-width delta (rad of wave phase) is chosen so that the torque stays under
   `torque_fraction` of the limit.
 """

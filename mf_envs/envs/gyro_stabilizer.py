@@ -293,7 +293,7 @@ class GyroStabilizerEnv(MFEnv):
         return self.gyro.angular_momentum if "gyroscopic" in self.effects else 0.0
 
     def capacity(self) -> float:
-        """M0 / (n H w sin(max_gimbal_angle)) for the regular wave (DESIGN.md bound)."""
+        """M0 / (n H w sin(max_gimbal_angle)) for the regular wave (docs/design.md bound)."""
         return capacity_ratio(
             self.wave_moment_amplitude,
             self.gyro.angular_momentum,

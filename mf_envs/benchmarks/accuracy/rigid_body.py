@@ -98,7 +98,7 @@ def _scene_rows(scene: str, dts: list[float], rtols: list[float]) -> list[dict]:
 
 
 def _drift_rows(dts: list[float], n_periods: float = 1e4) -> list[dict]:
-    """Scene `rigid_body_racket_1e4_periods` (DESIGN.md hard case): max relative drift of the
+    """Scene `rigid_body_racket_1e4_periods` (docs/design.md hard case): max relative drift of the
     energy and of |H|, and the orthonormality error of R, over 1e4 racket periods (67 679 s)."""
     J, w0, _ = SCENES["rigid_body_racket"]
     t_end = n_periods * elliptic_solution(J, w0).period

@@ -11,7 +11,7 @@ Rows per (scene, controller): `rms_roll` (rad, after 10 s), `rr` (vs the rotor o
 `rr_bound_sinusoidal` = min(1, 1/capacity) -- a sinusoidal sin(phi) of amplitude sin(phi_max)
 supplies at most n H w sin(phi_max) of the wave moment -- and `rr_bound_any` =
 min(1, 4/(pi capacity)) for any gimbal motion within the stops (a square-wave sin(phi) has a
-fundamental 4/pi larger; the DESIGN.md GOWEC bound). Quadratic roll damping makes both
+fundamental 4/pi larger; the docs/design.md GOWEC bound). Quadratic roll damping makes both
 approximate: a controller that rides the end stops can beat the first one slightly.
 The open-loop seed excitations use the wave period and are phase-locked to the wave moment
 (wave_phase = 0, amplitude asin(min(1, capacity)) for `sinusoidal`), i.e. their best case.

@@ -12,7 +12,7 @@ The beam: curve of centroids r_C(S) = e^I z_C(S) and frame angle psi(S) (Eqs. 31
 strains gamma = R(psi)^T z_C', kappa = psi' (Eq. 36), active law M3 = EI (kappa - kappa#)
 (Eq. 53). The three-node C1 element lives in `beam_element`, the Newton / load-stepping /
 Newmark machinery in `beam_solver`; this module re-exports them and adds `solve_cantilever`
-(API.md), the boundary-condition helpers (clamp, Eq. 100 sliding support, Eq. 102 anchor) and the
+(docs/api.md), the boundary-condition helpers (clamp, Eq. 100 sliding support, Eq. 102 anchor) and the
 linear Timoshenko reference solution (Eqs. 65-67) used for verification.
 """
 
@@ -106,7 +106,7 @@ def solve_cantilever(
     first_step: float = 1.0,
     max_step: float = 1.0,
 ) -> CantileverSolution:
-    """Geometrically exact static cantilever clamped at the origin along +x (API.md).
+    """Geometrically exact static cantilever clamped at the origin along +x (docs/api.md).
 
     tip_force (2,) [N] and distributed_load (2,) [N/m] are dead loads in the inertial frame,
     tip_moment [N m] counter-clockwise positive; kappa_sharp [1/m] a uniform actuation curvature

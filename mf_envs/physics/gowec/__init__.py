@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 from mf_envs._validate import check_finite, check_nonnegative, check_positive, check_shape
 from mf_envs.physics.waves import BREAKING_STEEPNESS, G, WaveField, disk_average_factor
 
-SQUARE_WAVE_GAIN = 4.0 / math.pi  # ceiling / Eq. 86 (DESIGN.md)
+SQUARE_WAVE_GAIN = 4.0 / math.pi  # ceiling / Eq. 86 (docs/design.md)
 RPM = 2.0 * math.pi / 60.0
 
 # Seakeeper gyro stabilizers (ch. 3 Table 3-1): model -> (rotor rpm, angular momentum N m s,

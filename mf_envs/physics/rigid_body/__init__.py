@@ -9,7 +9,7 @@
         '/----'
         /  e1 (J1, largest, normal to the head plane)
 
-Public API (API.md):
+Public API (docs/api.md):
     simulate(J, omega0, t_end, dt, method="rk4_rodrigues", *, R0=None, save_every=1,
              effects=None, x0=(0, 0, 0), v0=(0, 0, 0), g=9.81) -> RigidBodyTrajectory
     METHODS, analytic_omega(J, omega0, t) (exact, Jacobi elliptic; rigid_body_exact.py)
@@ -205,7 +205,7 @@ def simulate(
     )  # fmt: skip
     t = np.arange(H.shape[0]) * (dt_used * save_every)
     bad = ~(np.all(np.isfinite(H), axis=1) & np.all(np.isfinite(R), axis=(1, 2)))
-    if bad.any():  # explicit RK4 is unstable once (wobble frequency) * dt > ~2.8 (DESIGN.md)
+    if bad.any():  # explicit RK4 is unstable once (wobble frequency) * dt > ~2.8 (docs/design.md)
         raise ValueError(
             f"dt: {dt_used:g} s is too large for {method!r} here: the state became non-finite "
             f"by t = {t[np.argmax(bad)]:g} s; use a smaller dt"

@@ -30,7 +30,7 @@ State y (float64): [w1, w2, w3, phi, phi', x1, x2, x3, v1, v2, v3] (body rates i
 angle/rate of gyro 1 in rad, rad/s; hull CM position/velocity in the inertial frame, m, m/s).
 The attitude R (3x3, inertial <- ship) is rebuilt each step with Rodrigues' formula (ch. 2 Eq. 29)
 inside a Runge-Kutta-Munthe-Kaas step (4th order also in R; the seed's midpoint-Rodrigues update
-is 2nd order, which limits the hydrostatic moment's accuracy, see DESIGN.md ch. 2 notes).
+is 2nd order, which limits the hydrostatic moment's accuracy, see docs/design.md ch. 2 notes).
 """
 
 from __future__ import annotations

@@ -228,7 +228,7 @@ def mss_naval_vessel() -> ShipParams:
 def capacity_ratio(
     moment_amplitude: float, angular_momentum: float, omega: float, n_gyros: int, beta_max: float
 ) -> float:
-    """M0 / (n H w sin(beta_max)): below 1 the gyros can cancel M0 cos(w t) (DESIGN.md bound).
+    """M0 / (n H w sin(beta_max)): below 1 the gyros can cancel M0 cos(w t) (docs/design.md bound).
 
     The gyro roll moment is n H phi' cos(phi) = n H d(sin phi)/dt; holding the roll at zero needs
     n H sin(phi) = (M0/w) sin(w t), possible only if M0 / (n H w) <= sin(beta_max).
