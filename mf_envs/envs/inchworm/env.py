@@ -21,7 +21,7 @@ CURVATURE_OBS_LIMIT = spec.CURVATURE_OBS_LIMIT
 REACTION_OBS_LIMIT = spec.REACTION_OBS_LIMIT
 # what a diverging solve raises: a failed step ends the episode (numerical_failure)
 SOLVER_ERRORS = (NewtonDivergence, np.linalg.LinAlgError, FloatingPointError, OverflowError)
-MAX_INCREMENTS = 400  # quasi-static increments of a full-range actuation step (speed bound)
+MAX_INCREMENTS = 200  # increments (or Newmark steps) of a full-range step: a step stays fast
 
 
 class InchwormEnv(MFEnv):
@@ -93,7 +93,7 @@ class InchwormEnv(MFEnv):
     | width, height | 0.02, 0.01 | cross-section b, h [m] in [1e-4, 1], h <= L / 5 |
     | youngs_modulus, shear_modulus | 2.4e9, 0.96e9 | E, G [Pa] in [1e3, 1e13] |
     | mass_per_length | 0.278 | m_A [kg/m] in [1e-6, 1e4] (J_3C from m_A h^2 / 12) |
-    | n_elements | 12 | C1 elements, 1..200 |
+    | n_elements | 12 | C1 elements, 1..64 |
     | max_curvature | 13.0 | largest abs(kappa#) [1/m] (the seed's kappa0#), <= 20 / L |
     | n_control_points | 3 | actuation control points, 2..64 |
     | control_dt, physics_dt | 0.1, 0.1 | s per step; Newmark step with `inertia` |
@@ -101,7 +101,7 @@ class InchwormEnv(MFEnv):
     | max_episode_steps | 400 | 10 seed gait cycles (when episode_seconds is None) |
     | effort_weight | 0.05 | weight of the effort term, >= 0 |
     | increment_factor | 4.0 | increments up to factor * 2h/L^2 (seed: 1; same equilibria) |
-    |  |  | at most 400 increments for a full-range step |
+    |  |  | at most 200 increments (or Newmark steps) per step |
     | reset_noise_scale | 0.05 | initial actuation noise, in [0, 1] |
     | soil | "dry_sand" | soil preset for `terrain` (Wong 2008 Table 2.3 values) |
     | effects | gravity, shear_deformation, anchor_switching | also: inertia, terrain |
@@ -158,6 +158,11 @@ class InchwormEnv(MFEnv):
                 f"would take more than {MAX_INCREMENTS} increments of "
                 f"increment_factor * 2 height / length^2; raise increment_factor"
             )
+        if "inertia" in self.effects and self.n_substeps > MAX_INCREMENTS:
+            raise ValueError(
+                f"physics_dt: with `inertia` a step takes control_dt / physics_dt Newmark steps, "
+                f"at most {MAX_INCREMENTS}; got {self.n_substeps}"
+            )
         self.n_ctrl = check_int("n_control_points", n_control_points, low=2, high=64)
         if episode_seconds is not None and max_episode_steps is not None:
             raise ValueError("episode_seconds: give episode_seconds or max_episode_steps, not both")
@@ -206,7 +211,7 @@ class InchwormEnv(MFEnv):
             shear_modulus=check_range("shear_modulus", shear, 1e3, 1e13),
             mass_per_length=m,
             rotary_inertia=m * h**2 / 12.0,
-            n_elements=check_int("n_elements", n_elements, low=1, high=200),
+            n_elements=check_int("n_elements", n_elements, low=1, high=64),
         )
 
     # ------------------------------------------------------------------ API
