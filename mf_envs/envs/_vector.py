@@ -1,4 +1,4 @@
-"""Shared machinery of the native batched vector envs (`gowec_vector`, `gyro_stabilizer_vector`).
+"""Shared machinery of the native batched vector envs (`gowec.vector`, `gyro_stabilizer.vector`).
 
 A native vector env steps all N sub-envs in ONE compiled call over a batch axis, and reproduces
 `gymnasium.vector.SyncVectorEnv` over N copies of the single env exactly (same observations,

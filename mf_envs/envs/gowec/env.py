@@ -15,7 +15,7 @@ from mf_envs._validate import (
     check_shape,
 )
 from mf_envs.envs._spec import check_options
-from mf_envs.envs.base import MFEnv
+from mf_envs.envs.base import MAX_EPISODE_STEPS, MIN_DT, MFEnv
 from mf_envs.envs.gowec import spec
 from mf_envs.physics import gowec as gw
 from mf_envs.physics import waves
@@ -164,6 +164,8 @@ class GOWECEnv(MFEnv):
             rotor_transverse_inertia,
             tuple(float(v) for v in gimbal),
         )
+        if self.wave_period / spp < MIN_DT:
+            raise ValueError(f"steps_per_period: wave_period / steps_per_period < {MIN_DT:g} s")
         super().__init__(
             effects=effects,
             available_effects=AVAILABLE_EFFECTS,
@@ -181,9 +183,12 @@ class GOWECEnv(MFEnv):
             self.n_periods = check_int(
                 "n_periods", 20 if n_periods is None else n_periods, 1, 10**6
             )
-            episode_seconds = self.n_periods * self.wave_period
             self.max_steps = self.n_periods * spp
-            self._episode_steps(episode_seconds)  # the same bound on the episode length
+            if self.max_steps > MAX_EPISODE_STEPS:
+                raise ValueError(
+                    f"n_periods: n_periods * steps_per_period = {self.max_steps} control steps "
+                    f"exceeds {MAX_EPISODE_STEPS}"
+                )
         else:
             self.max_steps = self._episode_steps(episode_seconds)
             self.n_periods = self.max_steps / spp

@@ -146,9 +146,12 @@ class InchwormEnv(MFEnv):
             length, width, height, youngs_modulus, shear_modulus, mass_per_length, n_elements
         )
         L = self.params.length
-        self.max_curvature = check_range(
-            "max_curvature", max_curvature, 1e-9, CURVATURE_OBS_LIMIT / L
-        )
+        self.max_curvature = check_range("max_curvature", max_curvature, 1e-9)
+        if self.max_curvature * L > CURVATURE_OBS_LIMIT:
+            raise ValueError(
+                f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
+                f"curvature observation bound), got {self.max_curvature:g} 1/m x {L:g} m"
+            )
         self.effort_weight = check_range("effort_weight", effort_weight, 0.0, 1e6)
         self.reset_noise_scale = check_range("reset_noise_scale", reset_noise_scale, 0.0, 1.0)
         increment_factor = check_range("increment_factor", increment_factor, 1e-3, 1e6)

@@ -3,7 +3,7 @@
 One compiled call advances N independent ships (own state, attitude, packed parameters and wave
 table each) by n RK4-Munthe-Kaas substeps. No physics is written here: every row calls
 `mf_envs.physics.ship.kernels.advance` (Rios 2017 ch. 3 Eqs. 98-128), so a row is
-bit-identical to a scalar step with the same inputs. Used by `mf_envs.envs.gyro_stabilizer_vector`.
+bit-identical to a scalar step with the same inputs. Used by `mf_envs.envs.gyro_stabilizer.vector`.
 
 Note on numba's on-disk cache: a cached function is invalidated only when ITS source file
 changes, not when a kernel it calls does; after editing `ship_kernels`, touch this module too
