@@ -202,6 +202,11 @@ class GyroStabilizerEnv(MFEnv):
             wave_period = self.ship.natural_roll_period("added_inertia" in self.effects)
             if "hydrostatic_restoring" not in self.effects or not math.isfinite(wave_period):
                 wave_period = 10.0  # no restoring, no resonance: the seed's cases use T = 10 s
+            elif not 0.5 <= wave_period <= 60.0:
+                raise ValueError(
+                    f"wave_period: None (roll resonance) gives {wave_period:.3g} s from "
+                    "roll_stiffness and ship_inertia, outside [0.5, 60] s; pass wave_period"
+                )
         self.wave_period = check_range("wave_period", wave_period, 0.5, 60.0)
         self.significant_wave_height = check_range(
             "significant_wave_height", significant_wave_height, 1e-6, 30.0
