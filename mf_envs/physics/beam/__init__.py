@@ -18,7 +18,7 @@ linear Timoshenko reference solution (Eqs. 65-67) used for verification.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -105,12 +105,14 @@ def solve_cantilever(
     settings: NewtonSettings | None = None,
     first_step: float = 1.0,
     max_step: float = 1.0,
+    element: str = "sri",
 ) -> CantileverSolution:
     """Geometrically exact static cantilever clamped at the origin along +x (docs/api.md).
 
     tip_force (2,) [N] and distributed_load (2,) [N/m] are dead loads in the inertial frame,
     tip_moment [N m] counter-clockwise positive; kappa_sharp [1/m] a uniform actuation curvature
     (Eq. 53). Loads and actuation are applied proportionally, lam = 0 -> 1, with step halving.
+    element: "sri" (locking-free, default) or "seed" (the seed's element, for its figures).
     """
     for name, val in (("length", length), ("EA", EA), ("GAs", GAs), ("EI", EI)):
         check_positive(name, val)
@@ -119,7 +121,8 @@ def solve_cantilever(
     q = check_shape("distributed_load", distributed_load, (2,))
     check_shape("tip_moment", tip_moment, ())
     check_shape("kappa_sharp", kappa_sharp, ())
-    model = BeamModel(BeamParams(float(length), float(EA), float(GAs), float(EI), n_elements))
+    params = BeamParams(float(length), float(EA), float(GAs), float(EI), n_elements)
+    model = BeamModel(replace(params, element=element))
     f = model.uniform_load(q)
     f[model.dof(-1, "z1")] += tip_f[0]
     f[model.dof(-1, "z2")] += tip_f[1]

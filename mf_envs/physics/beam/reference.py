@@ -46,3 +46,30 @@ def elastica_tip(alpha: float) -> tuple[float, float, float]:
         raise RuntimeError(f"elastica reference: {sol.message}")
     tip = sol.sol(1.0)
     return float(tip[2]), float(tip[3]), float(tip[0])
+
+
+def reissner_tip(alpha: float, ea: float, gas: float) -> tuple[float, float, float]:
+    """Extensible, shearable (Reissner) cantilever, L = 1, EI = 1, dead tip load alpha along -y,
+    by scipy solve_bvp: the same planar model as the FE beam (strains gamma = R^T z',
+    kappa = psi') solved as a BVP, n = (0, -alpha) constant, (N1, N2) = R(psi)^T n,
+    z' = R(psi) (1 + N1 / ea, N2 / gas), (EI psi')' = n1 z2' - n2 z1', psi'(1) = 0.
+    ea, gas are EA L^2 / EI and GA_s L^2 / EI. Returns tip (x, y, psi)."""
+    n1, n2 = 0.0, -float(alpha)
+
+    def rhs(s, u):
+        c, sn = np.cos(u[2]), np.sin(u[2])
+        g1 = 1.0 + (c * n1 + sn * n2) / ea
+        g2 = (-sn * n1 + c * n2) / gas
+        dx, dy = c * g1 - sn * g2, sn * g1 + c * g2
+        return np.vstack([dx, dy, u[3], n1 * dy - n2 * dx])
+
+    def bc(ua, ub):
+        return np.array([ua[0], ua[1], ua[2], ub[3]])
+
+    s = np.linspace(0, 1, 401)
+    guess = np.vstack([s, -alpha * s**2 / 2, -alpha * (s - s**2 / 2), -alpha * (1 - s)])
+    sol = solve_bvp(rhs, bc, s, guess, tol=1e-10, max_nodes=100000)
+    if not sol.success:
+        raise RuntimeError(f"Reissner reference: {sol.message}")
+    tip = sol.sol(1.0)
+    return float(tip[0]), float(tip[1]), float(tip[2])

@@ -50,8 +50,11 @@ class BeamParams:
     n_elements: int  # number of three-node C1 elements
     mass_per_length: float = 0.0  # m_A [kg/m]
     rotary_inertia: float = 0.0  # J_3C, rotary inertia per length [kg m]
+    element: str = "sri"  # "seed" (Eq. 80b, locks when slender) or "sri" (element.quadrature)
 
     def __post_init__(self) -> None:
+        if self.element not in el.ELEMENTS:
+            raise ValueError(f"element: must be one of {el.ELEMENTS}, got {self.element!r}")
         for name in ("length", "EA", "GAs", "EI"):
             check_positive(name, getattr(self, name))
         check_int("n_elements", self.n_elements, low=1, high=10_000)
@@ -102,6 +105,9 @@ class BeamModel:
         for j in range(ne + 1):
             self.u_scale[[6 * j, 6 * j + 2]] = params.length
         self._mass: np.ndarray | None = None
+        self.quad = el.quadrature(
+            params.element, params.length / ne, params.EA, params.GAs, params.EI
+        )
 
     # ---------------------------------------------------------------- dofs
     def dof(self, node: int, name: str) -> int:
@@ -130,14 +136,12 @@ class BeamModel:
         self, d: np.ndarray, kappa_sharp: np.ndarray, tangent: bool = True
     ) -> tuple[np.ndarray, np.ndarray]:
         """Internal force P (n_dof,) and banded tangent dP/dd at `d` (Eq. 80b)."""
-        p = self.params
-        f, ab, _ = el.assemble_internal(d, self.le, kappa_sharp, p.EA, p.GAs, p.EI, tangent)
+        f, ab, _ = el.assemble_internal(d, self.le, kappa_sharp, *self.quad, tangent)
         return f, ab
 
     def elastic_energy(self, d: np.ndarray, kappa_sharp: np.ndarray) -> float:
         """Stored energy [J]: int (N1 (g1-1) + N2 g2 + M3 (k - k#)) / 2 dS."""
-        p = self.params
-        return float(el.assemble_internal(d, self.le, kappa_sharp, p.EA, p.GAs, p.EI, False)[2])
+        return float(el.assemble_internal(d, self.le, kappa_sharp, *self.quad, False)[2])
 
     def distributed(self, n_gp: np.ndarray, m_gp: np.ndarray | None = None) -> np.ndarray:
         """Nodal force (n_dof,) of a line force n_gp (n_el, 4, 2) [N/m, inertial frame] and line
