@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import eigh
 
 from mf_envs._validate import check_choice, check_int, check_positive, check_shape
 from mf_envs.physics.beam import element as el
@@ -102,18 +103,40 @@ def simulate_cantilever(
 
     p = BeamParams(length, EA, GAs, EI, n_elements, mass_per_length, rotary_inertia, element)
     model = BeamModel(p)
-    static = solve_cantilever(length, EA, GAs, EI, n_elements, tuple(f0), element=element)
-    d0 = static.d
+    d0 = solve_cantilever(length, EA, GAs, EI, n_elements, tuple(f0), element=element).d
+    return simulate_clamped(model, d0, t_end, dt, tuple(f1), ts, settings)
+
+
+def clamped_root(model: BeamModel) -> np.ndarray:
+    """bool (n_dof,): z1, z2, psi of the root node prescribed (the clamp of Eq. 63)."""
     fixed = np.zeros(model.n_dof, bool)
     fixed[[model.dof(0, "z1"), model.dof(0, "z2"), model.dof(0, "psi")]] = True
+    return fixed
+
+
+def simulate_clamped(
+    model: BeamModel,
+    d0: np.ndarray,
+    t_end: float,
+    dt: float,
+    tip_force: tuple[float, float] = (0.0, 0.0),
+    scheme: TimeScheme | None = None,
+    settings: NewtonSettings | None = None,
+) -> CantileverHistory:
+    """Release `model` (clamped at its root) from rest at the dofs d0 (n_dof,) at t = 0 [s],
+    with a dead tip force (2,) [N] for t > 0; ceil(t_end / dt) steps of dt [s]."""
+    fixed = clamped_root(model)
     kap = np.zeros(model.gauss_S.shape)
+    f1 = np.asarray(tip_force, float)
     f = _tip_load(model, f1)
     st = NewmarkState(d0, np.zeros_like(d0), initial_acceleration(model, d0, kap, f, fixed))
     settings = settings or NewtonSettings(1e-10, 1e-10, 12, 0)
     n = int(np.ceil(t_end / dt - 1e-9))
     states, stats = [st], PathStats()
     for _ in range(n):
-        st = time_step(model, st, dt, kap, f, fixed, settings, scheme=ts, stats=stats)
+        st = time_step(
+            model, st, dt, kap, f, fixed, settings, scheme=scheme or TimeScheme(), stats=stats
+        )
         states.append(st)
     tip = np.array([[s.d[model.dof(-1, "z1")], s.d[model.dof(-1, "z2")]] for s in states])
     ke = np.array([0.5 * s.v @ el.band_matvec(model.mass, s.v) for s in states])
@@ -128,3 +151,15 @@ def simulate_cantilever(
         final=st,
         stats=stats,
     )
+
+
+def linear_modes(model: BeamModel) -> tuple[np.ndarray, np.ndarray]:
+    """Natural angular frequencies (n_free,) [rad/s] and mode shapes (n_dof, n_free) of the
+    root-clamped beam linearised about the straight state (scipy.linalg.eigh, dense)."""
+    free = ~clamped_root(model)
+    k = el.band_to_dense(model.internal(model.straight(), np.zeros(model.gauss_S.shape))[1])
+    m = el.band_to_dense(model.mass)
+    w2, vec = eigh(k[np.ix_(free, free)], m[np.ix_(free, free)])
+    modes = np.zeros((model.n_dof, free.sum()))
+    modes[free] = vec
+    return np.sqrt(np.abs(w2)), modes
