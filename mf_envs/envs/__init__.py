@@ -9,6 +9,7 @@ ENV_SPECS: dict[str, str] = {
     "GOWEC-v0": "mf_envs.envs.gowec.env:GOWECEnv",
     "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.env:GyroStabilizerEnv",
     "Inchworm-v0": "mf_envs.envs.inchworm.env:InchwormEnv",
+    "GOWEC-v1": "mf_envs.envs.gowec_v1.env:GOWECV1Env",
 }
 # id -> native batched vector env (`gym.make_vec(id, vectorization_mode="vector_entry_point")`)
 VECTOR_SPECS: dict[str, str] = {

@@ -7,6 +7,7 @@ same system in the general multibody engine (`engine_model`) for the check. SI u
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -55,6 +56,20 @@ class FloatingModel:
         )
         self.set_sea(None)
 
+    @property
+    def inert(self) -> NDArray[np.float64]:
+        """(Ja, Jt, Jg1, Jg2, Jg3) kg m^2, as `GimbalModel.inert` (controllers read it)."""
+        return self.p.gyro
+
+    @property
+    def psid(self) -> float:
+        """Rotor spin psi' (rad/s; 0 with the rotor off)."""
+        return self.p.psid
+
+    def pitch_inertia(self) -> float:
+        """Rigid pitch inertia about G at phi = 0: hull + gimbal + rotor (kg m^2), no A_inf."""
+        return self.hull.inertia + self.p.gyro[1] + self.p.gyro[2]
+
     # ------------------------------------------------------------------ sea and PTO
     def set_sea(self, wave: WaveField | None) -> None:
         """Excitation from a wave field (None = calm water)."""
@@ -68,6 +83,15 @@ class FloatingModel:
         self._cp, self._cr = fl.excitation_coefficients(
             X, wave.amplitudes, wave.phases, wave.direction
         )
+
+    def set_viscous(self, damping: float) -> None:
+        """Extra linear viscous damping b_v per axis (N m s/rad)."""
+        self.p = dataclasses.replace(self.p, viscous=float(damping))
+
+    def set_radiation(self, on: bool) -> None:
+        """Radiation memory on (the fit) or off (A_inf only: no wave damping)."""
+        Cr = self.fit.C[0] if on else np.zeros_like(self.fit.C[0])
+        self.p = dataclasses.replace(self.p, Cr=np.ascontiguousarray(Cr, dtype=float))
 
     def set_pto(self, damping: float, stiffness: float) -> None:
         """Linear PTO gains c (N m s/rad) and k (N m/rad) of the drive's inner loop."""
@@ -133,3 +157,22 @@ class FloatingModel:
                      prescribed=constant_rate(p.psid)),  # fmt: skip
             ]
         )
+
+
+# ---------------------------------------------------------------------- ceilings
+def radiation_bound(hull: HullCoefficients, wave: WaveField) -> float:
+    """Radiation-limited mean absorbed power (W): sum_i |X(w_i)|^2 a_i^2 / (8 B(w_i)) over the
+    sea's components (pitch and roll together: |X|^2 (sin^2 + cos^2) of the direction), the
+    optimum of a linear oscillating body (Falnes 2002, Eq. 6.48). Components where the table
+    gives B = 0 (X = 0 there by Haskind) contribute nothing."""
+    total = 0.0
+    for a, w in zip(wave.amplitudes, wave.omegas):
+        _, B, X = hull.at(float(w))
+        if B > 0:
+            total += abs(X) ** 2 * a * a / (8.0 * B)
+    return total
+
+
+def wave_power_flux(wave: WaveField, rho: float, g: float) -> float:
+    """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest), deep water (Eqs. 15, 18)."""
+    return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * g / (2.0 * wave.omegas)))
