@@ -37,7 +37,7 @@ def test_free_decay_period_and_damping(hull):
     th = ys[:, 0]
     wn = hull.natural_frequency()
     A, B, _ = hull.at(wn)
-    I = hull.inertia + m.p.gyro[1] + m.p.gyro[2]  # hull + gimbal/rotor pitch inertia at phi = 0
+    I = m.pitch_inertia()  # hull + gimbal/rotor pitch inertia at phi = 0
     up = np.flatnonzero((th[:-1] < 0) & (th[1:] >= 0))
     tc = t[up] - th[up] * 0.01 / (th[up + 1] - th[up])
     T_pred = 2 * math.pi * math.sqrt((I + A) / hull.stiffness)
@@ -61,7 +61,7 @@ def test_regular_wave_rao(hull, period):
     tt = t[sel]
     basis = [np.cos(w * tt), np.sin(w * tt), np.cos(wn * tt), np.sin(wn * tt), np.ones_like(tt)]
     c = np.linalg.lstsq(np.stack(basis, 1), th[sel], rcond=None)[0]
-    I = hull.inertia + m.p.gyro[1] + m.p.gyro[2]
+    I = m.pitch_inertia()
     assert math.hypot(c[0], c[1]) == pytest.approx(a * _rao(hull, w, I), rel=0.01)
 
 
@@ -74,7 +74,7 @@ def test_fast_path_matches_engine(hull):
     """Accelerations of the numba fast path = the general B-matrix engine (Eqs. 73-75) at
     random states, with hydrostatic, excitation and generator loads; then a free trajectory."""
     pto = dict(PTO, damping=40.0)
-    m = FloatingModel(hull, GOWECParams(), pto, viscous_damping=500.0)
+    m = FloatingModel(hull, GOWECParams(), pto, viscous_damping=500.0, units=1)
     m.set_sea(regular_wave(0.5, 5.0, direction=1.0))
     m.p.Cr[:] = 0.0  # memory term off: the engine has no radiation states
     eng = m.engine_model()
@@ -97,7 +97,7 @@ def test_fast_path_matches_engine(hull):
         ud, _ = eng.accelerations(s, tau=tau)
         np.testing.assert_allclose(fast, ud[:3], rtol=1e-9, atol=1e-9 * np.abs(ud).max())
     # free motion (no loads): trajectories agree to the integrators' error
-    m0 = FloatingModel(hull, GOWECParams(), PTO)
+    m0 = FloatingModel(hull, GOWECParams(), PTO, units=1)
     m0.p.Cr[:] = 0.0
     m0.p = dataclasses.replace(m0.p, stiffness=0.0)
     y = m0.initial_state(0.02, -0.01, 0.3, 2.0)
@@ -110,3 +110,16 @@ def test_fast_path_matches_engine(hull):
         s = eng.step(s, dt)
     got = [eng.coordinate(s, n) for n in ("pitch", "hull", "gimbal")]
     np.testing.assert_allclose(yf[:3], got, atol=1e-8)
+
+
+def test_dual_pair_cancels_roll_reaction(hull):
+    """Head-on sea, gimbal loaded: the mirrored pair's roll reactions cancel (roll stays 0),
+    one unit alone rolls the buoy through its generator torque and gyro moment."""
+    rolls = {}
+    for units in (1, 2):
+        m = FloatingModel(hull, GOWECParams(), dict(PTO, damping=2000.0), units=units)
+        m.set_sea(regular_wave(0.5, 6.0, direction=math.pi / 2))
+        _, ys = _run(m, m.initial_state(gimbal=0.1), 30.0)
+        rolls[units] = np.max(np.abs(ys[:, 1]))
+        assert np.max(np.abs(ys[:, 2])) > 0.05  # the gimbal moves
+    assert rolls[2] < 1e-12 and rolls[1] > 1e-3

@@ -35,7 +35,8 @@ class GOWECV1Env(MFEnv):
     draft 2 m, Capytaine BEM coefficients shipped with the package; `hull=` takes another) free in
     pitch theta (about e1) and roll rho (about e2), obeying the Cummins equation
     (I + A_inf) q'' + int K(t - s) q'(s) ds + C q = M_exc + M_gyro, with one gyroscope (gimbal
-    about e2, Seakeeper 26 rotor) two-way coupled through the B-matrix equations
+    about e2, Seakeeper 26 rotor; by default the seed's mirrored pair, whose roll and yaw
+    reactions cancel) two-way coupled through the B-matrix equations
     (`mf_envs.physics.gowec.hydro.floating`). The generator torque on the gimbal axis is applied
     inside the physics substeps. Yaw and translation of the buoy are held by the mooring.
     See docs/gowec_v1.md for the model, the coefficients and their checks.
@@ -50,8 +51,8 @@ class GOWECV1Env(MFEnv):
 
     ## Rewards
     Net electrical energy of the step / (P_ref control_dt): generator output eta_g P when P =
-    M_g phi' > 0, drawn power P / eta_m when motoring, minus rotor_loss. P_ref (> 0, W) is Eq. 88
-    (1/2 H beta0 w^2, the locked-gimbal power) with beta0 the rotor-off pitch amplitude from the
+    n M_g phi' > 0 (n = gyro_units, the same torque on each unit), drawn power P / eta_m when motoring, minus rotor_loss. P_ref (> 0, W) is Eq. 88
+    (n/2 H beta0 w^2, the locked-gimbal power) with beta0 the rotor-off pitch amplitude from the
     RAO at the wave (irregular: a = Hs / (2 sqrt 2), T = peak_period): `reference_power()`.
 
     ## Starting State
@@ -69,6 +70,7 @@ class GOWECV1Env(MFEnv):
     | significant_wave_height, peak_period | None, 6 s | irregular sea (Hs, Tp) when Hs is set |
     | spectrum, gamma, n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
     | rotor_inertia, rotor_speed | Seakeeper 26 | rotor J3 (kg m^2), psi' (rad/s) |
+    | gyro_units | 2 | 2 = the seed's mirrored pair (phi, -phi; spins +-psi'), 1 = one unit |
     | generator_efficiency, motor_efficiency | 0.8, = generator | eta_g, eta_m |
     | max_generator_torque, max_generator_power | 10 kN m, 50 kW | PTO limits |
     | rotor_loss | 3000 W | rotor power while spinning (Table 3-1 spool-up, Seakeeper 26) |
@@ -92,6 +94,7 @@ class GOWECV1Env(MFEnv):
         n_components: int = 64,
         rotor_inertia: float = _P.rotor_inertia,
         rotor_speed: float = _P.rotor_speed,
+        gyro_units: int = 2,
         generator_efficiency: float = 0.8,
         motor_efficiency: float | None = None,
         max_generator_torque: float = 10000.0,
@@ -142,7 +145,10 @@ class GOWECV1Env(MFEnv):
         )
         pto = dict(damping=0.0, stiffness=0.0, max_torque=self.max_generator_torque,
                    max_power=p_max, eta_generator=self.eta_g, eta_motor=self.eta_m)  # fmt: skip
-        self.model = FloatingModel(self.hull, gyro, pto, gyroscopic="gyroscopic" in self.effects)
+        units = check_int("gyro_units", gyro_units, low=1, high=2)
+        self.model = FloatingModel(
+            self.hull, gyro, pto, gyroscopic="gyroscopic" in self.effects, units=units
+        )
         crit = 2.0 * math.sqrt(self.hull.stiffness * (self.model.p.inertia[0]))
         bv = 0.05 * crit if viscous_damping is None else viscous_damping
         bv = check_range("viscous_damping", bv, 0.0, 1e12)
@@ -186,7 +192,7 @@ class GOWECV1Env(MFEnv):
         w = 2.0 * math.pi / self.wave_period
         H = abs(self.model.p.gyro[0] * (self.model.psid or _P.rotor_speed))
         beta0 = self.hull.rao(w) * self.wave_amplitude
-        return max(0.5 * H * beta0 * w * w, 1e-3)
+        return max(0.5 * self.model.units * H * beta0 * w * w, 1e-3)
 
     def set_pto(self, damping: float, stiffness: float) -> None:
         """Linear PTO of the drive's inner loop: M_g += c phi' + k phi, evaluated every substep

@@ -18,7 +18,9 @@ and with B_k = d w_k / d u, h_k = J_k w_k, the B-matrix equations (Eqs. 73-75)
     sum_k B_k^T (J_k B_k u' + J_k B_k' u + w_frame x h_k) = Q
     Q = (M_x - C theta - mu_theta, M_y - C rho - mu_rho, -M_g)                   (Cummins 1962)
 
-J_h = diag(I + A_inf, I + A_inf, I_z) (A_inf, the infinite-frequency added inertia, rides with the
+With the dual configuration (`gyro_units` = 2, the seed's Fig. 3-2) a second unit turns
+at -phi with spin -psi' (a mirrored pair sharing one generator law); its roll and yaw reactions
+cancel those of the first, and Q_phi = -2 M_g. J_h = diag(I + A_inf, I + A_inf, I_z) (A_inf, the infinite-frequency added inertia, rides with the
 hull), mu = radiation memory from the state-space fit x' = Ar x + Br q', mu = Cr x (one copy per
 axis, `radiation.fit_radiation`), C the hydrostatic stiffness, M_x, M_y the wave excitation
 moments (`excitation_coefficients`), and an optional linear viscous damping b_v q' on each axis.
@@ -53,7 +55,7 @@ class FloatingParams:
     max torque N m, max power W, eta_generator, eta_motor)."""
 
     inertia: NDArray[np.float64]
-    gyro: NDArray[np.float64]
+    gyro: NDArray[np.float64]  # (Ja, Jt, Jg1, Jg2, Jg3, n_units)
     psid: float
     stiffness: float
     viscous: float
@@ -103,21 +105,18 @@ def pto_torque(phi, phid, tau, pto):
 @numba.njit(cache=True)
 def mass_and_rhs(q, u, inertia, gyro, psid):
     """M* (3,3) and the velocity terms v (3,) = sum B^T (J B' u + w x h) of the module doc;
-    also returns the rotor's spin-axis rate w_g3 and the gyro unit's B^T(...) split (3,)."""
+    also the spin coupling S = sum_s s w_g3(s) (rad/s) and the gyro units' share of v (3,).
+    gyro = (Ja, Jt, Jg1, Jg2, Jg3, n_units); unit s = +1 has gimbal angle phi and spin psi',
+    unit s = -1 (dual configuration, ch. 3 Sec. 3.2.3) -phi and -psi'."""
     th_d, ro_d, ph_d = u[0], u[1], u[2]
     cr_, sr_ = math.cos(q[1]), math.sin(q[1])
-    b = q[1] + q[2]
-    cb, sb = math.cos(b), math.sin(b)
     Ih, Iz = inertia[0], inertia[1]
     Ja, Jt, Jg1, Jg2, Jg3 = gyro[0], gyro[1], gyro[2], gyro[3], gyro[4]
     # gimbal + rotor (principal in the gimbal frame): J1, J2, J3 (rotor spin added in h3)
     G1, G2, G3 = Jg1 + Jt, Jg2 + Jt, Jg3 + Ja
     M = np.zeros((3, 3))
-    M[0, 0] = Ih * cr_ * cr_ + Iz * sr_ * sr_ + G1 * cb * cb + G3 * sb * sb
-    M[1, 1] = Ih + G2
-    M[1, 2] = G2
-    M[2, 1] = G2
-    M[2, 2] = G2
+    M[0, 0] = Ih * cr_ * cr_ + Iz * sr_ * sr_
+    M[1, 1] = Ih
     # hull: w = (c th', ro', s th'), B'u = (-s ro' th', 0, c ro' th')
     w1, w2, w3 = cr_ * th_d, ro_d, sr_ * th_d
     d1, d3 = -sr_ * ro_d * th_d, cr_ * ro_d * th_d
@@ -127,19 +126,30 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
     v = np.zeros(3)
     v[0] = cr_ * e1 + sr_ * e3
     v[1] = e2
-    # gimbal + rotor: w = (cb th', ro' + ph', sb th'), B'u = (-sb bd th', 0, cb bd th')
-    bd = ro_d + ph_d
-    g1, g2, g3 = cb * th_d, bd, sb * th_d
-    h1, h2, h3 = G1 * g1, G2 * g2, G3 * g3 + Ja * psid
-    f1 = G1 * (-sb * bd * th_d) + (g2 * h3 - g3 * h2)
-    f2 = g3 * h1 - g1 * h3
-    f3 = G3 * (cb * bd * th_d) + (g1 * h2 - g2 * h1)
     gy = np.zeros(3)
-    gy[0] = cb * f1 + sb * f3
-    gy[1] = f2
-    gy[2] = f2
+    spin = 0.0
+    for k in range(int(gyro[5])):
+        sg = 1.0 - 2.0 * k
+        # w = (cb th', ro' + s ph', sb th'), b = ro + s phi, B'u = (-sb bd th', 0, cb bd th')
+        b = q[1] + sg * q[2]
+        cb, sb = math.cos(b), math.sin(b)
+        bd = ro_d + sg * ph_d
+        M[0, 0] += G1 * cb * cb + G3 * sb * sb
+        M[1, 1] += G2
+        M[1, 2] += sg * G2
+        M[2, 1] += sg * G2
+        M[2, 2] += G2
+        g1, g2, g3 = cb * th_d, bd, sb * th_d
+        h1, h2, h3 = G1 * g1, G2 * g2, G3 * g3 + sg * Ja * psid
+        f1 = G1 * (-sb * bd * th_d) + (g2 * h3 - g3 * h2)
+        f2 = g3 * h1 - g1 * h3
+        f3 = G3 * (cb * bd * th_d) + (g1 * h2 - g2 * h1)
+        gy[0] += cb * f1 + sb * f3
+        gy[1] += f2
+        gy[2] += sg * f2
+        spin += sg * g3
     v += gy
-    return M, v, g3, gy
+    return M, v, spin, gy
 
 
 @numba.njit(cache=True)
@@ -158,7 +168,8 @@ def deriv(t, y, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr):
     Q = np.empty(3)
     Q[0] = mx - C * q[0] - mu_t - bv * u[0]
     Q[1] = my - C * q[1] - mu_r - bv * u[1]
-    Q[2] = -Mg
+    nu = p_gy[5]
+    Q[2] = -nu * Mg
     ud = np.linalg.solve(M, Q - v)
     dy = np.empty_like(y)
     dy[0:3] = u
@@ -166,16 +177,19 @@ def deriv(t, y, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr):
     dy[6 : 6 + nr] = Ar @ xt + Br * u[0]
     dy[6 + nr : 6 + 2 * nr] = Ar @ xr + Br * u[1]
     k = 6 + 2 * nr
-    P = Mg * u[2]
+    P = nu * Mg * u[2]
     dy[k] = mx * u[0] + my * u[1]
     dy[k + 1] = mu_t * u[0] + mu_r * u[1]
     dy[k + 2] = bv * (u[0] * u[0] + u[1] * u[1])
     dy[k + 3] = P
     dy[k + 4] = P * pto[4] if P >= 0.0 else P / pto[5]
-    # rotor motor torque holds psi': Ja d/dt(w_g3 + psi') with w_g3 = sin(b) theta'
-    b = q[1] + q[2]
-    wg3d = math.cos(b) * (u[1] + u[2]) * u[0] + math.sin(b) * ud[0]
-    dy[k + 5] = p_gy[0] * wg3d * psid
+    # rotor motors hold +-psi': torque Ja d/dt(w_g3) with w_g3 = sin(b) theta', b = rho + s phi
+    pm = 0.0
+    for j in range(int(nu)):
+        sg = 1.0 - 2.0 * j
+        b = q[1] + sg * q[2]
+        pm += sg * (math.cos(b) * (u[1] + sg * u[2]) * u[0] + math.sin(b) * ud[0])
+    dy[k + 5] = p_gy[0] * pm * psid
     return dy
 
 
@@ -197,9 +211,9 @@ def rk4_steps(t, y, tau, dt, n, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp
 def mechanical_energy(p: FloatingParams, y: NDArray[np.float64]) -> float:
     """Kinetic + hydrostatic energy (J) of the mechanical state, with the rotor spin's constant
     1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor)."""
-    M, _, g3, _ = mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
+    M, _, spin, _ = mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
     u = y[3:6]
-    kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * g3
+    kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * spin
     return kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
 
 
@@ -209,6 +223,6 @@ def gyro_moment(p: FloatingParams, y: NDArray[np.float64], accel: NDArray) -> ND
     generator torque's reaction included through the rho row (the gimbal axis is e2)."""
     q, u = y[0:3], y[3:6]
     Mfull, v, _, gy = mass_and_rhs(q, u, p.inertia, p.gyro, p.psid)
-    Mh, vh, _, _ = mass_and_rhs(q, u, p.inertia, np.zeros(5), 0.0)
+    Mh, vh, _, _ = mass_and_rhs(q, u, p.inertia, np.zeros(6), 0.0)
     Mg_part = (Mfull - Mh) @ accel + gy
     return -Mg_part[:2]

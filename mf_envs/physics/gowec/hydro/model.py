@@ -35,6 +35,7 @@ class FloatingModel:
         viscous_damping: float = 0.0,
         gyroscopic: bool = True,
         radiation: RadiationFit | None = None,
+        units: int = 2,
     ) -> None:
         self.hull = hull
         self.gyro = gyro
@@ -42,7 +43,11 @@ class FloatingModel:
             hull.omega, hull.added_mass, hull.damping, hull.added_mass_inf
         )
         Iz = 0.5 * hull.mass * (hull.radius if math.isfinite(hull.radius) else 1.0) ** 2
-        g = np.array([gyro.rotor_inertia, gyro.transverse, *gyro.gimbal_inertia], dtype=float)
+        if units not in (1, 2):
+            raise ValueError(f"gyro_units: 1 or 2 (the seed's dual configuration), got {units!r}")
+        g = np.array(
+            [gyro.rotor_inertia, gyro.transverse, *gyro.gimbal_inertia, units], dtype=float
+        )
         self.p = fl.FloatingParams(
             inertia=np.array([hull.inertia + hull.added_mass_inf, Iz]),
             gyro=g,
@@ -59,7 +64,12 @@ class FloatingModel:
     @property
     def inert(self) -> NDArray[np.float64]:
         """(Ja, Jt, Jg1, Jg2, Jg3) kg m^2, as `GimbalModel.inert` (controllers read it)."""
-        return self.p.gyro
+        return self.p.gyro[:5]
+
+    @property
+    def units(self) -> int:
+        """Number of gyro units (1, or 2 for the dual mirrored pair)."""
+        return int(self.p.gyro[5])
 
     @property
     def psid(self) -> float:
@@ -68,7 +78,7 @@ class FloatingModel:
 
     def pitch_inertia(self) -> float:
         """Rigid pitch inertia about G at phi = 0: hull + gimbal + rotor (kg m^2), no A_inf."""
-        return self.hull.inertia + self.p.gyro[1] + self.p.gyro[2]
+        return self.hull.inertia + self.units * (self.p.gyro[1] + self.p.gyro[2])
 
     # ------------------------------------------------------------------ sea and PTO
     def set_sea(self, wave: WaveField | None) -> None:
@@ -146,7 +156,9 @@ class FloatingModel:
         about x1), the hull (revolute about e2 = roll), the gimbal (revolute about e2) and the
         rotor (revolute about e3, prescribed psi' t); all centres of mass at G."""
         p = self.p
-        Ja, Jt, Jg1, Jg2, Jg3 = p.gyro
+        if self.units != 1:
+            raise ValueError("engine_model: the engine's tree holds one gyro unit (units=1)")
+        Ja, Jt, Jg1, Jg2, Jg3 = p.gyro[:5]
         Ih, Iz = p.inertia
         return Multibody(
             [
