@@ -91,14 +91,15 @@ def _stiff_hull(C=1e10):
 
 def test_stiff_heavy_hull_returns_gowec_v0():
     """X = -i k C (the wave slope times C), C >> w^2 (I + A): the buoy follows the wave slope
-    (Eqs. 77-78) and the PLL's locked gimbal returns Eq. 95 (GOWEC-v0's number)."""
+    (Eqs. 77-78) and the PLL's locked gimbal returns Eq. 95 (GOWEC-v0's number) per unit."""
     T, a, theta = 6.0, 1.0, 1.2
     env = gym.make("GOWEC-v1", hull=_stiff_hull(), wave_amplitude=a, wave_period=T,
                    wave_direction=theta, episode_seconds=90.0, effects=("gyroscopic", "viscous_damping"),
                    rotor_loss=0.0)  # fmt: skip
     P, _ = _episode(env, "pll", seed=0)
     u = env.unwrapped
-    eq95 = analytic_max_power(u.model.p.gyro[0], u.model.psid, a, T, theta)
+    # Eq. 95 is per gyroscope; the default is the seed's pair (twice the power, Sec. 3.2.3)
+    eq95 = u.model.units * analytic_max_power(u.model.p.gyro[0], u.model.psid, a, T, theta)
     n = int(10 * T / u.control_dt)
     assert np.mean(P[-n:]) == pytest.approx(eq95, rel=0.02)
 
