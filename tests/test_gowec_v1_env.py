@@ -31,8 +31,16 @@ def test_api_contract():
     env = gym.make("GOWEC-v1", episode_seconds=2.0)
     check_env(env.unwrapped)
     obs, info = env.reset(seed=0, options={"buoy_pitch": 0.05, "gimbal_rate": 1.0})
-    for k in ("power", "power_mechanical", "buoy_pitch", "buoy_roll", "buoy_rate",
-              "excitation_moment", "gimbal_angle", "gimbal_rate"):  # fmt: skip
+    for k in (
+        "power",
+        "power_mechanical",
+        "buoy_pitch",
+        "buoy_roll",
+        "buoy_rate",
+        "excitation_moment",
+        "gimbal_angle",
+        "gimbal_rate",
+    ):
         assert k in info
     assert info["buoy_pitch"] == 0.05 and info["buoy_rate"].shape == (2,)
     with pytest.raises(ValueError, match="wave_phase"):
@@ -65,8 +73,15 @@ def test_energy_balance_irregular_pll():
 def test_matched_linear_pto_absorbs_the_optimum():
     """c*, k* (issue 14) on a small regular wave: mean PTO power = |M_ex|^2 / (8 R), R = B + b_v."""
     T, a = 6.5, 0.02
-    env = gym.make("GOWEC-v1", wave_amplitude=a, wave_period=T, episode_seconds=240.0,
-                   rotor_loss=0.0, max_generator_torque=1e6, max_generator_power=1e9)  # fmt: skip
+    env = gym.make(
+        "GOWEC-v1",
+        wave_amplitude=a,
+        wave_period=T,
+        episode_seconds=240.0,
+        rotor_loss=0.0,
+        max_generator_torque=1e6,
+        max_generator_power=1e9,
+    )
     P, _ = _episode(env, "linear_pto", seed=0)
     u = env.unwrapped
     w = 2 * math.pi / T
@@ -84,18 +99,34 @@ def _stiff_hull(C=1e10):
     w = h.omega
     k = w**2 / h.g
     B = 1e-6 * w**7  # negligible radiation
-    return HullCoefficients(omega=w, added_mass=np.full_like(w, 1e5), damping=B,
-                            excitation=-1j * k * C, added_mass_inf=1e5, added_mass_zero=1e5,
-                            stiffness=C, inertia=1e7, mass=1e7, name="stiff")  # fmt: skip
+    return HullCoefficients(
+        omega=w,
+        added_mass=np.full_like(w, 1e5),
+        damping=B,
+        excitation=-1j * k * C,
+        added_mass_inf=1e5,
+        added_mass_zero=1e5,
+        stiffness=C,
+        inertia=1e7,
+        mass=1e7,
+        name="stiff",
+    )
 
 
 def test_stiff_heavy_hull_returns_gowec_v0():
     """X = -i k C (the wave slope times C), C >> w^2 (I + A): the buoy follows the wave slope
     (Eqs. 77-78) and the PLL's locked gimbal returns Eq. 95 (GOWEC-v0's number) per unit."""
     T, a, theta = 6.0, 1.0, 1.2
-    env = gym.make("GOWEC-v1", hull=_stiff_hull(), wave_amplitude=a, wave_period=T,
-                   wave_direction=theta, episode_seconds=90.0, effects=("gyroscopic", "viscous_damping"),
-                   rotor_loss=0.0)  # fmt: skip
+    env = gym.make(
+        "GOWEC-v1",
+        hull=_stiff_hull(),
+        wave_amplitude=a,
+        wave_period=T,
+        wave_direction=theta,
+        episode_seconds=90.0,
+        effects=("gyroscopic", "viscous_damping"),
+        rotor_loss=0.0,
+    )
     P, _ = _episode(env, "pll", seed=0)
     u = env.unwrapped
     # Eq. 95 is per gyroscope; the default is the seed's pair (twice the power, Sec. 3.2.3)
@@ -111,3 +142,11 @@ def test_no_controller_beats_the_radiation_bound(sea):
             env = gym.make("GOWEC-v1", episode_seconds=30.0, **sea)
             P, _ = _episode(env, kind, seed)
             assert np.mean(P) < env.unwrapped.power_bound()
+
+
+def test_render_rgb_array():
+    env = gym.make("GOWEC-v1", render_mode="rgb_array", episode_seconds=1.0)
+    env.reset(seed=0)
+    env.step(np.zeros(1, np.float32))
+    img = env.render()
+    assert img.shape == (360, 480, 3) and img.dtype == np.uint8 and img.std() > 5

@@ -12,8 +12,9 @@ from mf_envs.physics.gowec.hydro import load_hull
 from mf_envs.physics.gowec.hydro.model import FloatingModel
 from mf_envs.physics.waves import regular_wave
 
-PTO = dict(damping=0.0, stiffness=0.0, max_torque=1e9, max_power=1e12, eta_generator=0.9,
-           eta_motor=0.9)  # fmt: skip
+PTO = dict(
+    damping=0.0, stiffness=0.0, max_torque=1e9, max_power=1e12, eta_generator=0.9, eta_motor=0.9
+)
 
 
 @pytest.fixture(scope="module")
@@ -89,11 +90,15 @@ def test_fast_path_matches_engine(hull):
         mx, my = m.excitation(t)
         C, bv = m.p.stiffness, m.p.viscous
         tau = eng.joint_forces(
-            pitch=mx - C * q[0] - bv * u[0], hull=my - C * q[1] - bv * u[1],
+            pitch=mx - C * q[0] - bv * u[0],
+            hull=my - C * q[1] - bv * u[1],
             gimbal=-m.generator_torque(y, 100.0),
-        )  # fmt: skip
-        s = eng.initial_state(t, q={"pitch": q[0], "hull": q[1], "gimbal": q[2]},
-                              u={"pitch": u[0], "hull": u[1], "gimbal": u[2]})  # fmt: skip
+        )
+        s = eng.initial_state(
+            t,
+            q={"pitch": q[0], "hull": q[1], "gimbal": q[2]},
+            u={"pitch": u[0], "hull": u[1], "gimbal": u[2]},
+        )
         ud, _ = eng.accelerations(s, tau=tau)
         np.testing.assert_allclose(fast, ud[:3], rtol=1e-9, atol=1e-9 * np.abs(ud).max())
     # free motion (no loads): trajectories agree to the integrators' error
@@ -104,8 +109,10 @@ def test_fast_path_matches_engine(hull):
     y[3], y[4] = 0.05, -0.02
     dt = 1e-3
     yf = m0.step(0.0, y, 0.0, dt, 500)
-    s = eng.initial_state(q={"pitch": 0.02, "hull": -0.01, "gimbal": 0.3},
-                          u={"pitch": 0.05, "hull": -0.02, "gimbal": 2.0})  # fmt: skip
+    s = eng.initial_state(
+        q={"pitch": 0.02, "hull": -0.01, "gimbal": 0.3},
+        u={"pitch": 0.05, "hull": -0.02, "gimbal": 2.0},
+    )
     for _ in range(500):
         s = eng.step(s, dt)
     got = [eng.coordinate(s, n) for n in ("pitch", "hull", "gimbal")]

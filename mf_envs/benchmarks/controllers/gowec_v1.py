@@ -42,8 +42,13 @@ def episode(kind: str, seed: int, seconds: float, **kw) -> dict[str, float]:
         done = term or trunc
     u = env.unwrapped
     n = len(Pm) // 2
-    out = dict(P=float(np.mean(Pm[n:])), Pe=float(np.mean(Pe[n:])), J=u.wave_power_flux(),
-               bound=u.power_bound(), terminated=float(term))  # fmt: skip
+    out = dict(
+        P=float(np.mean(Pm[n:])),
+        Pe=float(np.mean(Pe[n:])),
+        J=u.wave_power_flux(),
+        bound=u.power_bound(),
+        terminated=float(term),
+    )
     env.close()
     return out
 
@@ -61,9 +66,17 @@ def rows(quick: bool) -> list[dict]:
                 ("net_power", lambda r: r["Pe"]),
             ):
                 v = [f(r) for r in runs]
-                out.append(dict(env_id=ENV_ID, scene=scene, controller=kind, metric=metric,
-                                mean=float(np.mean(v)), std=float(np.std(v)),
-                                n_seeds=len(v)))  # fmt: skip
+                out.append(
+                    dict(
+                        env_id=ENV_ID,
+                        scene=scene,
+                        controller=kind,
+                        metric=metric,
+                        mean=float(np.mean(v)),
+                        std=float(np.std(v)),
+                        n_seeds=len(v),
+                    )
+                )
     return out
 
 
@@ -77,8 +90,19 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
     fig, ax = plt.subplots(figsize=(8, 4))
     scenes = list(SCENES)
     for i, kind in enumerate(KINDS):
-        ys = [next((r["mean"] for r in rows if r["scene"] == s and r["controller"] == kind
-                    and r["metric"] == "capture_width"), np.nan) for s in scenes]  # fmt: skip
+        ys = [
+            next(
+                (
+                    r["mean"]
+                    for r in rows
+                    if r["scene"] == s
+                    and r["controller"] == kind
+                    and r["metric"] == "capture_width"
+                ),
+                np.nan,
+            )
+            for s in scenes
+        ]
         ax.bar(np.arange(len(scenes)) + (i - 1) * 0.25, ys, 0.25, label=kind)
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xticks(np.arange(len(scenes)), scenes)
@@ -106,8 +130,9 @@ def figures(out: Path) -> list[Path]:
 
     out.mkdir(parents=True, exist_ok=True)
     hull = load_hull()
-    pto = dict(damping=0.0, stiffness=0.0, max_torque=1e9, max_power=1e12, eta_generator=1.0,
-               eta_motor=1.0)  # fmt: skip
+    pto = dict(
+        damping=0.0, stiffness=0.0, max_torque=1e9, max_power=1e12, eta_generator=1.0, eta_motor=1.0
+    )
     m = FloatingModel(hull, GOWECParams(), pto, gyroscopic=False)
     paths = []
     # free decay
@@ -127,7 +152,8 @@ def figures(out: Path) -> list[Path]:
     ax.set_xlabel("time (s)")
     ax.set_ylabel("pitch (rad)")
     ax.set_title(f"Free decay: T = {2 * math.pi / wn:.3f} s, zeta = {zeta:.1e}")
-    ax.legend(loc="lower right", fontsize=8)
+    ax.set_ylim(-0.085, 0.06)
+    ax.legend(loc="lower right", fontsize=8, ncol=2)
     fig.tight_layout()
     paths.append(out / "gowec_v1_free_decay.png")
     fig.savefig(paths[-1], dpi=110)
@@ -144,13 +170,24 @@ def figures(out: Path) -> list[Path]:
             ths.append(y[0])
         tt = np.arange(1, 40001) * dt
         sel = tt > 50
-        basis = np.stack([np.cos(w * tt[sel]), np.sin(w * tt[sel]), np.cos(wn * tt[sel]),
-                          np.sin(wn * tt[sel]), np.ones(sel.sum())], 1)  # fmt: skip
+        basis = np.stack(
+            [
+                np.cos(w * tt[sel]),
+                np.sin(w * tt[sel]),
+                np.cos(wn * tt[sel]),
+                np.sin(wn * tt[sel]),
+                np.ones(sel.sum()),
+            ],
+            1,
+        )
         c = np.linalg.lstsq(basis, np.asarray(ths)[sel], rcond=None)[0]
         sim.append(math.hypot(c[0], c[1]) / 0.05)
     wf = np.linspace(0.6, 2.0, 400)
-    rao = [abs(hull.at(w)[2]) / abs(complex(hull.stiffness - w * w * (I + hull.at(w)[0]),
-                                            w * hull.at(w)[1])) for w in wf]  # fmt: skip
+    rao = [
+        abs(hull.at(w)[2])
+        / abs(complex(hull.stiffness - w * w * (I + hull.at(w)[0]), w * hull.at(w)[1]))
+        for w in wf
+    ]
     fig, ax = plt.subplots(figsize=(8, 3.5))
     ax.semilogy(wf, rao, label="frequency domain |X| / |-w^2 (I + A) + i w B + C|")
     ax.semilogy([2 * math.pi / T for T in periods], sim, "o", label="time domain (steady part)")
@@ -169,9 +206,11 @@ def _coupling(out: Path) -> Path:
     import matplotlib.pyplot as plt
 
     res = {}
-    for label, kw, kind in (("rotor off", dict(effects=("radiation", "viscous_damping")), None),
-                            ("rotor on, matched linear PTO", {}, "linear_pto"),
-                            ("rotor on, PLL", {}, "pll")):  # fmt: skip
+    for label, kw, kind in (
+        ("rotor off", dict(effects=("radiation", "viscous_damping")), None),
+        ("rotor on, matched linear PTO", {}, "linear_pto"),
+        ("rotor on, PLL", {}, "pll"),
+    ):
         env = gym.make(ENV_ID, wave_amplitude=0.5, wave_period=6.0, episode_seconds=120.0, **kw)
         c = make_baseline(env, kind) if kind else None
         obs, _ = env.reset(seed=0)
@@ -191,10 +230,12 @@ def _coupling(out: Path) -> Path:
         a1.plot(t, th, lw=1, label=label)
         a2.plot(t, M / 1e3, lw=1, label=label)
     a1.set_ylabel("buoy pitch (rad)")
-    a2.set_ylabel("gyro moment on hull (kN m)")
+    a2.set_yscale("symlog", linthresh=10.0)
+    a2.set_ylabel("gyro moment on hull (kN m, symlog)")
     a2.set_xlabel("time (s)")
     a1.set_title("Two-way coupling, a = 0.5 m, T = 6 s (dual Seakeeper 26)")
-    a1.legend(fontsize=8, loc="upper left")
+    a1.set_ylim(-0.8, 1.1)
+    a1.legend(fontsize=8, loc="upper left", ncol=3)
     fig.tight_layout()
     p = out / "gowec_v1_coupling.png"
     fig.savefig(p, dpi=110)

@@ -51,7 +51,8 @@ class GOWECV1Env(MFEnv):
 
     ## Rewards
     Net electrical energy of the step / (P_ref control_dt): generator output eta_g P when P =
-    n M_g phi' > 0 (n = gyro_units, the same torque on each unit), drawn power P / eta_m when motoring, minus rotor_loss. P_ref (> 0, W) is Eq. 88
+    n M_g phi' > 0 (n = gyro_units, the same torque on each unit), drawn power P / eta_m when
+    motoring, minus rotor_loss. P_ref (> 0, W) is Eq. 88
     (n/2 H beta0 w^2, the locked-gimbal power) with beta0 the rotor-off pitch amplitude from the
     RAO at the wave (irregular: a = Hs / (2 sqrt 2), T = peak_period): `reference_power()`.
 
@@ -117,34 +118,48 @@ class GOWECV1Env(MFEnv):
             self.wave_amplitude = hs / (2.0 * math.sqrt(2.0))
         self.wave_period = check_range(
             "peak_period" if self.irregular else "wave_period",
-            peak_period if self.irregular else wave_period, 0.5, 60.0,
-        )  # fmt: skip
+            peak_period if self.irregular else wave_period,
+            0.5,
+            60.0,
+        )
         if spectrum not in SPECTRA:
             raise ValueError(f"spectrum: one of {sorted(SPECTRA)}, got {spectrum!r}")
         self.spectrum, self.gamma = spectrum, check_range("gamma", gamma, 1.0, 20.0)
         self.n_components = check_int("n_components", n_components, low=1, high=4096)
         self.eta_g = check_range("generator_efficiency", generator_efficiency, 1e-3, 1.0)
-        self.eta_m = self.eta_g if motor_efficiency is None else check_range(
-            "motor_efficiency", motor_efficiency, 1e-3, 1.0)  # fmt: skip
+        self.eta_m = (
+            self.eta_g
+            if motor_efficiency is None
+            else check_range("motor_efficiency", motor_efficiency, 1e-3, 1.0)
+        )
         self.max_generator_torque = check_range("max_generator_torque", max_generator_torque, 0.0)
         p_max = check_range("max_generator_power", max_generator_power, 0.0)
         self.rotor_loss = check_range("rotor_loss", rotor_loss, 0.0, 1e7)
         self.max_gimbal_rate = check_range("max_gimbal_rate", max_gimbal_rate, 1e-6)
         self.episode_seconds = check_range("episode_seconds", episode_seconds, 1e-3, 1e6)
         super().__init__(
-            effects=effects, available_effects=AVAILABLE_EFFECTS, default_effects=DEFAULT_EFFECTS,
+            effects=effects,
+            available_effects=AVAILABLE_EFFECTS,
+            default_effects=DEFAULT_EFFECTS,
             control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
             physics_dt=check_range("physics_dt", physics_dt, 1e-5, 1.0),
             render_mode=render_mode,
-        )  # fmt: skip
+        )
         self.irregular = self.irregular or "irregular_waves" in self.effects
+        self._base_substeps = self.n_substeps
         self.hull = load_hull(hull)
         gyro = GOWECParams(
             check_range("rotor_inertia", rotor_inertia, 1e-9, 1e6),
             check_range("rotor_speed", rotor_speed, -1e4, 1e4),
         )
-        pto = dict(damping=0.0, stiffness=0.0, max_torque=self.max_generator_torque,
-                   max_power=p_max, eta_generator=self.eta_g, eta_motor=self.eta_m)  # fmt: skip
+        pto = dict(
+            damping=0.0,
+            stiffness=0.0,
+            max_torque=self.max_generator_torque,
+            max_power=p_max,
+            eta_generator=self.eta_g,
+            eta_motor=self.eta_m,
+        )
         units = check_int("gyro_units", gyro_units, low=1, high=2)
         self.model = FloatingModel(
             self.hull, gyro, pto, gyroscopic="gyroscopic" in self.effects, units=units
@@ -198,7 +213,13 @@ class GOWECV1Env(MFEnv):
         """Linear PTO of the drive's inner loop: M_g += c phi' + k phi, evaluated every substep
         (c N m s/rad, k N m/rad)."""
         c = check_range("damping", damping, 0.0, 1e9)
-        self.model.set_pto(c, check_range("stiffness", stiffness, -1e9, 1e9))
+        k = check_range("stiffness", stiffness, -1e9, 1e9)
+        self.model.set_pto(c, k)
+        # explicit RK4: keep the damper's rate c dt / I_g <= 2 and w_k dt <= 0.5 (stable, accurate)
+        Ig = self.model.p.gyro[1] + self.model.p.gyro[3]
+        rate = max(c / Ig, 4.0 * math.sqrt(abs(k) / Ig))
+        self.n_substeps = max(self._base_substeps, math.ceil(self.control_dt * rate / 2.0))
+        self.physics_dt = self.control_dt / self.n_substeps
 
     # ------------------------------------------------------------------ gym API
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
@@ -209,8 +230,12 @@ class GOWECV1Env(MFEnv):
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
         if not np.all(np.isfinite(y)):
-            info = {"power": 0.0, "reward_terms": {"net_electrical_energy": 0.0},
-                    "overspeed": False, "out_of_range": False}  # fmt: skip
+            info = {
+                "power": 0.0,
+                "reward_terms": {"net_electrical_energy": 0.0},
+                "overspeed": False,
+                "out_of_range": False,
+            }
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
         self.state = y
         e1 = self.model.energies(y)
@@ -230,8 +255,12 @@ class GOWECV1Env(MFEnv):
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[np.ndarray, dict[str, Any]]:
         opts = check_options(options, spec.RESET_OPTIONS)
-        lim = {"buoy_pitch": spec.MAX_BUOY_ANGLE, "buoy_roll": spec.MAX_BUOY_ANGLE,
-               "gimbal_angle": 1e3, "gimbal_rate": self.max_gimbal_rate}  # fmt: skip
+        lim = {
+            "buoy_pitch": spec.MAX_BUOY_ANGLE,
+            "buoy_roll": spec.MAX_BUOY_ANGLE,
+            "gimbal_angle": 1e3,
+            "gimbal_rate": self.max_gimbal_rate,
+        }
         for k in opts:
             opts[k] = check_range(k, opts[k], -lim[k], lim[k])
         super().reset(seed=seed)
@@ -239,26 +268,37 @@ class GOWECV1Env(MFEnv):
         if self.irregular:
             hs = 2.0 * math.sqrt(2.0) * self.wave_amplitude
             fn = SPECTRA[self.spectrum]
-            spec_fn = (lambda w, h, tp: fn(w, h, tp, self.gamma)) if self.spectrum == "jonswap" \
-                else fn  # fmt: skip
+            spec_fn = (
+                (lambda w, h, tp: fn(w, h, tp, self.gamma)) if self.spectrum == "jonswap" else fn
+            )
             self.wave = waves.IrregularSea(
-                spec_fn, hs, self.wave_period, self.n_components, rng, self.wave_direction,
+                spec_fn,
+                hs,
+                self.wave_period,
+                self.n_components,
+                rng,
+                self.wave_direction,
                 omega_range=(0.3 * 2 * math.pi / self.wave_period, float(self.hull.omega[-1])),
-            )  # fmt: skip
+            )
         else:
             self.wave = waves.regular_wave(
-                self.wave_amplitude, self.wave_period, self.wave_direction,
+                self.wave_amplitude,
+                self.wave_period,
+                self.wave_direction,
                 phase=float(rng.uniform(0.0, 2.0 * math.pi)),
-            )  # fmt: skip
+            )
         self.model.set_sea(self.wave)
         self.state = self.model.initial_state(
-            opts.get("buoy_pitch", 0.0), opts.get("buoy_roll", 0.0),
-            opts.get("gimbal_angle", float(rng.uniform(-0.1, 0.1))), opts.get("gimbal_rate", 0.0),
-        )  # fmt: skip
+            opts.get("buoy_pitch", 0.0),
+            opts.get("buoy_roll", 0.0),
+            opts.get("gimbal_angle", float(rng.uniform(-0.1, 0.1))),
+            opts.get("gimbal_rate", 0.0),
+        )
         self._t, self._steps = 0.0, 0
         info = self._info(0.0, 0.0, 0.0)
-        info.update(reward_terms={"net_electrical_energy": 0.0}, overspeed=False,
-                    out_of_range=False)  # fmt: skip
+        info.update(
+            reward_terms={"net_electrical_energy": 0.0}, overspeed=False, out_of_range=False
+        )
         return self._finish_reset(self._get_obs()), info
 
     def _info(self, p_el: float, p_mech: float, tau: float) -> dict[str, Any]:
@@ -301,11 +341,16 @@ class GOWECV1Env(MFEnv):
         psi = math.fmod(self.model.psid * self._t, 2 * math.pi)
         phi = math.remainder(float(self.state[2]), 2 * math.pi)
         return draw_gowec(
-            buoy_R=R, gimbal_angle=float(self.state[2]), rotor_angle=psi, wave_x=x, wave_z=z,
-            wave_direction=self.wave_direction, buoy_radius=self.buoy_radius or None,
+            buoy_R=R,
+            gimbal_angle=float(self.state[2]),
+            rotor_angle=psi,
+            wave_x=x,
+            wave_z=z,
+            wave_direction=self.wave_direction,
+            buoy_radius=self.buoy_radius or None,
             text=f"t = {self._t:5.1f} s  pitch = {self.state[0]:+.2f} rad  phi = {phi:+.2f} rad"
             f"  P = {self._last_power / 1e3:.2f} kW",
-        )  # fmt: skip
+        )
 
 
 GOWECV1Env.__doc__ = (GOWECV1Env.__doc__ or "").replace("OBSERVATION_TABLE", spec.OBS.table())

@@ -17,7 +17,9 @@ OBS = ObsLayout(
     Field("cos_gimbal_angle", "", 1.0, "cos(phi)"),
     Field("gimbal_rate", "rad/s", "max_gimbal_rate", "phi', gimbal rate"),
     Field("buoy_rates", "rad/s", MAX_BUOY_RATE, "buoy body rates w1, w2, w3 (IMU)", size=3),
-    Field("buoy_angles", "rad", MAX_BUOY_ANGLE, "buoy pitch theta, roll rho (inclinometer)", size=2),
+    Field(
+        "buoy_angles", "rad", MAX_BUOY_ANGLE, "buoy pitch theta, roll rho (inclinometer)", size=2
+    ),
 )
 I_SIN, I_COS = OBS.index("sin_gimbal_angle"), OBS.index("cos_gimbal_angle")
 I_RATE = OBS.index("gimbal_rate")

@@ -34,9 +34,17 @@ G = 9.81  # m/s^2, as mf_envs.physics.waves
 
 _ARRAYS = ("omega", "added_mass", "damping", "excitation")
 _SCALARS = (
-    "added_mass_inf", "added_mass_zero", "stiffness", "inertia", "mass", "rho", "g",
-    "radius", "draft", "zg",
-)  # fmt: skip
+    "added_mass_inf",
+    "added_mass_zero",
+    "stiffness",
+    "inertia",
+    "mass",
+    "rho",
+    "g",
+    "radius",
+    "draft",
+    "zg",
+)
 
 
 @dataclass(frozen=True)
@@ -83,9 +91,10 @@ class CylinderHull:
 
     def stiffness(self, rho: float = RHO, g: float = G) -> float:
         """C55 = rho g (I_wp + V z_B) - m g z_G (N m/rad), from the geometry alone."""
-        return rho * g * (self.waterplane_inertia + self.volume * self.zb) - self.mass(
-            rho
-        ) * g * self.zg
+        return (
+            rho * g * (self.waterplane_inertia + self.volume * self.zb)
+            - self.mass(rho) * g * self.zg
+        )
 
 
 @dataclass(frozen=True)
@@ -141,7 +150,9 @@ class HullCoefficients:
                     z["excitation_im"]
                 )
         except (KeyError, OSError, ValueError) as exc:
-            raise ValueError(f"hull: file {str(p)!r} is not a hull coefficient file ({exc})")
+            raise ValueError(
+                f"hull: file {str(p)!r} is not a hull coefficient file ({exc})"
+            ) from exc
         return cls(**kw, name=str(p))
 
     # ------------------------------------------------------------------ interpolation

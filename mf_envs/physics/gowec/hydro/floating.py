@@ -16,14 +16,15 @@ Body angular velocities (body frames) in terms of u = (theta', rho', phi') (Eqs.
 and with B_k = d w_k / d u, h_k = J_k w_k, the B-matrix equations (Eqs. 73-75)
 
     sum_k B_k^T (J_k B_k u' + J_k B_k' u + w_frame x h_k) = Q
-    Q = (M_x - C theta - mu_theta, M_y - C rho - mu_rho, -M_g)                   (Cummins 1962)
+    Q = (M_x - C theta - mu_theta, M_y - C rho - mu_rho, -n M_g)                 (Cummins 1962)
 
 With the dual configuration (`gyro_units` = 2, the seed's Fig. 3-2) a second unit turns
 at -phi with spin -psi' (a mirrored pair sharing one generator law); its roll and yaw reactions
-cancel those of the first, and Q_phi = -2 M_g. J_h = diag(I + A_inf, I + A_inf, I_z) (A_inf, the infinite-frequency added inertia, rides with the
-hull), mu = radiation memory from the state-space fit x' = Ar x + Br q', mu = Cr x (one copy per
-axis, `radiation.fit_radiation`), C the hydrostatic stiffness, M_x, M_y the wave excitation
-moments (`excitation_coefficients`), and an optional linear viscous damping b_v q' on each axis.
+cancel those of the first, and Q_phi = -2 M_g. J_h = diag(I + A_inf, I + A_inf, I_z)
+(A_inf, the infinite-frequency added inertia, rides with the hull), mu = radiation memory
+from the state-space fit x' = Ar x + Br q', mu = Cr x (one copy per axis,
+`radiation.fit_radiation`), C the hydrostatic stiffness, M_x, M_y the wave excitation moments
+(`excitation_coefficients`), and an optional linear viscous damping b_v q' on each axis.
 The PTO torque M_g = clip(tau_cmd + c phi' + k phi) (torque and power limits) is evaluated at every
 RK4 stage: a damper held over a control step is unstable once c dt / J > 2 (docs/design.md).
 `engine_model` builds the same system in the general multibody engine; a test checks the two.
@@ -198,10 +199,40 @@ def rk4_steps(t, y, tau, dt, n, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp
     """n RK4 substeps of dt (s) from (t, y) with the PTO command tau held; returns y (new)."""
     for _ in range(n):
         k1 = deriv(t, y, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr)
-        k2 = deriv(t + 0.5 * dt, y + 0.5 * dt * k1, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr,
-                   pto, om, cp, cr)  # fmt: skip
-        k3 = deriv(t + 0.5 * dt, y + 0.5 * dt * k2, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr,
-                   pto, om, cp, cr)  # fmt: skip
+        k2 = deriv(
+            t + 0.5 * dt,
+            y + 0.5 * dt * k1,
+            tau,
+            p_in,
+            p_gy,
+            psid,
+            C,
+            bv,
+            Ar,
+            Br,
+            Cr,
+            pto,
+            om,
+            cp,
+            cr,
+        )
+        k3 = deriv(
+            t + 0.5 * dt,
+            y + 0.5 * dt * k2,
+            tau,
+            p_in,
+            p_gy,
+            psid,
+            C,
+            bv,
+            Ar,
+            Br,
+            Cr,
+            pto,
+            om,
+            cp,
+            cr,
+        )
         k4 = deriv(t + dt, y + dt * k3, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr)
         y = y + dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
         t += dt

@@ -119,9 +119,24 @@ class FloatingModel:
         """y after n RK4 substeps of dt (s) with the PTO command tau (N m) held."""
         p = self.p
         return fl.rk4_steps(
-            t, y, float(tau), dt, n, p.inertia, p.gyro, p.psid, p.stiffness, p.viscous,
-            p.Ar, p.Br, p.Cr, p.pto, self._om, self._cp, self._cr,
-        )  # fmt: skip
+            t,
+            y,
+            float(tau),
+            dt,
+            n,
+            p.inertia,
+            p.gyro,
+            p.psid,
+            p.stiffness,
+            p.viscous,
+            p.Ar,
+            p.Br,
+            p.Cr,
+            p.pto,
+            self._om,
+            self._cp,
+            self._cr,
+        )
 
     def excitation(self, t: float) -> tuple[float, float]:
         """(M_x, M_y) wave excitation moments (N m) about e1 (pitch) and e2 (roll)."""
@@ -134,8 +149,23 @@ class FloatingModel:
     def accelerations(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
         """(theta'', rho'', phi'') (rad/s^2)."""
         p = self.p
-        d = fl.deriv(t, y, float(tau), p.inertia, p.gyro, p.psid, p.stiffness, p.viscous,
-                     p.Ar, p.Br, p.Cr, p.pto, self._om, self._cp, self._cr)  # fmt: skip
+        d = fl.deriv(
+            t,
+            y,
+            float(tau),
+            p.inertia,
+            p.gyro,
+            p.psid,
+            p.stiffness,
+            p.viscous,
+            p.Ar,
+            p.Br,
+            p.Cr,
+            p.pto,
+            self._om,
+            self._cp,
+            self._cr,
+        )
         return d[3:6]
 
     def gyro_moment(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
@@ -165,8 +195,14 @@ class FloatingModel:
                 Body("pitch", 0.0, (0.0, 0.0, 0.0), Revolute((1, 0, 0))),
                 Body("hull", 1.0, (Ih, Ih, Iz), Revolute((0, 1, 0)), parent="pitch"),
                 Body("gimbal", 1.0, (Jg1, Jg2, Jg3), Revolute((0, 1, 0)), parent="hull"),
-                Body("rotor", 1.0, (Jt, Jt, Ja), Revolute((0, 0, 1)), parent="gimbal",
-                     prescribed=constant_rate(p.psid)),  # fmt: skip
+                Body(
+                    "rotor",
+                    1.0,
+                    (Jt, Jt, Ja),
+                    Revolute((0, 0, 1)),
+                    parent="gimbal",
+                    prescribed=constant_rate(p.psid),
+                ),
             ]
         )
 

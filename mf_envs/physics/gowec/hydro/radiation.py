@@ -61,8 +61,9 @@ def _ls_step(s: NDArray, K: NDArray, n: int, wt: NDArray) -> tuple[NDArray, NDAr
 def _numerator_for_poles(s: NDArray, K: NDArray, den: NDArray, n: int) -> NDArray:
     D = np.polyval(den[::-1], s)
     cols = np.stack([s**j / D for j in range(1, n)], axis=1)
-    x = np.linalg.lstsq(np.concatenate([cols.real, cols.imag]), np.concatenate([K.real, K.imag]),
-                        rcond=None)[0]  # fmt: skip
+    x = np.linalg.lstsq(
+        np.concatenate([cols.real, cols.imag]), np.concatenate([K.real, K.imag]), rcond=None
+    )[0]
     return np.concatenate([[0.0], x])
 
 
@@ -81,9 +82,13 @@ def _fit_order(w: NDArray, K: NDArray, n: int, iters: int = 30) -> tuple[NDArray
 
 
 def fit_radiation(
-    omega: NDArray, added_mass: NDArray, damping: NDArray, added_mass_inf: float,
-    tol: float = 0.04, max_order: int = 10,
-) -> RadiationFit:  # fmt: skip
+    omega: NDArray,
+    added_mass: NDArray,
+    damping: NDArray,
+    added_mass_inf: float,
+    tol: float = 0.04,
+    max_order: int = 10,
+) -> RadiationFit:
     """Lowest order n in 2..max_order whose fit error is below tol (else the best one)."""
     w = np.asarray(omega, dtype=float)
     K = np.asarray(damping) + 1j * w * (np.asarray(added_mass) - added_mass_inf)
