@@ -154,8 +154,9 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
 
 
 @numba.njit(cache=True)
-def deriv(t, y, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr):
-    """dy/dt (module doc layout) with the PTO torque command tau (N m)."""
+def deriv(t, y, tau, args):
+    """dy/dt (module doc layout) with the PTO command tau (N m); args: `pack`."""
+    p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr = args
     nr = Ar.shape[0]
     q, u = y[0:3], y[3:6]
     xt, xr = y[6 : 6 + nr], y[6 + nr : 6 + 2 * nr]
@@ -195,48 +196,23 @@ def deriv(t, y, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr):
 
 
 @numba.njit(cache=True)
-def rk4_steps(t, y, tau, dt, n, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr):
-    """n RK4 substeps of dt (s) from (t, y) with the PTO command tau held; returns y (new)."""
+def rk4_steps(t, y, tau, dt, n, args):
+    """n RK4 substeps of dt (s) from (t, y) with the PTO command tau held; returns y (new).
+    args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr) as `deriv` (`pack`)."""
     for _ in range(n):
-        k1 = deriv(t, y, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr)
-        k2 = deriv(
-            t + 0.5 * dt,
-            y + 0.5 * dt * k1,
-            tau,
-            p_in,
-            p_gy,
-            psid,
-            C,
-            bv,
-            Ar,
-            Br,
-            Cr,
-            pto,
-            om,
-            cp,
-            cr,
-        )
-        k3 = deriv(
-            t + 0.5 * dt,
-            y + 0.5 * dt * k2,
-            tau,
-            p_in,
-            p_gy,
-            psid,
-            C,
-            bv,
-            Ar,
-            Br,
-            Cr,
-            pto,
-            om,
-            cp,
-            cr,
-        )
-        k4 = deriv(t + dt, y + dt * k3, tau, p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr)
+        k1 = deriv(t, y, tau, args)
+        k2 = deriv(t + 0.5 * dt, y + 0.5 * dt * k1, tau, args)
+        k3 = deriv(t + 0.5 * dt, y + 0.5 * dt * k2, tau, args)
+        k4 = deriv(t + dt, y + dt * k3, tau, args)
         y = y + dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
         t += dt
     return y
+
+
+def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray) -> tuple:
+    """The argument tuple of `deriv` / `rk4_steps` for params p and excitation (om, cp, cr)."""
+    return (p.inertia, p.gyro, float(p.psid), float(p.stiffness), float(p.viscous), p.Ar, p.Br,
+            p.Cr, p.pto, om, cp, cr)  # fmt: skip
 
 
 def mechanical_energy(p: FloatingParams, y: NDArray[np.float64]) -> float:

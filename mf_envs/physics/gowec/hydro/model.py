@@ -117,26 +117,10 @@ class FloatingModel:
 
     def step(self, t: float, y: NDArray, tau: float, dt: float, n: int) -> NDArray[np.float64]:
         """y after n RK4 substeps of dt (s) with the PTO command tau (N m) held."""
-        p = self.p
-        return fl.rk4_steps(
-            t,
-            y,
-            float(tau),
-            dt,
-            n,
-            p.inertia,
-            p.gyro,
-            p.psid,
-            p.stiffness,
-            p.viscous,
-            p.Ar,
-            p.Br,
-            p.Cr,
-            p.pto,
-            self._om,
-            self._cp,
-            self._cr,
-        )
+        return fl.rk4_steps(t, y, float(tau), dt, n, self._args())
+
+    def _args(self) -> tuple:
+        return fl.pack(self.p, self._om, self._cp, self._cr)
 
     def excitation(self, t: float) -> tuple[float, float]:
         """(M_x, M_y) wave excitation moments (N m) about e1 (pitch) and e2 (roll)."""
@@ -148,24 +132,7 @@ class FloatingModel:
 
     def accelerations(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
         """(theta'', rho'', phi'') (rad/s^2)."""
-        p = self.p
-        d = fl.deriv(
-            t,
-            y,
-            float(tau),
-            p.inertia,
-            p.gyro,
-            p.psid,
-            p.stiffness,
-            p.viscous,
-            p.Ar,
-            p.Br,
-            p.Cr,
-            p.pto,
-            self._om,
-            self._cp,
-            self._cr,
-        )
+        d = fl.deriv(t, y, float(tau), self._args())
         return d[3:6]
 
     def gyro_moment(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
