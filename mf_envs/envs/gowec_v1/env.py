@@ -225,7 +225,10 @@ class GOWECV1Env(MFEnv):
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         tau = self._scalar_action(action) * self.max_generator_torque
         e0 = self.model.energies(self.state)
-        y = self.model.step(self._t, self.state, tau, self.physics_dt, self.n_substeps)
+        try:  # numba's solve raises on a non-finite mass matrix
+            y = self.model.step(self._t, self.state, tau, self.physics_dt, self.n_substeps)
+        except np.linalg.LinAlgError:
+            y = np.full_like(self.state, np.nan)
         self._steps += 1
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
