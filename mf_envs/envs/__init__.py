@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+import warnings
+
 import gymnasium as gym
+
+# GOWEC-v0 (the dissertation's prescribed buoy) stays supported next to GOWEC-v1 (the floating
+# buoy): silence gymnasium's "GOWEC-v0 is out of date, upgrade to v1" deprecation warning
+warnings.filterwarnings("ignore", message=r".*GOWEC-v0 is out of date")
 
 # id -> (entry point, default max_episode_steps or None); each env module owns its episode length
 ENV_SPECS: dict[str, str] = {
