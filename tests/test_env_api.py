@@ -36,6 +36,16 @@ INFO_KEYS: dict[str, tuple[str, ...]] = {
         "wave_moment",
     ),
     "Inchworm-v0": ("x_head", "x_tail", "centerline"),
+    "GOWEC-v1": (
+        "power",
+        "power_mechanical",
+        "buoy_pitch",
+        "buoy_roll",
+        "buoy_rate",
+        "excitation_moment",
+        "gimbal_angle",
+        "gimbal_rate",
+    ),
 }
 
 # docs/api.md kwargs with one physically invalid value each (the ValueError must name the kwarg)
@@ -58,6 +68,12 @@ INVALID_KWARGS: dict[str, list[tuple[str, Any]]] = {
         ("youngs_modulus", -1.0),
         ("mass_per_length", float("inf")),
     ],
+    "GOWEC-v1": [
+        ("rotor_inertia", -1.0),
+        ("wave_period", 0.0),
+        ("generator_efficiency", 1.5),
+        ("max_generator_torque", -5.0),
+    ],
 }
 
 # Steps of the long random-action soak per env: 1e5 where it fits the CI budget. Measured in
@@ -68,6 +84,7 @@ SOAK_STEPS: dict[str, int] = {
     "GOWEC-v0": 100_000,
     "GyroStabilizer-v0": 100_000,
     "Inchworm-v0": 1_000,
+    "GOWEC-v1": 20_000,  # ~1 ms per step (Cummins + gyro, 4 RK4 substeps)
 }
 
 # Random-action steps for the determinism/pickling checks ("a few hundred"); the quasi-static
@@ -80,6 +97,7 @@ POISON: dict[str, Any] = {
     "GOWEC-v0": lambda raw: raw.state.fill(np.nan),  # (phi, phi')
     "GyroStabilizer-v0": lambda raw: raw._y.fill(np.nan),  # ship rates, phi, phi', ...
     "Inchworm-v0": lambda raw: raw.sim.state.d.fill(np.nan),  # beam nodal dofs (Newmark d)
+    "GOWEC-v1": lambda raw: raw.state.fill(np.nan),  # buoy, gimbal, radiation states, energies
 }
 
 
@@ -291,6 +309,7 @@ def test_every_effect_set_runs_random_actions(env_id):
 RESET_OPTIONS: dict[str, dict[str, float]] = {
     "GOWEC-v0": {"gimbal_angle": 0.3, "gimbal_rate": -0.5},
     "GyroStabilizer-v0": {"roll": 0.1, "roll_rate": 0.05, "gimbal_angle": 0.2},
+    "GOWEC-v1": {"buoy_pitch": 0.1, "buoy_roll": -0.05, "gimbal_angle": 0.3, "gimbal_rate": -0.5},
 }
 
 

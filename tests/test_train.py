@@ -245,6 +245,7 @@ def test_env_metrics_from_info(env_id):
     m = run_episode(env_id, env, _ZeroFor(env), seed=0)
     key = {
         "GOWEC-v0": "power_ratio",
+        "GOWEC-v1": "capture_width",
         "GyroStabilizer-v0": "rms_roll",
         "Inchworm-v0": "tail_advance_per_step",
     }[env_id]
