@@ -39,6 +39,12 @@ def _cmd_train(args: argparse.Namespace) -> list[Path]:
     return train_command(args)
 
 
+def _cmd_sweep(args: argparse.Namespace) -> list[Path]:
+    from mf_envs.sweep.cli import sweep_command
+
+    return sweep_command(args)
+
+
 def _cmd_evaluate(args: argparse.Namespace) -> list[Path]:
     from mf_envs.train.cli import evaluate_command
 
@@ -97,6 +103,12 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--episodes", type=int, default=5)
     e.add_argument("--seed", type=int, default=1000, help="first evaluation seed")
     e.set_defaults(func=_cmd_evaluate)
+
+    s = sub.add_parser("sweep", help="env kwargs x controllers x seeds on Ray (CSV + PNG)")
+    from mf_envs.sweep.cli import add_arguments
+
+    add_arguments(s)
+    s.set_defaults(func=_cmd_sweep)
     return p
 
 
