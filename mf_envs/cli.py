@@ -34,7 +34,10 @@ def _cmd_render(args: argparse.Namespace) -> list[Path]:
 
 
 def _cmd_train(args: argparse.Namespace) -> list[Path]:
-    from mf_envs.train.cli import train_command
+    if args.backend == "rllib":
+        from mf_envs.train.rllib import train_command
+    else:
+        from mf_envs.train.cli import train_command
 
     return train_command(args)
 
@@ -95,6 +98,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--config", default=None, help="YAML hyperparameters (rl-zoo3 format)")
     t.add_argument("--out", default="runs", help="output folder (default: %(default)s)")
     t.add_argument("--tensorboard", action="store_true", help="write TensorBoard logs")
+    t.add_argument("--backend", choices=("sb3", "rllib"), default="sb3", help="sb3 | rllib (Ray)")
     t.set_defaults(func=_cmd_train)
 
     e = sub.add_parser("evaluate", help="PPO vs every classical baseline on unseen seeds")

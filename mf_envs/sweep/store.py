@@ -46,6 +46,12 @@ class ResultStore:
         with self.path.open(newline="") as fh:
             return [{k: _parse(v) for k, v in r.items()} for r in csv.DictReader(fh)]
 
+    def by_id(self, drop: tuple[str, ...] = ("wall_s",)) -> dict[str, dict[str, Any]]:
+        """{trial id: row without the `drop` columns} (by default without the wall time)."""
+        return {
+            str(r["trial_id"]): {k: v for k, v in r.items() if k not in drop} for r in self.rows()
+        }
+
     def done_ids(self) -> set[str]:
         return {str(r["trial_id"]) for r in self.rows()}
 
