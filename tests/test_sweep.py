@@ -181,3 +181,14 @@ def test_without_ray_one_line_naming_the_extra(argv, monkeypatch, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and 'pip install "mf-envs[ray]"' in err
+
+
+def test_shipped_ppo_policy_as_a_controller(tmp_path):
+    from mf_envs.train import load_policy
+
+    data = {**SMALL, "seeds": [3], "controllers": ["ppo"], "scenes": {"s": {"wave_period": 3.7}}}
+    path, _ = run_sweep(parse_config(data), tmp_path, serial=True, progress=False)
+    (row,) = ResultStore(path).rows()
+    env = gym.make("GyroStabilizer-v0", episode_seconds=12.0, wave_period=3.7)
+    ref = run_episode("GyroStabilizer-v0", env, load_policy("GyroStabilizer-v0"), 3)
+    assert row["controller"] == "ppo" and row["rms_roll"] == ref["rms_roll"]

@@ -13,8 +13,8 @@ The YAML keys (read with `yaml.safe_load`; nothing in the file is executed):
 - `grid`: axis -> list of values (grid mode);
 - `random`: axis -> `{low, high}` (uniform), `{low, high, log: true}` or `{choices: [...]}`;
 - `samples`, `sampler_seed`: random mode, number of points (required) and sampler seed (0);
-- `plot`: `{metric: NAME, x: AXIS, y: AXIS}`; default the env's primary metric, controller x
-  scene table;
+- `plot`: `{metric: NAME, x: AXIS, y: AXIS, log: BOOL}`; default the env's primary metric,
+  controller x scene table;
 - `name`: label of the sweep (default: the file name).
 
 A trial's kwargs are `env_kwargs | scene | point` (later keys win). Its id is the first 16 hex
@@ -243,8 +243,8 @@ def _draw(key: str, spec: Any, rng: np.random.Generator, n: int) -> list[Any]:
 
 def _plot(value: Any, axes: tuple[str, ...]) -> dict[str, Any]:
     plot = _mapping("plot", value or {})
-    if set(plot) - {"metric", "x", "y"}:
-        raise _fail("plot", f"keys are metric, x, y; got {sorted(plot)}")
+    if set(plot) - {"metric", "x", "y", "log"}:
+        raise _fail("plot", f"keys are metric, x, y, log; got {sorted(plot)}")
     for k in ("x", "y"):
         if k in plot and plot[k] not in (*axes, "scene"):
             raise _fail(f"plot.{k}", f"{plot[k]!r} is not a swept axis {['scene', *axes]}")

@@ -3,7 +3,8 @@
 - no `plot.x/y` in the config: a controller x scene table (heatmap annotated mean ± std over
   seeds), the sweep counterpart of `mf-envs bench controllers`' bar charts;
 - `plot: {x: AXIS, y: AXIS}`: one heatmap per controller over the two swept axes (e.g. the
-  Fig. 3-5 power map of GOWEC-v0 over wave period and amplitude).
+  Fig. 3-5 power map of GOWEC-v0 over wave period and amplitude); `log: true` for a logarithmic
+  colour scale.
 The metric defaults to the env's primary metric (`mf_envs.train.evaluate.primary_metric`).
 """
 
@@ -97,6 +98,7 @@ def _table(cfg: SweepConfig, rows: list[dict[str, Any]], metric: str, out: Path)
 
 def _heatmaps(cfg: SweepConfig, rows: list[dict[str, Any]], metric: str, out: Path) -> Path:
     import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm, Normalize
 
     x, y = cfg.plot["x"], cfg.plot["y"]
     cells = _cells(rows, ("controller", x, y), metric)
@@ -105,9 +107,10 @@ def _heatmaps(cfg: SweepConfig, rows: list[dict[str, Any]], metric: str, out: Pa
     ys = sorted({r[y] for r in rows})
     vals = [[[cells.get((c, a, b), (np.nan,))[0] for a in xs] for b in ys] for c in ctrls]
     lo, hi = np.nanmin(vals), np.nanmax(vals)
+    norm = LogNorm(lo, hi) if cfg.plot.get("log") and lo > 0 else Normalize(lo, hi)
     fig, axes = plt.subplots(1, len(ctrls), figsize=(5.2 * len(ctrls), 4.2), squeeze=False)
     for ax, c, v in zip(axes[0], ctrls, vals):
-        im = ax.pcolormesh(_edges(xs), _edges(ys), np.array(v), cmap="viridis", vmin=lo, vmax=hi)
+        im = ax.pcolormesh(_edges(xs), _edges(ys), np.array(v), cmap="viridis", norm=norm)
         ax.set_xlabel(label(x))
         ax.set_ylabel(label(y))
         ax.set_title(f"{c}", fontsize=10)

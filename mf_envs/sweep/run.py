@@ -172,7 +172,7 @@ def run_sweep(
     try:
         if serial:
             run_serial(todo, sink)
-        else:
+        elif todo:
             run_ray(todo, sink, address=address, num_cpus=num_cpus)
     finally:
         bar.close()
