@@ -32,7 +32,6 @@ from pathlib import Path
 from typing import Any
 
 import gymnasium as gym
-import yaml
 
 RAY_INSTALL = 'RLlib needs Ray; pip install "mf-envs[ray]"'
 
@@ -230,15 +229,10 @@ def train(
 
 
 def _read_overrides(env_id: str, path: str | Path | None) -> dict[str, Any]:
-    if path is None:
-        return {}
-    p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"config: no such file {str(p)!r}")
-    data = yaml.safe_load(p.read_text())
-    if not isinstance(data, dict) or not isinstance(data.get(env_id, {}), dict):
-        raise ValueError(f"config: {p} must map env ids to dicts of RLlib PPO keys")
-    return dict(data.get(env_id, {}))
+    """The `env_id` entry of a YAML file mapping env ids to RLlib PPO keys ({} if absent)."""
+    from mf_envs.train.config import read_config
+
+    return {} if path is None else dict(read_config(path).get(env_id, {}))
 
 
 def train_command(args: argparse.Namespace) -> list[Path]:
