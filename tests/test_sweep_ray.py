@@ -11,6 +11,7 @@ import pytest
 ray = pytest.importorskip("ray", reason='needs the ray extra: pip install "mf-envs[ray]"')
 
 from mf_envs.sweep import parse_config, run_sweep  # noqa: E402
+from mf_envs.sweep.run import init_local_ray  # noqa: E402
 from mf_envs.sweep.store import ResultStore  # noqa: E402
 
 # 3 controllers x 4 sea states x 3 seeds = 36 trials (15 s episodes)
@@ -30,7 +31,7 @@ CONFIG = {
 
 @pytest.fixture
 def local_ray():
-    ray.init(num_cpus=2, object_store_memory=100 * 1024**2, include_dashboard=False)
+    init_local_ray(num_cpus=2)  # 2 workers, 100 MB object store, no dashboard
     try:
         yield
     finally:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -107,21 +108,20 @@ def run_ray(
 ) -> None:
     """Every trial as a Ray task (1 CPU each); `sink(row)` in completion order, in the driver.
 
-    Starts a small local Ray (`num_cpus`, 100 MB object store, no dashboard) unless `address`
-    names a running cluster (`ray start --head` on one node, `ray start --address` on others),
-    or Ray is already initialised by the caller. Shuts down only a Ray it started itself.
+    Starts a small local Ray (`init_local_ray`) unless `address` names a running cluster
+    (`ray start --head` on one node, `ray start --address` on others) or Ray is already
+    initialised by the caller. Shuts down only a Ray it started itself.
     """
     ray = require_ray()
     started = not ray.is_initialized()
     if started and address:
-        ray.init(address=address, include_dashboard=False, log_to_driver=False)
+        try:
+            ray.init(address=address, include_dashboard=False, log_to_driver=False)
+        except (ConnectionError, RuntimeError) as exc:
+            msg = " ".join(str(exc).split())[:200]
+            raise ValueError(f"address: no Ray cluster reachable at {address!r} ({msg})") from exc
     elif started:
-        ray.init(
-            num_cpus=num_cpus,
-            object_store_memory=100 * 1024**2,
-            include_dashboard=False,
-            log_to_driver=False,
-        )
+        init_local_ray(num_cpus)
     try:
         task = ray.remote(num_cpus=1)(run_trial)
         pending = [task.remote(t) for t in trials]
@@ -131,6 +131,23 @@ def run_ray(
     finally:
         if started:
             ray.shutdown()
+
+
+def init_local_ray(num_cpus: int | None = 2) -> None:
+    """`ray.init` of a small local Ray: `num_cpus`, 100 MB object store, no dashboard.
+
+    Ray runs its workers at niceness 15 by default (`RAY_worker_niceness`), which on a machine
+    shared with other jobs starves them; here they are the foreground job (niceness 0) unless
+    the variable is set.
+    """
+    ray = require_ray()
+    os.environ.setdefault("RAY_worker_niceness", "0")
+    ray.init(
+        num_cpus=num_cpus,
+        object_store_memory=100 * 1024**2,
+        include_dashboard=False,
+        log_to_driver=False,
+    )
 
 
 def require_ray() -> Any:

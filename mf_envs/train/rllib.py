@@ -161,16 +161,14 @@ def _mean_std_filter(cls: Any) -> Any:
 
 
 def init_ray(num_cpus: int = 2) -> bool:
-    """Start a small local Ray unless one is running; True if this call started it."""
+    """Start a small local Ray (`sweep.run.init_local_ray`) unless one is running; True if
+    this call started it."""
+    from mf_envs.sweep.run import init_local_ray
+
     ray = require_ray()
     if ray.is_initialized():
         return False
-    ray.init(
-        num_cpus=num_cpus,
-        object_store_memory=100 * 1024**2,
-        include_dashboard=False,
-        log_to_driver=False,
-    )
+    init_local_ray(num_cpus)
     return True
 
 
