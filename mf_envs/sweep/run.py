@@ -138,9 +138,12 @@ def init_local_ray(num_cpus: int | None = 2) -> None:
 
     Ray runs its workers at niceness 15 by default (`RAY_worker_niceness`), which on a machine
     shared with other jobs starves them; here they are the foreground job (niceness 0) unless
-    the variable is set.
+    the variable is set. With `RAY_ADDRESS` set, joins that cluster instead.
     """
     ray = require_ray()
+    if os.environ.get("RAY_ADDRESS"):  # Ray's own variable: join that cluster instead
+        ray.init(log_to_driver=False)
+        return
     os.environ.setdefault("RAY_worker_niceness", "0")
     ray.init(
         num_cpus=num_cpus,
