@@ -146,6 +146,7 @@ def init_local_ray(num_cpus: int | None = 2) -> None:
         return
     os.environ.setdefault("RAY_worker_niceness", "0")
     ray.init(
+        address="local",  # a new instance, never a cluster left behind by `ray start`
         num_cpus=num_cpus,
         object_store_memory=100 * 1024**2,
         include_dashboard=False,
