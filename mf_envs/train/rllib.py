@@ -16,10 +16,11 @@ a native vector env (Inchworm-v0) run with RLlib's SYNC vectorisation of single 
 `_BASE` supplies): `timesteps` (training budget), `num_env_runners` (Ray actors sampling in
 parallel), `num_envs_per_env_runner` (sub-envs per runner, batched in one native call),
 `train_batch_size_per_learner`, `minibatch_size`, `num_epochs`, `lr`, `gamma`, `lambda_`,
-`clip_param`, `entropy_coeff`, `vf_clip_param`, `fcnet_hiddens`, `mean_std_filter` (observation
-normalisation, RLlib's `MeanStdFilter` connector, the counterpart of SB3's `VecNormalize`),
-`env_kwargs`. Discounts and GAE follow the SB3 configs (`train/configs/ppo.yml`), which were
-tuned on this machine; the RLlib budgets are NOT tuned (an iteration is a working default).
+`clip_param`, `entropy_coeff`, `vf_clip_param`, `fcnet_hiddens`, `sample_timeout_s`,
+`mean_std_filter` (observation normalisation, RLlib's `MeanStdFilter` connector, the counterpart
+of SB3's `VecNormalize`), `env_kwargs`. Discounts and GAE follow the SB3 configs
+(`train/configs/ppo.yml`), which were tuned on this machine; the RLlib budgets are NOT tuned
+(an iteration is a working default).
 `--config FILE` takes a YAML mapping env id -> any of these keys (read with `yaml.safe_load`).
 """
 
@@ -51,6 +52,8 @@ _BASE: dict[str, Any] = {
     "fcnet_hiddens": [64, 64],
     "mean_std_filter": True,
     "env_kwargs": {},
+    # a fresh install compiles the numba kernels in each runner on its first step (minutes)
+    "sample_timeout_s": 900.0,
 }
 PPO_CONFIGS: dict[str, dict[str, Any]] = {
     # 600-step episodes (30 s at 0.05 s); SB3 tuning: gamma 0.98, lr 1e-3 (train/configs/ppo.yml)
@@ -136,6 +139,7 @@ def ppo_config(env_id: str, seed: int = 0, **overrides: Any) -> Any:
             num_envs_per_env_runner=s["num_envs_per_env_runner"],
             gym_env_vectorize_mode="vector_entry_point" if native else "sync",
             env_to_module_connector=connector,
+            sample_timeout_s=s["sample_timeout_s"],
         )
         .training(
             train_batch_size_per_learner=s["train_batch_size_per_learner"],
