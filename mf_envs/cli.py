@@ -34,9 +34,18 @@ def _cmd_render(args: argparse.Namespace) -> list[Path]:
 
 
 def _cmd_train(args: argparse.Namespace) -> list[Path]:
-    from mf_envs.train.cli import train_command
+    if args.backend == "rllib":
+        from mf_envs.train.rllib import train_command
+    else:
+        from mf_envs.train.cli import train_command
 
     return train_command(args)
+
+
+def _cmd_sweep(args: argparse.Namespace) -> list[Path]:
+    from mf_envs.sweep.cli import sweep_command
+
+    return sweep_command(args)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> list[Path]:
@@ -89,6 +98,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--config", default=None, help="YAML hyperparameters (rl-zoo3 format)")
     t.add_argument("--out", default="runs", help="output folder (default: %(default)s)")
     t.add_argument("--tensorboard", action="store_true", help="write TensorBoard logs")
+    t.add_argument("--backend", choices=("sb3", "rllib"), default="sb3", help="sb3 | rllib (Ray)")
     t.set_defaults(func=_cmd_train)
 
     e = sub.add_parser("evaluate", help="PPO vs every classical baseline on unseen seeds")
@@ -97,6 +107,12 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--episodes", type=int, default=5)
     e.add_argument("--seed", type=int, default=1000, help="first evaluation seed")
     e.set_defaults(func=_cmd_evaluate)
+
+    s = sub.add_parser("sweep", help="env kwargs x controllers x seeds on Ray (CSV + PNG)")
+    from mf_envs.sweep.cli import add_arguments
+
+    add_arguments(s)
+    s.set_defaults(func=_cmd_sweep)
     return p
 
 
