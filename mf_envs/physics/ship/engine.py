@@ -204,7 +204,7 @@ def _composite_cm_offset(
 
 
 def _hull_force(m: Multibody, st: MBState, P: NDArray, dt: float, s_cm: NDArray) -> NDArray:
-    """Inertial force on the hull (N) of the `translation` effect, as in `ship_kernels.deriv`
+    """Inertial force on the hull (N) of the `translation` effect, as in `ship.kernels.stage_rhs`
     on the composite CM (regular-wave heave force at the step midpoint; restoring and damping
     at the step start)."""
     (R, x), u = m.coordinate(st, "ship"), m.velocity(st, "ship")

@@ -40,6 +40,8 @@ import math
 import numba
 import numpy as np
 
+from mf_envs.frames.kernels import make_rkmk4
+
 # ---- packed parameter vector P (built by ship_model.pack_params) ----
 J1, J2, J3 = 0, 1, 2  # hull inertia (+ A44 in J1 when added_inertia is on)
 D1, D2, D3 = 3, 4, 5  # gimbal + rotor transverse inertias in the gimbal frame
@@ -286,24 +288,6 @@ def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
 
 
 @numba.njit(cache=True)
-def deriv(t, y, u, R, P, tab, dy):
-    """dy/dt for state y (module doc) at attitude R, written into dy; returns the wave moment.
-    (Reference form of the right-hand side that `rk4_step` evaluates stage by stage.)"""
-    mw, fw = wave_loads(t, P, tab)
-    pg = gimbal_motion(t, y[3], y[4], u, P)
-    a = ang_rates(y[0], y[1], y[2], y[3], y[4], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P)
-    for i in range(5):
-        dy[i] = a[i]
-    for i in range(5, dy.shape[0]):
-        dy[i] = 0.0
-    if P[TRANS] > 0.5:
-        # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
-        v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
-        dy[5], dy[6], dy[7], dy[8], dy[9], dy[10] = y[8], y[9], y[10], v1, v2, v3
-    return mw
-
-
-@numba.njit(cache=True)
 def _trans_rates(x3, v1, v2, v3, fw, P):
     """Hull CM acceleration (m/s^2, inertial): surge/sway damping, heave spring-damper + force."""
     m = P[MASS]
@@ -311,138 +295,50 @@ def _trans_rates(x3, v1, v2, v3, fw, P):
 
 
 @numba.njit(cache=True)
-def _trans_rk4(y, dt, f0, fh, f1, P):
-    """Classical RK4 of the (decoupled, linear) translation y[5:11] with heave forces f0, fh, f1
-    at t, t + dt/2, t + dt; the same arithmetic as RK4 on the whole state."""
-    h = 0.5 * dt
-    x1, x2, x3, v1, v2, v3 = y[5], y[6], y[7], y[8], y[9], y[10]
-    a1, b1, c1 = _trans_rates(x3, v1, v2, v3, f0, P)
-    p1, q1, s1 = v1 + h * a1, v2 + h * b1, v3 + h * c1
-    a2, b2, c2 = _trans_rates(x3 + h * v3, p1, q1, s1, fh, P)
-    p2, q2, s2 = v1 + h * a2, v2 + h * b2, v3 + h * c2
-    a3, b3, c3 = _trans_rates(x3 + h * s1, p2, q2, s2, fh, P)
-    p3, q3, s3 = v1 + dt * a3, v2 + dt * b3, v3 + dt * c3
-    a4, b4, c4 = _trans_rates(x3 + dt * s2, p3, q3, s3, f1, P)
-    y[5] = x1 + dt * (v1 + 2.0 * p1 + 2.0 * p2 + p3) / 6.0
-    y[6] = x2 + dt * (v2 + 2.0 * q1 + 2.0 * q2 + q3) / 6.0
-    y[7] = x3 + dt * (v3 + 2.0 * s1 + 2.0 * s2 + s3) / 6.0
-    y[8] = v1 + dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0
-    y[9] = v2 + dt * (b1 + 2.0 * b2 + 2.0 * b3 + b4) / 6.0
-    y[10] = v3 + dt * (c1 + 2.0 * c2 + 2.0 * c3 + c4) / 6.0
+def stage_inputs(t, args):
+    """The state-free inputs at time t: (wave moment N m, heave force N, prescribed gimbal
+    (phi, phi', phi'') of gyro 1; unused by the servo and torque drives)."""
+    u, P, tab = args
+    mw, fw = wave_loads(t, P, tab)
+    return mw, fw, gimbal_motion(t, 0.0, 0.0, u, P)
 
 
 @numba.njit(cache=True)
-def _rodrigues_ab(x2):
-    """a = sin(x)/x, b = (1 - cos x)/x^2 of the angle x = sqrt(x2) (ch. 2 Eq. 29); for x < 0.1
-    their Taylor series to x^8 (truncation < 3e-18, as accurate as libm sin/cos)."""
-    if x2 < 0.01:
-        a = 1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0 - x2 / 362880.0)))
-        b = 0.5 - x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0 - x2 * (1.0 / 40320.0 - x2 / 3628800.0)))
-        return a, b
-    x = math.sqrt(x2)
-    s = math.sin(0.5 * x)
-    return math.sin(x) / x, 2.0 * s * s / x2
-
-
-@numba.njit(cache=True)
-def _rot_row(r0, r1, r2, x, y, z, a, b, x2):
-    """Row (r0, r1, r2) of R times exp(hat(x, y, z)) = I + a W + b W^2 (Rodrigues, Eq. 29)."""
-    e00, e11, e22 = 1.0 + b * (x * x - x2), 1.0 + b * (y * y - x2), 1.0 + b * (z * z - x2)
-    e01, e10 = -a * z + b * x * y, a * z + b * x * y
-    e02, e20 = a * y + b * x * z, -a * y + b * x * z
-    e12, e21 = -a * x + b * y * z, a * x + b * y * z
-    return (
-        r0 * e00 + r1 * e10 + r2 * e20,
-        r0 * e01 + r1 * e11 + r2 * e21,
-        r0 * e02 + r1 * e12 + r2 * e22,
-    )
-
-
-@numba.njit(cache=True)
-def _row3_step(R, x, y, z):
-    """Third row of R exp(hat(x, y, z)): all the stage attitudes enter the moments through."""
-    x2 = x * x + y * y + z * z
-    a, b = _rodrigues_ab(x2)
-    return _rot_row(R[2, 0], R[2, 1], R[2, 2], x, y, z, a, b, x2)
-
-
-@numba.njit(cache=True)
-def _rot_update(R, x, y, z):
-    """R <- R exp(hat(x, y, z)) in place, row by row (no allocation)."""
-    x2 = x * x + y * y + z * z
-    a, b = _rodrigues_ab(x2)
-    for i in range(3):
-        R[i, 0], R[i, 1], R[i, 2] = _rot_row(R[i, 0], R[i, 1], R[i, 2], x, y, z, a, b, x2)
-
-
-@numba.njit(cache=True)
-def _dexpinv(t0, t1, t2, w0, w1, w2):
-    """dexp^-1_th(w) = w - th x w / 2 + c(|th|) th x (th x w) (right trivialisation),
-    c = (1 - (x/2) cot(x/2)) / x^2 (its series 1/12 + x^2/720 + ... to x^8 for x < 0.1, which
-    is accurate to round-off where the closed form cancels)."""
-    x2 = t0 * t0 + t1 * t1 + t2 * t2
-    if x2 < 0.01:
-        c = 1.0 / 12.0 + x2 * (
-            1.0 / 720.0 + x2 * (1.0 / 30240.0 + x2 * (1.0 / 1209600.0 + x2 / 47900160.0))
-        )
-    else:
-        x = math.sqrt(x2)
-        c = (1.0 - 0.5 * x / math.tan(0.5 * x)) / x2
-    a0 = t1 * w2 - t2 * w1
-    a1 = t2 * w0 - t0 * w2
-    a2 = t0 * w1 - t1 * w0
-    b0 = t1 * a2 - t2 * a1
-    b1 = t2 * a0 - t0 * a2
-    b2 = t0 * a1 - t1 * a0
-    return w0 - 0.5 * a0 + c * b0, w1 - 0.5 * a1 + c * b1, w2 - 0.5 * a2 + c * b2
-
-
-@numba.njit(cache=True)
-def rk4_step(t, y, R, u, dt, P, tab, mw0, fw0):
-    """One Runge-Kutta-Munthe-Kaas step (RK4 in the rates, the attitude in the Lie algebra):
-    R_stage = R exp(theta_stage), theta' = dexp^-1_theta(w), R_new = R exp(theta_final) with
-    the Rodrigues formula (ch. 2 Eq. 29): 4th order in R and w, R orthogonal to round-off.
-    y and R are updated in place, without allocation. mw0, fw0: wave moment (N m) and heave
-    force (N) at t (`wave_loads`); returns them at t + dt for the next step.
-    """
-    h = 0.5 * dt
-    pres = int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS
-    mwh, fwh = wave_loads(t + h, P, tab)
-    mw1, fw1 = wave_loads(t + dt, P, tab)
-    w1, w2, w3, ph, pd = y[0], y[1], y[2], y[3], y[4]
-    pg0 = gimbal_motion(t, ph, pd, u, P)
-    pgh = gimbal_motion(t + h, ph, pd, u, P) if pres else pg0
-    pg1 = gimbal_motion(t + dt, ph, pd, u, P) if pres else pg0
-    # stage 1 at R (dexpinv at theta = 0 is the identity)
-    k1 = ang_rates(w1, w2, w3, ph, pd, R[2, 0], R[2, 1], R[2, 2], u, mw0, pg0, P)
-    s0, s1, s2 = w1 + h * k1[0], w2 + h * k1[1], w3 + h * k1[2]
-    r = _row3_step(R, h * w1, h * w2, h * w3)
-    k2 = ang_rates(s0, s1, s2, ph + h * k1[3], pd + h * k1[4], r[0], r[1], r[2], u, mwh, pgh, P)
-    q2 = _dexpinv(h * w1, h * w2, h * w3, s0, s1, s2)
-    # stage 3
-    s0, s1, s2 = w1 + h * k2[0], w2 + h * k2[1], w3 + h * k2[2]
-    r = _row3_step(R, h * q2[0], h * q2[1], h * q2[2])
-    k3 = ang_rates(s0, s1, s2, ph + h * k2[3], pd + h * k2[4], r[0], r[1], r[2], u, mwh, pgh, P)
-    q3 = _dexpinv(h * q2[0], h * q2[1], h * q2[2], s0, s1, s2)
-    # stage 4
-    s0, s1, s2 = w1 + dt * k3[0], w2 + dt * k3[1], w3 + dt * k3[2]
-    r = _row3_step(R, dt * q3[0], dt * q3[1], dt * q3[2])
-    k4 = ang_rates(s0, s1, s2, ph + dt * k3[3], pd + dt * k3[4], r[0], r[1], r[2], u, mw1, pg1, P)
-    q4 = _dexpinv(dt * q3[0], dt * q3[1], dt * q3[2], s0, s1, s2)
-    th = (
-        dt * (w1 + 2.0 * q2[0] + 2.0 * q3[0] + q4[0]) / 6.0,
-        dt * (w2 + 2.0 * q2[1] + 2.0 * q3[1] + q4[1]) / 6.0,
-        dt * (w3 + 2.0 * q2[2] + 2.0 * q3[2] + q4[2]) / 6.0,
-    )
+def stage_rhs(t, y, R, inp, args):
+    """(y' (n,), body rate omega (3,)) of the state y at attitude R (module doc), the right-hand
+    side of the RKMK4 step; the gimbal is prescribed by inp in the sinusoidal/continuous modes."""
+    u, P, tab = args
+    mw, fw, pg = inp
+    mode = int(P[GMODE])
+    if mode != GIMBAL_SINUSOIDAL and mode != GIMBAL_CONTINUOUS:
+        pg = gimbal_motion(t, y[3], y[4], u, P)
+    a = ang_rates(y[0], y[1], y[2], y[3], y[4], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P)
+    dy = np.zeros(y.shape[0])
     for i in range(5):
-        y[i] += dt * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]) / 6.0
-    _rot_update(R, th[0], th[1], th[2])
-    if pres:
-        y[3] = pg1[0]
-        y[4] = pg1[1]
+        dy[i] = a[i]
     if P[TRANS] > 0.5:
-        _trans_rk4(y, dt, fw0, fwh, fw1, P)
-    return mw1, fw1
+        # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
+        v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
+        dy[5], dy[6], dy[7], dy[8], dy[9], dy[10] = y[8], y[9], y[10], v1, v2, v3
+    return dy, y[0:3].copy()
+
+
+_rkmk4 = make_rkmk4(stage_rhs, stage_inputs)
+
+
+@numba.njit(cache=True)
+def rk4_step(t, y, R, u, dt, P, tab):
+    """One Runge-Kutta-Munthe-Kaas step (`mf_envs.frames.kernels`, RK4 tableau, the attitude in
+    the Lie algebra: 4th order in R and w, R orthogonal to round-off) of y and R in place.
+    A prescribed gimbal is set to its value at t + dt. Returns the wave moment (N m) at t + dt."""
+    dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab))
+    for i in range(y.shape[0]):
+        y[i] += dy[i]
+    R[:, :] = R1
+    mode = int(P[GMODE])
+    if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
+        y[3], y[4] = inp[2][0], inp[2][1]
+    return inp[0]
 
 
 @numba.njit(cache=True)
@@ -455,9 +351,9 @@ def gyro_moment(y, P):
 def advance(t, y, R, u, dt, n_sub, P, tab, out):
     """n_sub RK4 steps of size dt with the command u held; returns the new time.
     out[0], out[1] <- gyro roll moment and wave moment (N m) at the end."""
-    mw, fw = wave_loads(t, P, tab)
+    mw = wave_loads(t, P, tab)[0]
     for _ in range(n_sub):
-        mw, fw = rk4_step(t, y, R, u, dt, P, tab, mw, fw)
+        mw = rk4_step(t, y, R, u, dt, P, tab)
         t += dt
     out[0] = gyro_moment(y, P)
     out[1] = mw
@@ -483,11 +379,9 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
     Rs[0] = R
     mg[0] = gyro_moment(y, P)
     t = 0.0
-    mw, fw = wave_loads(t, P, tab)
     for k in range(n):
-        mw, fw = rk4_step(t, y, R, 0.0, dt, P, tab, mw, fw)
-        t = (k + 1) * dt
-        mw, fw = wave_loads(t, P, tab)  # t is k dt, not a running sum: recompute
+        rk4_step(t, y, R, 0.0, dt, P, tab)
+        t = (k + 1) * dt  # k dt, not a running sum
         ts[k + 1] = t
         ys[k + 1] = y
         Rs[k + 1] = R

@@ -1,0 +1,273 @@
+"""The one Lie-group kernel: SO(3) hat/vee/exp/log/dexp/dexp^-1 and the RK4 / RKMK4 steppers.
+
+Every model that integrates an attitude or a state with Runge-Kutta calls these (numba,
+`cache=True`); nothing else in the package defines them (a test greps for copies).
+
+Conventions (Rios 2017 ch. 2): a frame e(t) = e^I R(t) has body angular velocity omega with
+hat(omega) = R^T R' (Eq. 24); Rodrigues' formula R = exp(hat(theta)) = I + a W + b W^2 (Eq. 29),
+a = sin(x)/x, b = (1 - cos x)/x^2, x = |theta|.
+
+dexp and its inverse (x = |theta|, c(x) = (1 - (x/2) cot(x/2)) / x^2 = 1/12 + x^2/720 + ...):
+
+    right (body-frame update R = R0 exp(hat(theta)), R^T R' = hat(omega)):
+        omega  = theta' - b theta x theta' + (1 - a)/x^2 theta x (theta x theta')   (dexp_r)
+        theta' = omega + 1/2 theta x omega + c theta x (theta x omega)             (dexpinv_r)
+    left  (spatial update R = exp(hat(theta)) R0, R' R^T = hat(omega_s)): theta x -> -theta x,
+        theta' = omega_s - 1/2 theta x omega_s + c theta x (theta x omega_s)      (dexpinv_l)
+
+The steppers are templates specialised per model right-hand side (`make_rk4`, `make_rkmk4`):
+numba cannot cache a function that receives another jitted function as an argument, so the
+template's code object is re-bound to the model's `rhs` and `inputs` as globals and compiled
+with `cache=True` under a name derived from the model function (cached in the model's folder).
+Hand-written (no library offers numba-compiled Lie-group Runge-Kutta): the tableau is the
+classical RK4 one, the Munthe-Kaas form is Iserles et al., Acta Numerica 9 (2000), Sec. 5.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+import zlib
+from collections.abc import Callable
+
+import numba
+import numpy as np
+
+# Below x^2 = 0.01 (x < 0.1) the Taylor series of a, b and c to x^8 are used: their truncation is
+# < 3e-18, as accurate as libm sin/cos/tan and free of the cancellation of the closed forms.
+_SERIES_X2 = 0.01
+with open(__file__, "rb") as _f:  # stamps the steppers' caches (see `_specialise`)
+    _SOURCE_CRC = zlib.crc32(_f.read())
+
+
+@numba.njit(cache=True)
+def hat(w: np.ndarray) -> np.ndarray:
+    """Skew matrix (3, 3) of w (3,): hat(w) v = w x v (ch. 3 Eq. 11)."""
+    W = np.zeros((3, 3))
+    W[0, 1], W[0, 2], W[1, 2] = -w[2], w[1], -w[0]
+    W[1, 0], W[2, 0], W[2, 1] = w[2], -w[1], w[0]
+    return W
+
+
+@numba.njit(cache=True)
+def vee(W: np.ndarray) -> np.ndarray:
+    """Inverse of hat on the skew part of W (3, 3) -> (3,)."""
+    return 0.5 * np.array([W[2, 1] - W[1, 2], W[0, 2] - W[2, 0], W[1, 0] - W[0, 1]])
+
+
+@numba.njit(cache=True)
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b for 3-vectors."""
+    out = np.empty(3)
+    out[0] = a[1] * b[2] - a[2] * b[1]
+    out[1] = a[2] * b[0] - a[0] * b[2]
+    out[2] = a[0] * b[1] - a[1] * b[0]
+    return out
+
+
+@numba.njit(cache=True)
+def matmul3(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """A @ B for 3x3 matrices by loops (no BLAS call overhead)."""
+    C = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            C[i, j] = A[i, 0] * B[0, j] + A[i, 1] * B[1, j] + A[i, 2] * B[2, j]
+    return C
+
+
+@numba.njit(cache=True)
+def rodrigues_coeffs(x2: float) -> tuple[float, float]:
+    """a = sin(x)/x, b = (1 - cos x)/x^2 of the angle x = sqrt(x2) (ch. 2 Eq. 29)."""
+    if x2 < _SERIES_X2:
+        a = 1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0 - x2 / 362880.0)))
+        b = 0.5 - x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0 - x2 * (1.0 / 40320.0 - x2 / 3628800.0)))
+        return a, b
+    x = math.sqrt(x2)
+    s = math.sin(0.5 * x)
+    return math.sin(x) / x, 2.0 * s * s / x2
+
+
+@numba.njit(cache=True)
+def exp_so3(w: np.ndarray) -> np.ndarray:
+    """Rodrigues: exp(hat(w)) (3, 3) of a rotation vector w (3,) in rad (ch. 2 Eq. 29)."""
+    x, y, z = w[0], w[1], w[2]
+    x2 = x * x + y * y + z * z
+    a, b = rodrigues_coeffs(x2)
+    R = np.empty((3, 3))
+    R[0, 0] = 1.0 + b * (x * x - x2)  # I + a W + b W^2, W^2 = w w^T - |w|^2 I
+    R[1, 1] = 1.0 + b * (y * y - x2)
+    R[2, 2] = 1.0 + b * (z * z - x2)
+    R[0, 1], R[1, 0] = -a * z + b * x * y, a * z + b * x * y
+    R[0, 2], R[2, 0] = a * y + b * x * z, -a * y + b * x * z
+    R[1, 2], R[2, 1] = -a * x + b * y * z, a * x + b * y * z
+    return R
+
+
+@numba.njit(cache=True)
+def exp_so3_batch(w: np.ndarray) -> np.ndarray:
+    """exp_so3 over rows: w (n, 3) -> (n, 3, 3)."""
+    out = np.empty((w.shape[0], 3, 3))
+    for i in range(w.shape[0]):
+        out[i] = exp_so3(w[i])
+    return out
+
+
+@numba.njit(cache=True)
+def log_so3(R: np.ndarray) -> np.ndarray:
+    """Rotation vector w (3,), |w| in [0, pi], with exp_so3(w) = R (3, 3).
+
+    Near 0 the series of x/sin(x); near pi the axis from the symmetric part
+    R + R^T = 2 cos(x) I + 2 (1 - cos x) u u^T (the skew part vanishes there).
+    """
+    cos_t = min(max(0.5 * (R[0, 0] + R[1, 1] + R[2, 2] - 1.0), -1.0), 1.0)
+    s = 0.5 * vee(R - R.T)  # sin(x) u
+    sin_t = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
+    theta = math.atan2(sin_t, cos_t)
+    if theta < 1e-6:
+        return s * (1.0 + theta * theta / 6.0)
+    if theta < math.pi - 1e-4:
+        return s * (theta / sin_t)
+    B = (0.5 * (R + R.T) - cos_t * np.eye(3)) / (1.0 - cos_t)
+    k = int(np.argmax(np.diag(B)))
+    u = B[:, k] / math.sqrt(max(B[k, k], 1e-300))
+    if u[0] * s[0] + u[1] * s[1] + u[2] * s[2] < 0.0:  # sign from the small skew part
+        u = -u
+    return theta * u / math.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+
+
+@numba.njit(cache=True)
+def log_so3_batch(R: np.ndarray) -> np.ndarray:
+    """log_so3 over a stack: R (n, 3, 3) -> (n, 3)."""
+    out = np.empty((R.shape[0], 3))
+    for i in range(R.shape[0]):
+        out[i] = log_so3(R[i])
+    return out
+
+
+@numba.njit(cache=True)
+def _dexpinv_c(x2: float) -> float:
+    """c(x) = (1 - (x/2) cot(x/2)) / x^2 of dexp^-1 (module doc), series to x^8 for x < 0.1."""
+    if x2 < _SERIES_X2:
+        return 1.0 / 12.0 + x2 * (
+            1.0 / 720.0 + x2 * (1.0 / 30240.0 + x2 * (1.0 / 1209600.0 + x2 / 47900160.0))
+        )
+    x = math.sqrt(x2)
+    return (1.0 - 0.5 * x / math.tan(0.5 * x)) / x2
+
+
+@numba.njit(cache=True)
+def _two_term(theta: np.ndarray, v: np.ndarray, c1: float, c2: float) -> np.ndarray:
+    """v + c1 theta x v + c2 theta x (theta x v), all (3,)."""
+    a = cross(theta, v)
+    return v + c1 * a + c2 * cross(theta, a)
+
+
+@numba.njit(cache=True)
+def dexpinv_right(theta: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """theta' (3,) of R = R0 exp(hat(theta)) with body rate omega (3,), R^T R' = hat(omega):
+    omega + 1/2 theta x omega + 1/12 theta x (theta x omega) + ... (module doc)."""
+    t = theta
+    return _two_term(t, omega, 0.5, _dexpinv_c(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]))
+
+
+@numba.njit(cache=True)
+def dexpinv_left(theta: np.ndarray, omega_s: np.ndarray) -> np.ndarray:
+    """theta' (3,) of R = exp(hat(theta)) R0 with spatial rate omega_s, R' R^T = hat(omega_s)."""
+    t = theta
+    return _two_term(t, omega_s, -0.5, _dexpinv_c(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]))
+
+
+@numba.njit(cache=True)
+def _dexp_coeffs(x2: float) -> tuple[float, float]:
+    """(b, (1 - a)/x^2) of dexp: (1 - cos x)/x^2 and (x - sin x)/x^3."""
+    a, b = rodrigues_coeffs(x2)
+    if x2 < _SERIES_X2:
+        return b, 1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0 - x2 / 362880.0))
+    return b, (1.0 - a) / x2
+
+
+@numba.njit(cache=True)
+def dexp_right(theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
+    """Body rate omega (3,) of R = R0 exp(hat(theta)) moving with theta' (inverse of
+    dexpinv_right): theta' - b theta x theta' + (1 - a)/x^2 theta x (theta x theta')."""
+    b, d = _dexp_coeffs(theta[0] * theta[0] + theta[1] * theta[1] + theta[2] * theta[2])
+    return _two_term(theta, theta_dot, -b, d)
+
+
+@numba.njit(cache=True)
+def dexp_left(theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
+    """Spatial rate omega_s (3,) of R = exp(hat(theta)) R0 moving with theta'."""
+    b, d = _dexp_coeffs(theta[0] * theta[0] + theta[1] * theta[1] + theta[2] * theta[2])
+    return _two_term(theta, theta_dot, b, d)
+
+
+# ---- the steppers (templates; see the module doc and `make_rk4` / `make_rkmk4`) ----
+
+
+def _rk4_template(t, x, dt, args):
+    """One classical RK4 step of x' = rhs(t, x, inp(t), args) from t to t + dt.
+
+    x: (n,) state; `inputs(t, args)` (exogenous, state-free: waves, prescribed motions) is
+    evaluated once at each of t, t + dt/2, t + dt. Returns (dx, inputs at t + dt): the caller
+    forms x + dx (the increment itself is what energy bookkeeping needs)."""
+    h = 0.5 * dt
+    i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
+    k1 = _rhs(t, x, i0, args)  # noqa: F821
+    k2 = _rhs(t + h, x + h * k1, ih, args)  # noqa: F821
+    k3 = _rhs(t + h, x + h * k2, ih, args)  # noqa: F821
+    k4 = _rhs(t + dt, x + dt * k3, i1, args)  # noqa: F821
+    return dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4), i1
+
+
+def _rkmk4_template(t, y, R, dt, args):
+    """One Runge-Kutta-Munthe-Kaas step (RK4 tableau) of y' = f, R' = R hat(omega) on SO(3) x R^n.
+
+    `rhs(t, y, R, inp, args) -> (y' (n,), omega (3,) body rate)`. The attitude is carried in the
+    Lie algebra: R_s = R exp(hat(theta_s)), theta' = dexpinv_right(theta, omega); the new attitude
+    is R exp(hat(theta_new)) (4th order in y and R, R orthogonal to round-off). Returns
+    (dy, R_new, inputs at t + dt)."""
+    h = 0.5 * dt
+    i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
+    k1, q1 = _rhs(t, y, R, i0, args)  # noqa: F821
+    th = h * q1
+    k2, w = _rhs(t + h, y + h * k1, matmul3(R, exp_so3(th)), ih, args)  # noqa: F821
+    q2 = dexpinv_right(th, w)
+    th = h * q2
+    k3, w = _rhs(t + h, y + h * k2, matmul3(R, exp_so3(th)), ih, args)  # noqa: F821
+    q3 = dexpinv_right(th, w)
+    th = dt * q3
+    k4, w = _rhs(t + dt, y + dt * k3, matmul3(R, exp_so3(th)), i1, args)  # noqa: F821
+    q4 = dexpinv_right(th, w)
+    dy = dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+    return dy, matmul3(R, exp_so3(dt / 6.0 * (q1 + 2.0 * q2 + 2.0 * q3 + q4))), i1
+
+
+def _specialise(template: Callable, rhs, inputs, prefix: str):
+    """Compile `template` with `_rhs`/`_inputs` bound to the model's jitted functions (module doc).
+
+    The result is cached beside the model's module (its file stamps the cache) under a name that
+    also carries a checksum of this file, so editing either invalidates it."""
+    py = rhs.py_func
+    tag = zlib.crc32(py.__code__.co_code, _SOURCE_CRC) & 0xFFFFFFFF
+    name = f"{prefix}_{py.__name__}_{tag:08x}"
+    code = template.__code__.replace(
+        co_filename=py.__code__.co_filename, co_name=name, co_qualname=name
+    )
+    glb = dict(template.__globals__, _rhs=rhs, _inputs=inputs)
+    fn = types.FunctionType(code, glb, name)
+    fn.__module__, fn.__doc__ = py.__module__, template.__doc__
+    return numba.njit(cache=True)(fn)
+
+
+def make_rk4(rhs, inputs):
+    """The RK4 step `step(t, x, dt, args) -> (dx, inputs(t + dt))` for one model (numba).
+
+    rhs(t, x, inp, args) -> x' (n,) and inputs(t, args) -> inp must be `numba.njit` functions;
+    `step` is itself jitted and callable from the model's kernels."""
+    return _specialise(_rk4_template, rhs, inputs, "rk4")
+
+
+def make_rkmk4(rhs, inputs):
+    """The RKMK4 step `step(t, y, R, dt, args) -> (dy, R_new, inputs(t + dt))` (numba);
+    rhs(t, y, R, inp, args) -> (y', omega) and inputs(t, args) jitted (see `_rkmk4_template`)."""
+    return _specialise(_rkmk4_template, rhs, inputs, "rkmk4")
