@@ -24,7 +24,7 @@ from mf_envs.frames import (
     twist_from_time_rate,
     vee,
 )
-from mf_envs.frames.so3 import exp_so3_nb
+from mf_envs.frames.kernels import exp_so3 as exp_so3_nb
 
 vec3 = arrays(np.float64, 3, elements=st.floats(-10, 10, allow_nan=False))
 small_vec3 = arrays(np.float64, 3, elements=st.floats(-1e-5, 1e-5, allow_nan=False))

@@ -45,6 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import check_finite, check_int, check_positive, check_shape
 from mf_envs.effects import resolve_effects
+from mf_envs.physics.constants import G as G_EARTH
 from mf_envs.physics.rigid_body import kernels as _k
 from mf_envs.physics.rigid_body.exact import (
     EllipticSolution,
@@ -65,7 +66,6 @@ _METHOD_CODE = {name: code for code, name in enumerate(METHODS)}
 EFFECTS: dict[str, str] = {
     "ballistic": "centre-of-mass flight under gravity, m dv/dt = -m g e3^I (ch. 2 Eq. 3)",
 }
-G_EARTH = 9.81  # m/s^2, the seed's value
 
 __all__ = [
     "METHODS",
