@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 from mf_envs.effects import resolve_effects
 from mf_envs.physics.multibody import Body, Free, MBState, Multibody, Revolute, Spherical
 from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.layout import Slot as S
 from mf_envs.physics.ship.model import (
     SEED_EFFECTS,
     SHIP_EFFECTS,
@@ -211,9 +212,9 @@ def _hull_force(m: Multibody, st: MBState, P: NDArray, dt: float, s_cm: NDArray)
     x = x + R @ s_cm
     v = u[0:3] + R @ np.cross(u[3:6], s_cm)
     fw = 0.0
-    if int(P[K.WMODE]) == K.WAVE_REGULAR:
-        fw = P[K.WF0] * math.sin(P[K.WOMEGA] * (st.t + 0.5 * dt) + P[K.WPHASE])
-    return np.array([-P[K.CSS] * v[0], -P[K.CSS] * v[1], fw - P[K.KH] * x[2] - P[K.CH] * v[2]])
+    if int(P[S.WMODE]) == K.WAVE_REGULAR:
+        fw = P[S.WF0] * math.sin(P[S.WOMEGA] * (st.t + 0.5 * dt) + P[S.WPHASE])
+    return np.array([-P[S.CSS] * v[0], -P[S.CSS] * v[1], fw - P[S.KH] * x[2] - P[S.CH] * v[2]])
 
 
 class _Recorder:
@@ -244,7 +245,8 @@ class _Recorder:
             self.x[k] = m.coordinate(st, "ship")[1] + R @ s_cm
         self.phi[k] = m.coordinate(st, "gimbal1")
         self.phid[k] = m.velocity(st, "gimbal1")
-        self.mg[k] = -n_gyros * P[K.JR3] * P[K.PSID] * self.phid[k] * math.cos(self.phi[k])
+        H = P[S.JR3] * P[S.PSID]
+        self.mg[k] = K.gyro_roll_moment(self.phi[k], self.phid[k], H, n_gyros)
         self.k += 1
 
     def result(self) -> ShipRun:

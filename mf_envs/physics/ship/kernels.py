@@ -41,20 +41,10 @@ import numba
 import numpy as np
 
 from mf_envs.frames.kernels import make_rkmk4
+from mf_envs.physics.ship.layout import N_PARAMS  # noqa: F401 (N_PARAMS re-exported)
+from mf_envs.physics.ship.layout import Slot as S
 
-# ---- packed parameter vector P (built by ship_model.pack_params) ----
-J1, J2, J3 = 0, 1, 2  # hull inertia (+ A44 in J1 when added_inertia is on)
-D1, D2, D3 = 3, 4, 5  # gimbal + rotor transverse inertias in the gimbal frame
-JR3, PSID, NGYRO, FORM = 6, 7, 8, 9  # rotor polar inertia, spin rate, 1 or 2, form
-K44, GZR, K55 = 10, 11, 12  # roll / pitch stiffness, BM/GM of the wall-sided GZ
-B44, B44Q, B55, B66 = 13, 14, 15, 16  # damping
-GMODE, GAMP, GFREQ, GPHASE = 17, 18, 19, 20  # gimbal mode, Eq. 118/119 amplitude, freq, phase
-TAU, RATEMAX, PHIMAX, LIMITS, TSTOP = 21, 22, 23, 24, 25  # servo lag, limits, end-stop time
-WMODE, WM0, WOMEGA, WPHASE, WF0 = 26, 27, 28, 29, 30  # wave moment mode, M0, omega, phase, heave
-TABDT, JG2, TRANS, MASS, KH, CH, CSS = 31, 32, 33, 34, 35, 36, 37
-KV, TAUMAX, CG, KSTOP = 38, 39, 40, 41  # torque drive: loop gain, torque limit, damping, stop
-N_PARAMS = 42
-
+# P: the packed parameter vector of `layout.KernelParams`, indexed P[S.NAME]
 FORM_EXACT, FORM_SEED = 0, 1
 GIMBAL_SERVO, GIMBAL_SINUSOIDAL, GIMBAL_CONTINUOUS, GIMBAL_TORQUE = 0, 1, 2, 3
 WAVE_NONE, WAVE_REGULAR, WAVE_TABLE = 0, 1, 2
@@ -69,23 +59,23 @@ def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
     precession-rate limit and to the end-stop envelope (|phi| <= phi_max approached at
     rate <= (phi_max - |phi|) / t_stop) when `gimbal_limits` is on.
     """
-    mode = int(P[GMODE])
+    mode = int(P[S.GMODE])
     if mode == GIMBAL_SINUSOIDAL:
-        om = 2.0 * math.pi * P[GFREQ]
-        arg = om * t - P[GPHASE]
-        a = P[GAMP]
+        om = 2.0 * math.pi * P[S.GFREQ]
+        arg = om * t - P[S.GPHASE]
+        a = P[S.GAMP]
         return a * math.sin(arg), a * om * math.cos(arg), -a * om * om * math.sin(arg)
     if mode == GIMBAL_CONTINUOUS:
-        rate = 4.0 * P[GAMP] * P[GFREQ]
+        rate = 4.0 * P[S.GAMP] * P[S.GFREQ]
         return rate * t, rate, 0.0
     ue = u
-    if P[LIMITS] > 0.5:
-        rmax = P[RATEMAX]
+    if P[S.LIMITS] > 0.5:
+        rmax = P[S.RATEMAX]
         ue = min(max(ue, -rmax), rmax)
-        hi = (P[PHIMAX] - phi) / P[TSTOP]
-        lo = (-P[PHIMAX] - phi) / P[TSTOP]
+        hi = (P[S.PHIMAX] - phi) / P[S.TSTOP]
+        lo = (-P[S.PHIMAX] - phi) / P[S.TSTOP]
         ue = min(max(ue, lo), hi)
-    return phi, phid, (ue - phid) / P[TAU]
+    return phi, phid, (ue - phid) / P[S.TAU]
 
 
 @numba.njit(cache=True)
@@ -97,17 +87,17 @@ def gimbal_torque(phi: float, phid: float, u: float, P: np.ndarray) -> float:
     a spring-damper end stop beyond +-phi_max (`gimbal_limits`).
     """
     tau = 0.0
-    if P[KV] > 0.0:
+    if P[S.KV] > 0.0:
         ue = u
-        if P[LIMITS] > 0.5:
-            ue = min(max(ue, -P[RATEMAX]), P[RATEMAX])
-        tau = P[KV] * (ue - phid)
-        if P[TAUMAX] > 0.0:
-            tau = min(max(tau, -P[TAUMAX]), P[TAUMAX])
-    tau -= P[CG] * phid
-    if P[LIMITS] > 0.5 and abs(phi) > P[PHIMAX]:
-        over = phi - math.copysign(P[PHIMAX], phi)
-        tau -= P[KSTOP] * over + 2.0 * math.sqrt(P[KSTOP] * P[D2]) * phid
+        if P[S.LIMITS] > 0.5:
+            ue = min(max(ue, -P[S.RATEMAX]), P[S.RATEMAX])
+        tau = P[S.KV] * (ue - phid)
+        if P[S.TAUMAX] > 0.0:
+            tau = min(max(tau, -P[S.TAUMAX]), P[S.TAUMAX])
+    tau -= P[S.CG] * phid
+    if P[S.LIMITS] > 0.5 and abs(phi) > P[S.PHIMAX]:
+        over = phi - math.copysign(P[S.PHIMAX], phi)
+        tau -= P[S.KSTOP] * over + 2.0 * math.sqrt(P[S.KSTOP] * P[S.D2]) * phid
     return tau
 
 
@@ -137,38 +127,38 @@ def hull_moment(w1, w2, w3, r20, r21, r22, P):
     """
     m1 = 0.0
     m2 = 0.0
-    if P[K44] > 0.0:
-        if P[GZR] > 0.0:
+    if P[S.K44] > 0.0:
+        if P[S.GZR] > 0.0:
             hyp = math.sqrt(r21 * r21 + r22 * r22)
             sr = r21 / hyp if hyp > 0.0 else 0.0
             t2 = _TAN14_SQ
             if r22 > 0.0:
                 t2 = min((r21 / r22) * (r21 / r22), _TAN14_SQ)
-            m1 -= P[K44] * sr * (1.0 + 0.5 * P[GZR] * t2)
+            m1 -= P[S.K44] * sr * (1.0 + 0.5 * P[S.GZR] * t2)
         else:
-            m1 -= P[K44] * math.atan2(r21, r22)
-    if P[K55] > 0.0:
-        m2 -= P[K55] * _asin(max(min(-r20, 1.0), -1.0))
-    m1 -= P[B44] * w1 + P[B44Q] * abs(w1) * w1
-    m2 -= P[B55] * w2
-    return m1, m2, -P[B66] * w3
+            m1 -= P[S.K44] * math.atan2(r21, r22)
+    if P[S.K55] > 0.0:
+        m2 -= P[S.K55] * _asin(max(min(-r20, 1.0), -1.0))
+    m1 -= P[S.B44] * w1 + P[S.B44Q] * abs(w1) * w1
+    m2 -= P[S.B55] * w2
+    return m1, m2, -P[S.B66] * w3
 
 
 @numba.njit(cache=True)
 def wave_loads(t: float, P: np.ndarray, tab: np.ndarray):
     """(wave roll moment M_e in N m, heave force in N; the force only with `translation`) at t."""
-    mode = int(P[WMODE])
-    trans = P[TRANS] > 0.5
+    mode = int(P[S.WMODE])
+    trans = P[S.TRANS] > 0.5
     mw = 0.0
     fw = 0.0
     if mode == WAVE_REGULAR:
-        mw = P[WM0] * math.cos(P[WOMEGA] * t + P[WPHASE])
+        mw = P[S.WM0] * math.cos(P[S.WOMEGA] * t + P[S.WPHASE])
         if trans:
-            fw = P[WF0] * math.sin(P[WOMEGA] * t + P[WPHASE])
+            fw = P[S.WF0] * math.sin(P[S.WOMEGA] * t + P[S.WPHASE])
     elif mode == WAVE_TABLE:
-        mw = table_value(t, tab, 0, P[TABDT])
+        mw = table_value(t, tab, 0, P[S.TABDT])
         if trans:
-            fw = table_value(t, tab, 1, P[TABDT])
+            fw = table_value(t, tab, 1, P[S.TABDT])
     return mw, fw
 
 
@@ -211,18 +201,18 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
     the pair:  d2 phi'' = tau + H c w1 - (d1 - d3) s c (w1^2 - w3^2).
     Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'').
     """
-    n = int(P[NGYRO])
+    n = int(P[S.NGYRO])
     c = math.cos(phi)
     s = math.sin(phi)
     s2 = 2.0 * s * c
     c2 = c * c - s * s
-    d1, d2, d3 = P[D1], P[D2], P[D3]
+    d1, d2, d3 = P[S.D1], P[S.D2], P[S.D3]
     dd = d3 - d1
-    H = P[JR3] * P[PSID]
+    H = P[S.JR3] * P[S.PSID]
     # inertia J(phi): xx, yy, zz and xz (xz cancels for two mirrored gyros)
-    jxx = P[J1] + n * (c * c * d1 + s * s * d3)
-    jyy = P[J2] + n * d2
-    jzz = P[J3] + n * (s * s * d1 + c * c * d3)
+    jxx = P[S.J1] + n * (c * c * d1 + s * s * d3)
+    jyy = P[S.J2] + n * d2
+    jzz = P[S.J3] + n * (s * s * d1 + c * c * d3)
     jxz = s * c * dd if n == 1 else 0.0
     # dJ/dt
     dxx = n * phid * s2 * dd
@@ -241,13 +231,13 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
     r1 = m1 - (dxx * w1 + dxz * w3) - hdx - (w2 * lz - w3 * ly)
     r2 = m2 - (w3 * lx - w1 * lz)
     r3 = m3 - (dxz * w1 + dzz * w3) - hdz - (w1 * ly - w2 * lx)
-    if int(P[FORM]) == FORM_SEED:
+    if int(P[S.FORM]) == FORM_SEED:
         if n == 2:
-            jxx = P[J1] + 2.0 * d1  # Eq. 123: roll inertia frozen at phi = 0
+            jxx = P[S.J1] + 2.0 * d1  # Eq. 123: roll inertia frozen at phi = 0
         else:
-            jg = P[JG2]  # Eqs. 126 and 128 as printed
+            jg = P[S.JG2]  # Eqs. 126 and 128 as printed
             r1 += jg * phid * w3
-            r3 -= (jg - 0.25 * P[JR3] * c2) * phid * w1
+            r3 -= (jg - 0.25 * P[S.JR3] * c2) * phid * w1
     det = jxx * jzz - jxz * jxz
     a1 = (jzz * r1 - jxz * r3) / det
     a3 = (jxx * r3 - jxz * r1) / det
@@ -272,7 +262,7 @@ def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
     mw: wave roll moment (N m) at the stage time; pg: (phi, phi', phi'') of a prescribed gimbal
     at that time (`gimbal_motion`, ignored for the servo and torque drives).
     """
-    mode = int(P[GMODE])
+    mode = int(P[S.GMODE])
     free = mode == GIMBAL_TORQUE
     tau = 0.0
     phidd = 0.0
@@ -290,8 +280,8 @@ def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
 @numba.njit(cache=True)
 def _trans_rates(x3, v1, v2, v3, fw, P):
     """Hull CM acceleration (m/s^2, inertial): surge/sway damping, heave spring-damper + force."""
-    m = P[MASS]
-    return -P[CSS] * v1 / m, -P[CSS] * v2 / m, (fw - P[KH] * x3 - P[CH] * v3) / m
+    m = P[S.MASS]
+    return -P[S.CSS] * v1 / m, -P[S.CSS] * v2 / m, (fw - P[S.KH] * x3 - P[S.CH] * v3) / m
 
 
 @numba.njit(cache=True)
@@ -309,14 +299,14 @@ def stage_rhs(t, y, R, inp, args):
     side of the RKMK4 step; the gimbal is prescribed by inp in the sinusoidal/continuous modes."""
     u, P, tab = args
     mw, fw, pg = inp
-    mode = int(P[GMODE])
+    mode = int(P[S.GMODE])
     if mode != GIMBAL_SINUSOIDAL and mode != GIMBAL_CONTINUOUS:
         pg = gimbal_motion(t, y[3], y[4], u, P)
     a = ang_rates(y[0], y[1], y[2], y[3], y[4], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P)
     dy = np.zeros(y.shape[0])
     for i in range(5):
         dy[i] = a[i]
-    if P[TRANS] > 0.5:
+    if P[S.TRANS] > 0.5:
         # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
         v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
         dy[5], dy[6], dy[7], dy[8], dy[9], dy[10] = y[8], y[9], y[10], v1, v2, v3
@@ -335,16 +325,23 @@ def rk4_step(t, y, R, u, dt, P, tab):
     for i in range(y.shape[0]):
         y[i] += dy[i]
     R[:, :] = R1
-    mode = int(P[GMODE])
+    mode = int(P[S.GMODE])
     if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
         y[3], y[4] = inp[2][0], inp[2][1]
     return inp[0]
 
 
 @numba.njit(cache=True)
+def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyros: int) -> float:
+    """Gyroscopic roll moment on the hull, -n H phi' cos(phi) (N m; Eq. 123 right-hand side):
+    gimbal angle phi (rad) and rate phi' (rad/s) of gyro 1, H = J3^(3) psi' (N m s) per gyro."""
+    return -n_gyros * angular_momentum * phi_rate * math.cos(phi)
+
+
+@numba.njit(cache=True)
 def gyro_moment(y, P):
-    """Gyro roll moment -n H phi' cos(phi) (N m, Eq. 123) of state y."""
-    return -P[NGYRO] * P[JR3] * P[PSID] * y[4] * math.cos(y[3])
+    """Gyro roll moment (N m, Eq. 123) of state y: `gyro_roll_moment` with the packed P."""
+    return gyro_roll_moment(y[3], y[4], P[S.JR3] * P[S.PSID], P[S.NGYRO])
 
 
 @numba.njit(cache=True)
@@ -371,7 +368,7 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
     y = y0.copy()
     R = R0.copy()
     phi, phid, _ = gimbal_motion(0.0, y[3], y[4], 0.0, P)
-    if int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS:
+    if int(P[S.GMODE]) == GIMBAL_SINUSOIDAL or int(P[S.GMODE]) == GIMBAL_CONTINUOUS:
         y[3] = phi
         y[4] = phid
     ts[0] = 0.0
