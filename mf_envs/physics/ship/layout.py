@@ -69,5 +69,9 @@ class KernelParams:
         return np.array(dataclasses.astuple(self), dtype=np.float64)
 
 
+FORM_EXACT, FORM_SEED = 0, 1  # `form` codes
+GIMBAL_SERVO, GIMBAL_SINUSOIDAL, GIMBAL_CONTINUOUS, GIMBAL_TORQUE = 0, 1, 2, 3  # `gmode` codes
+WAVE_NONE, WAVE_REGULAR, WAVE_TABLE = 0, 1, 2  # `wmode` codes
+
 Slot = enum.IntEnum("Slot", [f.name.upper() for f in dataclasses.fields(KernelParams)], start=0)
 N_PARAMS = len(Slot)
