@@ -88,18 +88,26 @@ def rodrigues_coeffs(x2: float) -> tuple[float, float]:
 
 
 @numba.njit(cache=True)
-def exp_so3(w: np.ndarray) -> np.ndarray:
-    """Rodrigues: exp(hat(w)) (3, 3) of a rotation vector w (3,) in rad (ch. 2 Eq. 29)."""
+def _rodrigues_entries(w: np.ndarray):
+    """Entries (e00, e01, e02, e10, ..., e22) of exp(hat(w)) = I + a W + b W^2 (Eq. 29),
+    W^2 = w w^T - |w|^2 I."""
     x, y, z = w[0], w[1], w[2]
     x2 = x * x + y * y + z * z
     a, b = rodrigues_coeffs(x2)
+    return (
+        (1.0 + b * (x * x - x2), -a * z + b * x * y, a * y + b * x * z),
+        (a * z + b * x * y, 1.0 + b * (y * y - x2), -a * x + b * y * z),
+        (-a * y + b * x * z, a * x + b * y * z, 1.0 + b * (z * z - x2)),
+    )
+
+
+@numba.njit(cache=True)
+def exp_so3(w: np.ndarray) -> np.ndarray:
+    """Rodrigues: exp(hat(w)) (3, 3) of a rotation vector w (3,) in rad (ch. 2 Eq. 29)."""
+    E = _rodrigues_entries(w)
     R = np.empty((3, 3))
-    R[0, 0] = 1.0 + b * (x * x - x2)  # I + a W + b W^2, W^2 = w w^T - |w|^2 I
-    R[1, 1] = 1.0 + b * (y * y - x2)
-    R[2, 2] = 1.0 + b * (z * z - x2)
-    R[0, 1], R[1, 0] = -a * z + b * x * y, a * z + b * x * y
-    R[0, 2], R[2, 0] = a * y + b * x * z, -a * y + b * x * z
-    R[1, 2], R[2, 1] = -a * x + b * y * z, a * x + b * y * z
+    for i in range(3):
+        R[i, 0], R[i, 1], R[i, 2] = E[i]
     return R
 
 
@@ -157,9 +165,14 @@ def _dexpinv_c(x2: float) -> float:
 
 @numba.njit(cache=True)
 def _two_term(theta: np.ndarray, v: np.ndarray, c1: float, c2: float) -> np.ndarray:
-    """v + c1 theta x v + c2 theta x (theta x v), all (3,)."""
-    a = cross(theta, v)
-    return v + c1 * a + c2 * cross(theta, a)
+    """v + c1 theta x v + c2 theta x (theta x v), all (3,) (scalar loops: one allocation)."""
+    t0, t1, t2 = theta[0], theta[1], theta[2]
+    a0, a1, a2 = t1 * v[2] - t2 * v[1], t2 * v[0] - t0 * v[2], t0 * v[1] - t1 * v[0]
+    out = np.empty(3)
+    out[0] = v[0] + c1 * a0 + c2 * (t1 * a2 - t2 * a1)
+    out[1] = v[1] + c1 * a1 + c2 * (t2 * a0 - t0 * a2)
+    out[2] = v[2] + c1 * a2 + c2 * (t0 * a1 - t1 * a0)
+    return out
 
 
 @numba.njit(cache=True)
@@ -204,6 +217,38 @@ def dexp_left(theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
 # ---- the steppers (templates; see the module doc and `make_rk4` / `make_rkmk4`) ----
 
 
+@numba.njit(cache=True)
+def _axpy(x: np.ndarray, h: float, k: np.ndarray) -> np.ndarray:
+    """x + h k (one allocation; the same arithmetic as the array expression)."""
+    out = np.empty(x.shape[0])
+    for i in range(x.shape[0]):
+        out[i] = x[i] + h * k[i]
+    return out
+
+
+@numba.njit(cache=True)
+def _rk4_combine(dt: float, k1, k2, k3, k4) -> np.ndarray:
+    """The RK4 increment dt/6 (k1 + 2 k2 + 2 k3 + k4), element by element."""
+    c = dt / 6.0
+    out = np.empty(k1.shape[0])
+    for i in range(k1.shape[0]):
+        out[i] = c * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+    return out
+
+
+@numba.njit(cache=True)
+def times_exp(R: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """R exp(hat(theta)) (3, 3), the Rodrigues factor's entries as scalars (one allocation)."""
+    (e00, e01, e02), (e10, e11, e12), (e20, e21, e22) = _rodrigues_entries(theta)
+    out = np.empty((3, 3))
+    for i in range(3):
+        r0, r1, r2 = R[i, 0], R[i, 1], R[i, 2]
+        out[i, 0] = r0 * e00 + r1 * e10 + r2 * e20
+        out[i, 1] = r0 * e01 + r1 * e11 + r2 * e21
+        out[i, 2] = r0 * e02 + r1 * e12 + r2 * e22
+    return out
+
+
 def _rk4_template(t, x, dt, args):
     """One classical RK4 step of x' = rhs(t, x, inp(t), args) from t to t + dt.
 
@@ -213,10 +258,10 @@ def _rk4_template(t, x, dt, args):
     h = 0.5 * dt
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
     k1 = _rhs(t, x, i0, args)  # noqa: F821
-    k2 = _rhs(t + h, x + h * k1, ih, args)  # noqa: F821
-    k3 = _rhs(t + h, x + h * k2, ih, args)  # noqa: F821
-    k4 = _rhs(t + dt, x + dt * k3, i1, args)  # noqa: F821
-    return dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4), i1
+    k2 = _rhs(t + h, _axpy(x, h, k1), ih, args)  # noqa: F821
+    k3 = _rhs(t + h, _axpy(x, h, k2), ih, args)  # noqa: F821
+    k4 = _rhs(t + dt, _axpy(x, dt, k3), i1, args)  # noqa: F821
+    return _rk4_combine(dt, k1, k2, k3, k4), i1
 
 
 def _rkmk4_template(t, y, R, dt, args):
@@ -230,16 +275,16 @@ def _rkmk4_template(t, y, R, dt, args):
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
     k1, q1 = _rhs(t, y, R, i0, args)  # noqa: F821
     th = h * q1
-    k2, w = _rhs(t + h, y + h * k1, matmul3(R, exp_so3(th)), ih, args)  # noqa: F821
+    k2, w = _rhs(t + h, _axpy(y, h, k1), times_exp(R, th), ih, args)  # noqa: F821
     q2 = dexpinv_right(th, w)
     th = h * q2
-    k3, w = _rhs(t + h, y + h * k2, matmul3(R, exp_so3(th)), ih, args)  # noqa: F821
+    k3, w = _rhs(t + h, _axpy(y, h, k2), times_exp(R, th), ih, args)  # noqa: F821
     q3 = dexpinv_right(th, w)
     th = dt * q3
-    k4, w = _rhs(t + dt, y + dt * k3, matmul3(R, exp_so3(th)), i1, args)  # noqa: F821
+    k4, w = _rhs(t + dt, _axpy(y, dt, k3), times_exp(R, th), i1, args)  # noqa: F821
     q4 = dexpinv_right(th, w)
-    dy = dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-    return dy, matmul3(R, exp_so3(dt / 6.0 * (q1 + 2.0 * q2 + 2.0 * q3 + q4))), i1
+    dy = _rk4_combine(dt, k1, k2, k3, k4)
+    return dy, times_exp(R, _rk4_combine(dt, q1, q2, q3, q4)), i1
 
 
 def _specialise(template: Callable, rhs, inputs, prefix: str):
