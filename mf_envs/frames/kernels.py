@@ -88,10 +88,9 @@ def rodrigues_coeffs(x2: float) -> tuple[float, float]:
 
 
 @numba.njit(cache=True)
-def _rodrigues_entries(w: np.ndarray):
-    """Entries (e00, e01, e02, e10, ..., e22) of exp(hat(w)) = I + a W + b W^2 (Eq. 29),
+def _rodrigues_entries(x: float, y: float, z: float):
+    """Rows ((e00, e01, e02), ...) of exp(hat(w)) = I + a W + b W^2, w = (x, y, z) (Eq. 29),
     W^2 = w w^T - |w|^2 I."""
-    x, y, z = w[0], w[1], w[2]
     x2 = x * x + y * y + z * z
     a, b = rodrigues_coeffs(x2)
     return (
@@ -104,7 +103,7 @@ def _rodrigues_entries(w: np.ndarray):
 @numba.njit(cache=True)
 def exp_so3(w: np.ndarray) -> np.ndarray:
     """Rodrigues: exp(hat(w)) (3, 3) of a rotation vector w (3,) in rad (ch. 2 Eq. 29)."""
-    E = _rodrigues_entries(w)
+    E = _rodrigues_entries(w[0], w[1], w[2])
     R = np.empty((3, 3))
     for i in range(3):
         R[i, 0], R[i, 1], R[i, 2] = E[i]
@@ -164,23 +163,35 @@ def _dexpinv_c(x2: float) -> float:
 
 
 @numba.njit(cache=True)
+def _two_term3(t, v, c1: float, c2: float):
+    """v + c1 t x v + c2 t x (t x v) for 3-tuples t, v (no allocation)."""
+    a0, a1, a2 = t[1] * v[2] - t[2] * v[1], t[2] * v[0] - t[0] * v[2], t[0] * v[1] - t[1] * v[0]
+    return (
+        v[0] + c1 * a0 + c2 * (t[1] * a2 - t[2] * a1),
+        v[1] + c1 * a1 + c2 * (t[2] * a0 - t[0] * a2),
+        v[2] + c1 * a2 + c2 * (t[0] * a1 - t[1] * a0),
+    )
+
+
+@numba.njit(cache=True)
 def _two_term(theta: np.ndarray, v: np.ndarray, c1: float, c2: float) -> np.ndarray:
-    """v + c1 theta x v + c2 theta x (theta x v), all (3,) (scalar loops: one allocation)."""
-    t0, t1, t2 = theta[0], theta[1], theta[2]
-    a0, a1, a2 = t1 * v[2] - t2 * v[1], t2 * v[0] - t0 * v[2], t0 * v[1] - t1 * v[0]
-    out = np.empty(3)
-    out[0] = v[0] + c1 * a0 + c2 * (t1 * a2 - t2 * a1)
-    out[1] = v[1] + c1 * a1 + c2 * (t2 * a0 - t0 * a2)
-    out[2] = v[2] + c1 * a2 + c2 * (t0 * a1 - t1 * a0)
-    return out
+    """Array face of `_two_term3`: (3,) in, (3,) out."""
+    r = _two_term3((theta[0], theta[1], theta[2]), (v[0], v[1], v[2]), c1, c2)
+    return np.array([r[0], r[1], r[2]])
+
+
+@numba.njit(cache=True)
+def dexpinv_right3(t, w):
+    """`dexpinv_right` on 3-tuples (what the RKMK4 stages use)."""
+    return _two_term3(t, w, 0.5, _dexpinv_c(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]))
 
 
 @numba.njit(cache=True)
 def dexpinv_right(theta: np.ndarray, omega: np.ndarray) -> np.ndarray:
     """theta' (3,) of R = R0 exp(hat(theta)) with body rate omega (3,), R^T R' = hat(omega):
     omega + 1/2 theta x omega + 1/12 theta x (theta x omega) + ... (module doc)."""
-    t = theta
-    return _two_term(t, omega, 0.5, _dexpinv_c(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]))
+    r = dexpinv_right3((theta[0], theta[1], theta[2]), (omega[0], omega[1], omega[2]))
+    return np.array([r[0], r[1], r[2]])
 
 
 @numba.njit(cache=True)
@@ -218,73 +229,105 @@ def dexp_left(theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True)
-def _axpy(x: np.ndarray, h: float, k: np.ndarray) -> np.ndarray:
-    """x + h k (one allocation; the same arithmetic as the array expression)."""
-    out = np.empty(x.shape[0])
+def _rk4_weight(c: float, a: float, b: float, d: float, e: float) -> float:
+    """c (a + 2 b + 2 d + e): the RK4 quadrature of four stage slopes (c = dt / 6)."""
+    return c * (a + 2.0 * b + 2.0 * d + e)
+
+
+@numba.njit(cache=True)
+def _rk4_combine(dt: float, k1: np.ndarray, k2, k3, k4) -> np.ndarray:
+    """The RK4 increment dt/6 (k1 + 2 k2 + 2 k3 + k4) (n,), written into k1 and returned."""
+    c = dt / 6.0
+    for i in range(k1.shape[0]):
+        k1[i] = _rk4_weight(c, k1[i], k2[i], k3[i], k4[i])
+    return k1
+
+
+@numba.njit(cache=True)
+def _rk4_combine3(dt: float, q1, q2, q3, q4):
+    """`_rk4_combine` for 3-tuples (the Lie-algebra increment of RKMK4)."""
+    c = dt / 6.0
+    return (
+        _rk4_weight(c, q1[0], q2[0], q3[0], q4[0]),
+        _rk4_weight(c, q1[1], q2[1], q3[1], q4[1]),
+        _rk4_weight(c, q1[2], q2[2], q3[2], q4[2]),
+    )
+
+
+@numba.njit(cache=True)
+def times_exp_into(out: np.ndarray, R: np.ndarray, theta) -> None:
+    """out (3, 3) <- R exp(hat(theta)), theta a 3-tuple (rad); no allocation."""
+    (e00, e01, e02), (e10, e11, e12), (e20, e21, e22) = _rodrigues_entries(*theta)
+    for i in range(3):
+        r0, r1, r2 = R[i, 0], R[i, 1], R[i, 2]
+        out[i, 0] = r0 * e00 + r1 * e10 + r2 * e20
+        out[i, 1] = r0 * e01 + r1 * e11 + r2 * e21
+        out[i, 2] = r0 * e02 + r1 * e12 + r2 * e22
+
+
+@numba.njit(cache=True)
+def times_exp(R: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """R exp(hat(theta)) (3, 3) for theta (3,) rad."""
+    out = np.empty((3, 3))
+    times_exp_into(out, R, (theta[0], theta[1], theta[2]))
+    return out
+
+
+@numba.njit(cache=True)
+def _stage_point(out: np.ndarray, x: np.ndarray, h: float, k: np.ndarray) -> np.ndarray:
+    """out <- x + h k (the stage state; the same arithmetic as the array expression)."""
     for i in range(x.shape[0]):
         out[i] = x[i] + h * k[i]
     return out
 
 
 @numba.njit(cache=True)
-def _rk4_combine(dt: float, k1, k2, k3, k4) -> np.ndarray:
-    """The RK4 increment dt/6 (k1 + 2 k2 + 2 k3 + k4), element by element."""
-    c = dt / 6.0
-    out = np.empty(k1.shape[0])
-    for i in range(k1.shape[0]):
-        out[i] = c * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-    return out
-
-
-@numba.njit(cache=True)
-def times_exp(R: np.ndarray, theta: np.ndarray) -> np.ndarray:
-    """R exp(hat(theta)) (3, 3), the Rodrigues factor's entries as scalars (one allocation)."""
-    (e00, e01, e02), (e10, e11, e12), (e20, e21, e22) = _rodrigues_entries(theta)
-    out = np.empty((3, 3))
-    for i in range(3):
-        r0, r1, r2 = R[i, 0], R[i, 1], R[i, 2]
-        out[i, 0] = r0 * e00 + r1 * e10 + r2 * e20
-        out[i, 1] = r0 * e01 + r1 * e11 + r2 * e21
-        out[i, 2] = r0 * e02 + r1 * e12 + r2 * e22
-    return out
+def _scale3(h: float, v):
+    return (h * v[0], h * v[1], h * v[2])
 
 
 def _rk4_template(t, x, dt, args):
     """One classical RK4 step of x' = rhs(t, x, inp(t), args) from t to t + dt.
 
-    x: (n,) state; `inputs(t, args)` (exogenous, state-free: waves, prescribed motions) is
-    evaluated once at each of t, t + dt/2, t + dt. Returns (dx, inputs at t + dt): the caller
-    forms x + dx (the increment itself is what energy bookkeeping needs)."""
+    x: (n,) state; `rhs(t, x, inp, args, out)` writes x' into out (n,); `inputs(t, args)`
+    (exogenous, state-free: waves, prescribed motions) is evaluated once at each of t, t + dt/2,
+    t + dt. Returns (dx, inputs at t + dt): the caller forms x + dx (the increment itself is what
+    energy bookkeeping needs). Five (n,) allocations per step."""
     h = 0.5 * dt
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
-    k1 = _rhs(t, x, i0, args)  # noqa: F821
-    k2 = _rhs(t + h, _axpy(x, h, k1), ih, args)  # noqa: F821
-    k3 = _rhs(t + h, _axpy(x, h, k2), ih, args)  # noqa: F821
-    k4 = _rhs(t + dt, _axpy(x, dt, k3), i1, args)  # noqa: F821
+    n = x.shape[0]
+    k1, k2, k3, k4, xs = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    _rhs(t, x, i0, args, k1)  # noqa: F821
+    _rhs(t + h, _stage_point(xs, x, h, k1), ih, args, k2)  # noqa: F821
+    _rhs(t + h, _stage_point(xs, x, h, k2), ih, args, k3)  # noqa: F821
+    _rhs(t + dt, _stage_point(xs, x, dt, k3), i1, args, k4)  # noqa: F821
     return _rk4_combine(dt, k1, k2, k3, k4), i1
 
 
 def _rkmk4_template(t, y, R, dt, args):
     """One Runge-Kutta-Munthe-Kaas step (RK4 tableau) of y' = f, R' = R hat(omega) on SO(3) x R^n.
 
-    `rhs(t, y, R, inp, args) -> (y' (n,), omega (3,) body rate)`. The attitude is carried in the
-    Lie algebra: R_s = R exp(hat(theta_s)), theta' = dexpinv_right(theta, omega); the new attitude
-    is R exp(hat(theta_new)) (4th order in y and R, R orthogonal to round-off). Returns
-    (dy, R_new, inputs at t + dt)."""
+    `rhs(t, y, R, inp, args, out) -> omega` writes y' (n,) into out and returns the body rate
+    omega as a 3-tuple (rad/s). The attitude is carried in the Lie algebra: R_s = R exp(hat(
+    theta_s)), theta' = dexpinv_right(theta, omega); the new attitude is R exp(hat(theta_new))
+    (4th order in y and R, R orthogonal to round-off). Returns (dy, R_new, inputs at t + dt)."""
     h = 0.5 * dt
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
-    k1, q1 = _rhs(t, y, R, i0, args)  # noqa: F821
-    th = h * q1
-    k2, w = _rhs(t + h, _axpy(y, h, k1), times_exp(R, th), ih, args)  # noqa: F821
-    q2 = dexpinv_right(th, w)
-    th = h * q2
-    k3, w = _rhs(t + h, _axpy(y, h, k2), times_exp(R, th), ih, args)  # noqa: F821
-    q3 = dexpinv_right(th, w)
-    th = dt * q3
-    k4, w = _rhs(t + dt, _axpy(y, dt, k3), times_exp(R, th), i1, args)  # noqa: F821
-    q4 = dexpinv_right(th, w)
-    dy = _rk4_combine(dt, k1, k2, k3, k4)
-    return dy, times_exp(R, _rk4_combine(dt, q1, q2, q3, q4)), i1
+    n = y.shape[0]
+    k1, k2, k3, k4, ys = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    Rs = np.empty((3, 3))
+    q1 = _rhs(t, y, R, i0, args, k1)  # noqa: F821
+    th = _scale3(h, q1)
+    times_exp_into(Rs, R, th)
+    q2 = dexpinv_right3(th, _rhs(t + h, _stage_point(ys, y, h, k1), Rs, ih, args, k2))  # noqa: F821
+    th = _scale3(h, q2)
+    times_exp_into(Rs, R, th)
+    q3 = dexpinv_right3(th, _rhs(t + h, _stage_point(ys, y, h, k2), Rs, ih, args, k3))  # noqa: F821
+    th = _scale3(dt, q3)
+    times_exp_into(Rs, R, th)
+    q4 = dexpinv_right3(th, _rhs(t + dt, _stage_point(ys, y, dt, k3), Rs, i1, args, k4))  # noqa: F821
+    times_exp_into(Rs, R, _rk4_combine3(dt, q1, q2, q3, q4))
+    return _rk4_combine(dt, k1, k2, k3, k4), Rs, i1
 
 
 def _specialise(template: Callable, rhs, inputs, prefix: str):
@@ -307,12 +350,13 @@ def _specialise(template: Callable, rhs, inputs, prefix: str):
 def make_rk4(rhs, inputs):
     """The RK4 step `step(t, x, dt, args) -> (dx, inputs(t + dt))` for one model (numba).
 
-    rhs(t, x, inp, args) -> x' (n,) and inputs(t, args) -> inp must be `numba.njit` functions;
+    rhs(t, x, inp, args, out) (writes x' (n,) into out) and inputs(t, args) -> inp must be
+    `numba.njit` functions;
     `step` is itself jitted and callable from the model's kernels."""
     return _specialise(_rk4_template, rhs, inputs, "rk4")
 
 
 def make_rkmk4(rhs, inputs):
     """The RKMK4 step `step(t, y, R, dt, args) -> (dy, R_new, inputs(t + dt))` (numba);
-    rhs(t, y, R, inp, args) -> (y', omega) and inputs(t, args) jitted (see `_rkmk4_template`)."""
+    rhs(t, y, R, inp, args, out) -> omega and inputs(t, args) jitted (see `_rkmk4_template`)."""
     return _specialise(_rkmk4_template, rhs, inputs, "rkmk4")

@@ -76,14 +76,12 @@ def _stage_inputs(t, args):
 
 
 @numba.njit(cache=True)
-def _stage_rhs(t, x, inp, args):
+def _stage_rhs(t, x, inp, args, out):
     """(phi', phi'') of x = (phi, phi') under the buoy rates inp and the held torque args[0]."""
     Mg, inert, psid = args[0], args[1], args[2]
     w, wd = inp
     a = gimbal_accel(x[0], x[1], w, wd, Mg, inert[0], inert[1], inert[2], inert[3], inert[4], psid)
-    out = np.empty(2)
     out[0], out[1] = x[1], a
-    return out
 
 
 _rk4 = make_rk4(_stage_rhs, _stage_inputs)

@@ -281,18 +281,16 @@ def _stage_inputs(t, args):
 
 
 @numba.njit(cache=True)
-def _stage_rhs(t, x, k, args):
-    """(dz/dt, du/dt) of x = (z, u) at stage k: RKMK in local coordinates q = q0 (+) z."""
+def _stage_rhs(t, x, k, args, out):
+    """(dz/dt, du/dt) of x = (z, u) at stage k into out: RKMK in local coordinates q = q0 (+) z."""
     dt, q, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau = args
     jtype, qoff, uoff, free_joint = topo[1], topo[2], topo[3], topo[12]
     nu = x.shape[0] // 2
     zs, us = x[:nu], _overlay(x[nu:], uP[k], umask)
     qs = _overlay(retract(q, zs, jtype, qoff, uoff, free_joint), qP[k], qmask)
     ud, _ = dynamics(qs, us, udP[k], topo, wrench, gravity, tau)
-    out = np.empty(2 * nu)
     out[:nu] = local_rate(zs, us, jtype, uoff, free_joint)
     out[nu:] = ud
-    return out
 
 
 _rk4 = make_rk4(_stage_rhs, _stage_inputs)

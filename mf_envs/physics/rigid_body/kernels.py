@@ -47,9 +47,9 @@ def _no_inputs(t: float, Jinv: np.ndarray) -> float:
 
 
 @numba.njit(cache=True)
-def _euler_stage(t: float, H: np.ndarray, inp: float, Jinv: np.ndarray) -> np.ndarray:
+def _euler_stage(t: float, H: np.ndarray, inp: float, Jinv: np.ndarray, out: np.ndarray) -> None:
     """Eq. 22 in the frames RK4 stepper's signature."""
-    return euler_rhs(H, Jinv)
+    out[:] = euler_rhs(H, Jinv)
 
 
 _rk4 = make_rk4(_euler_stage, _no_inputs)

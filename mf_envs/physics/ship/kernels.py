@@ -172,23 +172,25 @@ def stage_inputs(t, args):
 
 
 @numba.njit(cache=True)
-def stage_rhs(t, y, R, inp, args):
-    """(y' (n,), body rate omega (3,)) of the state y at attitude R (module doc), the right-hand
-    side of the RKMK4 step; the gimbal is prescribed by inp in the sinusoidal/continuous modes."""
+def stage_rhs(t, y, R, inp, args, dy):
+    """y' (n,) of the state y at attitude R (module doc) into dy; returns the body rate omega
+    (3-tuple, rad/s): the right-hand side of the RKMK4 step. The gimbal is prescribed by inp in
+    the sinusoidal/continuous modes."""
     u, P, tab = args
     mw, fw, pg = inp
     mode = int(P[S.GMODE])
     if mode != GIMBAL_SINUSOIDAL and mode != GIMBAL_CONTINUOUS:
         pg = gimbal_motion(t, y[3], y[4], u, P)
     a = ang_rates(y[0], y[1], y[2], y[3], y[4], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P)
-    dy = np.zeros(y.shape[0])
     for i in range(5):
         dy[i] = a[i]
+    for i in range(5, y.shape[0]):
+        dy[i] = 0.0
     if P[S.TRANS] > 0.5:
         # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
         v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
         dy[5], dy[6], dy[7], dy[8], dy[9], dy[10] = y[8], y[9], y[10], v1, v2, v3
-    return dy, y[0:3].copy()
+    return y[0], y[1], y[2]
 
 
 _rkmk4 = make_rkmk4(stage_rhs, stage_inputs)
