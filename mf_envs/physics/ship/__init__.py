@@ -1,5 +1,10 @@
 """Ship with one or two gyroscopic roll stabilizers (Rios 2017, ch. 3 §3.3 and appendix §3.5).
 
+        e3 (yaw)          ship e^(1), attitude R(t) in SO(3)
+         |   gimbal e^(2) = e^(1) R_2(phi)       precession axis e_2 (athwartships)
+         |   rotor  e^(3) = e^(2) R_3(psi)       spin axis: the gimbal's e_3
+         +----- e1 (roll)          gyro roll moment on the hull: -n H phi' cos(phi) (Eq. 123)
+
 Public facade over the concept modules:
 
 - `params`: `ShipParams`, `GyroParams`, presets (`small_yacht`, `seed_test_hull`,

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs.effects import resolve_effects
+from mf_envs.frames.so3 import rot_x
 from mf_envs.physics.multibody import Body, Free, MBState, Multibody, Revolute, Spherical
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.layout import Slot as S
@@ -154,8 +155,7 @@ def simulate_engine(
     m = build_ship_multibody(ship, gyro, n_gyros, eff, drive, gyro_mass, offset)
     P = pack_params(ship, gyro, n_gyros, eff - {"irregular_waves"}, drive, wave)
     tab = np.zeros((1, 2))
-    c, s = math.cos(roll0), math.sin(roll0)
-    R0 = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    R0 = rot_x(roll0)
     w0 = np.asarray(tuple(omega0), dtype=float)
     trans = "translation" in eff
     # the fast path's x is the composite CM, fixed in the hull at s_cm: start it at rest

@@ -38,6 +38,7 @@ from mf_envs._validate import (
     check_positive,
 )
 from mf_envs.effects import EFFECT_NAMES, resolve_effects
+from mf_envs.frames.so3 import rot_x
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.kernels import gyro_roll_moment  # noqa: F401 (public name)
 from mf_envs.physics.ship.layout import KernelParams
@@ -241,9 +242,7 @@ def initial_state(
     y[0:3] = check_finite("omega", omega)
     y[3] = float(check_finite("gimbal_angle", gimbal_angle))
     y[4] = float(check_finite("gimbal_rate", gimbal_rate))
-    c, s = math.cos(roll), math.sin(roll)
-    R = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-    return y, R
+    return y, rot_x(roll)
 
 
 @dataclass
