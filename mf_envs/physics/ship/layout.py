@@ -15,6 +15,8 @@ import enum
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs._validate import check_finite
+
 
 @dataclasses.dataclass(frozen=True)
 class KernelParams:
@@ -63,6 +65,10 @@ class KernelParams:
     taumax: float = 0.0  # torque limit, N m (0: none)
     cg: float = 0.0  # gimbal damping / brake, N m s/rad
     kstop: float = 0.0  # end-stop stiffness, N m/rad
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):
+            check_finite(f.name, getattr(self, f.name))
 
     def pack(self) -> NDArray[np.float64]:
         """P (N_PARAMS,) float64 in slot order."""
