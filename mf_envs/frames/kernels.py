@@ -56,6 +56,24 @@ def vee(W: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True)
+def hat_batch(w: np.ndarray) -> np.ndarray:
+    """hat over rows: w (n, 3) -> (n, 3, 3)."""
+    out = np.empty((w.shape[0], 3, 3))
+    for i in range(w.shape[0]):
+        out[i] = hat(w[i])
+    return out
+
+
+@numba.njit(cache=True)
+def vee_batch(W: np.ndarray) -> np.ndarray:
+    """vee over a stack: W (n, 3, 3) -> (n, 3)."""
+    out = np.empty((W.shape[0], 3))
+    for i in range(W.shape[0]):
+        out[i] = vee(W[i])
+    return out
+
+
+@numba.njit(cache=True)
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """a x b for 3-vectors."""
     out = np.empty(3)

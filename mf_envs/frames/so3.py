@@ -21,14 +21,8 @@ def hat(w: ArrayLike) -> NDArray[np.float64]:
     w = np.asarray(w, dtype=np.float64)
     if w.shape[-1] != 3:
         raise ValueError(f"w: expected last dimension 3, got shape {w.shape}")
-    W = np.zeros(w.shape + (3,), dtype=np.float64)
-    W[..., 0, 1] = -w[..., 2]
-    W[..., 0, 2] = w[..., 1]
-    W[..., 1, 0] = w[..., 2]
-    W[..., 1, 2] = -w[..., 0]
-    W[..., 2, 0] = -w[..., 1]
-    W[..., 2, 1] = w[..., 0]
-    return W
+    flat = np.ascontiguousarray(w.reshape(-1, 3))
+    return _k.hat_batch(flat).reshape(w.shape[:-1] + (3, 3))
 
 
 def vee(W: ArrayLike) -> NDArray[np.float64]:
@@ -36,10 +30,8 @@ def vee(W: ArrayLike) -> NDArray[np.float64]:
     W = np.asarray(W, dtype=np.float64)
     if W.shape[-2:] != (3, 3):
         raise ValueError(f"W: expected trailing shape (3, 3), got {W.shape}")
-    return 0.5 * np.stack(
-        [W[..., 2, 1] - W[..., 1, 2], W[..., 0, 2] - W[..., 2, 0], W[..., 1, 0] - W[..., 0, 1]],
-        axis=-1,
-    )
+    flat = np.ascontiguousarray(W.reshape(-1, 3, 3))
+    return _k.vee_batch(flat).reshape(W.shape[:-2] + (3,))
 
 
 def exp_so3(w: ArrayLike) -> NDArray[np.float64]:
