@@ -304,17 +304,17 @@ def _scale3(h: float, v):
     return (h * v[0], h * v[1], h * v[2])
 
 
-def _rk4_template(t, x, dt, args):
+def _rk4_template(t, x, dt, args, work):
     """One classical RK4 step of x' = rhs(t, x, inp(t), args) from t to t + dt.
 
     x: (n,) state; `rhs(t, x, inp, args, out)` writes x' into out (n,); `inputs(t, args)`
     (exogenous, state-free: waves, prescribed motions) is evaluated once at each of t, t + dt/2,
-    t + dt. Returns (dx, inputs at t + dt): the caller forms x + dx (the increment itself is what
-    energy bookkeeping needs). Five (n,) allocations per step."""
+    t + dt. work: (5, n) scratch (`rk4_work(n)`; reuse it across steps: no allocation).
+    Returns (dx (a view into work), inputs at t + dt): the caller forms x + dx (the increment
+    itself is what energy bookkeeping needs)."""
     h = 0.5 * dt
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
-    n = x.shape[0]
-    k1, k2, k3, k4, xs = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    k1, k2, k3, k4, xs = work[0], work[1], work[2], work[3], work[4]
     _rhs(t, x, i0, args, k1)  # noqa: F821
     _rhs(t + h, _stage_point(xs, x, h, k1), ih, args, k2)  # noqa: F821
     _rhs(t + h, _stage_point(xs, x, h, k2), ih, args, k3)  # noqa: F821
@@ -322,18 +322,19 @@ def _rk4_template(t, x, dt, args):
     return _rk4_combine(dt, k1, k2, k3, k4), i1
 
 
-def _rkmk4_template(t, y, R, dt, args):
+def _rkmk4_template(t, y, R, dt, args, work, Rwork):
     """One Runge-Kutta-Munthe-Kaas step (RK4 tableau) of y' = f, R' = R hat(omega) on SO(3) x R^n.
 
     `rhs(t, y, R, inp, args, out) -> omega` writes y' (n,) into out and returns the body rate
     omega as a 3-tuple (rad/s). The attitude is carried in the Lie algebra: R_s = R exp(hat(
     theta_s)), theta' = dexpinv_right(theta, omega); the new attitude is R exp(hat(theta_new))
-    (4th order in y and R, R orthogonal to round-off). Returns (dy, R_new, inputs at t + dt)."""
+    (4th order in y and R, R orthogonal to round-off). work (5, n), Rwork (2, 3, 3): scratch
+    (`rk4_work(n)`, `rkmk4_rwork()`; reuse across steps). Returns (dy, R_new, inputs at t + dt),
+    dy and R_new views into the scratch."""
     h = 0.5 * dt
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
-    n = y.shape[0]
-    k1, k2, k3, k4, ys = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    Rs = np.empty((3, 3))
+    k1, k2, k3, k4, ys = work[0], work[1], work[2], work[3], work[4]
+    Rs, R1 = Rwork[0], Rwork[1]
     q1 = _rhs(t, y, R, i0, args, k1)  # noqa: F821
     th = _scale3(h, q1)
     times_exp_into(Rs, R, th)
@@ -344,8 +345,20 @@ def _rkmk4_template(t, y, R, dt, args):
     th = _scale3(dt, q3)
     times_exp_into(Rs, R, th)
     q4 = dexpinv_right3(th, _rhs(t + dt, _stage_point(ys, y, dt, k3), Rs, i1, args, k4))  # noqa: F821
-    times_exp_into(Rs, R, _rk4_combine3(dt, q1, q2, q3, q4))
-    return _rk4_combine(dt, k1, k2, k3, k4), Rs, i1
+    times_exp_into(R1, R, _rk4_combine3(dt, q1, q2, q3, q4))
+    return _rk4_combine(dt, k1, k2, k3, k4), R1, i1
+
+
+@numba.njit(cache=True)
+def rk4_work(n: int) -> np.ndarray:
+    """Scratch (5, n) for the RK4 / RKMK4 steppers (stage slopes and the stage state)."""
+    return np.empty((5, n))
+
+
+@numba.njit(cache=True)
+def rkmk4_rwork() -> np.ndarray:
+    """Scratch (2, 3, 3) for the RKMK4 stepper (stage attitude, new attitude)."""
+    return np.empty((2, 3, 3))
 
 
 def _specialise(template: Callable, rhs, inputs, prefix: str):
@@ -366,7 +379,7 @@ def _specialise(template: Callable, rhs, inputs, prefix: str):
 
 
 def make_rk4(rhs, inputs):
-    """The RK4 step `step(t, x, dt, args) -> (dx, inputs(t + dt))` for one model (numba).
+    """The RK4 step `step(t, x, dt, args, work) -> (dx, inputs(t + dt))` for one model (numba).
 
     rhs(t, x, inp, args, out) (writes x' (n,) into out) and inputs(t, args) -> inp must be
     `numba.njit` functions;
@@ -375,6 +388,6 @@ def make_rk4(rhs, inputs):
 
 
 def make_rkmk4(rhs, inputs):
-    """The RKMK4 step `step(t, y, R, dt, args) -> (dy, R_new, inputs(t + dt))` (numba);
+    """The RKMK4 step `step(t, y, R, dt, args, work, Rwork) -> (dy, R_new, inputs(t + dt))`;
     rhs(t, y, R, inp, args, out) -> omega and inputs(t, args) jitted (see `_rkmk4_template`)."""
     return _specialise(_rkmk4_template, rhs, inputs, "rkmk4")

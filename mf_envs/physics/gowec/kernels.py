@@ -8,7 +8,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import make_rk4
+from mf_envs.frames.kernels import make_rk4, rk4_work
 
 
 @numba.njit(cache=True)
@@ -98,8 +98,9 @@ def fast_step(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, t
     args = (Mg, inert, psid, amp, om, eps, k, cth, sth, two_d)
     x = np.empty(2)
     x[0], x[1] = phi, phid
+    work = rk4_work(2)
     for _ in range(n):
-        dx, _ = _rk4(t, x, dt, args)
+        dx, _ = _rk4(t, x, dt, args, work)
         energy += Mg * dx[0]  # = M_g (change of phi), exact for the held torque
         x[0] += dx[0]
         x[1] += dx[1]

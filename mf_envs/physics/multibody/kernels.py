@@ -26,7 +26,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import dexpinv_right, exp_so3, hat, make_rk4
+from mf_envs.frames.kernels import dexpinv_right, exp_so3, hat, make_rk4, rk4_work
 
 FIXED, REVOLUTE, PRISMATIC, SPHERICAL, FREE = 0, 1, 2, 3, 4
 NQ = (0, 1, 1, 9, 12)  # configuration slots per joint type
@@ -310,7 +310,7 @@ def rkmk4_step(q, u, dt, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau):
     x = np.zeros(2 * nu)
     x[nu:] = u
     args = (dt, q, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau)
-    dx, _ = _rk4(0.0, x, dt, args)
+    dx, _ = _rk4(0.0, x, dt, args, rk4_work(2 * nu))
     q1 = _overlay(retract(q, dx[:nu], jtype, qoff, uoff, free_joint), qP[2], qmask)
     u1 = _overlay(u + dx[nu:], uP[2], umask)
     return q1, u1

@@ -23,7 +23,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import cross, exp_so3, make_rk4
+from mf_envs.frames.kernels import cross, exp_so3, make_rk4, rk4_work
 
 # method codes used by `integrate` (names in rigid_body.METHODS, same order)
 RK4_RODRIGUES, RK4_MAGNUS4, RK4_MAGNUS4_PROJ, SPLITTING2, SPLITTING4 = 0, 1, 2, 3, 4
@@ -58,7 +58,7 @@ _rk4 = make_rk4(_euler_stage, _no_inputs)
 @numba.njit(cache=True)
 def rk4_momentum_step(H: np.ndarray, Jinv: np.ndarray, dt: float) -> np.ndarray:
     """One classical RK4 step of Eq. 22 from H(t) to H(t + dt) (body components, kg m^2/s)."""
-    return H + _rk4(0.0, H, dt, Jinv)[0]
+    return H + _rk4(0.0, H, dt, Jinv, rk4_work(3))[0]
 
 
 @numba.njit(cache=True)

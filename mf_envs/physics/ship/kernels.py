@@ -40,7 +40,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import make_rkmk4
+from mf_envs.frames.kernels import make_rkmk4, rk4_work, rkmk4_rwork
 from mf_envs.physics.ship.layout import (  # noqa: F401 (re-exported)
     FORM_EXACT,
     FORM_SEED,
@@ -197,11 +197,13 @@ _rkmk4 = make_rkmk4(stage_rhs, stage_inputs)
 
 
 @numba.njit(cache=True)
-def rk4_step(t, y, R, u, dt, P, tab):
+def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     """One Runge-Kutta-Munthe-Kaas step (`mf_envs.frames.kernels`, RK4 tableau, the attitude in
     the Lie algebra: 4th order in R and w, R orthogonal to round-off) of y and R in place.
-    A prescribed gimbal is set to its value at t + dt. Returns the wave moment (N m) at t + dt."""
-    dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab))
+    A prescribed gimbal is set to its value at t + dt. work (5, n), Rwork (2, 3, 3): the
+    stepper's scratch (`frames.kernels.rk4_work`, `rkmk4_rwork`). Returns the wave moment (N m)
+    at t + dt."""
+    dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab), work, Rwork)
     for i in range(y.shape[0]):
         y[i] += dy[i]
     R[:, :] = R1
@@ -229,8 +231,9 @@ def advance(t, y, R, u, dt, n_sub, P, tab, out):
     """n_sub RK4 steps of size dt with the command u held; returns the new time.
     out[0], out[1] <- gyro roll moment and wave moment (N m) at the end."""
     mw = wave_loads(t, P, tab)[0]
+    work, Rwork = rk4_work(y.shape[0]), rkmk4_rwork()
     for _ in range(n_sub):
-        mw = rk4_step(t, y, R, u, dt, P, tab)
+        mw = rk4_step(t, y, R, u, dt, P, tab, work, Rwork)
         t += dt
     out[0] = gyro_moment(y, P)
     out[1] = mw
@@ -256,8 +259,9 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
     Rs[0] = R
     mg[0] = gyro_moment(y, P)
     t = 0.0
+    work, Rwork = rk4_work(y.shape[0]), rkmk4_rwork()
     for k in range(n):
-        rk4_step(t, y, R, 0.0, dt, P, tab)
+        rk4_step(t, y, R, 0.0, dt, P, tab, work, Rwork)
         t = (k + 1) * dt  # k dt, not a running sum
         ts[k + 1] = t
         ys[k + 1] = y
