@@ -29,7 +29,7 @@ from mf_envs.frames.kernels import exp_so3 as exp_so3_nb
 vec3 = arrays(np.float64, 3, elements=st.floats(-10, 10, allow_nan=False))
 small_vec3 = arrays(np.float64, 3, elements=st.floats(-1e-5, 1e-5, allow_nan=False))
 # compile (or load) the numba kernels once here, not inside a hypothesis deadline
-exp_so3(np.zeros(3)), log_so3(np.eye(3))
+exp_so3(np.zeros(3)), log_so3(np.eye(3)), hat(np.zeros(3)), vee(np.zeros((3, 3)))
 
 
 @given(vec3)

@@ -93,7 +93,7 @@ def matmul3(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     return C
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def rodrigues_coeffs(x2: float) -> tuple[float, float]:
     """a = sin(x)/x, b = (1 - cos x)/x^2 of the angle x = sqrt(x2) (ch. 2 Eq. 29)."""
     if x2 < _SERIES_X2:
@@ -105,7 +105,7 @@ def rodrigues_coeffs(x2: float) -> tuple[float, float]:
     return math.sin(x) / x, 2.0 * s * s / x2
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _rodrigues_entries(x: float, y: float, z: float):
     """Rows ((e00, e01, e02), ...) of exp(hat(w)) = I + a W + b W^2, w = (x, y, z) (Eq. 29),
     W^2 = w w^T - |w|^2 I."""
@@ -169,7 +169,7 @@ def log_so3_batch(R: np.ndarray) -> np.ndarray:
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _dexpinv_c(x2: float) -> float:
     """c(x) = (1 - (x/2) cot(x/2)) / x^2 of dexp^-1 (module doc), series to x^8 for x < 0.1."""
     if x2 < _SERIES_X2:
@@ -180,7 +180,7 @@ def _dexpinv_c(x2: float) -> float:
     return (1.0 - 0.5 * x / math.tan(0.5 * x)) / x2
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _two_term3(t, v, c1: float, c2: float):
     """v + c1 t x v + c2 t x (t x v) for 3-tuples t, v (no allocation)."""
     a0, a1, a2 = t[1] * v[2] - t[2] * v[1], t[2] * v[0] - t[0] * v[2], t[0] * v[1] - t[1] * v[0]
@@ -198,7 +198,7 @@ def _two_term(theta: np.ndarray, v: np.ndarray, c1: float, c2: float) -> np.ndar
     return np.array([r[0], r[1], r[2]])
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def dexpinv_right3(t, w):
     """`dexpinv_right` on 3-tuples (what the RKMK4 stages use)."""
     return _two_term3(t, w, 0.5, _dexpinv_c(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]))
@@ -246,13 +246,13 @@ def dexp_left(theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
 # ---- the steppers (templates; see the module doc and `make_rk4` / `make_rkmk4`) ----
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _rk4_weight(c: float, a: float, b: float, d: float, e: float) -> float:
     """c (a + 2 b + 2 d + e): the RK4 quadrature of four stage slopes (c = dt / 6)."""
     return c * (a + 2.0 * b + 2.0 * d + e)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _rk4_combine(dt: float, k1: np.ndarray, k2, k3, k4) -> np.ndarray:
     """The RK4 increment dt/6 (k1 + 2 k2 + 2 k3 + k4) (n,), written into k1 and returned."""
     c = dt / 6.0
@@ -261,7 +261,7 @@ def _rk4_combine(dt: float, k1: np.ndarray, k2, k3, k4) -> np.ndarray:
     return k1
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _rk4_combine3(dt: float, q1, q2, q3, q4):
     """`_rk4_combine` for 3-tuples (the Lie-algebra increment of RKMK4)."""
     c = dt / 6.0
@@ -272,10 +272,11 @@ def _rk4_combine3(dt: float, q1, q2, q3, q4):
     )
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def times_exp_into(out: np.ndarray, R: np.ndarray, theta) -> None:
     """out (3, 3) <- R exp(hat(theta)), theta a 3-tuple (rad); no allocation."""
-    (e00, e01, e02), (e10, e11, e12), (e20, e21, e22) = _rodrigues_entries(*theta)
+    E = _rodrigues_entries(theta[0], theta[1], theta[2])
+    (e00, e01, e02), (e10, e11, e12), (e20, e21, e22) = E
     for i in range(3):
         r0, r1, r2 = R[i, 0], R[i, 1], R[i, 2]
         out[i, 0] = r0 * e00 + r1 * e10 + r2 * e20
@@ -291,7 +292,7 @@ def times_exp(R: np.ndarray, theta: np.ndarray) -> np.ndarray:
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _stage_point(out: np.ndarray, x: np.ndarray, h: float, k: np.ndarray) -> np.ndarray:
     """out <- x + h k (the stage state; the same arithmetic as the array expression)."""
     for i in range(x.shape[0]):
@@ -299,7 +300,7 @@ def _stage_point(out: np.ndarray, x: np.ndarray, h: float, k: np.ndarray) -> np.
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _scale3(h: float, v):
     return (h * v[0], h * v[1], h * v[2])
 

@@ -162,7 +162,7 @@ def _trans_rates(x3, v1, v2, v3, fw, P):
     return -P[S.CSS] * v1 / m, -P[S.CSS] * v2 / m, (fw - P[S.KH] * x3 - P[S.CH] * v3) / m
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def stage_inputs(t, args):
     """The state-free inputs at time t: (wave moment N m, heave force N, prescribed gimbal
     (phi, phi', phi'') of gyro 1; unused by the servo and torque drives)."""
@@ -171,7 +171,7 @@ def stage_inputs(t, args):
     return mw, fw, gimbal_motion(t, 0.0, 0.0, u, P)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def stage_rhs(t, y, R, inp, args, dy):
     """y' (n,) of the state y at attitude R (module doc) into dy; returns the body rate omega
     (3-tuple, rad/s): the right-hand side of the RKMK4 step. The gimbal is prescribed by inp in
