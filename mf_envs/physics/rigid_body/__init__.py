@@ -33,7 +33,7 @@ Methods (why each exists; kernels in kernels.py):
 Inertias may come in any order (the equations do not care; the exact solution permutes to its
 canonical frame and reports `EllipticSolution.axes`); zero, negative or non-finite inputs raise
 ValueError naming the argument. The only geometry helpers that need J1 > J2 > J3 are in polhode.py.
-Gravity G = 9.80665 m/s^2 (`mf_envs.physics.constants`).
+Gravity G = 9.81 m/s^2 (the seed's value) (`mf_envs.physics.constants`).
 """
 
 from mf_envs.physics.rigid_body.exact import (

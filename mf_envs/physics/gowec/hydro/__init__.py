@@ -28,9 +28,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs.physics.constants import RHO_SEAWATER, G
+
 DEFAULT_HULL_FILE = Path(__file__).with_name("default_hull.npz")
-RHO = 1025.0  # sea water, kg/m^3 (the BEM runs use this; the seed's Eq. 15 uses 1020)
-G = 9.81  # m/s^2, as mf_envs.physics.waves
+RHO = RHO_SEAWATER  # kg/m^3, what the BEM runs use (the seed's Eq. 15 uses 1020)
 
 _ARRAYS = ("omega", "added_mass", "damping", "excitation")
 _SCALARS = (

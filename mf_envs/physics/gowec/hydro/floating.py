@@ -44,6 +44,8 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs.frames.kernels import make_rk4, rk4_work
+
 N_MECH = 6
 N_ENERGY = 6
 
@@ -196,15 +198,30 @@ def deriv(t, y, tau, args):
 
 
 @numba.njit(cache=True)
+def _stage_rhs(t, x, inp, args, out):
+    """`deriv` in the form of the frames RK4 template; args = (tau, deriv args)."""
+    out[:] = deriv(t, x, args[0], args[1])
+
+
+@numba.njit(cache=True)
+def _no_inputs(t, args):
+    """The wave excitation is evaluated inside `deriv`: no separate inputs."""
+    return 0.0
+
+
+_rk4 = make_rk4(_stage_rhs, _no_inputs)
+
+
+@numba.njit(cache=True)
 def rk4_steps(t, y, tau, dt, n, args):
     """n RK4 substeps of dt (s) from (t, y) with the PTO command tau held; returns y (new).
-    args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr) as `deriv` (`pack`)."""
+    args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr) as `deriv` (`pack`).
+    The stage loop is the one of `mf_envs.frames.kernels.make_rk4`."""
+    work = rk4_work(y.shape[0])
+    full = (tau, args)
     for _ in range(n):
-        k1 = deriv(t, y, tau, args)
-        k2 = deriv(t + 0.5 * dt, y + 0.5 * dt * k1, tau, args)
-        k3 = deriv(t + 0.5 * dt, y + 0.5 * dt * k2, tau, args)
-        k4 = deriv(t + dt, y + dt * k3, tau, args)
-        y = y + dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        dy, _ = _rk4(t, y, dt, full, work)
+        y = y + dy
         t += dt
     return y
 
