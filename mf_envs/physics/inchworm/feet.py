@@ -168,20 +168,21 @@ class FrictionFeet:
         lo, e_lo, hi, e_hi = 0.0, float(self.excess(rx, n, g0)[i]), 1.0, e1
         if self.slipping[i] != 0 or e_lo >= 0.0:
             return 0.0, d
-        d_lo = d
+        d_lo, best = d, (abs(e_lo), 0.0, d)
         for _ in range(30):
             lam = lo + (hi - lo) * e_lo / (e_lo - e_hi)
             lam = min(max(lam, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
             dl = self._path(d_lo, k0, k1, f_ext, both, lo, lam)
             rx, n = self.ground_forces(dl, k0 + lam * (k1 - k0), f_ext)
             e = float(self.excess(rx, n, g0 + lam * (g1 - g0))[i])
+            best = min(best, (abs(e), lam, dl), key=lambda b: b[0])
             if e <= 0.0:
                 lo, e_lo, d_lo = lam, e, dl
             else:
                 hi, e_hi = lam, e
-            if abs(e) < 1e-9 * max(abs(n[i]), 1e-12) or hi - lo < 1e-9:
+            if abs(e) < 1e-9 * max(abs(n[i]), 1e-12) or hi - lo < 1e-12:
                 break
-        return lo, d_lo
+        return best[1], best[2]
 
     def increment(
         self,
