@@ -11,13 +11,20 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from mf_envs.physics.inchworm import Inchworm, InchwormParams
+from mf_envs.physics.inchworm import Inchworm, InchwormParams, run_gait, seed_uniform_kappa
 from mf_envs.physics.inchworm.actuators import (
     ActuatorParams,
     RateLimitedLag,
     actuation_power,
     increment_work,
     rate_limited_lag,
+)
+from mf_envs.physics.inchworm.drive import (
+    DrivenInchworm,
+    cosine_gait,
+    grip_for,
+    run_open_loop,
+    square_gait,
 )
 from mf_envs.physics.inchworm.feet import (
     FORWARD,
@@ -275,3 +282,54 @@ def test_energy_balance_with_friction():
     w_grav = float(f @ (ds[-1] - d0))
     assert rep.friction_work < 0.0
     assert work == pytest.approx(du - w_grav - rep.friction_work, rel=2e-3)
+
+
+# ---------------------------------------------------------------- the driven robot
+def _driven(actuator=True, friction=True):
+    sim = Inchworm(P, effects=frozenset({"gravity", "shear_deformation", "anchor_switching"}))
+    S = np.linspace(0.0, P.length, 3)
+    act = ActuatorParams(TAU, RATE) if actuator else None
+    dr = DrivenInchworm(sim, S, act, FrictionParams() if friction else None)
+    dr.reset(np.zeros(3))
+    return dr
+
+
+def test_driven_bang_bang_never_exceeds_kappa_or_grip_rates():
+    """Random bang-bang curvature commands and grip flips at every 0.1 s step: the realised
+    kappa# at the control points and at every Gauss point of the beam, and the engagements of
+    both feet, change no faster than the actuator and the feet allow."""
+    dr, rng, dt = _driven(), np.random.default_rng(11), 0.1
+    fp = dr.feet.params
+    worst_k = worst_g = 0.0
+    for _ in range(40):
+        u = np.where(rng.random(3) < 0.5, -13.0, 0.0)
+        k_ctrl, k_gauss, g = dr.kappa_ctrl.copy(), dr.sim.kappa.copy(), dr.feet.g.copy()
+        rep = dr.step(u, "head" if rng.random() < 0.5 else "tail", dt)
+        worst_k = max(worst_k, np.max(np.abs(rep.kappa_sharp - k_ctrl)) / dt)
+        worst_k = max(worst_k, np.max(np.abs(dr.sim.kappa - k_gauss)) / dt)
+        tau = np.where(rep.grip > g, fp.engage_time, fp.release_time)
+        worst_g = max(worst_g, float(np.max(np.abs(rep.grip - g) * tau / dt)))
+    assert worst_k <= RATE * (1 + 1e-9) and worst_k > 0.9 * RATE
+    assert worst_g <= 1.0 + 1e-12 and worst_g > 0.3
+
+
+def test_driver_without_dynamics_is_the_seed_scene():
+    """No actuator dynamics, kinematic anchors: the driver reproduces `run_gait` (Eq. 101,
+    40 steps per cycle, Eq. 102 anchors) to solver tolerance."""
+    dr = _driven(actuator=False, friction=False)
+    ref = Inchworm(P, effects=frozenset({"gravity", "shear_deformation", "anchor_switching"}))
+    hist = run_gait(ref, lambda S, t: np.full(S.shape, seed_uniform_kappa(t, 13.0)), 1, 40)
+    gait = cosine_gait(13.0, np.ones(3), 4.0)
+    for k in range(40):
+        c = gait(0.1 * (k + 1))
+        dr.step(c, grip_for(dr, c, 0.1), 0.1)
+        assert dr.sim.x_tail == pytest.approx(hist.x_tail[k + 1], abs=1e-9)
+
+
+def test_open_loop_metrics_are_consistent():
+    """Speed x period = advance per cycle; cost of transport = energy / (weight x distance)."""
+    dr = _driven()
+    m = run_open_loop(dr, square_gait(13.0, np.ones(3), 2.0), 2.0, 0.1, 1, 1)
+    assert m.speed * 2.0 == pytest.approx(m.advance_per_cycle)
+    assert m.cost_of_transport == pytest.approx(m.energy / (WEIGHT * m.distance))
+    assert m.distance > 0.05 and 0.0 < m.cost_of_transport < 10.0
