@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mf_envs.physics.beam import NewmarkState
-from mf_envs.physics.inchworm import Inchworm, kappa_at_gauss
+from mf_envs.physics.inchworm import Inchworm, InchwormParams, kappa_at_gauss
 from mf_envs.physics.inchworm.actuators import (
     ActuatorParams,
     EnergyMeter,
@@ -32,6 +32,11 @@ from mf_envs.physics.inchworm.actuators import (
 )
 from mf_envs.physics.inchworm.feet import FootReport, FrictionFeet, FrictionParams
 
+DRIVE_EFFECTS = {
+    "actuator_dynamics": "actuator lag + rate limit on kappa# (off = kappa# as commanded)",
+    "friction": "feet holding by anisotropic Coulomb friction with grip dynamics (off = the "
+    "kinematic anchors of Eq. 102)",
+}
 GRIP_COMMANDS = {"head": (0.0, 1.0), "tail": (1.0, 0.0), None: (1.0, 1.0)}  # (tail, head)
 
 
@@ -127,6 +132,7 @@ class DrivenInchworm:
 
     def _frictional(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> FootReport:
         sim = self.sim
+        self.feet.settings = sim.settings  # one Newton budget for the whole robot
         ds, rep = self.feet.step(sim.state.d, gauss, sim.f_ext, GRIP_COMMANDS[anchor], dt)
         d_prev = sim.state.d
         for j, d in enumerate(ds):
@@ -138,6 +144,31 @@ class DrivenInchworm:
         sim.anchor = anchor or "head"
         sim._recenter()  # noqa: SLF001 - same package: the local origin follows the tail
         return rep
+
+
+def make_driven(
+    params: InchwormParams,
+    effects: frozenset[str],
+    n_control_points: int,
+    actuator: ActuatorParams,
+    friction: FrictionParams,
+    increment_factor: float = 1.0,
+    soil: str = "dry_sand",
+) -> DrivenInchworm:
+    """A DrivenInchworm with control points evenly spaced from tail to head; `effects` may name
+    the beam's effects and those of DRIVE_EFFECTS (which switch actuator and friction on)."""
+    sim = Inchworm(
+        params,
+        frozenset(effects) - set(DRIVE_EFFECTS),
+        increment_factor=increment_factor,
+        soil=soil,
+    )
+    return DrivenInchworm(
+        sim,
+        np.linspace(0.0, params.length, n_control_points),
+        actuator if "actuator_dynamics" in effects else None,
+        friction if "friction" in effects else None,
+    )
 
 
 # ---------------------------------------------------------------------- open-loop gaits
