@@ -88,25 +88,29 @@ class DrivenInchworm:
     def _gauss(self, kappa_ctrl: np.ndarray) -> np.ndarray:
         return kappa_at_gauss(self.S_ctrl, kappa_ctrl, self.sim.model.gauss_S)
 
-    def _path(self, command: np.ndarray, dt: float) -> np.ndarray:
+    def _path(self, command: np.ndarray, dt: float, min_substeps: int) -> np.ndarray:
         """kappa# at the control points at the substep ends, (n_sub + 1, n) [1/m]."""
         limit = self.sim.increment_factor * self.sim.params.max_dkappa
         if self.lag is None:
-            n = max(1, int(np.ceil(np.max(np.abs(command - self.kappa_ctrl)) / limit - 1e-12)))
+            n = int(np.ceil(np.max(np.abs(command - self.kappa_ctrl)) / limit - 1e-12))
+            n = max(n, min_substeps, 1)
             lam = np.linspace(0.0, 1.0, n + 1)[:, None]
             return self.kappa_ctrl + lam * (command - self.kappa_ctrl)
         rate0 = float(np.max(np.abs(self.lag.rate(self.lag.kappa, command))))
-        n = max(1, int(np.ceil(rate0 * dt / limit - 1e-12)))
+        n = max(1, min_substeps, int(np.ceil(rate0 * dt / limit - 1e-12)))
         path = self.lag.trajectory(command, np.linspace(0.0, dt, n + 1))
         path[0] = self.lag.kappa
         return path
 
-    def step(self, command: np.ndarray, anchor: str | None, dt: float) -> DriveReport:
+    def step(
+        self, command: np.ndarray, anchor: str | None, dt: float, min_substeps: int = 1
+    ) -> DriveReport:
         """Hold the commanded kappa# (n,) [1/m] and the grip (`anchor`: "head"/"tail" grips,
-        None: both with friction, Eq. 102 with kinematic anchors) for dt [s].
+        None: both with friction, Eq. 102 with kinematic anchors) for dt [s], in at least
+        min_substeps substeps (e.g. the Newmark steps of `inertia`).
         Raises NewtonDivergence / NoQuasiStaticEquilibrium when the physics fails."""
         command = np.asarray(command, float).reshape(self.kappa_ctrl.shape)
-        path = self._path(command, dt)
+        path = self._path(command, dt, min_substeps)
         gauss = [self._gauss(k) for k in path]
         n = len(path) - 1
         energy0, net0 = self.meter.input_energy, self.meter.net
