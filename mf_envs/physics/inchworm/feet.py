@@ -37,6 +37,7 @@ from mf_envs._validate import check_nonnegative, check_positive
 from mf_envs.physics.beam import BeamModel, NewtonSettings, solve_static_path
 
 FORWARD, BACKWARD = 1, -1
+TIE_TOLERANCE = 1e-2  # accepted relative excess of the other foot in a near tie
 
 
 class NoQuasiStaticEquilibrium(RuntimeError):
@@ -155,18 +156,24 @@ class FrictionFeet:
 
         return solve_static_path(self.model, d, load_at, fixed, self.settings)
 
-    def _friction_load(self, i: int, rx_sign: float, g: float, normal: float) -> np.ndarray:
+    def _pull_excess(self, rx: float, n: float, g: float, s: int) -> float:
+        """-s R_x - F_hold(s) [N] of a foot pulled towards s (+1/-1): > 0 once it would slip."""
+        return -s * rx - self.params.holding_limit(g, s, n)
+
+    def _friction_load(self, i: int, s: int, g: float, normal: float) -> np.ndarray:
+        """Nodal load (n_dof,) of the ground on foot i slipping towards s: -s F_hold(s)."""
         f = np.zeros(self.model.n_dof)
-        s = BACKWARD if rx_sign > 0 else FORWARD
         f[self.x_dofs[i]] = -s * self.params.holding_limit(g, s, normal)
         return f
 
-    def _onset(self, d, k0, k1, f_ext, g0, g1, i, e1) -> tuple[float, np.ndarray]:
-        """lambda* in [0, 1] where foot i's stuck force reaches its limit (regula falsi)."""
+    def _onset(self, d, k0, k1, f_ext, g0, g1, i, s, e1) -> tuple[float, np.ndarray]:
+        """lambda* in [0, 1] where foot i, pulled towards s, reaches its holding limit on the
+        stuck path (regula falsi on the pull excess, which is < 0 at the start unless the foot
+        already slips that way, and e1 > 0 at lambda = 1)."""
         both = np.ones(2, bool)
         rx, n = self.ground_forces(d, k0, f_ext)
-        lo, e_lo, hi, e_hi = 0.0, float(self.excess(rx, n, g0)[i]), 1.0, e1
-        if self.slipping[i] != 0 or e_lo >= 0.0:
+        lo, e_lo, hi, e_hi = 0.0, self._pull_excess(rx[i], n[i], g0[i], s), 1.0, e1
+        if self.slipping[i] == s or e_lo >= 0.0:
             return 0.0, d
         d_lo, best = d, (abs(e_lo), 0.0, d)
         for _ in range(30):
@@ -174,7 +181,7 @@ class FrictionFeet:
             lam = min(max(lam, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
             dl = self._path(d_lo, k0, k1, f_ext, both, lo, lam)
             rx, n = self.ground_forces(dl, k0 + lam * (k1 - k0), f_ext)
-            e = float(self.excess(rx, n, g0 + lam * (g1 - g0))[i])
+            e = self._pull_excess(rx[i], n[i], g0[i] + lam * (g1[i] - g0[i]), s)
             best = min(best, (abs(e), lam, dl), key=lambda b: b[0])
             if e <= 0.0:
                 lo, e_lo, d_lo = lam, e, dl
@@ -183,6 +190,24 @@ class FrictionFeet:
             if abs(e) < 1e-9 * max(abs(n[i]), 1e-12) or hi - lo < 1e-12:
                 break
         return best[1], best[2]
+
+    def _slip(self, i, s, lam, d_star, k0, k1, f_ext, g0, g1, n_trial):
+        """Foot i slips towards s from lambda to 1, the other stuck: (d1, R_x, N, fa, fb,
+        violation of the other foot's limit [N])."""
+        stuck = np.ones(2, bool)
+        stuck[i] = False
+        _, n0 = self.ground_forces(d_star, k0 + lam * (k1 - k0), f_ext)
+        fa = self._friction_load(i, s, g0[i] + lam * (g1[i] - g0[i]), n0[i])
+        fb = self._friction_load(i, s, g1[i], n_trial)
+        d1 = self._path(d_star, k0, k1, f_ext, stuck, lam, 1.0, (fa, fb))
+        rx1, n1 = self.ground_forces(d1, k1, f_ext + fb)
+        if abs(n1[i] - n_trial) > 1e-9 * max(abs(n_trial), 1e-12):  # refresh N at the end once
+            fb = self._friction_load(i, s, g1[i], n1[i])
+            d1 = self._path(d_star, k0, k1, f_ext, stuck, lam, 1.0, (fa, fb))
+            rx1, n1 = self.ground_forces(d1, k1, f_ext + fb)
+        rx1[i] = fb[self.x_dofs[i]]  # the ground force on the slipping foot is the friction
+        j = 1 - i
+        return d1, rx1, n1, fa, fb, float(self.excess(rx1, n1, g1)[j])
 
     def increment(
         self,
@@ -195,7 +220,13 @@ class FrictionFeet:
         report: FootReport,
     ) -> np.ndarray:
         """One actuation increment kappa# k0 -> k1 (n_el, 4) [1/m] with the engagements g0 -> g1
-        (2,) (linear in between); d converged at k0. Returns d at k1; accumulates `report`."""
+        (2,) (linear in between); d converged at k0. Returns d at k1; accumulates `report`.
+
+        Stick if both stuck forces stay within their limits; else each foot over its limit is a
+        candidate, the one whose onset comes first slips (the other's force must then stay
+        within its limit, else the next candidate). Near a tie (both feet at their limits,
+        where a quasi-static body has no unique answer) the smaller violation is accepted if
+        it is below TIE_TOLERANCE of the limit; beyond: NoQuasiStaticEquilibrium."""
         both = np.ones(2, bool)
         trial = self._path(d, k0, k1, f_ext, both)
         rx, n = self.ground_forces(trial, k1, f_ext)
@@ -204,32 +235,29 @@ class FrictionFeet:
             self.slipping[:] = 0
             self._finish(report, rx, n)
             return trial
-        i = int(np.argmax(e))
-        lam, d_star = self._onset(d, k0, k1, f_ext, g0, g1, i, float(e[i]))
-        if self.slipping[i] == 0:
-            report.onsets.append(lam)
-        rx0, n0 = self.ground_forces(d_star, k0 + lam * (k1 - k0), f_ext)
-        sign = np.sign(rx[i])
-        g_at = g0 + lam * (g1 - g0)
-        fa = self._friction_load(i, sign, g_at[i], n0[i])
-        stuck = both.copy()
-        stuck[i] = False
-        fb = self._friction_load(i, sign, g1[i], n[i])
-        d1 = self._path(d_star, k0, k1, f_ext, stuck, lam, 1.0, (fa, fb))
-        rx1, n1 = self.ground_forces(d1, k1, f_ext + fb)
-        if abs(n1[i] - n[i]) > 1e-9 * max(abs(n[i]), 1e-12):  # refresh N at the end once
-            fb = self._friction_load(i, sign, g1[i], n1[i])
-            d1 = self._path(d_star, k0, k1, f_ext, stuck, lam, 1.0, (fa, fb))
-            rx1, n1 = self.ground_forces(d1, k1, f_ext + fb)
-        other = 1 - i
-        if self.excess(rx1, n1, g1)[other] > 1e-9 * max(abs(n1[other]), 1e-12):
+        pulls = np.where(rx > 0.0, BACKWARD, FORWARD)
+        found = []
+        for i in np.flatnonzero(e > 0.0):
+            lam, d_star = self._onset(d, k0, k1, f_ext, g0, g1, i, pulls[i], float(e[i]))
+            found.append((lam, int(i), d_star))
+        best = None
+        for lam, i, d_star in sorted(found, key=lambda c: c[0]):
+            out = self._slip(i, pulls[i], lam, d_star, k0, k1, f_ext, g0, g1, n[i])
+            limit = abs(out[1][1 - i]) - out[5]
+            if best is None or out[5] / max(limit, 1e-300) < best[0]:
+                best = (out[5] / max(limit, 1e-300), lam, i, d_star, out)
+            if out[5] <= 1e-9 * max(abs(out[2][1 - i]), 1e-12):
+                break
+        rel, lam, i, d_star, (d1, rx1, n1, fa, fb, _) = best
+        if rel > TIE_TOLERANCE:
             raise NoQuasiStaticEquilibrium("both feet exceed their holding limits")
+        if self.slipping[i] != pulls[i]:
+            report.onsets.append(lam)
         dx = d1[self.x_dofs[i]] - d_star[self.x_dofs[i]]
         report.slip[i] += dx
         report.friction_work += 0.5 * (fa[self.x_dofs[i]] + fb[self.x_dofs[i]]) * dx
         self.slipping[:] = 0
-        self.slipping[i] = BACKWARD if sign > 0 else FORWARD
-        rx1[i] = fb[self.x_dofs[i]]  # the ground force on the slipping foot is the friction
+        self.slipping[i] = pulls[i]
         self._finish(report, rx1, n1)
         return d1
 
