@@ -307,8 +307,8 @@ def test_driven_bang_bang_never_exceeds_kappa_or_grip_rates():
         rep = dr.step(u, "head" if rng.random() < 0.5 else "tail", dt)
         worst_k = max(worst_k, np.max(np.abs(rep.kappa_sharp - k_ctrl)) / dt)
         worst_k = max(worst_k, np.max(np.abs(dr.sim.kappa - k_gauss)) / dt)
-        tau = np.where(rep.grip > g, fp.engage_time, fp.release_time)
-        worst_g = max(worst_g, float(np.max(np.abs(rep.grip - g) * tau / dt)))
+        tau = np.where(dr.grip > g, fp.engage_time, fp.release_time)
+        worst_g = max(worst_g, float(np.max(np.abs(dr.grip - g) * tau / dt)))
     assert worst_k <= RATE * (1 + 1e-9) and worst_k > 0.9 * RATE
     assert worst_g <= 1.0 + 1e-12 and worst_g > 0.3
 

@@ -43,15 +43,17 @@ GRIP_COMMANDS = {"head": (0.0, 1.0), "tail": (1.0, 0.0), None: (1.0, 1.0)}  # (t
 @dataclass
 class DriveReport:
     """One control step: kappa_sharp (n,) realised at the control points [1/m]; energy [J]
-    drawn by the actuators (positive work / efficiency); net_work [J] (signed, A2); increments;
-    feet: the friction feet's report (None with kinematic anchors)."""
+    drawn by the actuators (positive work / efficiency); net_work [J] (signed, A2); increments
+    and Newton iterations; slip (2,) [m] of tail, head (friction); feet: the friction feet's
+    report (None with kinematic anchors)."""
 
     kappa_sharp: np.ndarray
     energy: float = 0.0
     net_work: float = 0.0
     increments: int = 0
+    iterations: int = 0
+    slip: np.ndarray = field(default_factory=lambda: np.zeros(2))
     feet: FootReport | None = None
-    grip: np.ndarray = field(default_factory=lambda: np.zeros(2))
 
 
 class DrivenInchworm:
@@ -85,6 +87,14 @@ class DrivenInchworm:
             self.feet.reset(GRIP_COMMANDS["head"])
         self.meter = EnergyMeter(self.meter.efficiency)
 
+    @property
+    def grip(self) -> np.ndarray:
+        """Engagement (tail, head) in [0, 1]: the feet's state with `friction`, else 1 for the
+        kinematically anchored foot."""
+        if self.feet is not None:
+            return self.feet.g.copy()
+        return np.array([self.sim.anchor == "tail", self.sim.anchor == "head"], float)
+
     def _gauss(self, kappa_ctrl: np.ndarray) -> np.ndarray:
         return kappa_at_gauss(self.S_ctrl, kappa_ctrl, self.sim.model.gauss_S)
 
@@ -116,10 +126,10 @@ class DrivenInchworm:
         energy0, net0 = self.meter.input_energy, self.meter.net
         rep = DriveReport(kappa_sharp=path[-1].copy(), increments=n)
         if self.feet is None:
-            self._kinematic(gauss, anchor, dt)
+            rep.iterations = self._kinematic(gauss, anchor, dt)
         else:
             rep.feet = self._frictional(gauss, anchor, dt)
-            rep.grip = self.feet.g.copy()
+            rep.iterations, rep.slip = rep.feet.iterations, rep.feet.slip.copy()
         if self.lag is not None:
             self.lag.advance(command, dt)
         self.kappa_ctrl = path[-1].copy()
@@ -127,12 +137,13 @@ class DrivenInchworm:
         rep.net_work = self.meter.net - net0
         return rep
 
-    def _kinematic(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> None:
-        sim, n = self.sim, len(gauss) - 1
+    def _kinematic(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> int:
+        sim, n, iterations = self.sim, len(gauss) - 1, 0
         for j in range(n):
             d_a = sim.state.d.copy()  # M3 is invariant to a re-centring of x in actuate
-            sim.actuate(gauss[j + 1], dt=dt / n, anchor=anchor)
+            iterations += sim.actuate(gauss[j + 1], dt=dt / n, anchor=anchor).iterations
             self.meter.add(increment_work(sim.model, d_a, sim.state.d, gauss[j], gauss[j + 1]))
+        return iterations
 
     def _frictional(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> FootReport:
         sim = self.sim

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mf_envs._validate import check_nonnegative, check_positive
-from mf_envs.physics.beam import BeamModel, NewtonSettings, solve_static_path
+from mf_envs.physics.beam import BeamModel, NewtonSettings, PathStats, solve_static_path
 
 FORWARD, BACKWARD = 1, -1
 TIE_TOLERANCE = 1e-2  # accepted relative excess of the other foot in a near tie
@@ -99,6 +99,7 @@ class FootReport:
     normal: np.ndarray = field(default_factory=lambda: np.zeros(2))
     slipping: np.ndarray = field(default_factory=lambda: np.zeros(2, int))
     onsets: list[float] = field(default_factory=list)  # lambda* of each slip onset
+    iterations: int = 0  # Newton iterations of all the solves
 
 
 class FrictionFeet:
@@ -118,6 +119,7 @@ class FrictionFeet:
         """Feet at rest, stuck; engagement (tail, head) in [0, 1]."""
         self.g = np.clip(np.asarray(engagement, float), 0.0, 1.0)
         self.slipping = np.zeros(2, int)
+        self.iterations = 0
 
     # ------------------------------------------------------------------ forces
     def fixed_mask(self, stuck: np.ndarray) -> np.ndarray:
@@ -154,7 +156,10 @@ class FrictionFeet:
             lam = lam0 + mu * (lam1 - lam0)
             return k0 + lam * (k1 - k0), f_ext + fa + mu * (fb - fa)
 
-        return solve_static_path(self.model, d, load_at, fixed, self.settings)
+        stats = PathStats()
+        out = solve_static_path(self.model, d, load_at, fixed, self.settings, stats=stats)
+        self.iterations += stats.iterations
+        return out
 
     def _pull_excess(self, rx: float, n: float, g: float, s: int) -> float:
         """-s R_x - F_hold(s) [N] of a foot pulled towards s (+1/-1): > 0 once it would slip."""
@@ -276,10 +281,12 @@ class FrictionFeet:
         times = dt * np.arange(n + 1)[:, None] / n
         gs = grip_response(self.g, np.asarray(command, float), times, self.params)
         report, out = FootReport(), []
+        self.iterations = 0
         for j in range(n):
             d = self.increment(d, kappas[j], kappas[j + 1], f_ext, gs[j], gs[j + 1], report)
             out.append(d)
         self.g = gs[-1].copy()
+        report.iterations = self.iterations
         return out, report
 
     def _finish(self, report: FootReport, rx: np.ndarray, n: np.ndarray) -> None:
