@@ -35,7 +35,7 @@ from mf_envs.physics.inchworm.feet import FootReport, FrictionFeet, FrictionPara
 DRIVE_EFFECTS = {
     "actuator_dynamics": "actuator lag + rate limit on kappa# (off = kappa# as commanded)",
     "friction": "feet holding by anisotropic Coulomb friction with grip dynamics (off = the "
-    "kinematic anchors of Eq. 102)",
+    "kinematic anchors of Eq. 102; implies the weight)",
 }
 GRIP_COMMANDS = {"head": (0.0, 1.0), "tail": (1.0, 0.0), None: (1.0, 1.0)}  # (tail, head)
 
@@ -171,10 +171,14 @@ def make_driven(
     soil: str = "dry_sand",
 ) -> DrivenInchworm:
     """A DrivenInchworm with control points evenly spaced from tail to head; `effects` may name
-    the beam's effects and those of DRIVE_EFFECTS (which switch actuator and friction on)."""
+    the beam's effects and those of DRIVE_EFFECTS (which switch actuator and friction on).
+    `friction` implies the weight (Coulomb friction needs a normal load, like `terrain`)."""
+    beam_effects = frozenset(effects) - set(DRIVE_EFFECTS)
+    if "friction" in effects:
+        beam_effects |= {"gravity"}
     sim = Inchworm(
         params,
-        frozenset(effects) - set(DRIVE_EFFECTS),
+        beam_effects,
         increment_factor=increment_factor,
         soil=soil,
     )
