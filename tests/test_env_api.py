@@ -276,12 +276,14 @@ def _effect_sets(env_id: str) -> list[tuple[str, ...]]:
     """All effects, none, the default minus each one, the default plus each other one."""
     env = gym.make(env_id)
     default = sorted(env.unwrapped.effects)
+    exclusive = getattr(env.unwrapped, "exclusive_effects", ())  # documented pairs (a, b)
     env.close()
     avail = _available_effects(env_id)
     sets = [tuple(avail), ()]
     sets += [tuple(e for e in default if e != d) for d in default]
     sets += [(*default, a) for a in avail if a not in default]
-    return sets
+    # a set holding both of an exclusive pair drops the first (the env rejects the pair)
+    return [tuple(e for e in s if not any(e == a and b in s for a, b in exclusive)) for s in sets]
 
 
 @pytest.mark.parametrize("env_id", ENV_IDS)
