@@ -334,26 +334,9 @@ class GOWECV1Env(MFEnv):
         return r, {"net_electrical_energy": r}
 
     def _draw_frame(self) -> np.ndarray:
-        from mf_envs.render import draw_gowec
+        from mf_envs.envs.gowec_v1.render import draw_frame
 
-        lam = float(waves.wavelength(self.wave_period))
-        x = np.linspace(-lam, lam, 121)
-        c, s = math.cos(self.wave_direction), math.sin(self.wave_direction)
-        z = self.wave.elevation(self._t, x * c, x * s)
-        R = waves.buoy_rotation(float(self.state[0]), 0, 0, float(self.state[1]), 0, 0)[0]
-        psi = math.fmod(self.model.psid * self._t, 2 * math.pi)
-        phi = math.remainder(float(self.state[2]), 2 * math.pi)
-        return draw_gowec(
-            buoy_R=R,
-            gimbal_angle=float(self.state[2]),
-            rotor_angle=psi,
-            wave_x=x,
-            wave_z=z,
-            wave_direction=self.wave_direction,
-            buoy_radius=self.buoy_radius or None,
-            text=f"t = {self._t:5.1f} s  pitch = {self.state[0]:+.2f} rad  phi = {phi:+.2f} rad"
-            f"  P = {self._last_power / 1e3:.2f} kW",
-        )
+        return draw_frame(self)
 
 
 GOWECV1Env.__doc__ = (GOWECV1Env.__doc__ or "").replace("OBSERVATION_TABLE", spec.OBS.table())
