@@ -36,8 +36,8 @@ def _check_env_id(env_id: str) -> None:
 def make_policy(env: Any, env_id: str, policy: str) -> Any:
     """An object with `predict(obs, deterministic=True) -> (action, state)` for `policy`:
     "baseline" (the env's default controller), "baseline:KIND", "ppo" (the shipped policy,
-    `train.load_policy`) or the path of a saved policy (a folder written by `mf-envs train`,
-    or its model.zip)."""
+    `train.load_policy`) or the path of a saved policy (a folder written by `mf-envs train`;
+    pickle-based SB3 `model.zip` files are refused)."""
     if policy == "baseline" or policy.startswith("baseline:"):
         from mf_envs import controllers
 
@@ -52,19 +52,11 @@ def make_policy(env: Any, env_id: str, policy: str) -> Any:
         if not path.exists():
             raise ValueError(
                 f"policy: expected baseline, baseline:KIND, ppo or the path of a saved policy "
-                f"(folder or model.zip), got {policy!r} (no such file)"
+                f"(a folder with policy.json), got {policy!r} (no such file)"
             )
-    try:
-        from mf_envs.train import load_policy
-    except ImportError as exc:
-        raise ValueError(
-            f"policy: {policy!r} needs the train package and its extras "
-            f"(pip install 'mf-envs[train]'): {exc}"
-        ) from exc
-    try:
-        return load_policy(env_id, path)
-    except ImportError as exc:  # stable-baselines3 / torch missing
-        raise ValueError(f"policy: loading a PPO policy needs 'mf-envs[train]' ({exc})") from exc
+    from mf_envs.train import load_policy
+
+    return load_policy(env_id, path)  # ModuleNotFoundError -> one line naming the train extra
 
 
 def render_command(args: argparse.Namespace) -> list[Path]:
@@ -72,6 +64,7 @@ def render_command(args: argparse.Namespace) -> list[Path]:
     import gymnasium as gym
     from tqdm import tqdm
 
+    from mf_envs._staging import check_out, staged_file
     from mf_envs.render import save_gif
 
     _check_env_id(args.env_id)
@@ -80,6 +73,9 @@ def render_command(args: argparse.Namespace) -> list[Path]:
         raise ValueError(f"out: expected a .gif path, got {str(out)!r}")
     if args.steps is not None and args.steps < 1:
         raise ValueError(f"steps: must be >= 1, got {args.steps}")
+    if args.seed < 0:
+        raise ValueError(f"seed: must be >= 0, got {args.seed}")
+    check_out(out, folder=False)
     env = gym.make(args.env_id, render_mode="rgb_array")
     try:
         policy = make_policy(env, args.env_id, args.policy)
@@ -103,4 +99,6 @@ def render_command(args: argparse.Namespace) -> list[Path]:
         fps = env.metadata.get("render_fps", 30) / every  # playback speed kept
     finally:
         env.close()
-    return [save_gif(frames, out, fps=fps)]
+    with staged_file(out) as tmp:
+        save_gif(frames, tmp, fps=fps)
+    return [out]
