@@ -64,7 +64,7 @@ def render_command(args: argparse.Namespace) -> list[Path]:
     import gymnasium as gym
     from tqdm import tqdm
 
-    from mf_envs._staging import check_out, staged_file
+    from mf_envs._staging import staged_file
     from mf_envs.render import save_gif
 
     _check_env_id(args.env_id)
@@ -75,30 +75,31 @@ def render_command(args: argparse.Namespace) -> list[Path]:
         raise ValueError(f"steps: must be >= 1, got {args.steps}")
     if args.seed < 0:
         raise ValueError(f"seed: must be >= 0, got {args.seed}")
-    check_out(out, folder=False)
-    env = gym.make(args.env_id, render_mode="rgb_array")
-    try:
-        policy = make_policy(env, args.env_id, args.policy)
-        steps = args.steps or (env.spec.max_episode_steps if env.spec else None) or DEFAULT_STEPS
-        every = max(1, math.ceil(steps / MAX_FRAMES))  # keep memory bounded on long runs
-        obs, _ = env.reset(seed=args.seed)
-        if hasattr(policy, "reset"):
-            policy.reset()
-        frames = [env.render()]
-        for i in tqdm(range(1, steps + 1), desc=f"render {args.env_id}", unit="step"):
-            action, _ = policy.predict(obs, deterministic=True)
-            obs, _, terminated, truncated, info = env.step(action)
-            if info.get("numerical_failure"):  # the state is not finite: nothing to draw
-                msg = f"render {args.env_id}: numerical failure at step {i}, episode ended"
-                tqdm.write(msg, file=sys.stderr)
-                break
-            if i % every == 0 or terminated or truncated:
-                frames.append(env.render())
-            if terminated or truncated:
-                break
-        fps = env.metadata.get("render_fps", 30) / every  # playback speed kept
-    finally:
-        env.close()
-    with staged_file(out) as tmp:
+    with staged_file(out) as tmp:  # created now: an unwritable --out fails before the run
+        env = gym.make(args.env_id, render_mode="rgb_array")
+        try:
+            policy = make_policy(env, args.env_id, args.policy)
+            steps = (
+                args.steps or (env.spec.max_episode_steps if env.spec else None) or DEFAULT_STEPS
+            )
+            every = max(1, math.ceil(steps / MAX_FRAMES))  # keep memory bounded on long runs
+            obs, _ = env.reset(seed=args.seed)
+            if hasattr(policy, "reset"):
+                policy.reset()
+            frames = [env.render()]
+            for i in tqdm(range(1, steps + 1), desc=f"render {args.env_id}", unit="step"):
+                action, _ = policy.predict(obs, deterministic=True)
+                obs, _, terminated, truncated, info = env.step(action)
+                if info.get("numerical_failure"):  # the state is not finite: nothing to draw
+                    msg = f"render {args.env_id}: numerical failure at step {i}, episode ended"
+                    tqdm.write(msg, file=sys.stderr)
+                    break
+                if i % every == 0 or terminated or truncated:
+                    frames.append(env.render())
+                if terminated or truncated:
+                    break
+            fps = env.metadata.get("render_fps", 30) / every  # playback speed kept
+        finally:
+            env.close()
         save_gif(frames, tmp, fps=fps)
     return [out]

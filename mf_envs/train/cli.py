@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Any
 
 from mf_envs.train.evaluate import (
     baseline_factories,
@@ -60,9 +61,14 @@ def evaluate_command(args: argparse.Namespace) -> list[Path]:
     if args.seed < 0:
         raise ValueError(f"seed: must be >= 0, got {args.seed}")
     target = check_out(Path(args.out)) / args.env_id
-    if target.is_dir() and any(target.iterdir()) and not args.force:
-        raise ValueError(f"out: {str(target)!r} already exists; pass --force to replace it")
-    policy = load_policy(args.env_id, args.policy)
+    with staged_dir(target, replace=True, force=args.force) as tmp:  # fails before the episodes
+        rows = _evaluate_rows(args, load_policy(args.env_id, args.policy))
+        files = [write_rows_csv(tmp / "evaluate.csv", rows)]
+    return moved(files, tmp, target)
+
+
+def _evaluate_rows(args: argparse.Namespace, policy: Any) -> list[dict[str, Any]]:
+    """Rows of the shipped/given PPO policy and every baseline on the evaluation seeds."""
     seeds = list(range(args.seed, args.seed + args.episodes))
     train_seed = policy.meta.get("seed")
     if train_seed is not None and train_seed in seeds:
@@ -72,6 +78,4 @@ def evaluate_command(args: argparse.Namespace) -> list[Path]:
     print(format_table(rows, args.env_id))
     metric = primary_metric(args.env_id)
     print(f"({metric.name}: {'higher' if metric.higher_is_better else 'lower'} is better)")
-    with staged_dir(target, replace=True, force=args.force) as tmp:
-        files = [write_rows_csv(tmp / "evaluate.csv", rows)]
-    return moved(files, tmp, target)
+    return rows
