@@ -337,3 +337,23 @@ def test_bench_speed_without_pyelastica_skips_that_case(capsys, tmp_path, monkey
     assert code == 0, err
     assert sum('pip install "mf-envs[compare]"' in ln for ln in err.splitlines()) == 1
     assert (out / "speed.csv").read_text().count("\n") == 2  # header + the one row
+
+
+def test_first_run_says_once_that_it_compiles(tmp_path):
+    """A cold numba cache: one stderr line (however many kernels compile); warm: silent."""
+    code = (
+        "import numpy as np, mf_envs\n"
+        "from mf_envs.frames.so3 import exp_so3_nb\n"
+        "exp_so3_nb(np.array([0.1, 0.2, 0.3])); exp_so3_nb(np.array([1e-9, 0.0, 0.0]))\n"
+    )
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path), "MPLBACKEND": "Agg"}
+
+    def run():
+        r = subprocess.run(
+            [sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300
+        )
+        assert r.returncode == 0, r.stderr
+        return [ln for ln in r.stderr.splitlines() if "compiling the numba kernels" in ln]
+
+    assert len(run()) == 1  # NUMBA_CACHE_DIR (empty) takes precedence over __pycache__
+    assert run() == []

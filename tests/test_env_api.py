@@ -164,7 +164,8 @@ def test_gymnasium_check_env(env_id, make):
 @pytest.mark.parametrize("env_id", ENV_IDS)
 def test_sb3_check_env(env_id, make):
     sb3_checker = pytest.importorskip(
-        "stable_baselines3.common.env_checker", reason="stable-baselines3 not installed"
+        "stable_baselines3.common.env_checker",
+        reason="needs the train extra: pip install -e '.[train]'",
     )
     env = make(env_id)
     with warnings.catch_warnings(record=True) as record:

@@ -16,7 +16,10 @@ L = 0.3
 
 def test_gymnasium_and_sb3_checkers():
     check_env(gym.make("Inchworm-v0").unwrapped, skip_render_check=True)
-    sb3 = pytest.importorskip("stable_baselines3.common.env_checker")
+    sb3 = pytest.importorskip(
+        "stable_baselines3.common.env_checker",
+        reason="needs the train extra: pip install -e '.[train]'",
+    )
     sb3.check_env(gym.make("Inchworm-v0", effects=("gravity", "inertia", "anchor_switching")))
 
 

@@ -15,7 +15,10 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-sb3 = pytest.importorskip("stable_baselines3", reason="stable-baselines3 is not installed")
+sb3 = pytest.importorskip(
+    "stable_baselines3", reason="needs the train extra: pip install -e '.[train]'"
+)
+pytest.importorskip("safetensors", reason="needs the train extra: pip install -e '.[train]'")
 
 import mf_envs  # noqa: E402,F401  (registers the env ids)
 from mf_envs.envs import ENV_SPECS, available_env_ids  # noqa: E402
@@ -188,9 +191,7 @@ def test_pickle_payload_is_refused_and_never_runs(tmp_path, capsys, as_folder):
     with pytest.raises(ValueError, match="pickle"):
         load_policy("Pendulum-v1", target)
     assert main(["evaluate", "Pendulum-v1", "--policy", str(target), "--out", str(tmp_path / "e")])
-    assert main(
-        ["render", "GOWEC-v0", "--policy", str(target), "--out", str(tmp_path / "r.gif")]
-    )
+    assert main(["render", "GOWEC-v0", "--policy", str(target), "--out", str(tmp_path / "r.gif")])
     err = capsys.readouterr().err.strip().splitlines()
     assert all("pickle" in line for line in err) and len(err) == 2
     assert not marker.exists()
