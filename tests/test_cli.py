@@ -339,6 +339,7 @@ def test_bench_speed_without_pyelastica_skips_that_case(capsys, tmp_path, monkey
     assert (out / "speed.csv").read_text().count("\n") == 2  # header + the one row
 
 
+@pytest.mark.slow
 def test_first_run_says_once_that_it_compiles(tmp_path):
     """A cold numba cache: one stderr line (however many kernels compile); warm: silent."""
     code = (

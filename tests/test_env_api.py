@@ -268,6 +268,7 @@ def _effect_sets(env_id: str) -> list[tuple[str, ...]]:
 
 
 @pytest.mark.parametrize("env_id", ENV_IDS)
+@pytest.mark.slow
 def test_every_effect_set_runs_random_actions(env_id):
     """Each effect switched on/off alone (and all, and none): the env builds, resets and takes
     20 random actions with finite observations, the docs/api.md info keys and no numerical failure."""

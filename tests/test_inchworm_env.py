@@ -156,6 +156,7 @@ def test_render_after_numerical_failure_shows_last_finite_frame():
     env.close()
 
 
+@pytest.mark.slow
 def test_long_seed_gait_episode_crawls_past_10_m():
     """The training helper's failure (numerical_failure at x_tail ~ 8-10 m): the coarsest seed
     gait through the env from x = 0 to past 10 m, every cycle advancing by the same distance."""

@@ -258,6 +258,7 @@ def test_shipped_policies_load_and_act(env_id):
 
 # --------------------------------------------------------------------------- smoke runs
 @pytest.mark.parametrize("env_id", SMOKE_IDS)
+@pytest.mark.slow
 def test_smoke_train_then_evaluate(env_id, tmp_path):
     from mf_envs.train.trainer import train
 
@@ -519,6 +520,7 @@ NATIVE_IDS = [e for e in available_env_ids() if gym.spec(e).vector_entry_point i
 
 
 @pytest.mark.parametrize("env_id", NATIVE_IDS)
+@pytest.mark.slow
 def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
     """The env's native vector env (via GymVectorToSB3) and SB3's DummyVecEnv of single envs
     give bit-identical PPO weights: same seeds, same transitions, same autoreset semantics."""

@@ -82,7 +82,7 @@ def polhode_figure(path: Path, dpi: int = 100) -> Path:
     ax3.set_title("(a) polhodes on the energy ellipsoid\n(lines exact, dots RK4 + Rodrigues)")
     ax3.set_box_aspect((np.sqrt(2), 1, np.sqrt(0.5)))
     fig.suptitle("Polhodes, J1/J2 = 2, J3/J2 = 0.5, d = 0.65 ... 1.95; separatrices red (Eq. 40b)")
-    fig.tight_layout()
+    fig.tight_layout(w_pad=4.0)  # room between the 3D z label and panel (b)
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return path
