@@ -66,7 +66,7 @@ def _run(
 
 def fig_3_9(out: Path, quick: bool) -> tuple[Path, str]:
     plt = _plt()
-    fig, ax = plt.subplots(1, 3, figsize=(13, 3.6))
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4.6))
     peaks = {}
     for mode, style in (("continuous", "-"), ("sinusoidal", "--")):
         r, ship, gyro = _run(mode, math.pi / 2)
@@ -83,7 +83,7 @@ def fig_3_9(out: Path, quick: bool) -> tuple[Path, str]:
         a_.set_xlabel("t [s]")
         a_.set_ylabel(t_)
         a_.grid(alpha=0.3)
-        a_.legend(fontsize=7)
+        a_.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
     fig.suptitle("Fig. 3-9: continuous vs sinusoidal gimbal excitation, a = π/2 (two gyros)")
     fig.tight_layout()
     p = out / "stabilizer_fig3_9.png"
