@@ -76,7 +76,7 @@ def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
 
 
 def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
-    """Hyperparameters of `env_id` from `path` (default `train/configs/ppo.yml`)."""
+    """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`)."""
     data = read_config(path)
     if env_id not in data:
         raise ValueError(f"config: no entry for {env_id!r} in {path or DEFAULT_CONFIG}")

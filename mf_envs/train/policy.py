@@ -1,6 +1,6 @@
 """Saved PPO policies: JSON + safetensors, and `load_policy` on raw env observations.
 
-A policy folder (as written by `mf-envs train` and shipped under `train/policies/<env_id>/`):
+A policy folder (written by `mf-envs train`, shipped under `mf_envs/train/policies/<env_id>/`):
 
 - `policy.json` — what to rebuild: algorithm, spaces, `policy_kwargs` (by the whitelist of
   `train.kwargs`: net_arch, activation by name, log_std_init, ...), `use_sde`;

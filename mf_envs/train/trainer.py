@@ -2,7 +2,8 @@
 
 A run folder `<out>/<env_id>/seed<S>/` holds the policy files described in `train.policy`, a
 `best/` folder (the EvalCallback's best model with the normalisation statistics of that moment),
-`evaluations.npz` and `learning_curve.png`. `ship_run` copies a run into `train/policies/<env_id>/`.
+`evaluations.npz` and `learning_curve.png`. `ship_run` copies a run into
+`mf_envs/train/policies/<env_id>/`.
 """
 
 from __future__ import annotations
