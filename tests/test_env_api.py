@@ -182,7 +182,8 @@ def test_gymnasium_check_env(env_id, make):
 @pytest.mark.parametrize("env_id", ENV_IDS)
 def test_sb3_check_env(env_id, make):
     sb3_checker = pytest.importorskip(
-        "stable_baselines3.common.env_checker", reason="stable-baselines3 not installed"
+        "stable_baselines3.common.env_checker",
+        reason="needs the train extra: pip install -e '.[train]'",
     )
     env = make(env_id)
     with warnings.catch_warnings(record=True) as record:
@@ -287,6 +288,7 @@ def _effect_sets(env_id: str) -> list[tuple[str, ...]]:
 
 
 @pytest.mark.parametrize("env_id", ENV_IDS)
+@pytest.mark.slow
 def test_every_effect_set_runs_random_actions(env_id):
     """Each effect switched on/off alone (and all, and none): the env builds, resets and takes
     20 random actions with finite observations, the docs/api.md info keys and no numerical failure."""

@@ -17,7 +17,10 @@ L = 0.3
 
 def test_gymnasium_and_sb3_checkers():
     check_env(gym.make("Inchworm-v0").unwrapped, skip_render_check=True)
-    sb3 = pytest.importorskip("stable_baselines3.common.env_checker")
+    sb3 = pytest.importorskip(
+        "stable_baselines3.common.env_checker",
+        reason="needs the train extra: pip install -e '.[train]'",
+    )
     sb3.check_env(gym.make("Inchworm-v0", effects=("gravity", "inertia", "anchor_switching")))
 
 
@@ -156,6 +159,7 @@ def test_render_after_numerical_failure_shows_last_finite_frame():
     env.close()
 
 
+@pytest.mark.slow
 def test_long_seed_gait_episode_crawls_past_10_m():
     """The training helper's failure (numerical_failure at x_tail ~ 8-10 m): the coarsest seed
     gait through the env from x = 0 to past 10 m, every cycle advancing by the same distance."""

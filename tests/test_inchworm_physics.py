@@ -162,6 +162,7 @@ def test_terrain_gait_is_translation_invariant():
     )
 
 
+@pytest.mark.slow
 def test_long_seed_gait_run_passes_10_m():
     """The coarsest seed gait (2 steps per cycle, the training helper's failure at 8.01 m) crawls
     past x = 10 m with the per-cycle advance of the first cycle (re-centring keeps the local

@@ -114,6 +114,7 @@ def _flip_times(tr):
 
 
 @pytest.mark.parametrize("method", METHODS)
+@pytest.mark.slow
 def test_racket_1000s_of_flips(method):
     """1000 s at dt = 2e-3: energy and |H| drift < 1e-3 for all; the conserving method keeps
     |H| to 1e-10 and the energy to 1e-7; flip count and flip times against the exact ones."""

@@ -240,7 +240,9 @@ def test_invalid_arguments(env_id: str) -> None:
 @pytest.mark.parametrize("env_id", VEC_IDS)
 def test_sb3_adapter_round_trip(env_id: str) -> None:
     """mf_envs.train.vec.GymVectorToSB3 over the native env == SB3's DummyVecEnv of single envs."""
-    pytest.importorskip("stable_baselines3", reason="stable-baselines3 not installed")
+    pytest.importorskip(
+        "stable_baselines3", reason="needs the train extra: pip install -e '.[train]'"
+    )
     from stable_baselines3.common.vec_env import DummyVecEnv
 
     from mf_envs.train.vec import GymVectorToSB3

@@ -1,11 +1,12 @@
 """One evaluation loop for PPO policies and classical baselines: unseen seeds -> metrics.
 
 Every controller (an SB3-like object with `reset()` and `predict(obs, deterministic=True)`) runs
-full episodes of `gym.make(env_id, **env_kwargs)` from `reset(seed=s)` for each seed; per episode
-the env's metrics are computed from the SI quantities in `info` (docs/api.md keys), then summarised as
-mean and sample std over seeds. The primary metric of each env is the one its issue judges by,
-defined as in that env's own `benchmarks/controllers/<env>.py` (GOWEC: `episode_ratio`, the
-last three quarters of the episode; stabilizer: RMS after its `SETTLE` = 10 s transient):
+full episodes of `gym.make(env_id, **env_kwargs)` from `reset(seed=s)` for each seed; per
+episode the env's metrics are computed from the SI quantities in `info` (docs/api.md keys), then
+summarised as mean and sample std over seeds. The primary metric of each env is the one its
+issue judges by, defined as in that env's own `benchmarks/controllers/<env>.py` (GOWEC:
+`episode_ratio`, the last three quarters of the episode; stabilizer: RMS after its `SETTLE` =
+10 s transient):
 
 | env | primary metric | better | definition |
 |---|---|---|---|
