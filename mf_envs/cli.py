@@ -27,6 +27,9 @@ EXTRAS = {
     "pygame": "render",
     "mpmath": "dev",
     "hypothesis": "dev",
+    "ray": "ray",
+    "capytaine": "hydro",
+    "xarray": "hydro",
 }
 
 
