@@ -291,7 +291,8 @@ def _effect_sets(env_id: str) -> list[tuple[str, ...]]:
 @pytest.mark.slow
 def test_every_effect_set_runs_random_actions(env_id):
     """Each effect switched on/off alone (and all, and none): the env builds, resets and takes
-    20 random actions with finite observations, the docs/api.md info keys and no numerical failure."""
+    20 random actions with finite observations, the docs/api.md info keys and no numerical
+    failure."""
     failures = []
     for effects in _effect_sets(env_id):
         env = gym.make(env_id, effects=effects)
