@@ -14,7 +14,9 @@ from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
+from mf_envs.physics.gowec.hydro import batch as hb
 from mf_envs.physics.gowec.hydro import load_hull
+from mf_envs.physics.gowec.hydro.floating import excitation
 from mf_envs.physics.gowec.hydro.model import FloatingModel, radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -181,6 +183,7 @@ class GOWECV1Env(MFEnv):
         )
         self.state = self.model.initial_state()
         self._t, self._steps, self._last_power = 0.0, 0, 0.0
+        self._vals = np.zeros(hb.N_VALS)
 
     # ------------------------------------------------------------------ public quantities
     def hydrostatic_stiffness(self) -> float:
@@ -224,15 +227,15 @@ class GOWECV1Env(MFEnv):
     # ------------------------------------------------------------------ gym API
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         tau = self._scalar_action(action) * self.max_generator_torque
-        e0 = self.model.energies(self.state)
-        try:  # numba's solve raises on a non-finite mass matrix
-            y = self.model.step(self._t, self.state, tau, self.physics_dt, self.n_substeps)
-        except np.linalg.LinAlgError:
-            y = np.full_like(self.state, np.nan)
+        t0 = self._t
         self._steps += 1
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
-        if not np.all(np.isfinite(y)):
+        ok, y = hb.step_row(
+            t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
+            self.wave.amplitudes, self.wave.phases, self.control_dt, self._loss(), self._vals,
+        )  # fmt: skip
+        if not ok:
             info = {
                 "power": 0.0,
                 "reward_terms": {"net_electrical_energy": 0.0},
@@ -241,18 +244,17 @@ class GOWECV1Env(MFEnv):
             }
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
         self.state = y
-        e1 = self.model.energies(y)
-        dt = self.control_dt
-        p_mech = (e1["pto_mechanical"] - e0["pto_mechanical"]) / dt
-        spinning = self.model.psid != 0.0
-        p_el = (e1["pto_electrical"] - e0["pto_electrical"]) / dt - self.rotor_loss * spinning
-        reward, terms = self._get_rew(p_el * dt)
-        info = self._info(p_el, p_mech, tau)
+        reward, terms = self._get_rew(self._vals[11])
+        info = self._info_from(self._vals)
         info["reward_terms"] = terms
         over = abs(y[5]) > self.max_gimbal_rate
         out = max(abs(y[0]), abs(y[1])) > spec.MAX_BUOY_ANGLE
         info["overspeed"], info["out_of_range"] = bool(over), bool(out)
         return self._finish_step(self._get_obs(), reward, over or out, truncated, info, True)
+
+    def _loss(self) -> float:
+        """Rotor loss (W) while the rotor spins, else 0."""
+        return self.rotor_loss * (self.model.psid != 0.0)
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -305,19 +307,29 @@ class GOWECV1Env(MFEnv):
         return self._finish_reset(self._get_obs()), info
 
     def _info(self, p_el: float, p_mech: float, tau: float) -> dict[str, Any]:
-        y = self.state
-        self._last_power = p_el
+        """The info of the current state (reset): the same compiled quantities as a step."""
+        y, args, v = self.state, self.model._args(), self._vals
+        v[0], v[1], v[2], v[3], v[4], v[5] = p_el, p_mech, y[0], y[1], y[3], y[4]
+        v[6] = excitation(self._t, args[9], args[10], args[11])[0]
+        v[7] = hb.gyro_moment_pitch(self._t, y, float(tau), args)
+        v[8], v[9] = y[2], y[5]
+        v[10] = hb.elevation(self._t, self.wave.amplitudes, args[9], self.wave.phases)
+        return self._info_from(v)
+
+    def _info_from(self, v: np.ndarray) -> dict[str, Any]:
+        """The info dict from `hb.step_row`'s value slots v (N_VALS,)."""
+        self._last_power = float(v[0])
         return {
-            "power": float(p_el),
-            "power_mechanical": float(p_mech),
-            "buoy_pitch": float(y[0]),
-            "buoy_roll": float(y[1]),
-            "buoy_rate": np.array([y[3], y[4]]),
-            "excitation_moment": float(self.model.excitation(self._t)[0]),
-            "gyro_moment": float(self.model.gyro_moment(self._t, y, tau)[0]),
-            "gimbal_angle": float(y[2]),
-            "gimbal_rate": float(y[5]),
-            "wave_elevation": float(self.wave.elevation(self._t)),
+            "power": float(v[0]),
+            "power_mechanical": float(v[1]),
+            "buoy_pitch": float(v[2]),
+            "buoy_roll": float(v[3]),
+            "buoy_rate": v[4:6].copy(),
+            "excitation_moment": float(v[6]),
+            "gyro_moment": float(v[7]),
+            "gimbal_angle": float(v[8]),
+            "gimbal_rate": float(v[9]),
+            "wave_elevation": float(v[10]),
             "time": self._t,
             "numerical_failure": False,
         }

@@ -156,6 +156,36 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
 
 
 @numba.njit(cache=True)
+def solve3(M, r):
+    """x (3,) with M x = r for the (3, 3) mass matrix: Gaussian elimination with partial
+    pivoting, hand-written because LAPACK's call overhead dominates a 3 x 3 solve in the RK4
+    loop; a singular or non-finite M gives a non-finite x (the env's failure path). M and r
+    are overwritten (the caller's temporaries)."""
+    A, b = M, r
+    for c in range(3):
+        p = c
+        for i in range(c + 1, 3):
+            if abs(A[i, c]) > abs(A[p, c]):
+                p = i
+        if p != c:
+            for j in range(3):
+                A[c, j], A[p, j] = A[p, j], A[c, j]
+            b[c], b[p] = b[p], b[c]
+        for i in range(c + 1, 3):
+            f = A[i, c] / A[c, c]
+            for j in range(c, 3):
+                A[i, j] -= f * A[c, j]
+            b[i] -= f * b[c]
+    x = np.empty(3)
+    for i in range(2, -1, -1):
+        s = b[i]
+        for j in range(i + 1, 3):
+            s -= A[i, j] * x[j]
+        x[i] = s / A[i, i]
+    return x
+
+
+@numba.njit(cache=True)
 def deriv(t, y, tau, args):
     """dy/dt (module doc layout) with the PTO command tau (N m); args: `pack`."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr = args
@@ -170,16 +200,21 @@ def deriv(t, y, tau, args):
         mu_r += Cr[i] * xr[i]
     Mg = pto_torque(q[2], u[2], tau, pto)
     Q = np.empty(3)
-    Q[0] = mx - C * q[0] - mu_t - bv * u[0]
-    Q[1] = my - C * q[1] - mu_r - bv * u[1]
+    Q[0] = mx - C * q[0] - mu_t - bv * u[0] - v[0]
+    Q[1] = my - C * q[1] - mu_r - bv * u[1] - v[1]
     nu = p_gy[5]
-    Q[2] = -nu * Mg
-    ud = np.linalg.solve(M, Q - v)
+    Q[2] = -nu * Mg - v[2]
+    ud = solve3(M, Q)
     dy = np.empty_like(y)
     dy[0:3] = u
     dy[3:6] = ud
-    dy[6 : 6 + nr] = Ar @ xt + Br * u[0]
-    dy[6 + nr : 6 + 2 * nr] = Ar @ xr + Br * u[1]
+    for i in range(nr):  # radiation states: x' = A x + B u (loops: no BLAS call per row)
+        at, ar = 0.0, 0.0
+        for j in range(nr):
+            at += Ar[i, j] * xt[j]
+            ar += Ar[i, j] * xr[j]
+        dy[6 + i] = at + Br[i] * u[0]
+        dy[6 + nr + i] = ar + Br[i] * u[1]
     k = 6 + 2 * nr
     P = nu * Mg * u[2]
     dy[k] = mx * u[0] + my * u[1]
