@@ -166,9 +166,9 @@ def test_holding_limit_is_mu_times_the_weight_share():
     fp = FrictionParams(grip_forward=0.6, grip_backward=1.0, slide_forward=0.1)
     n = WEIGHT / 2.0  # hand computation: 0.278 * 9.81 * 0.3 / 2 = 0.409077 N
     assert n == pytest.approx(0.409077, rel=1e-5)
-    assert fp.holding_limit(1.0, FORWARD, n) == pytest.approx(0.6 * 0.408937, rel=1e-5)
-    assert fp.holding_limit(0.0, FORWARD, n) == pytest.approx(0.1 * 0.408937, rel=1e-5)
-    assert fp.holding_limit(0.5, -1, n) == pytest.approx(0.575 * 0.408937, rel=1e-5)
+    assert fp.holding_limit(1.0, FORWARD, n) == pytest.approx(0.6 * 0.409077, rel=1e-5)
+    assert fp.holding_limit(0.0, FORWARD, n) == pytest.approx(0.1 * 0.409077, rel=1e-5)
+    assert fp.holding_limit(0.5, -1, n) == pytest.approx(0.575 * 0.409077, rel=1e-5)
     assert fp.holding_limit(1.0, FORWARD, -3.0) == 0.0  # a lifted foot holds nothing
 
 
