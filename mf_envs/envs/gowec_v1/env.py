@@ -192,10 +192,7 @@ class GOWECV1Env(MFEnv):
 
     def natural_period(self) -> float:
         """Rotor-off pitch natural period 2 pi / w_n, w_n^2 (I + A(w_n)) = C (s)."""
-        I, C, w = self.model.pitch_inertia(), self.hull.stiffness, 1.0
-        for _ in range(200):
-            w = math.sqrt(C / (I + self.hull.at(w)[0]))
-        return 2.0 * math.pi / w
+        return 2.0 * math.pi / self.hull.natural_frequency(self.model.pitch_inertia())
 
     def power_bound(self) -> float:
         """Radiation-limited mean power of the current sea (W), `model.radiation_bound`."""
@@ -213,8 +210,7 @@ class GOWECV1Env(MFEnv):
         return max(0.5 * self.model.units * H * beta0 * w * w, 1e-3)
 
     def set_pto(self, damping: float, stiffness: float) -> None:
-        """Linear PTO of the drive's inner loop: M_g += c phi' + k phi, evaluated every substep
-        (c N m s/rad, k N m/rad)."""
+        """Linear PTO M_g += c phi' + k phi (c N m s/rad, k N m/rad), evaluated every substep."""
         c = check_range("damping", damping, 0.0, 1e9)
         k = check_range("stiffness", stiffness, -1e9, 1e9)
         self.model.set_pto(c, k)

@@ -182,11 +182,13 @@ class HullCoefficients:
         A, B, X = self.at(w)
         return abs(X) / abs(complex(-(w**2) * (self.inertia + A) + self.stiffness, w * B))
 
-    def natural_frequency(self) -> float:
-        """w_n solving w^2 (I + A(w)) = C (rad/s), by fixed-point iteration on the table."""
-        w = math.sqrt(self.stiffness / (self.inertia + self.added_mass_inf))
+    def natural_frequency(self, inertia: float | None = None) -> float:
+        """w_n solving w^2 (I + A(w)) = C (rad/s), by fixed-point iteration on the table; I is
+        the hull's own pitch inertia unless `inertia` (kg m^2, e.g. hull + gyros) is given."""
+        inertia = self.inertia if inertia is None else inertia
+        w = math.sqrt(self.stiffness / (inertia + self.added_mass_inf))
         for _ in range(200):
-            w_new = math.sqrt(self.stiffness / (self.inertia + self.at(w)[0]))
+            w_new = math.sqrt(self.stiffness / (inertia + self.at(w)[0]))
             if abs(w_new - w) < 1e-13 * w:
                 break
             w = w_new
