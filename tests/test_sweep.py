@@ -184,6 +184,8 @@ def test_without_ray_one_line_naming_the_extra(argv, monkeypatch, capsys):
 
 
 def test_shipped_ppo_policy_as_a_controller(tmp_path):
+    for module in ("stable_baselines3", "safetensors"):
+        pytest.importorskip(module, reason="needs the train extra: pip install -e '.[train]'")
     from mf_envs.train import load_policy
 
     data = {**SMALL, "seeds": [3], "controllers": ["ppo"], "scenes": {"s": {"wave_period": 3.7}}}
