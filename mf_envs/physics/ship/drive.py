@@ -21,11 +21,14 @@ with no pump or reservoir" (Seakeeper Model 7000 Gyro Operation Manual, doc. 900
 powered actuator; the seed excites the gimbal "by either a hydraulic system, or servo" (ch. 3
 §3.3.2). The default here is an active electric servo drive, because a precession-rate action
 needs a drive that can also supply power. Seakeeper publishes no gimbal-drive rating, so its
-limits are sized, not quoted (`electric_drive`): the rate limit 2.0 rad/s (H x 2 rad/s = 18 kN m
-of roll moment for the Seakeeper 9, near its catalogue anti-roll torque class); the torque limit
-holds the precession against the gyroscopic torque H w1 up to a roll rate of 0.25 rad/s (a
-yacht rolling 8 deg at its 3.7 s period); the power limit 3 kW (motoring). Braking is limited by
-the torque only (a brake resistor or relief valve takes the heat).
+limits are sized, not quoted (`electric_drive`): the rate limit 2.0 rad/s (the seed
+env's precession-rate limit; H x 2 rad/s = 18 kN m of roll moment for the Seakeeper 9); the
+torque limit 0.1 H holds the precession against the gyroscopic torque H w1 up to a roll rate of
+0.1 rad/s (the yacht rolling 3.4 deg at its 3.7 s period; larger rolls overpower the drive
+and the gimbal runs to its stops, as on a real gyro); the motoring power limit 1 kW. Braking is
+limited by the torque only (a brake resistor or relief valve takes the heat). A damping law
+phi' = k w1 needs braking, not motoring: the roll drives the gimbal and the drive holds it back
+(the power tau phi' = -H k w1^2 < 0), which is why a brake suffices for Seakeeper.
 
 Inner rate loop (active drives): the action stays a precession-rate command u (rad/s). The
 command is clipped to +-max_rate and to the end-stop envelope |phi'| <= (phi_max - |phi|) / t_stop,
@@ -87,9 +90,9 @@ class DriveParams:
     """
 
     kind: str = "electric"
-    max_torque: float = 2250.0
+    max_torque: float = 900.0
     max_rate: float = 2.0
-    max_power: float = 3000.0
+    max_power: float = 1000.0
     bandwidth: float = 20.0
     damping_ratio: float = 1.0
     feedforward: float = 1.0
@@ -135,9 +138,9 @@ class DriveParams:
 
 def electric_drive(angular_momentum: float, **over: float) -> DriveParams:
     """The default electric drive sized for a rotor of angular momentum H (N m s), module doc:
-    tau_max = 0.25 H (holds the precession up to a roll rate of 0.25 rad/s), 2 rad/s, 3 kW."""
+    tau_max = 0.1 H (holds the precession up to a roll rate of 0.1 rad/s), 2 rad/s, 1 kW."""
     h = float(check_positive("angular_momentum", angular_momentum))
-    kw = {"max_torque": 0.25 * h, "max_rate": 2.0, "max_power": 3000.0}
+    kw = {"max_torque": 0.1 * h, "max_rate": 2.0, "max_power": 1000.0}
     kw.update(over)
     return DriveParams("electric", **kw)
 
