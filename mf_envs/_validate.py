@@ -15,13 +15,42 @@ def check_finite(name: str, value: Any) -> np.ndarray:
         if not math.isfinite(value):
             raise ValueError(f"{name}: must be finite, got {value!r}")
         return np.float64(value)
+    _reject_non_numbers(name, value)
     try:
         arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:
         raise ValueError(f"{name}: expected a number or array of numbers, got {value!r}") from exc
     if not np.all(np.isfinite(arr)):
         raise ValueError(f"{name}: must be finite, got {value!r}")
     return arr
+
+
+def _reject_non_numbers(name: str, value: Any) -> None:
+    """ValueError naming `name` for bools, strings (also numeric ones) and containers of them:
+    numpy would silently read True as 1.0 and "3" as 3.0."""
+    items = value if isinstance(value, (list, tuple)) else (value,)
+    for v in items:
+        if isinstance(v, (list, tuple)):
+            _reject_non_numbers(name, v)
+        elif isinstance(v, (bool, np.bool_, str, bytes)) or v is None:
+            raise ValueError(f"{name}: expected a number, got {value!r}")
+    if isinstance(value, np.ndarray) and value.dtype.kind not in "iuf":
+        raise ValueError(f"{name}: expected a numeric array, got dtype {value.dtype}")
+
+
+def check_range(
+    name: str, value: Any, low: float | None = None, high: float | None = None
+) -> float:
+    """A finite real number (bools, strings, arrays rejected) in [low, high]; returns a float."""
+    arr = check_finite(name, value)
+    if arr.ndim != 0:
+        raise ValueError(f"{name}: expected a number, got shape {arr.shape}")
+    x = float(arr)
+    if (low is not None and x < low) or (high is not None and x > high):
+        lo = "-inf" if low is None else f"{low:g}"
+        hi = "inf" if high is None else f"{high:g}"
+        raise ValueError(f"{name}: must be in [{lo}, {hi}], got {value!r}")
+    return x
 
 
 def check_positive(name: str, value: Any) -> np.ndarray:
@@ -50,8 +79,8 @@ def check_shape(name: str, value: Any, shape: tuple[int, ...]) -> np.ndarray:
 
 def check_int(name: str, value: Any, low: int | None = None, high: int | None = None) -> int:
     """An integer (bools rejected) within [low, high] when given."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        if isinstance(value, float) and math.isfinite(value) and value.is_integer():
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        if type(value) is float and math.isfinite(value) and value.is_integer():
             value = int(value)
         else:
             raise ValueError(f"{name}: expected an integer, got {value!r}")

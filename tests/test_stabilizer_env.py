@@ -11,6 +11,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import mf_envs  # noqa: F401  (registers the ids)
+from mf_envs.envs.gyro_stabilizer.spec import OBS
 
 ENV_ID = "GyroStabilizer-v0"
 INFO_KEYS = (
@@ -45,8 +46,10 @@ def test_spaces_info_and_reward_terms():
         assert r == pytest.approx(
             info["reward_terms"]["roll"] + info["reward_terms"]["effort"], abs=1e-12
         )
-        assert info["roll"] == pytest.approx(float(obs[0]), abs=1e-6)
-        assert info["roll_rate"] == pytest.approx(float(obs[1]), rel=1e-6, abs=1e-7)
+        assert info["roll"] == pytest.approx(float(obs[OBS.index("roll")]), abs=1e-6)
+        assert info["roll_rate"] == pytest.approx(
+            float(obs[OBS.index("roll_rate")]), rel=1e-6, abs=1e-7
+        )
         # gyro roll moment is -n H phi' cos(phi) of the current state (Eq. 123)
         H = env.unwrapped.gyro.angular_momentum
         assert info["gyro_moment"] == pytest.approx(
@@ -82,8 +85,9 @@ def test_deterministic_under_seed_and_picklable():
 def test_reset_options_and_episode_length():
     env = gym.make(ENV_ID, episode_seconds=2.0)
     obs, info = env.reset(seed=0, options={"roll": 0.2, "roll_rate": -0.1, "gimbal_angle": 0.3})
-    assert obs[0] == pytest.approx(0.2) and obs[1] == pytest.approx(-0.1)
-    assert obs[4] == pytest.approx(0.3)
+    o = OBS.unpack(obs)
+    assert o["roll"] == pytest.approx(0.2) and o["roll_rate"] == pytest.approx(-0.1)
+    assert o["gimbal_angle"] == pytest.approx(0.3)
     n, done = 0, False
     while not done:
         _, _, term, trunc, _ = env.step(np.zeros(1, np.float32))

@@ -265,3 +265,41 @@ def test_sb3_adapter_round_trip(env_id: str) -> None:
                 np.testing.assert_array_equal(x["terminal_observation"], y["terminal_observation"])
                 assert x["TimeLimit.truncated"] == y["TimeLimit.truncated"]
     assert ends >= 3
+
+
+def _assert_final_info_like_sync(a: dict[str, Any], b: dict[str, Any], where: str) -> None:
+    """Every value equal, also where the mask is False (Sync puts the dtype's zero there)."""
+    assert set(a) == set(b), (where, set(a) ^ set(b))
+    for key in a:
+        if isinstance(a[key], dict):
+            _assert_final_info_like_sync(a[key], b[key], f"{where}{key}.")
+        else:
+            np.testing.assert_array_equal(a[key], b[key], err_msg=where + key)
+            assert np.asarray(a[key]).dtype == np.asarray(b[key]).dtype, where + key
+
+
+def test_same_step_final_info_holds_no_other_rows() -> None:
+    """SAME_STEP with staggered episodes (row 0 reset 3 steps later): final_info equals
+    SyncVectorEnv's value for value, i.e. zeros (not the running rows' values) where the mask
+    is False."""
+    for env_id in VEC_IDS:
+        mode = AutoresetMode.SAME_STEP
+        kw = SHORT[env_id]
+        sync = gym.make_vec(env_id, 3, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
+        vec = make_vec(env_id, autoreset_mode=mode, **kw)
+        acts = actions(vec, 30)
+        for env in (sync, vec):
+            env.reset(seed=SEEDS)
+            for t in range(3):
+                env.step(acts[t])
+            env.reset(options={"reset_mask": np.array([True, False, False])})
+        seen = 0
+        for t in range(3, 30):
+            out_s, out_v = sync.step(acts[t]), vec.step(acts[t])
+            if "final_info" in out_s[4]:
+                done = out_s[4]["_final_info"]
+                fs, fv = out_s[4]["final_info"], out_v[4]["final_info"]
+                _assert_final_info_like_sync(fs, fv, f"{env_id} {t}: ")
+                assert np.all(fv["time"][~done] == 0) and np.all(fv["time"][done] > 0)
+                seen += int(done.sum() < 3)  # rows that run on: their values must not leak
+        assert seen >= 2

@@ -40,9 +40,13 @@ import control as ct
 import numpy as np
 
 from mf_envs.controllers import register
+from mf_envs.envs.gowec.spec import OBS
 from mf_envs.physics.waves import G, disk_average_factor
 
 SOGI_GAIN = math.sqrt(2.0)
+_SIN, _COS = OBS.index("sin_gimbal_angle"), OBS.index("cos_gimbal_angle")
+_RATE, _BUOY = OBS.index("gimbal_rate"), OBS.slice("buoy_rates")
+_W1 = _BUOY.start  # w1, the first buoy rate (roll of the buoy about e1)
 
 
 @dataclass(frozen=True)
@@ -145,7 +149,7 @@ class _GimbalTracker:
 
     def _phase(self, obs: np.ndarray) -> tuple[float, float]:
         """(theta, theta') of the wave at the time of `obs`; subclasses override."""
-        self._sogi_pll(float(obs[3]))
+        self._sogi_pll(float(obs[_W1]))
         return self.th_cur, self.w_hat
 
     def _shape(self, th: float, thd: float) -> tuple[float, float, float]:
@@ -155,8 +159,8 @@ class _GimbalTracker:
     # -------------------------------------------------------------- torque loop
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         obs = np.asarray(obs, dtype=float)
-        s, c, phid = obs[0], obs[1], obs[2]
-        w = obs[3:6]
+        s, c, phid = obs[_SIN], obs[_COS], obs[_RATE]
+        w = obs[_BUOY]
         phi = math.atan2(s, c)
         w1 = float(w[0])
         th, thd = self._phase(obs)
@@ -193,12 +197,12 @@ class FixedRateController(_GimbalTracker):
         self.phi0: float | None = None
 
     def _phase(self, obs: np.ndarray) -> tuple[float, float]:
-        self._sogi_pll(float(obs[3]))  # only for the quadrature signal of the feed-forward
+        self._sogi_pll(float(obs[_W1]))  # only for the quadrature signal of the feed-forward
         t = self.k * self.dt
         if self.alpha is None:
             if self.phi0 is None:
-                self.phi0 = math.atan2(obs[0], obs[1]) * self.sign
-            self.samples.append((t, float(obs[3])))
+                self.phi0 = math.atan2(obs[_SIN], obs[_COS]) * self.sign
+            self.samples.append((t, float(obs[_W1])))
             if t + 0.5 * self.dt >= self.T0:  # one nominal period seen: fit w1 = R cos(w t - a)
                 tt, yy = np.array(self.samples).T
                 X = np.stack([np.cos(self.w0 * tt), np.sin(self.w0 * tt)], axis=1)

@@ -34,6 +34,10 @@ from typing import Any
 import numpy as np
 
 from mf_envs.controllers import register
+from mf_envs.envs.gyro_stabilizer.spec import OBS
+
+_ROLL, _ROLL_RATE = OBS.index("roll"), OBS.index("roll_rate")
+_PHI, _PHI_RATE = OBS.index("gimbal_angle"), OBS.index("gimbal_rate")
 
 ENV_ID = "GyroStabilizer-v0"
 
@@ -126,7 +130,7 @@ class PIDStabilizer:
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         m = self.m
-        rate, phi = float(obs[1]), float(obs[4])
+        rate, phi = float(obs[_ROLL_RATE]), float(obs[_PHI])
         deriv = 0.0 if self.prev_rate is None else (rate - self.prev_rate) / m.dt
         self.prev_rate = rate
         raw = self.kp * rate + self.ki * self.integral + self.kd * deriv - self.kc * phi
@@ -198,9 +202,9 @@ class LQRStabilizer:
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         m = self.m
-        x = np.array([obs[0], obs[1], obs[4], obs[5]], dtype=np.float64)
+        x = np.array([obs[_ROLL], obs[_ROLL_RATE], obs[_PHI], obs[_PHI_RATE]], dtype=np.float64)
         cmd = -float(self.gain[0] @ x)
-        cmd = _stop_envelope(min(max(cmd, -m.max_rate), m.max_rate), float(obs[4]), m)
+        cmd = _stop_envelope(min(max(cmd, -m.max_rate), m.max_rate), float(obs[_PHI]), m)
         return np.array([cmd / m.max_rate], dtype=np.float32), None
 
 

@@ -6,14 +6,14 @@ import gymnasium as gym
 
 # id -> (entry point, default max_episode_steps or None); each env module owns its episode length
 ENV_SPECS: dict[str, str] = {
-    "GOWEC-v0": "mf_envs.envs.gowec:GOWECEnv",
-    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer:GyroStabilizerEnv",
-    "Inchworm-v0": "mf_envs.envs.inchworm:InchwormEnv",
+    "GOWEC-v0": "mf_envs.envs.gowec.env:GOWECEnv",
+    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.env:GyroStabilizerEnv",
+    "Inchworm-v0": "mf_envs.envs.inchworm.env:InchwormEnv",
 }
 # id -> native batched vector env (`gym.make_vec(id, vectorization_mode="vector_entry_point")`)
 VECTOR_SPECS: dict[str, str] = {
-    "GOWEC-v0": "mf_envs.envs.gowec_vector:GOWECVectorEnv",
-    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer_vector:GyroStabilizerVectorEnv",
+    "GOWEC-v0": "mf_envs.envs.gowec.vector:GOWECVectorEnv",
+    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.vector:GyroStabilizerVectorEnv",
 }
 
 

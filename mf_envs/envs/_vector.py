@@ -1,4 +1,4 @@
-"""Shared machinery of the native batched vector envs (`gowec_vector`, `gyro_stabilizer_vector`).
+"""Shared machinery of the native batched vector envs (`gowec.vector`, `gyro_stabilizer.vector`).
 
 A native vector env steps all N sub-envs in ONE compiled call over a batch axis, and reproduces
 `gymnasium.vector.SyncVectorEnv` over N copies of the single env exactly (same observations,
@@ -201,12 +201,18 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
 
 
 def _select(info: dict[str, Any], rows: np.ndarray) -> dict[str, Any]:
-    """A copy of the batched `info` restricted to `rows` (masks cleared elsewhere)."""
+    """The batched `info` restricted to `rows`, laid out as SyncVectorEnv's `final_info`: values
+    of the other rows are the zero of the dtype (None for objects), masks False there."""
     out: dict[str, Any] = {}
     for key, value in info.items():
         if key.startswith("_") or key in ("final_obs", "final_info"):
             continue
-        out[key] = _select(value, rows) if isinstance(value, dict) else value.copy()
+        if isinstance(value, dict):
+            out[key] = _select(value, rows)
+        else:
+            empty = np.full(value.shape, None, dtype=object) if value.dtype == object else None
+            out[key] = np.zeros_like(value) if empty is None else empty
+            out[key][rows] = value[rows]
         out[f"_{key}"] = info[f"_{key}"] & rows
     return out
 

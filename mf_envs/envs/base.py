@@ -16,8 +16,13 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from mf_envs._validate import check_positive
+from mf_envs._validate import check_range
 from mf_envs.effects import resolve_effects
+
+MIN_DT = 1e-6  # s, smallest control or physics step
+MAX_CONTROL_DT = 60.0  # s, largest control step
+MAX_SUBSTEPS = 10_000  # physics substeps per control step (a step must stay fast)
+MAX_EPISODE_STEPS = 10_000_000  # control steps per episode
 
 
 class MFEnv(gym.Env):
@@ -42,14 +47,32 @@ class MFEnv(gym.Env):
             )
         self.render_mode = render_mode
         self.effects = resolve_effects(effects, available_effects, default_effects)
-        check_positive("control_dt", control_dt)
-        check_positive("physics_dt", physics_dt)
+        control_dt = check_range("control_dt", control_dt, MIN_DT, MAX_CONTROL_DT)
+        physics_dt = check_range("physics_dt", physics_dt, MIN_DT, None)
         # integer substeps; physics_dt is shrunk so that n * physics_dt == control_dt exactly
-        self.n_substeps = max(1, int(np.ceil(control_dt / physics_dt - 1e-9)))
-        self.control_dt = float(control_dt)
+        n_substeps = max(1, math.ceil(control_dt / physics_dt - 1e-9))
+        if n_substeps > MAX_SUBSTEPS:
+            raise ValueError(
+                f"physics_dt: control_dt / physics_dt = {n_substeps} substeps per step exceeds "
+                f"{MAX_SUBSTEPS}; raise physics_dt (>= {control_dt / MAX_SUBSTEPS:.3g} s) or "
+                "lower control_dt"
+            )
+        self.n_substeps = n_substeps
+        self.control_dt = control_dt
         self.physics_dt = self.control_dt / self.n_substeps
         self._last_obs: np.ndarray | None = None
         self._window: Any = None  # mf_envs.render.HumanWindow, opened by the first human render
+
+    def _episode_steps(self, episode_seconds: Any) -> int:
+        """Control steps in `episode_seconds` (s): ceil(episode_seconds / control_dt), >= 1."""
+        seconds = check_range("episode_seconds", episode_seconds, MIN_DT, None)
+        steps = max(1, math.ceil(seconds / self.control_dt - 1e-9))
+        if steps > MAX_EPISODE_STEPS:
+            raise ValueError(
+                f"episode_seconds: {steps} control steps exceeds {MAX_EPISODE_STEPS}; "
+                "shorten the episode or raise control_dt"
+            )
+        return steps
 
     @property
     def dt(self) -> float:

@@ -15,6 +15,17 @@ Scenes (the `dt` column is the refinement parameter named in `param`):
   (order 2 expected: the trapezoidal rule's period error is (omega dt)^2 / 12).
 - `beam_newton_tol`: Newton eps1 = eps2 = tol on the alpha = 5 elastica (24 elements), error against
   the tol = 1e-12 solution; param tol.
+- `beam_locking_rollup`, `beam_locking_tipload`: both elements ("seed", "sri") at slenderness
+  EA L^2 / EI = 1e2, 1e4, 1e6, 1e8 (GA_s = EA): end moment 2 pi EI/L (error = max(tip gap / L,
+  tip angle error [rad]), exact circle) and tip load alpha = 3 (error = |tip - Reissner BVP| / L,
+  reference.reissner_tip); param h = L / n_el.
+- `beam_period`: slender strip (L = 0.3 m, 20 mm x 0.5 mm, EA L^2/EI = 4.3e6, 10 elements)
+  released in its first linear mode (tip 1e-4 L): relative error of the first period against
+  Euler-Bernoulli, per time scheme; param dt [s].
+- `beam_energy`: the same strip released from its alpha = 0.5 tip-load shape (tip 0.16 L),
+  error = max |E / E0 - 1| over N periods (N = 100, quick 10), per scheme; param dt [s]. A
+  scheme whose Newton fails gets a row with failed = True (the trapezoidal rule's energy
+  instability on the nonlinear beam: "newmark", "generalized_alpha" at rho_inf = 1).
 - `inchworm_gait`: advance per cycle of the two seed gaits (kappa0# = 13, gravity off) against the
   stress-free chord (L - chord, a quadrature), param h = L / n_el.
 """
@@ -32,13 +43,21 @@ from mf_envs.physics.beam import (
     NewmarkState,
     NewtonDivergence,
     NewtonSettings,
+    TimeScheme,
     clamp_dofs,
     initial_acceleration,
     newmark_step,
+    simulate_cantilever,
     solve_cantilever,
     timoshenko_cantilever_uniform,
 )
-from mf_envs.physics.beam.reference import SEED_CANTILEVER, elastica_tip, seed_rigidities
+from mf_envs.physics.beam.reference import (
+    SEED_CANTILEVER,
+    elastica_tip,
+    reissner_tip,
+    seed_rigidities,
+)
+from mf_envs.physics.beam.simulate import linear_modes, simulate_clamped
 from mf_envs.physics.inchworm import (
     Inchworm,
     InchwormParams,
@@ -103,7 +122,7 @@ def _rollup(quick: bool) -> list[dict]:
             ("tip angle [rad]", abs(sol.tip_angle - 2 * np.pi)),
         ):
             rows.append(
-                _row("beam_rollup", "C1 element", 1.0 / n, err, sec, "h", quantity=q, elements=n)
+                _row("beam_rollup", "sri element", 1.0 / n, err, sec, "h", quantity=q, elements=n)
             )
     return rows
 
@@ -186,6 +205,104 @@ def _newton_tol(quick: bool) -> list[dict]:
     return rows
 
 
+def _locking(quick: bool) -> list[dict]:
+    rows = []
+    for s_ in (1e2, 1e4, 1e6, 1e8):
+        ref = np.array(reissner_tip(3.0, s_, s_)[:2])
+        for element in ("seed", "sri"):
+            for n in (5, 10, 20) if quick else (5, 10, 20, 40):
+                name = f"{element} EA L^2/EI = {s_:.0e}"
+                sol, sec = timed(
+                    lambda n=n, e=element, s_=s_: solve_cantilever(
+                        1.0, s_, s_, 1.0, n, tip_moment=2 * np.pi, element=e
+                    ),
+                    repeat=3,
+                )
+                err = max(np.linalg.norm(sol.tip_position), abs(sol.tip_angle - 2 * np.pi))
+                rows.append(_row("beam_locking_rollup", name, 1 / n, float(err), sec, "h"))
+                sol, sec = timed(
+                    lambda n=n, e=element, s_=s_: solve_cantilever(
+                        1.0, s_, s_, 1.0, n, (0.0, -3.0), element=e
+                    ),
+                    repeat=3,
+                )
+                err = float(np.linalg.norm(sol.tip_position - ref))
+                rows.append(_row("beam_locking_tipload", name, 1 / n, err, sec, "h"))
+    return rows
+
+
+def strip(h: float = 0.0005) -> tuple[float, ...]:
+    """Strip L = 0.3 m, b = 20 mm, thickness h [m] of the inchworm's material (E = 2.4 GPa,
+    G = 0.96 GPa, 1390 kg/m^3): (L, EA, GAs, EI, m_A, J_3C, T1 Euler-Bernoulli [s])."""
+    L, b, e, g, rho = 0.3, 0.02, 2.4e9, 0.96e9, 1390.0
+    area, inertia = b * h, b * h**3 / 12
+    t1 = 2 * np.pi / (1.875104068711961**2 * np.sqrt(e * inertia / (rho * area * L**4)))
+    return L, e * area, g * 5 / 6 * area, e * inertia, rho * area, rho * inertia, t1
+
+
+SCHEME_RUNS = (
+    ("energy_momentum", 1.0),
+    ("energy_momentum", 0.8),
+    ("generalized_alpha", 1.0),
+    ("generalized_alpha", 0.8),
+    ("newmark", 1.0),
+)
+
+
+def _period(quick: bool) -> list[dict]:
+    L, ea, gas, ei, m, j, t1 = strip()
+    model = BeamModel(BeamParams(L, ea, gas, ei, 10, m, j))
+    _, modes = linear_modes(model)
+    d0 = model.straight() + 1e-4 * L * modes[:, 0] / modes[model.dof(-1, "z2"), 0]
+    rows = []
+    for scheme, rho in SCHEME_RUNS:
+        for spp in (25, 50, 100) if quick else (25, 50, 100, 200):
+            ts = TimeScheme(scheme, rho)
+            hist, sec = timed(
+                lambda ts=ts, spp=spp: simulate_clamped(model, d0, 4 * t1, t1 / spp, scheme=ts),
+                repeat=1,
+            )
+            z, t = hist.tip_position[:, 1], hist.t
+            i = np.where((z[:-1] < 0) & (z[1:] >= 0))[0]
+            tc = t[i] - z[i] * (t[i + 1] - t[i]) / (z[i + 1] - z[i])
+            err = abs(float(np.mean(np.diff(tc))) / t1 - 1)
+            name = f"{scheme} rho_inf={rho:g}"
+            rows.append(_row("beam_period", name, t1 / spp, err, sec, "dt", steps_per_period=spp))
+    return rows
+
+
+def strip_release(n_periods: float, steps: int, scheme: str, rho_inf: float = 1.0):
+    """The slender strip (10 elements) released from its alpha = 0.5 tip-load shape, dt = T1 /
+    steps, for n_periods first periods T1 (simulate_cantilever)."""
+    L, ea, gas, ei, m, j, t1 = strip()
+    load = (0.0, -0.5 * ei / L**2)
+    return simulate_cantilever(
+        L, ea, gas, ei, m, j, 10, n_periods * t1, t1 / steps, load, scheme=scheme, rho_inf=rho_inf
+    )
+
+
+def _energy(quick: bool) -> list[dict]:
+    t1, n_per = strip()[-1], 10 if quick else 100
+    rows = []
+    for scheme, rho in SCHEME_RUNS:
+        name = f"{scheme} rho_inf={rho:g}"
+        for spp in (50,) if quick else (50, 100):
+            extra = {"periods": n_per, "failed": False}
+            try:
+                hist, sec = timed(
+                    lambda s=scheme, r=rho, spp=spp: strip_release(n_per, spp, s, r), repeat=1
+                )
+            except NewtonDivergence as exc:
+                extra.update(failed=True, note=str(exc)[:120])
+                rows.append(_row("beam_energy", name, t1 / spp, np.nan, np.nan, "dt", **extra))
+                continue
+            e = hist.total_energy
+            err = float(np.max(np.abs(e / e[0] - 1)))
+            extra["final_energy_ratio"] = float(e[-1] / e[0])
+            rows.append(_row("beam_energy", name, t1 / spp, err, sec, "dt", **extra))
+    return rows
+
+
 def _inchworm(quick: bool) -> list[dict]:
     rows = []
     gaits = {
@@ -218,7 +335,8 @@ def _inchworm(quick: bool) -> list[dict]:
 def rows(quick: bool) -> list[dict]:
     solve_cantilever(1.0, 1e4, 1e4, 1.0, 2, tip_force=(0, -1.0))  # numba warm-up
     out = []
-    for part in (_timoshenko, _rollup, _elastica, _newmark, _newton_tol, _inchworm):
+    parts = (_timoshenko, _rollup, _elastica, _newmark, _newton_tol, _locking, _period, _energy)
+    for part in (*parts, _inchworm):
         out.extend(part(quick))
     return out
 

@@ -10,44 +10,56 @@
 
 The beam: curve of centroids r_C(S) = e^I z_C(S) and frame angle psi(S) (Eqs. 31, 33),
 strains gamma = R(psi)^T z_C', kappa = psi' (Eq. 36), active law M3 = EI (kappa - kappa#)
-(Eq. 53). The three-node C1 element lives in `beam_element`, the Newton / load-stepping /
-Newmark machinery in `beam_solver`; this module re-exports them and adds `solve_cantilever`
-(docs/api.md), the boundary-condition helpers (clamp, Eq. 100 sliding support, Eq. 102 anchor) and the
-linear Timoshenko reference solution (Eqs. 65-67) used for verification.
+(Eq. 53). The three-node C1 element lives in `element` (elements "seed" and the locking-free
+"sri"), the Newton / load-stepping machinery in `solver`, the time schemes ("energy_momentum",
+"generalized_alpha", "newmark") in `dynamics` and `algorithmic`, `simulate_cantilever` in
+`simulate`; this module re-exports them and adds `solve_cantilever` (docs/api.md), the
+boundary-condition helpers (clamp, Eq. 100 sliding support, Eq. 102 anchor) and the linear
+Timoshenko reference solution (Eqs. 65-67) used for verification.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from mf_envs._validate import check_int, check_positive, check_shape
-from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, n_dof
+from mf_envs.physics.beam.dynamics import (
+    SCHEMES,
+    NewmarkState,
+    TimeScheme,
+    initial_acceleration,
+    newmark_step,
+    time_step,
+)
+from mf_envs.physics.beam.element import ELEMENTS, GAUSS_W, GAUSS_XI, N_GAUSS, n_dof
+from mf_envs.physics.beam.simulate import CantileverHistory, simulate_cantilever
 from mf_envs.physics.beam.solver import (
     BeamModel,
     BeamParams,
-    NewmarkState,
     NewtonDivergence,
     NewtonSettings,
     PathStats,
-    initial_acceleration,
-    newmark_step,
     newton,
     solve_static_path,
 )
 
 __all__ = [
+    "ELEMENTS",
+    "SCHEMES",
     "GAUSS_W",
     "GAUSS_XI",
     "N_GAUSS",
     "BeamModel",
     "BeamParams",
+    "CantileverHistory",
     "CantileverSolution",
     "NewmarkState",
     "NewtonDivergence",
     "NewtonSettings",
     "PathStats",
+    "TimeScheme",
     "anchor_dofs",
     "clamp_dofs",
     "initial_acceleration",
@@ -55,8 +67,10 @@ __all__ = [
     "newmark_step",
     "newton",
     "solve_cantilever",
+    "simulate_cantilever",
     "solve_static_path",
     "support_dofs",
+    "time_step",
     "timoshenko_cantilever_uniform",
 ]
 
@@ -105,12 +119,14 @@ def solve_cantilever(
     settings: NewtonSettings | None = None,
     first_step: float = 1.0,
     max_step: float = 1.0,
+    element: str = "sri",
 ) -> CantileverSolution:
     """Geometrically exact static cantilever clamped at the origin along +x (docs/api.md).
 
     tip_force (2,) [N] and distributed_load (2,) [N/m] are dead loads in the inertial frame,
     tip_moment [N m] counter-clockwise positive; kappa_sharp [1/m] a uniform actuation curvature
     (Eq. 53). Loads and actuation are applied proportionally, lam = 0 -> 1, with step halving.
+    element: "sri" (locking-free, default) or "seed" (the seed's element, for its figures).
     """
     for name, val in (("length", length), ("EA", EA), ("GAs", GAs), ("EI", EI)):
         check_positive(name, val)
@@ -119,7 +135,8 @@ def solve_cantilever(
     q = check_shape("distributed_load", distributed_load, (2,))
     check_shape("tip_moment", tip_moment, ())
     check_shape("kappa_sharp", kappa_sharp, ())
-    model = BeamModel(BeamParams(float(length), float(EA), float(GAs), float(EI), n_elements))
+    params = BeamParams(float(length), float(EA), float(GAs), float(EI), n_elements)
+    model = BeamModel(replace(params, element=element))
     f = model.uniform_load(q)
     f[model.dof(-1, "z1")] += tip_f[0]
     f[model.dof(-1, "z2")] += tip_f[1]

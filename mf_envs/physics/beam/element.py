@@ -21,6 +21,26 @@ psi^1, psi^2, psi^3). Global layout: node j owns dofs 6j..6j+4 = (z1, z1', z2, z
 element e's mid node owns dof 6e+5; n_dof = 6 n_el + 5 and the matrices are banded with
 half-bandwidth 10. Banded storage follows scipy.linalg.solve_banded: ab[10 + i - j, j] = K[i, j].
 
+Two elements share these kinematics and differ only in the quadrature (`quadrature`):
+
+* "seed": everything by 4-point Gauss, as in the seed. Hermite z_C' is quadratic, while a bent
+  inextensible, unsheared beam needs z_C' = (cos psi, sin psi): the axial and shear strains
+  cannot vanish together with a curvature, the penalty EA, GA_s >> EI / L^2 then stiffens
+  bending (membrane/shear locking: error ~ EA L^2 / EI at a fixed mesh).
+* "sri" (default): selective reduced integration. Bending stays on 4-point Gauss; the axial and
+  shear terms go to the 2-point rule, which only asks the strains to vanish at two points per
+  element: 4 conditions on the element's 4 position/slope pairs, so a bent, unstretched,
+  unsheared shape is representable (a circle under an end moment comes out exact to round-off
+  at any EA) and the error no longer grows with slenderness. Why this choice: it keeps the
+  dof layout, the C1 interpolation, the mass matrix, the banded solver and the consistent
+  tangent (it is still the exact second derivative of a quadrature of the same energy), where
+  a mixed or strain-based element would change all of them. The 2-point rule alone leaves one
+  zero-energy mode per displacement component (every nodal slope z_C' offset alike: a pure
+  Legendre-P2 strain, zero at both points), so a small share k = min(EA, SRI_STAB EI / l_e^2)
+  of the axial and shear rigidity stays on the full rule. That stabilisation places the
+  spurious pair at ~ 1.8 n_el^2 sqrt(SRI_STAB) times the first bending frequency (41x with 10
+  elements) and costs an O(SRI_STAB h^2) error on the circle (4e-5 rad with 10 elements).
+
 Geometric stiffness (derivation). With c = cos psi, s = sin psi, Nz' the Hermite derivatives and
 Np the psi shape functions, the virtual strains are
     d gamma_1 = c dz1' + s dz2' + gamma_2 dpsi,   d gamma_2 = -s dz1' + c dz2' - gamma_1 dpsi.
@@ -44,6 +64,38 @@ N_BAND = 2 * HALF_BW + 1
 _XI, _W = np.polynomial.legendre.leggauss(N_GAUSS)
 GAUSS_XI = 0.5 * (_XI + 1.0)
 GAUSS_W = 0.5 * _W
+
+
+ELEMENTS = ("seed", "sri")
+_XI2, _W2 = np.polynomial.legendre.leggauss(2)
+GAUSS2_XI = 0.5 * (_XI2 + 1.0)
+GAUSS2_W = 0.5 * _W2
+# "sri": share of the axial/shear rigidity kept on the full rule, as a fraction of EI / l_e^2
+SRI_STAB = 0.05
+
+
+def quadrature(
+    element: str, le: float, EA: float, GAs: float, EI: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Quadrature of an element of length le [m]: points xi (nq,), weights (nq,) on [0, 1] and
+    the rigidities (nq, 3) = (EA [N], GA_s [N], EI [N m^2]) integrated at each point.
+
+    "seed": every term by 4-point Gauss (the seed's element, Eq. 80b); it locks in membrane and
+    shear as EA L^2 / EI grows. "sri": bending by 4-point Gauss; of the axial and shear
+    rigidities only a stabilising part k = min(EA, SRI_STAB EI / le^2) (resp. GA_s) by 4 points,
+    the rest by the 2-point rule (see the module docstring).
+    """
+    if element not in ELEMENTS:
+        raise ValueError(f"element: must be one of {ELEMENTS}, got {element!r}")
+    xi, w = GAUSS_XI.copy(), GAUSS_W.copy()
+    stiff = np.tile([EA, GAs, EI], (N_GAUSS, 1)).astype(float)
+    if element == "seed":
+        return xi, w, stiff
+    k_stab = SRI_STAB * EI / le**2
+    ka, ks = min(EA, k_stab), min(GAs, k_stab)
+    stiff[:, 0], stiff[:, 1] = ka, ks
+    red = np.tile([EA - ka, GAs - ks, 0.0], (2, 1))
+    return np.append(xi, GAUSS2_XI), np.append(w, GAUSS2_W), np.vstack([stiff, red])
 
 
 def n_dof(n_elements: int) -> int:
@@ -105,12 +157,14 @@ def _gp_kinematics(de, le, xi):
 
 
 @numba.njit(cache=True)
-def assemble_internal(d, le, kappa_sharp, ea, gas, ei, with_tangent):
+def assemble_internal(d, le, kappa_sharp, qxi, qw, stiff, with_tangent):
     """Internal force P (n_dof,) and banded tangent (21, n_dof) (Eqs. 78b, 80b + K_geo above).
 
     d: (n_dof,) global dofs [m, -, rad]; le: (n_el,) element lengths [m];
-    kappa_sharp: (n_el, 4) actuation curvature kappa# at the Gauss points [1/m];
-    ea, gas, ei: axial [N], shear [N], bending [N m^2] rigidities.
+    kappa_sharp: (n_el, 4) actuation curvature kappa# at the 4 Gauss points [1/m];
+    qxi, qw, stiff: the element's quadrature (`quadrature`): points (nq,) in [0, 1], weights
+    (nq,) and the rigidities (nq, 3) = (EA [N], GA_s [N], EI [N m^2]) carried by each point;
+    the first 4 points are the 4-point Gauss rule (kappa# lives there).
     Returns (P, ab, energy): P in N (z dofs) / N m (z', psi dofs), ab = dP/dd banded,
     energy = stored elastic energy [J].
     """
@@ -133,13 +187,15 @@ def assemble_internal(d, le, kappa_sharp, ea, gas, ei, with_tangent):
             de[k] = d[base + loc[k]]
         fe[:] = 0.0
         ke[:, :] = 0.0
-        for g in range(N_GAUSS):
-            nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2 = _gp_kinematics(de, le[e], GAUSS_XI[g])
-            w = GAUSS_W[g] * le[e]
+        for g in range(qxi.shape[0]):
+            nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2 = _gp_kinematics(de, le[e], qxi[g])
+            w = qw[g] * le[e]
+            ea, gas, ei = stiff[g, 0], stiff[g, 1], stiff[g, 2]
+            ksh = kappa_sharp[e, g] if g < N_GAUSS else 0.0
             n1 = ea * (g1 - 1.0)
             n2 = gas * g2
-            m3 = ei * (kap - kappa_sharp[e, g])
-            energy += 0.5 * w * (n1 * (g1 - 1.0) + n2 * g2 + m3 * (kap - kappa_sharp[e, g]))
+            m3 = ei * (kap - ksh)
+            energy += 0.5 * w * (n1 * (g1 - 1.0) + n2 * g2 + m3 * (kap - ksh))
             bt[:, :] = 0.0
             a[:] = 0.0
             b[:] = 0.0

@@ -7,8 +7,8 @@
   convergence test (Eq. 93: ||E||_inf < eps1 and ||Delta d||_inf < eps2, both made dimensionless);
 * `solve_static_path`: load/actuation stepping lambda: 0 -> 1 with automatic halving of the step
   when Newton does not converge within a few iterations, and a secant predictor (warm start);
-* `newmark_step`: Newmark beta = 1/4, gamma = 1/2 (Eqs. 90-92) with Newton at each step and step
-  halving on failure; inertia off gives the quasi-static mode.
+* time stepping (Newmark, generalized-alpha, energy-momentum) lives in `dynamics.py` and uses
+  `newton` with its `dyn` data and, for the algorithmic forces, its `internal` hook.
 
 Constraints are prescribed dofs (bool mask): their values stay as given in the start vector
 (clamp, simple support with sliding Eq. 100a, an anchored node Eq. 102); the rows and columns
@@ -50,8 +50,11 @@ class BeamParams:
     n_elements: int  # number of three-node C1 elements
     mass_per_length: float = 0.0  # m_A [kg/m]
     rotary_inertia: float = 0.0  # J_3C, rotary inertia per length [kg m]
+    element: str = "sri"  # "seed" (Eq. 80b, locks when slender) or "sri" (element.quadrature)
 
     def __post_init__(self) -> None:
+        if self.element not in el.ELEMENTS:
+            raise ValueError(f"element: must be one of {el.ELEMENTS}, got {self.element!r}")
         for name in ("length", "EA", "GAs", "EI"):
             check_positive(name, getattr(self, name))
         check_int("n_elements", self.n_elements, low=1, high=10_000)
@@ -102,6 +105,9 @@ class BeamModel:
         for j in range(ne + 1):
             self.u_scale[[6 * j, 6 * j + 2]] = params.length
         self._mass: np.ndarray | None = None
+        self.quad = el.quadrature(
+            params.element, params.length / ne, params.EA, params.GAs, params.EI
+        )
 
     # ---------------------------------------------------------------- dofs
     def dof(self, node: int, name: str) -> int:
@@ -130,14 +136,12 @@ class BeamModel:
         self, d: np.ndarray, kappa_sharp: np.ndarray, tangent: bool = True
     ) -> tuple[np.ndarray, np.ndarray]:
         """Internal force P (n_dof,) and banded tangent dP/dd at `d` (Eq. 80b)."""
-        p = self.params
-        f, ab, _ = el.assemble_internal(d, self.le, kappa_sharp, p.EA, p.GAs, p.EI, tangent)
+        f, ab, _ = el.assemble_internal(d, self.le, kappa_sharp, *self.quad, tangent)
         return f, ab
 
     def elastic_energy(self, d: np.ndarray, kappa_sharp: np.ndarray) -> float:
         """Stored energy [J]: int (N1 (g1-1) + N2 g2 + M3 (k - k#)) / 2 dS."""
-        p = self.params
-        return float(el.assemble_internal(d, self.le, kappa_sharp, p.EA, p.GAs, p.EI, False)[2])
+        return float(el.assemble_internal(d, self.le, kappa_sharp, *self.quad, False)[2])
 
     def distributed(self, n_gp: np.ndarray, m_gp: np.ndarray | None = None) -> np.ndarray:
         """Nodal force (n_dof,) of a line force n_gp (n_el, 4, 2) [N/m, inertial frame] and line
@@ -205,11 +209,13 @@ def newton(
     settings: NewtonSettings = NewtonSettings(),
     dyn: Dynamics | None = None,
     extra: ExtraLoad | None = None,
+    internal: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]] | None = None,
 ) -> NewtonResult:
     """Newton-Raphson for E(d) = F - P(d) - M a(d) = 0 on the free dofs (Eqs. 92-98).
 
     d_start: (n_dof,) start (prescribed dofs already at their values); kappa_sharp (n_el, 4) [1/m];
-    f_ext: (n_dof,) dead nodal loads; fixed: bool (n_dof,) prescribed dofs.
+    f_ext: (n_dof,) dead nodal loads; fixed: bool (n_dof,) prescribed dofs; internal: d ->
+    (force, banded tangent) replacing model.internal (the time schemes' algorithmic forces).
     """
     p = model.params
     d = d_start.copy()
@@ -226,7 +232,7 @@ def newton(
         tol_r = max(tol_r, 256 * eps * dyn.c_a * float(np.max(np.abs(md * model.u_scale))) / f_ref)
     res = np.inf
     for it in range(1, settings.max_iter + 1):
-        f_int, ab = model.internal(d, kappa_sharp)
+        f_int, ab = model.internal(d, kappa_sharp) if internal is None else internal(d)
         r = f_ext - f_int
         if dyn is not None:
             acc = dyn.c_a * (d - dyn.d_pred)
@@ -306,81 +312,3 @@ def solve_static_path(
         if res.iterations <= settings.max_iter // 2:
             h = min(2.0 * h, max_step)
     return d
-
-
-@dataclass
-class NewmarkState:
-    """Nodal displacements d, velocities v, accelerations a (n_dof,) at time t [s]."""
-
-    d: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-    t: float = 0.0
-
-    def copy(self) -> NewmarkState:
-        return NewmarkState(self.d.copy(), self.v.copy(), self.a.copy(), self.t)
-
-
-BETA, GAMMA = 0.25, 0.5  # average acceleration (trapezoidal) Newmark, unconditionally stable
-
-
-def newmark_step(
-    model: BeamModel,
-    state: NewmarkState,
-    dt: float,
-    kappa_end: np.ndarray,
-    f_end: np.ndarray,
-    fixed: np.ndarray,
-    settings: NewtonSettings = NewtonSettings(),
-    extra: ExtraLoad | None = None,
-    kappa_start: np.ndarray | None = None,
-    f_start: np.ndarray | None = None,
-    _depth: int = 0,
-    beta: float = BETA,
-    gamma: float = GAMMA,
-) -> NewmarkState:
-    """One Newmark step of length dt with Newton (Eqs. 90-92); the seed's beta = 1/4,
-    gamma = 1/2 by default. gamma > 1/2 with beta = (gamma + 1/2)^2 / 4 adds numerical damping
-    of the unresolved high modes (the trapezoidal rule is not energy-stable for stiff nonlinear
-    beams at large steps, see benchmarks/accuracy/beam.py).
-
-    Prescribed dofs keep their values with zero velocity/acceleration. On Newton failure the
-    step is split into two halves (actuation and loads interpolated linearly), recursively up to
-    `settings.max_halvings`; raises NewtonDivergence beyond that.
-    """
-    d_pred = state.d + dt * state.v + 0.5 * dt**2 * (1.0 - 2.0 * beta) * state.a
-    v_pred = state.v + (1.0 - gamma) * dt * state.a
-    d_pred[fixed] = state.d[fixed]
-    v_pred[fixed] = 0.0
-    dyn = Dynamics(1.0 / (beta * dt**2), gamma / (beta * dt), d_pred, v_pred)
-    res = newton(model, d_pred, kappa_end, f_end, fixed, settings, dyn=dyn, extra=extra)
-    if not res.converged:
-        # retry from the last converged displacement: with a stiff beam the unresolved (undamped)
-        # axial modes left in a_n can make the predictor a poor start
-        res = newton(model, state.d.copy(), kappa_end, f_end, fixed, settings, dyn=dyn, extra=extra)
-    if res.converged:
-        a = dyn.c_a * (res.d - d_pred)
-        v = v_pred + gamma * dt * a
-        a[fixed] = 0.0
-        v[fixed] = 0.0
-        return NewmarkState(res.d, v, a, state.t + dt)
-    if _depth >= settings.max_halvings:
-        raise NewtonDivergence(f"Newmark/Newton failed at t = {state.t:.6g} s (dt = {dt:.3g})")
-    k0 = kappa_end if kappa_start is None else kappa_start
-    f0 = f_end if f_start is None else f_start
-    k_mid, f_mid = 0.5 * (k0 + kappa_end), 0.5 * (f0 + f_end)
-    args = (fixed, settings, extra)
-    kw = {"_depth": _depth + 1, "beta": beta, "gamma": gamma}
-    half = newmark_step(model, state, dt / 2, k_mid, f_mid, *args, k0, f0, **kw)
-    return newmark_step(model, half, dt / 2, kappa_end, f_end, *args, k_mid, f_mid, **kw)
-
-
-def initial_acceleration(
-    model: BeamModel, d: np.ndarray, kappa_sharp: np.ndarray, f_ext: np.ndarray, fixed: np.ndarray
-) -> np.ndarray:
-    """a0 from M a0 = F - P(d0) on the free dofs (§4.9, after Eq. 87)."""
-    f_int, _ = model.internal(d, kappa_sharp, tangent=False)
-    r = f_ext - f_int
-    m = model.mass.copy()
-    el.constrain_band(m, r, fixed)
-    return _solve(m, r)

@@ -3,7 +3,7 @@
 One compiled call advances N independent gyroscopes (each with its own wave components, time and
 gimbal state) by n RK4 substeps each. No physics is written here: every row calls
 `mf_envs.physics.gowec.fast_step` (Rios 2017 ch. 3 Eqs. 77-81, 89-93), so a row is bit-identical
-to a scalar step with the same inputs. Used by `mf_envs.envs.gowec_vector`.
+to a scalar step with the same inputs. Used by `mf_envs.envs.gowec.vector`.
 """
 
 from __future__ import annotations

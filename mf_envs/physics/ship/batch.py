@@ -1,13 +1,13 @@
-"""Batched ship + gyro steps: the scalar fast path `ship_kernels.env_advance` over a batch axis.
+"""Batched ship + gyro steps: the scalar fast path `ship_kernels.advance` over a batch axis.
 
 One compiled call advances N independent ships (own state, attitude, packed parameters and wave
 table each) by n RK4-Munthe-Kaas substeps. No physics is written here: every row calls
-`mf_envs.physics.ship.kernels.env_advance` (Rios 2017 ch. 3 Eqs. 98-128), so a row is
-bit-identical to a scalar step with the same inputs. Used by `mf_envs.envs.gyro_stabilizer_vector`.
+`mf_envs.physics.ship.kernels.advance` (Rios 2017 ch. 3 Eqs. 98-128), so a row is
+bit-identical to a scalar step with the same inputs. Used by `mf_envs.envs.gyro_stabilizer.vector`.
 
 Note on numba's on-disk cache: a cached function is invalidated only when ITS source file
 changes, not when a kernel it calls does; after editing `ship_kernels`, touch this module too
-(or clear `__pycache__`), or `batch_env_advance` keeps running the old kernel (and the vector
+(or clear `__pycache__`), or `batch_advance` keeps running the old kernel (and the vector
 env stops matching the single env bit for bit).
 """
 
@@ -18,25 +18,22 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.ship.kernels import env_advance
+from mf_envs.physics.ship.kernels import advance
 
 
 @numba.njit(cache=True)
-def batch_env_advance(active, t, y, R, u, dt, n_sub, P, tab, out, obs, high, ok):
+def batch_advance(active, t, y, R, u, dt, n_sub, P, tab, out):
     """Advance the rows i with active[i] in place; rows not active are left untouched.
 
     Shapes: active (N,) bool; t (N,) s, time, updated; y (N, N_STATE) state vectors (see
-    `ship_kernels`), R (N, 3, 3) attitudes (inertial <- ship), updated; u (N,) rad/s precession
+    `ship.kernels`), R (N, 3, 3) attitudes (inertial <- ship), updated; u (N,) rad/s precession
     command held over the step; dt (s) substep, n_sub substeps; P (N, N_PARAMS) packed
-    parameters; tab (N, L, 2) wave tables; out (N, 2) N m (gyro roll moment, wave moment);
-    obs (N, 6) float32 env observations clipped to +-high (6,); ok (N,) bool, state finite.
+    parameters; tab (N, L, 2) wave tables; out (N, 2) N m (gyro roll moment, wave moment).
+    Observations are the env's business (`mf_envs.envs.gyro_stabilizer.spec`).
     """
     for i in range(active.shape[0]):
-        if not active[i]:
-            continue
-        t[i], ok[i] = env_advance(
-            t[i], y[i], R[i], u[i], dt, n_sub, P[i], tab[i], out[i], obs[i], high
-        )
+        if active[i]:
+            t[i] = advance(t[i], y[i], R[i], u[i], dt, n_sub, P[i], tab[i], out[i])
 
 
 @numba.njit(cache=True)
@@ -48,7 +45,7 @@ def batch_roll(R, out):
 
 
 def alloc_batch(n_envs: int, n_state: int, n_params: int, table_shape: tuple[int, int]):
-    """Zeroed batch arrays for `batch_env_advance` (names as its arguments), R = identity."""
+    """Zeroed batch arrays for `batch_advance` (names as its arguments), R = identity."""
     return {
         "t": np.zeros(n_envs),
         "y": np.zeros((n_envs, n_state)),
@@ -56,5 +53,4 @@ def alloc_batch(n_envs: int, n_state: int, n_params: int, table_shape: tuple[int
         "P": np.zeros((n_envs, n_params)),
         "tab": np.zeros((n_envs, *table_shape)),
         "out": np.zeros((n_envs, 2)),
-        "ok": np.ones(n_envs, dtype=bool),
     }

@@ -493,25 +493,3 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
         Rs[k + 1] = R
         mg[k + 1] = gyro_moment(y, P)
     return ts, ys, Rs, mg
-
-
-@numba.njit(cache=True)
-def env_advance(t, y, R, u, dt, n_sub, P, tab, out, obs, high):
-    """`advance`, then the env observation [roll, w1, w2, w3, wrapped phi, phi'] clipped to
-    +-high into the float32 buffer `obs`; returns (new time, state finite)."""
-    t = advance(t, y, R, u, dt, n_sub, P, tab, out)
-    ok = True
-    for i in range(y.shape[0]):
-        if not math.isfinite(y[i]):
-            ok = False
-    for i in range(3):
-        for j in range(3):
-            if not math.isfinite(R[i, j]):
-                ok = False
-    if not ok:
-        return t, False
-    phi = (y[3] + math.pi) % (2.0 * math.pi) - math.pi
-    vals = (math.atan2(R[2, 1], R[2, 2]), y[0], y[1], y[2], phi, y[4])
-    for i in range(6):
-        obs[i] = min(max(vals[i], -high[i]), high[i])
-    return t, True

@@ -1,0 +1,341 @@
+"""GOWEC-v0: harvest wave energy with a gyroscope by loading its gimbal (Rios 2017, Sec. 3.2)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+
+from mf_envs._validate import (
+    check_int,
+    check_nonnegative,
+    check_range,
+    check_shape,
+)
+from mf_envs.envs._spec import check_options
+from mf_envs.envs.base import MAX_EPISODE_STEPS, MIN_DT, MFEnv
+from mf_envs.envs.gowec import spec
+from mf_envs.physics import gowec as gw
+from mf_envs.physics import waves
+
+AVAILABLE_EFFECTS = {
+    "gyroscopic": "rotor spin coupling H w1 cos(phi) (off: rotor stopped)",
+    "gimbal_inertia": "gimbal inertia and a general rotor (off: Eq. 79 thin disk, light gimbal)",
+    "buoy_rocking": "buoy rocks with the wave slope (Eqs. 77-78; off: still buoy)",
+    "wave_2d": "both slope angles of an oblique wave (Eqs. 89-93; off: rocking about e1 only)",
+    "irregular_waves": "JONSWAP irregular sea with Hs = 2 sqrt(2) a and Tp = wave_period",
+}
+DEFAULT_EFFECTS = ("gyroscopic", "buoy_rocking", "wave_2d")
+_P = gw.GOWECParams()
+MAX_GIMBAL_RATE, MAX_BUOY_RATE = spec.MAX_GIMBAL_RATE, spec.MAX_BUOY_RATE
+# Buoy waterplane radius (m) used by default in irregular seas: a 5 m diameter buoy for one
+# Seakeeper 26 pair (the gyro itself is ~1.2 m across; Seakeeper 26 is fitted on 17-20 m hulls).
+# It averages the wave slope over its waterplane (waves.disk_average_factor): F = 0.99 at
+# T = 6 s (lambda = 56 m), and it stops the buoy following wavelets shorter than itself, without
+# which the buoy rates of a spectrum grow without bound with the spectral cut-off. Regular waves
+# default to the seed's point buoy (r = 0), so that analytic_max_power() is Eq. 95 exactly.
+BUOY_RADIUS = 2.5
+
+
+class GOWECEnv(MFEnv):
+    """
+    ## Description
+    One gyroscope of the gyroscopic ocean wave energy converter of Rios (2017, ch. 3.2): a buoy
+    rocks with the slope of the passing wave (Eqs. 77-78, 89-93) averaged over its circular
+    waterplane of radius `buoy_radius` (each component x 2 J1(k r)/(k r); 0 = the seed's point
+    buoy), a rotor spins at psi' inside a gimbal free to turn about the buoy's e2 axis, and a
+    generator on that axis applies the torque M_g. The gimbal obeys (exact for the prescribed
+    buoy rotation; the seed's Eq. 81 for a thin disk and a light gimbal, sign of Eq. 80 fixed)
+
+        (Jg2 + Jt)(phi'' + w2') - (Jg3 - Jg1 - Jt) O1 O3 - Ja (O3 + psi') O1 + M_g = 0.
+
+    The power harvested is P = M_g phi' (Eq. 82). Locking phi to the wave phase yields Eq. 95 on
+    average; a square-wave sin(phi) can reach 4/pi of it.
+
+    ## Action Space
+    `Box(-1, 1, (1,), float32)`: generator torque M_g / max_generator_torque (N m after scaling).
+
+    ## Observation Space
+    `Box(float32, (6,))`, what a device measures (encoder on the gimbal, IMU on the buoy), laid
+    out by `mf_envs.envs.gowec.spec.OBS` (read slots by name: `OBS.index("gimbal_rate")`):
+
+    | Num | Name | Observation | Bound | Unit |
+    |---|---|---|---|---|
+    | 0 | sin_gimbal_angle | sin(phi), gimbal angle phi (encoder) | +-1 |  |
+    | 1 | cos_gimbal_angle | cos(phi) | +-1 |  |
+    | 2 | gimbal_rate | phi', gimbal rate | +-max_gimbal_rate | rad/s |
+    | 3..5 | buoy_rates | buoy body rates w1, w2, w3 (IMU) | +-5 | rad/s |
+
+    The wave phase is not observed.
+
+    ## Rewards
+    `energy`: the energy harvested in the step, int M_g phi' dt, divided by P_ref dt, so that the
+    episode mean of the reward is the mean power as a fraction of P_ref (`reference_power`):
+    |Eq. 95| of this wave, rotor and buoy, floored at 10 % of the head-on Eq. 86 (with the spin
+    floored at 10 wave frequencies), so it is positive and finite for every wave direction and
+    for a rotor at rest (`spec.reference_power`; the defaults give Eq. 95 exactly).
+    `info["reward_terms"]` holds the terms (they sum to the reward). Info keys: `spec.INFO_KEYS`.
+
+    ## Starting State
+    phi ~ U(-0.1, 0.1) rad, phi' = 0, wave phase ~ U(0, 2 pi) (irregular seas: random phases
+    for every component). `reset(options=...)` accepts `gimbal_angle` (|.| <= 4 pi rad),
+    `gimbal_rate` (|.| <= max_gimbal_rate), `wave_phase` (|.| <= 4 pi rad); any other key or
+    value raises ValueError naming it (and draws nothing from the generator).
+
+    ## Episode End
+    Truncation after `episode_seconds` (default `n_periods` = 20 wave periods). Termination on
+    a gimbal overspeed trip, |phi'| > `max_gimbal_rate` (`info["overspeed"]`: a real unit
+    brakes its gimbal; nothing else limits a gimbal that the generator motors), or on numerical
+    failure (`info["numerical_failure"]`). The baselines stay below 18 rad/s.
+
+    ## Arguments
+    | Argument | Default | Meaning |
+    |---|---|---|
+    | rotor_inertia | 49.66 kg m^2 | polar J3 of the rotor (Seakeeper 26, Table 3-1), <= 1e6 |
+    | rotor_speed | 523.6 rad/s | psi' (5000 rpm), abs <= 1e4; 0 = rotor off |
+    | wave_amplitude | 1.0 m | a in (0, 30] (irregular: Hs = 2 sqrt 2 a, Eq. 16) |
+    | wave_period | 6.0 s | T in [0.5, 60] (irregular: peak period) |
+    | wave_direction | pi/2 | theta of Eq. 89 in [-2 pi, 2 pi] (pi/2 head-on) |
+    | max_generator_torque | 10000 N m | action scale |
+    | max_gimbal_rate | 60 rad/s | overspeed trip (ends the episode) and observation bound |
+    | episode_seconds | None | episode length (s); None: n_periods wave periods |
+    | n_periods | 20 | episode length in wave periods (when episode_seconds is None) |
+    | steps_per_period | 300 | control steps per wave period (control_dt = T / this) |
+    | physics_dt | 0.01 s | RK4 substep (rounded to divide the control step; <= 1e4 per step) |
+    | gimbal_inertia | (5, 5, 5) kg m^2 | with the `gimbal_inertia` effect |
+    | rotor_transverse_inertia | Ja/2 | with the `gimbal_inertia` effect |
+    | n_components, gamma | 64, 3.3 | irregular sea (JONSWAP), <= 4096, gamma in [1, 20] |
+    | buoy_radius | None | waterplane radius (m), None: 0 (point buoy) for regular waves, |
+    |             |      | 2.5 m with irregular_waves |
+    | effects | gyroscopic, buoy_rocking, wave_2d | also gimbal_inertia, irregular_waves |
+
+    ## Version History
+    * v0: initial version; reward reference floored (positive for every direction, rotor off),
+      `episode_seconds`, strict reset options.
+    """
+
+    metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 30}
+
+    def __init__(
+        self,
+        rotor_inertia: float = _P.rotor_inertia,
+        rotor_speed: float = _P.rotor_speed,
+        wave_amplitude: float = 1.0,
+        wave_period: float = 6.0,
+        wave_direction: float = math.pi / 2,
+        max_generator_torque: float = 10000.0,
+        n_periods: int | None = None,
+        max_gimbal_rate: float = MAX_GIMBAL_RATE,
+        effects: Any = None,
+        steps_per_period: int = 300,
+        physics_dt: float = 0.01,
+        gimbal_inertia: Any = _P.gimbal_inertia,
+        rotor_transverse_inertia: float | None = None,
+        n_components: int = 64,
+        gamma: float = 3.3,
+        buoy_radius: float | None = None,
+        episode_seconds: float | None = None,
+        render_mode: str | None = None,
+    ) -> None:
+        self.wave_amplitude = check_range("wave_amplitude", wave_amplitude, 1e-6, 30.0)
+        self.wave_period = check_range("wave_period", wave_period, 0.5, 60.0)
+        self.wave_direction = check_range(
+            "wave_direction", wave_direction, -2 * math.pi, 2 * math.pi
+        )
+        self.max_generator_torque = check_range("max_generator_torque", max_generator_torque, 0.0)
+        if self.max_generator_torque == 0.0:
+            raise ValueError("max_generator_torque: must be > 0, got 0")
+        self.max_gimbal_rate = check_range("max_gimbal_rate", max_gimbal_rate, 1e-6)
+        spp = check_int("steps_per_period", steps_per_period, low=4, high=10**6)
+        self.n_components = check_int("n_components", n_components, low=1, high=4096)
+        self.gamma = check_range("gamma", gamma, 1.0, 20.0)
+        if rotor_transverse_inertia is not None:
+            rotor_transverse_inertia = check_range(
+                "rotor_transverse_inertia", rotor_transverse_inertia, 1e-9, 1e6
+            )
+        gimbal = check_nonnegative(
+            "gimbal_inertia", check_shape("gimbal_inertia", gimbal_inertia, (3,))
+        )
+        self.params = gw.GOWECParams(
+            check_range("rotor_inertia", rotor_inertia, 1e-9, 1e6),
+            check_range("rotor_speed", rotor_speed, -1e4, 1e4),
+            rotor_transverse_inertia,
+            tuple(float(v) for v in gimbal),
+        )
+        if self.wave_period / spp < MIN_DT:
+            raise ValueError(f"steps_per_period: wave_period / steps_per_period < {MIN_DT:g} s")
+        super().__init__(
+            effects=effects,
+            available_effects=AVAILABLE_EFFECTS,
+            default_effects=DEFAULT_EFFECTS,
+            control_dt=self.wave_period / spp,
+            physics_dt=physics_dt,
+            render_mode=render_mode,
+        )
+        if buoy_radius is None:
+            buoy_radius = BUOY_RADIUS if "irregular_waves" in self.effects else 0.0
+        self.buoy_radius = check_range("buoy_radius", buoy_radius, 0.0, 100.0)
+        if episode_seconds is not None and n_periods is not None:
+            raise ValueError("episode_seconds: give either episode_seconds or n_periods, not both")
+        if episode_seconds is None:
+            self.n_periods = check_int(
+                "n_periods", 20 if n_periods is None else n_periods, 1, 10**6
+            )
+            self.max_steps = self.n_periods * spp
+            if self.max_steps > MAX_EPISODE_STEPS:
+                raise ValueError(
+                    f"n_periods: n_periods * steps_per_period = {self.max_steps} control steps "
+                    f"exceeds {MAX_EPISODE_STEPS}"
+                )
+        else:
+            self.max_steps = self._episode_steps(episode_seconds)
+            self.n_periods = self.max_steps / spp
+        self.episode_seconds = self.max_steps * self.control_dt
+        self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
+        hi = spec.OBS.high({"max_gimbal_rate": self.max_gimbal_rate})
+        self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
+        self.reference_power = spec.reference_power(
+            self.params.rotor_inertia,
+            self.params.rotor_speed,
+            self.wave_amplitude,
+            self.wave_period,
+            self.wave_direction,
+            self.buoy_radius,
+        )
+        self.reward_scale = 1.0 / (self.reference_power * self.control_dt)  # 1 / (J per step)
+        self.state = np.zeros(2)  # (phi rad, phi' rad/s)
+        self._t, self._steps, self._w, self._eta = 0.0, 0, (0.0, 0.0, 0.0), 0.0
+        self._obs = np.zeros(spec.OBS.size, dtype=np.float32)
+        self.wave: waves.WaveField = waves.regular_wave(
+            self.wave_amplitude, self.wave_period, self.wave_direction, buoy_radius=self.buoy_radius
+        )
+        self.model = gw.GimbalModel(self.params, self.wave, self.effects)
+        self._model0 = self.model  # phase 0; reset() shifts the phase
+        self._last_power = 0.0
+
+    @property
+    def max_episode_steps(self) -> int:
+        """Control steps per episode (from episode_seconds or n_periods)."""
+        return self.max_steps
+
+    def analytic_max_power(self) -> float:
+        """Eq. 95 (Eq. 86 head-on), W: the locked-gimbal mean power of this wave and rotor
+        (signed: negative for sin(theta) < 0; the reward uses `reference_power`, > 0).
+
+        Both use the buoy's waterplane-averaged slope, factor |2 J1(k r)/(k r)| (r = buoy_radius).
+        Irregular sea: Eq. 95 of the equivalent regular wave (a = Hs / (2 sqrt 2), T = Tp), a
+        fixed scale, not the sea's achievable maximum. Same eta variance (Hs^2/16 = a^2/2), but
+        the JONSWAP sea has shorter components: with buoy_radius = 2.5 m, T = 6 s its RMS buoy
+        rate is 2.7x the regular wave's (converged in the cut-off; a point buoy gives 4.8x at the
+        4 wp cut-off and grows without bound with it), so irregular-sea ratios above 1 are
+        physical. Rewards stay O(1); compare controllers within one scene.
+        """
+        return gw.analytic_max_power(
+            self.params.rotor_inertia,
+            self.params.rotor_speed,
+            self.wave_amplitude,
+            self.wave_period,
+            self.wave_direction,
+            buoy_radius=self.buoy_radius,
+        )
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        Mg = self._scalar_action(action) * self.max_generator_torque
+        phi, phid, energy, w1, w2, w3, eta = self.model.step(
+            self._t, self.state[0], self.state[1], Mg, self.physics_dt, self.n_substeps
+        )
+        self.state[0], self.state[1] = phi, phid
+        self._steps += 1
+        self._t = self._steps * self.control_dt
+        self._w, self._eta = (w1, w2, w3), eta
+        reward = energy * self.reward_scale
+        truncated = self._steps >= self.max_steps
+        ok, overspeed = spec.observe(phi, phid, energy, w1, w2, w3, self.max_gimbal_rate, self._obs)
+        if not ok:
+            info = {"power": 0.0, "reward_terms": {"energy": reward}, "overspeed": False}
+            return self._finish_step(self._obs, reward, False, truncated, info, False)
+        self._last_power = power = energy / self.control_dt
+        info = spec.step_info(power, phi, phid, w1, eta, self._t, reward)
+        info["numerical_failure"] = False
+        info["overspeed"] = overspeed
+        # the base class's _finish_step contract, inlined for speed: obs finite and within bounds
+        obs = self._last_obs = self._obs.copy()
+        return obs, float(reward), overspeed, truncated, info
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        opts = check_options(options, spec.RESET_OPTIONS)  # all checks before any draw
+        angle = 4.0 * math.pi
+        for key, bound in (("gimbal_angle", angle), ("wave_phase", angle)):
+            if key in opts:
+                opts[key] = check_range(key, opts[key], -bound, bound)
+        if "gimbal_rate" in opts:
+            g = self.max_gimbal_rate
+            opts["gimbal_rate"] = check_range("gimbal_rate", opts["gimbal_rate"], -g, g)
+        super().reset(seed=seed)
+        rng = self.np_random
+        phi = float(opts.get("gimbal_angle", rng.uniform(-0.1, 0.1)))
+        phid = float(opts.get("gimbal_rate", 0.0))
+        phase = float(opts.get("wave_phase", rng.uniform(0, 2 * math.pi)))
+        if "irregular_waves" in self.effects:
+            hs = 2.0 * math.sqrt(2.0) * self.wave_amplitude
+            self.wave = waves.IrregularSea(
+                lambda w, h, tp: waves.jonswap_spectrum(w, h, tp, self.gamma),
+                hs,
+                self.wave_period,
+                self.n_components,
+                rng,
+                self.wave_direction,
+                buoy_radius=self.buoy_radius,
+            )
+            sea_model = gw.GimbalModel(self.params, self.wave, self.effects)
+            self.model = sea_model.with_phases(self.wave.phases + phase)
+        else:  # the regular wave of __init__ with this episode's phase
+            self.model = self._model0.with_phases([phase])
+        self.wave = self.model.wave
+        self.state = np.array([phi, phid])
+        self._t, self._steps = 0.0, 0
+        w = self.model.rates(0.0)[0]
+        self._w = tuple(w)
+        self._eta = float(self.wave.elevation(0.0))
+        self._last_power = 0.0
+        spec.observe(phi, phid, 0.0, w[0], w[1], w[2], self.max_gimbal_rate, self._obs)
+        info = spec.step_info(0.0, phi, phid, float(w[0]), self._eta, 0.0, 0.0)
+        info["overspeed"] = False
+        return self._finish_reset(self._obs.copy()), info
+
+    def batch_row(self) -> dict[str, Any]:
+        """The state the native vector env copies into its row after a reset: gimbal state,
+        wave components and the kernel's wave projections (names of `physics.gowec.batch`)."""
+        m = self.model
+        return {
+            "phi": self.state[0], "phid": self.state[1], "amp": self.wave.amplitudes,
+            "om": self.wave.omegas, "eps": self.wave.phases, "k": m._k, "w": self._w,
+            "eta": self._eta, "inert": m.inert, "psid": m.psid, "cth": m._cth, "sth": m._sth,
+            "two_d": m._two_d,
+        }  # fmt: skip
+
+    def _draw_frame(self) -> np.ndarray:
+        from mf_envs.render import draw_gowec
+
+        lam = waves.wavelength(self.wave_period)
+        x = np.linspace(-lam, lam, 121)
+        c, s = math.cos(self.wave_direction), math.sin(self.wave_direction)
+        z = self.wave.elevation(self._t, x * c, x * s)
+        R = self.wave.buoy_motion(self._t)[0] if "buoy_rocking" in self.effects else np.eye(3)
+        psi = math.fmod(self.model.psid * self._t, 2 * math.pi)
+        P = self._last_power
+        phi_wrapped = math.remainder(float(self.state[0]), 2 * math.pi)
+        return draw_gowec(
+            buoy_R=R,
+            gimbal_angle=float(self.state[0]),
+            rotor_angle=psi,
+            wave_x=x,
+            wave_z=z,
+            wave_direction=self.wave_direction,
+            buoy_radius=self.buoy_radius if self.buoy_radius > 0 else None,
+            text=f"t = {self._t:5.1f} s   phi = {phi_wrapped:+.2f} rad   P = {P / 1e3:.2f} kW",
+        )

@@ -1,0 +1,98 @@
+"""GOWEC-v0 as a native batched vector env: N gyroscopes stepped in one compiled call.
+
+`gym.make_vec("GOWEC-v0", num_envs=N, vectorization_mode="vector_entry_point", **kwargs)` builds
+it; `kwargs` are those of `gym.make("GOWEC-v0", ...)` plus `autoreset_mode`
+(`gymnasium.vector.AutoresetMode`, default NEXT_STEP). Trajectories are identical, bit for bit,
+to `SyncVectorEnv` over N single `GOWECEnv`s with the same seeds (`tests/test_vector_envs.py`):
+resets go through a template single env (its public `batch_row()`), steps through
+`physics.gowec.batch.batch_fast_step`, which calls the single env's scalar kernel for every row,
+and the observation, reward, info and failure contract come from `gowec.spec`, as in the single
+env. See `mf_envs.envs._vector`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from mf_envs.envs._vector import BatchedVectorEnv
+from mf_envs.envs.gowec import spec
+from mf_envs.envs.gowec.env import GOWECEnv
+from mf_envs.physics.gowec.batch import alloc_batch, batch_fast_step
+
+
+class GOWECVectorEnv(BatchedVectorEnv):
+    """N independent `GOWEC-v0` envs (same kwargs, own seeds) stepped in one numba call.
+
+    Observations (N, 6) float32 (`spec.OBS`), actions (N, 1) in [-1, 1], rewards (N,) float64,
+    infos batched as Gymnasium does ({key: (N,) array, "_key": mask}) with the single env's
+    keys (`spec.INFO_KEYS`). Memory: `state_nbytes()` bytes for the batch state.
+    """
+
+    single_env_cls = GOWECEnv
+
+    def _alloc(self, n: int) -> None:
+        env = self.template
+        m = env.n_components if "irregular_waves" in env.effects else 1
+        self.b = alloc_batch(n, m)
+        self._steps = np.zeros(n, dtype=np.int64)
+        self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
+        self._ok = np.ones(n, dtype=bool)
+        self._overspeed = np.zeros(n, dtype=bool)
+
+    def _load(self, i: int) -> None:
+        row, b = self.template.batch_row(), self.b
+        self._kernel = {key: row[key] for key in ("inert", "psid", "cth", "sth", "two_d")}
+        for key in ("phi", "phid", "amp", "om", "eps", "k", "w", "eta"):
+            b[key][i] = row[key]
+        b["t"][i] = 0.0
+        self._steps[i] = 0
+
+    def state_nbytes(self) -> int:
+        """Bytes of the per-env batch state (physics arrays, step counters, observations)."""
+        arrays = [*self.b.values(), self._steps, self._obs, self._fresh, self._ok]
+        return int(sum(a.nbytes for a in arrays)) + self._overspeed.nbytes
+
+    def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
+        b, env, kn = self.b, self.template, self._kernel
+        Mg = actions[:, 0] * env.max_generator_torque
+        b["t"][:] = self._steps * env.control_dt
+        batch_fast_step(
+            active, b["t"], b["phi"], b["phid"], Mg, env.physics_dt, env.n_substeps,
+            kn["inert"], kn["psid"], b["amp"], b["om"], b["eps"], b["k"],
+            kn["cth"], kn["sth"], kn["two_d"], b["energy"], b["w"], b["eta"],
+        )  # fmt: skip
+        self._steps[active] += 1
+        energy = b["energy"]
+        reward = energy * env.reward_scale
+        trunc = self._steps >= env.max_steps
+        obs, ok, overspeed = self._fresh, self._ok, self._overspeed
+        ok[~active], overspeed[~active] = True, False
+        spec.observe_rows(
+            active, b["phi"], b["phid"], energy, b["w"], env.max_gimbal_rate, obs, ok, overspeed
+        )
+        info = spec.step_info(
+            energy / env.control_dt,
+            b["phi"].copy(),
+            b["phid"].copy(),
+            b["w"][:, 0].copy(),
+            b["eta"].copy(),
+            self._steps * env.control_dt,
+            reward.copy(),
+        )
+        info["numerical_failure"] = ~ok
+        info["overspeed"] = overspeed.copy()
+        masks = np.ones((len(spec.INFO_KEYS) + 1, self.num_envs), dtype=bool)  # one per key
+        info["reward_terms"]["_energy"] = masks[-1]
+        for j, key in enumerate(spec.INFO_KEYS):
+            info[f"_{key}"] = masks[j]
+        term = overspeed.copy()
+        if not ok[active].all():  # MFEnv._finish_step: last finite obs, reward 0, terminated
+            bad = ~ok & active
+            obs[bad] = self._obs[bad]
+            reward[bad], term[bad] = 0.0, True
+            info["power"][bad] = 0.0
+            for key in set(spec.INFO_KEYS) - set(spec.FAILURE_KEYS):
+                info[f"_{key}"][bad] = False
+        return obs, reward, term, trunc, info

@@ -1,0 +1,328 @@
+"""GyroStabilizer-v0: a ship with one or two active gyro roll stabilizers (Rios 2017, §3.3)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Iterable
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+
+from mf_envs._validate import check_choice, check_int, check_range, check_shape
+from mf_envs.envs._spec import check_options
+from mf_envs.envs.base import MFEnv
+from mf_envs.envs.gyro_stabilizer import spec, wiring
+from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.model import (
+    SHIP_EFFECTS,
+    initial_state,
+    roll_angle,
+)
+from mf_envs.physics.ship.params import GyroParams, capacity_ratio, seakeeper_gyro, small_yacht
+
+DEFAULT_EFFECTS = (
+    "gyroscopic",
+    "gimbal_inertia",
+    "added_inertia",
+    "hydrostatic_restoring",
+    "roll_damping",
+    "wave_moment",
+    "gimbal_limits",
+)
+_SK9 = seakeeper_gyro("9")
+TORQUE_PHYSICS_DT = 0.025  # s, default physics step of the torque drive (end-stop stiffness)
+OBS_HIGH = spec.OBS.high()
+_ROLL = spec.OBS.index("roll")
+
+
+class GyroStabilizerEnv(MFEnv):
+    """
+    ## Description
+    A ship rolling in waves, stabilized by gyros whose gimbal precession rate is the action.
+    The hull (3 rotational DOF, surge/sway/heave with the `translation` effect) carries one gyro,
+    or two counter-rotating ones (Rios 2017, ch. 3 Eqs. 98-113): a rotor spinning at a fixed
+    rate psi' inside a gimbal that precesses about the ship's athwartships axis e_2. Precessing
+    at phi' gives the roll moment -n H phi' cos(phi), H = J3 psi' (Eq. 123). The physics is the
+    numba fast path of `mf_envs.physics.ship.kernels` (agrees with the multibody engine to
+    round-off). Defaults: an 18 t, 12-13 m motor yacht (`physics.ship.small_yacht`, natural roll
+    period 3.70 s) with one Seakeeper 9 (Table 3-1: H = 9 000 N m s), beam seas at the roll
+    resonance, wave roll moment 8 000 N m: capacity ratio M0 / (H w sin(phi_max)) = 0.60.
+    With the rotor off the yacht rolls about +-15 degrees (RMS 11.2 deg); the `pid` and `lqr`
+    baselines cut the RMS roll by 91 % and 96 % (`benchmarks/controllers/stabilizer.py`).
+    The seed's model is `effects=("gyroscopic",)` (no hydrostatics, damping or waves; add
+    "gimbal_inertia" for J2^(2) and "wave_moment" for M_e = M0 cos(2 pi t / T), Figs. 3-10/11).
+
+    ## Action Space
+    `Box(-1, 1, (1,), float32)`: precession-rate command / max_precession_rate (rad/s scaled).
+    The command is for gyro 1 (gyro 2 mirrors it), scaled by `max_precession_rate` (rad/s). A
+    servo with time constant `servo_time_constant` follows it; with `gimbal_limits` it also
+    enforces the rate limit and the end stops +-max_gimbal_angle. With `gimbal_drive="torque"`
+    the gimbal is a degree of freedom and a velocity loop of gain `gimbal_loop_gain` (limited to
+    `max_gimbal_torque`) must fight the gyroscopic torque H omega on the gimbal axis (a stiff
+    loop needs a small `physics_dt`); with gain 0 and `gimbal_damping` it is a passive (braked)
+    stabilizer that ignores the action.
+
+    ## Observation Space
+    `Box(float32, (6,))`, what a real controller measures, laid out by
+    `mf_envs.envs.gyro_stabilizer.spec.OBS` (read slots by name: `OBS.index("roll")`):
+
+    | Num | Name | Observation | Bound | Unit |
+    |---|---|---|---|---|
+    | 0 | roll | roll angle (z-y-x Euler angle, `physics.ship.roll_angle`) | +-3.14159 | rad |
+    | 1 | roll_rate | roll rate omega_1 (body) | +-10 | rad/s |
+    | 2 | pitch_rate | pitch rate omega_2 (body) | +-10 | rad/s |
+    | 3 | yaw_rate | yaw rate omega_3 (body) | +-10 | rad/s |
+    | 4 | gimbal_angle | gimbal angle phi of gyro 1, wrapped to [-pi, pi) | +-3.14159 | rad |
+    | 5 | gimbal_rate | gimbal rate phi' | +-20 | rad/s |
+
+    ## Rewards
+    `reward = roll + effort`, the terms in `info["reward_terms"]`: roll = -(roll / roll_scale)^2,
+    effort = -effort_weight * action^2 (defaults roll_scale = 0.1745 rad = 10 deg,
+    effort_weight = 0.01). Info keys (`spec.INFO_KEYS`, SI): the state (`gimbal_angle`
+    unwrapped), `gyro_moment` = -n H phi' cos(phi), `wave_moment`, `time` = steps x control_dt.
+
+    ## Starting State
+    Roll uniform in +-0.05 rad, roll rate in +-0.02 rad/s, pitch/yaw rates 0, gimbal at 0 and
+    at rest, wave phase uniform in [0, 2 pi) (a new irregular sea each reset with
+    `irregular_waves`). `reset(options=...)` overrides `roll` (|.| <= pi/2 rad), `roll_rate`
+    (|.| <= 10 rad/s), `gimbal_angle` (|.| <= max_gimbal_angle with `gimbal_limits`, else pi),
+    `wave_phase` (|.| <= 4 pi rad); any other key or value raises ValueError naming it (and
+    draws nothing from the generator).
+
+    ## Episode End
+    Truncation after `episode_seconds` (default 30 s = 600 steps of 0.05 s; `max_episode_steps`
+    = ceil(episode_seconds / control_dt)). Termination only on a numerical failure
+    (`info["numerical_failure"]`).
+
+    ## Arguments
+    | Argument | default | meaning |
+    |---|---|---|
+    | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 |
+    | n_gyros | 1 | 1 or 2 (counter-rotating pair) |
+    | rotor_inertia | 9.549 | rotor polar J3^(3), kg m^2 (Seakeeper 9) |
+    | gimbal_inertia | 9.549 | gimbal J2^(2), kg m^2 (assumed) |
+    | rotor_speed | 942.5 | psi', rad/s (9 000 rpm) |
+    | wave_moment_amplitude | 8 000 | M0, N m |
+    | wave_period | None | s; None = natural roll period (resonance), 10 s without restoring |
+    | roll_stiffness | 158 922 | C44 = rho g V GM, N m/rad |
+    | roll_damping | 7 481 | linear B44, N m s/rad (quadratic term from the preset) |
+    | max_precession_rate | 2.0 | rad/s |
+    | max_gimbal_angle | pi/3 | rad (end stops) |
+    | episode_seconds | 30 | s |
+    | effects | see DEFAULT_EFFECTS | tuple of names from `SHIP_EFFECTS` |
+    | control_dt | 0.05 | s |
+    | physics_dt | None | s; None: min(0.05, servo_time_constant) servo, 0.025 torque drive |
+    | form | "exact" | "seed": Eqs. 123-128 as printed |
+    | servo_time_constant | 0.05 | s |
+    | gimbal_drive | "servo" | "servo" (kinematic rate servo) or "torque" (gimbal DOF) |
+    | gimbal_loop_gain | None | torque drive K_v, N m s/rad (None: (J_g + J_r1)/servo tau) |
+    | max_gimbal_torque | 0 | torque drive limit, N m (0 = none) |
+    | gimbal_damping | 0 | c_g, N m s/rad (effect `gimbal_damping`, torque drive) |
+    | significant_wave_height | 0.6 | m (irregular_waves, JONSWAP, peak period = wave_period) |
+    | effective_slope | 0.7 | r_eff of the wave roll moment (`physics.ship_waves`) |
+    | roll_scale, effort_weight | 0.1745, 0.01 | reward terms |
+
+    Ranges (ValueError naming the argument outside them): inertias, stiffness and damping >= 0
+    and finite; |rotor_speed| <= 1e4 rad/s; wave_period in [0.5, 60] s; servo_time_constant in
+    [1e-3, 10] s; max_gimbal_angle in (0, pi]; control_dt <= 60 s and at most 1e4 physics
+    substeps per control step. Accuracy of the default physics_dt: `spec.PHYSICS_DT_NOTE`.
+
+    ## Version History
+    - v0: initial release.
+    """
+
+    metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 20}
+
+    def __init__(
+        self,
+        ship_inertia: Iterable[float] | None = None,
+        n_gyros: int = 1,
+        rotor_inertia: float = _SK9.rotor_inertia,
+        gimbal_inertia: float = _SK9.gimbal_inertia,
+        rotor_speed: float = _SK9.rotor_speed,
+        wave_moment_amplitude: float = 8000.0,
+        wave_period: float | None = None,
+        roll_stiffness: float | None = None,
+        roll_damping: float | None = None,
+        max_precession_rate: float = 2.0,
+        max_gimbal_angle: float = math.pi / 3,
+        episode_seconds: float = 30.0,
+        effects: Iterable[str] | str | None = None,
+        control_dt: float = 0.05,
+        physics_dt: float | None = None,
+        form: str = "exact",
+        servo_time_constant: float = 0.05,
+        gimbal_drive: str = "servo",
+        gimbal_loop_gain: float | None = None,
+        max_gimbal_torque: float = 0.0,
+        gimbal_damping: float = 0.0,
+        significant_wave_height: float = 0.6,
+        effective_slope: float = 0.7,
+        roll_scale: float = 0.1745,
+        effort_weight: float = 0.01,
+        render_mode: str | None = None,
+    ) -> None:
+        check_choice("gimbal_drive", gimbal_drive, ("servo", "torque"))
+        tau_s = check_range("servo_time_constant", servo_time_constant, 1e-3, 10.0)
+        if physics_dt is None:  # see spec.PHYSICS_DT_NOTE for the accuracy of these defaults
+            physics_dt = TORQUE_PHYSICS_DT if gimbal_drive == "torque" else min(0.05, tau_s)
+        super().__init__(
+            effects=effects,
+            available_effects=SHIP_EFFECTS,
+            default_effects=DEFAULT_EFFECTS,
+            control_dt=control_dt,
+            physics_dt=physics_dt,
+            render_mode=render_mode,
+        )
+        over: dict[str, Any] = {}
+        if ship_inertia is not None:
+            inertia = check_shape("ship_inertia", ship_inertia, (3,))
+            over["inertia"] = tuple(check_range("ship_inertia", v, 1e-6, 1e12) for v in inertia)
+        for name, value in (("roll_stiffness", roll_stiffness), ("roll_damping", roll_damping)):
+            if value is not None:
+                over[name] = check_range(name, value, 0.0, 1e12)
+        self.ship = dataclasses.replace(small_yacht(), **over)
+        self.gyro = GyroParams(
+            check_range("rotor_inertia", rotor_inertia, 1e-6, 1e6),
+            check_range("gimbal_inertia", gimbal_inertia, 1e-6, 1e6),
+            check_range("rotor_speed", rotor_speed, -1e4, 1e4),
+        )
+        self.n_gyros = check_int("n_gyros", n_gyros, 1, 2)
+        self.max_precession_rate = check_range("max_precession_rate", max_precession_rate, 1e-9)
+        self.max_gimbal_angle = check_range("max_gimbal_angle", max_gimbal_angle, 1e-6, math.pi)
+        self.max_steps = self._episode_steps(episode_seconds)
+        self.episode_seconds = float(episode_seconds)
+        self.form = check_choice("form", form, ("exact", "seed"))
+        self.wave_moment_amplitude = check_range(
+            "wave_moment_amplitude", wave_moment_amplitude, -1e9, 1e9
+        )
+        if wave_period is None:
+            wave_period = self.ship.natural_roll_period("added_inertia" in self.effects)
+            if "hydrostatic_restoring" not in self.effects or not math.isfinite(wave_period):
+                wave_period = 10.0  # no restoring, no resonance: the seed's cases use T = 10 s
+            elif not 0.5 <= wave_period <= 60.0:
+                raise ValueError(
+                    f"wave_period: None (roll resonance) gives {wave_period:.3g} s from "
+                    "roll_stiffness and ship_inertia, outside [0.5, 60] s; pass wave_period"
+                )
+        self.wave_period = check_range("wave_period", wave_period, 0.5, 60.0)
+        self.significant_wave_height = check_range(
+            "significant_wave_height", significant_wave_height, 1e-6, 30.0
+        )
+        self.effective_slope = check_range("effective_slope", effective_slope, 1e-6, 10.0)
+        self.roll_scale = check_range("roll_scale", roll_scale, 1e-6, 10.0)
+        self.effort_weight = check_range("effort_weight", effort_weight, -1e6, 1e6)
+        self.drive = wiring.gimbal_drive(
+            self, gimbal_drive, tau_s, gimbal_loop_gain, max_gimbal_torque, gimbal_damping
+        )
+        self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
+        self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
+        self.table_dt = min(0.5 * self.physics_dt, 0.01)
+        self._P = wiring.pack(self, 0.0)
+        self._tab = np.zeros((1, 2))
+        self._out = np.zeros(2)
+        self._obs = np.zeros(spec.OBS.size, dtype=np.float32)
+        self._y, self._R = initial_state()
+        self._t, self._steps = 0.0, 0
+
+    @property
+    def max_episode_steps(self) -> int:
+        """Control steps per episode, ceil(episode_seconds / control_dt)."""
+        return self.max_steps
+
+    # ------------------------------------------------------------------ physics wiring
+    @property
+    def angular_momentum(self) -> float:
+        """H = J3^(3) psi' of one rotor (N m s); 0 when `gyroscopic` is off."""
+        return self.gyro.angular_momentum if "gyroscopic" in self.effects else 0.0
+
+    def capacity(self) -> float:
+        """M0 / (n H w sin(max_gimbal_angle)) for the regular wave (docs/design.md bound)."""
+        return capacity_ratio(
+            self.wave_moment_amplitude,
+            self.gyro.angular_momentum,
+            2.0 * math.pi / self.wave_period,
+            self.n_gyros,
+            self.max_gimbal_angle,
+        )
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        a0 = self._scalar_action(action)
+        u = a0 * self.max_precession_rate
+        y, R = self._y, self._R
+        self._t = K.advance(
+            self._t, y, R, u, self.physics_dt, self.n_substeps, self._P, self._tab, self._out
+        )
+        self._steps += 1
+        roll = float(roll_angle(R))
+        ok = spec.observe(roll, y, R, self._obs)
+        obs = self._obs.copy()  # clipped to the observation bounds
+        terms = spec.reward_terms(float(obs[_ROLL]), a0, self.roll_scale, self.effort_weight)
+        reward = terms["roll"] + terms["effort"]
+        info = spec.step_info(roll, y, self._out, self._steps * self.control_dt, terms)
+        truncated = self._steps >= self.max_steps
+        if not (ok and math.isfinite(reward)):
+            return self._finish_step(obs, reward, False, truncated, info, False)
+        info["numerical_failure"] = False  # MFEnv._finish_step contract, without its overhead
+        self._last_obs = obs
+        if self.render_mode is not None:  # what render() draws if the state later blows up
+            self._frame_state = (R.copy(), float(y[3]), self._t)
+        return obs, reward, False, truncated, info
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        opts = check_options(options, spec.RESET_OPTIONS)  # all checks before any draw
+        phi_max = self.max_gimbal_angle if "gimbal_limits" in self.effects else math.pi
+        bounds = {"roll": 0.5 * math.pi, "roll_rate": 10.0, "gimbal_angle": phi_max}
+        for key, value in opts.items():
+            b = bounds.get(key, 4.0 * math.pi)
+            opts[key] = check_range(key, value, -b, b)
+        super().reset(seed=seed)
+        rng = self.np_random
+        roll = float(opts.get("roll", rng.uniform(-0.05, 0.05)))
+        roll_rate = float(opts.get("roll_rate", rng.uniform(-0.02, 0.02)))
+        gimbal = float(opts.get("gimbal_angle", 0.0))
+        phase = float(opts.get("wave_phase", rng.uniform(0.0, 2.0 * math.pi)))
+        self._P = wiring.pack(self, phase)
+        self._tab = (
+            wiring.irregular_table(self) if "irregular_waves" in self.effects else np.zeros((1, 2))
+        )
+        self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
+        self._t, self._steps = 0.0, 0
+        mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
+        self._out[:] = (0.0, mw)
+        roll0 = float(roll_angle(self._R))
+        spec.observe(roll0, self._y, self._R, self._obs)
+        info = spec.step_info(roll0, self._y, self._out, 0.0, {"roll": 0.0, "effort": 0.0})
+        self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
+        return self._finish_reset(self._obs.copy()), info
+
+    def batch_row(self) -> dict[str, Any]:
+        """What the native vector env copies into its row after a reset (names of
+        `physics.ship.batch`): time, state, attitude, packed parameters, wave table, moments."""
+        return {"t": self._t, "y": self._y, "R": self._R, "P": self._P, "tab": self._tab,
+                "out": self._out}  # fmt: skip
+
+    # ------------------------------------------------------------------ rendering
+    def _draw_frame(self) -> np.ndarray:
+        from mf_envs.render import draw_ship
+
+        R, phi, t = self._R, float(self._y[3]), self._t
+        note = ""
+        if not (np.all(np.isfinite(R)) and math.isfinite(phi)):  # after a numerical failure
+            R, phi, t = self._frame_state
+            note = "  (last finite state)"
+        psi = math.fmod(self.gyro.rotor_speed * t, 2.0 * math.pi)
+        angles = (phi,) if self.n_gyros == 1 else (phi, -phi)
+        rotors = (psi,) if self.n_gyros == 1 else (psi, -psi)
+        roll = math.degrees(float(roll_angle(R)))
+        return draw_ship(
+            ship_R=R.copy(),
+            gimbal_angles=angles,
+            rotor_angles=rotors,
+            text=f"t = {t:5.2f} s  roll = {roll:+5.1f} deg  "
+            f"gimbal = {math.degrees(phi):+5.1f} deg{note}",
+        )

@@ -1,0 +1,84 @@
+"""Inchworm-v0's env concerns, declared once: observation layout (sized by the number of control
+points), reward terms, info keys and the failure contract."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from mf_envs.envs._spec import Field, ObsLayout
+
+CURVATURE_OBS_LIMIT = 20.0  # |kappa L| bound of the observation (also caps max_curvature * L)
+REACTION_OBS_LIMIT = 20.0  # |ground reaction| / body weight bound
+REWARD_TERMS = ("progress", "effort")
+RESET_OPTIONS = ("kappa", "x_tail")
+MAX_X_TAIL = 1e6  # m, |x_tail| of a reset: x carries ~1e-10 m resolution there
+INFO_KEYS = (
+    "x_head",  # m
+    "x_tail",  # m
+    "centerline",  # (N, 2) m, (x, z) of the centroid line
+    "anchor",  # "head" or "tail", the gripping foot
+    "kappa_sharp",  # (n,) 1/m, commanded actuation curvature at the control points
+    "elastic_energy",  # J
+    "newton_iterations",  # of the step
+    "increments",  # load increments of the step
+    "time",  # s, steps x control_dt
+    "reward_terms",  # {"progress", "effort"}, sums to the reward
+    "numerical_failure",  # Newton failed after step halving: terminates (docs/api.md)
+)
+
+
+def observation_layout(n: int) -> ObsLayout:
+    """The observation of an inchworm with n control points (2 n + 6 slots)."""
+    return ObsLayout(
+        Field("curvature", "", CURVATURE_OBS_LIMIT, "measured kappa L at the control points", n),
+        Field("curvature_command", "", 1.0, "commanded kappa# / max_curvature", n),
+        Field("tail_angle", "rad", 2 * math.pi, "frame angle psi at the tail (foot IMU)"),
+        Field("head_angle", "rad", 2 * math.pi, "frame angle psi at the head (foot IMU)"),
+        Field("head_tail_distance", "", 1.5, "(x_head - x_tail) / L"),
+        Field("grip", "", 1.0, "gripping foot: +1 head, -1 tail"),
+        Field("tail_reaction", "", REACTION_OBS_LIMIT, "ground reaction at the tail / weight"),
+        Field("head_reaction", "", REACTION_OBS_LIMIT, "ground reaction at the head / weight"),
+    )
+
+
+def observe(
+    sim: Any, s_ctrl: np.ndarray, kappa_ctrl: np.ndarray, max_curvature: float, weight: float
+) -> np.ndarray:
+    """The observation (layout order, float32) of the inchworm simulation `sim`."""
+    L = sim.params.length
+    psi_t, psi_h = sim.end_angles()
+    r_t, r_h = sim.support_reactions()
+    grip = 1.0 if sim.anchor == "head" else -1.0
+    return np.concatenate(
+        [
+            sim.curvature_at(s_ctrl) * L,
+            kappa_ctrl / max_curvature,
+            [psi_t, psi_h, (sim.x_head - sim.x_tail) / L, grip],
+            [r_t / weight, r_h / weight],
+        ]
+    ).astype(np.float32)
+
+
+def tail_position(sim: Any) -> tuple[float, float]:
+    """(x_origin, local x) of the tail (m): their sum is x_tail; differences of the local part
+    stay exact at any distance crawled (reward without cancellation at large x)."""
+    return sim.x_origin, float(sim.state.d[sim.model.dof(sim.tail, "z1")])
+
+
+def reward_terms(
+    before: tuple[float, float],
+    after: tuple[float, float],
+    length: float,
+    rate: np.ndarray,
+    effort_weight: float,
+) -> dict[str, float]:
+    """progress = tail advance / L from `tail_position` before and after the step (origin
+    shifts added separately); effort = -w mean((Delta kappa# / max_curvature)^2)."""
+    advance = (after[1] - before[1]) + (after[0] - before[0])
+    return {
+        "progress": float(advance / length),
+        "effort": -effort_weight * float(np.mean(rate**2)),
+    }

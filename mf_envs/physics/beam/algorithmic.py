@@ -1,0 +1,161 @@
+"""Algorithmic internal force of the energy-momentum scheme (Simo & Tarnow 1992, planar beam).
+
+Between two configurations a = d_n and b = d_{n+1} the strains of every quadrature point change
+by an exact discrete derivative (a discrete gradient at the strain level):
+
+    gamma_b - gamma_a = Rbar^T (z'_b - z'_a) + G^T zbar' (psi_b - psi_a),
+    Rbar = (R_a + R_b) / 2,  zbar' = (z'_a + z'_b) / 2,
+    G = (R_b - R_a) / (psi_b - psi_a) = sinc((psi_b - psi_a) / 2) R'((psi_a + psi_b) / 2),
+
+(kappa = psi' is linear in the dofs), i.e. eps_b - eps_a = Bbar (b - a) exactly. With the
+stresses taken at the theta-point of the strains, sigma = D (theta eps_b + (1 - theta) eps_a
+- eps#), the algorithmic force Pbar = int Bbar^T sigma dS does the work
+
+    Pbar . (b - a) = W(b) - W(a) + (theta - 1/2) int (eps_b - eps_a)^T D (eps_b - eps_a) dS,
+
+so theta = 1/2 conserves the stored energy exactly and theta > 1/2 dissipates (the generalized
+energy-momentum method of Kuhl & Ramm 1999 takes theta = 1 - alpha_f). Pbar is symmetric in
+(a, b) and Pbar(d, d) = P(d) (a second formulation of element.assemble_internal, tested).
+A strain `shift` subtracted in the stresses carries the second-difference dissipation of the
+"energy_momentum" scheme for rho_inf < 1 (dynamics.py).
+
+The tangent is the exact derivative dPbar/db (not symmetric): the material part
+Bbar^T D theta B(b) and the derivative of Bbar at fixed sigma (Rbar and G through psi_b, zbar'
+through z'_b). Hand-written numba (as element.py) because it runs at every Newton iteration.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from mf_envs.physics.beam.element import HALF_BW, N_BAND, N_GAUSS, _shape
+
+
+@numba.njit(cache=True)
+def _sinc_half(delta):
+    """sigma(x) = sin x / x and sigma'(x) at x = delta / 2 (series near 0)."""
+    x = 0.5 * delta
+    if abs(x) < 1e-3:
+        x2 = x * x
+        return 1.0 - x2 / 6.0 + x2 * x2 / 120.0, -x / 3.0 + x * x2 / 30.0
+    return np.sin(x) / x, (x * np.cos(x) - np.sin(x)) / (x * x)
+
+
+@numba.njit(cache=True)
+def _point(de, le, xi):
+    nz, dnz, npsi, dnpsi = _shape(xi, le)
+    z1 = dnz[0] * de[0] + dnz[1] * de[1] + dnz[2] * de[2] + dnz[3] * de[3]
+    z2 = dnz[0] * de[4] + dnz[1] * de[5] + dnz[2] * de[6] + dnz[3] * de[7]
+    psi = npsi[0] * de[8] + npsi[1] * de[9] + npsi[2] * de[10]
+    kap = dnpsi[0] * de[8] + dnpsi[1] * de[9] + dnpsi[2] * de[10]
+    return dnz, npsi, dnpsi, z1, z2, psi, kap
+
+
+@numba.njit(cache=True)
+def _bbar(dnz, npsi, dnpsi, za, zb, pa, pb):
+    """Rows (3, 11) of Bbar, B(b), and the derivatives of the psi entries of Bbar
+    (dh (2, 3): d h_r / d(z1'_b, z2'_b, psi_b))."""
+    ca, sa, cb, sb = np.cos(pa), np.sin(pa), np.cos(pb), np.sin(pb)
+    cbar, sbar = 0.5 * (ca + cb), 0.5 * (sa + sb)
+    pm = 0.5 * (pa + pb)
+    cm, sm = np.cos(pm), np.sin(pm)
+    sig, dsig = _sinc_half(pb - pa)
+    z1m, z2m = 0.5 * (za[0] + zb[0]), 0.5 * (za[1] + zb[1])
+    u1, u2 = -sm * z1m + cm * z2m, -cm * z1m - sm * z2m  # R'(pm)^T zbar'
+    g1b, g2b = cb * zb[0] + sb * zb[1], -sb * zb[0] + cb * zb[1]
+    bb = np.zeros((3, 11))
+    bt = np.zeros((3, 11))
+    for k in range(4):
+        bb[0, k], bb[0, 4 + k] = cbar * dnz[k], sbar * dnz[k]
+        bb[1, k], bb[1, 4 + k] = -sbar * dnz[k], cbar * dnz[k]
+        bt[0, k], bt[0, 4 + k] = cb * dnz[k], sb * dnz[k]
+        bt[1, k], bt[1, 4 + k] = -sb * dnz[k], cb * dnz[k]
+    for k in range(3):
+        bb[0, 8 + k], bb[1, 8 + k] = sig * u1 * npsi[k], sig * u2 * npsi[k]
+        bt[0, 8 + k], bt[1, 8 + k] = g2b * npsi[k], -g1b * npsi[k]
+        bb[2, 8 + k] = dnpsi[k]
+        bt[2, 8 + k] = dnpsi[k]
+    dh = np.empty((2, 3))
+    dh[0, 0], dh[0, 1] = -0.5 * sig * sm, 0.5 * sig * cm
+    dh[1, 0], dh[1, 1] = -0.5 * sig * cm, -0.5 * sig * sm
+    dh[0, 2] = 0.5 * dsig * u1 - 0.5 * sig * (cm * z1m + sm * z2m)
+    dh[1, 2] = 0.5 * dsig * u2 - 0.5 * sig * (-sm * z1m + cm * z2m)
+    return bb, bt, dh, cb, sb
+
+
+@numba.njit(cache=True)
+def _geo(ke, w, n1, n2, dnz, npsi, dh, cb, sb, geo):
+    """Add w * d(Bbar^T sigma)/db at fixed sigma (times geo) to the element matrix ke."""
+    for k in range(4):
+        # z rows: Rbar depends on psi_b
+        r1 = 0.5 * (n1 * -sb + n2 * -cb) * dnz[k]
+        r2 = 0.5 * (n1 * cb + n2 * -sb) * dnz[k]
+        for m in range(3):
+            ke[k, 8 + m] += geo * w * r1 * npsi[m]
+            ke[4 + k, 8 + m] += geo * w * r2 * npsi[m]
+    for m in range(3):  # psi rows: h depends on z'_b and psi_b
+        for k in range(4):
+            ke[8 + m, k] += geo * w * npsi[m] * (n1 * dh[0, 0] + n2 * dh[1, 0]) * dnz[k]
+            ke[8 + m, 4 + k] += geo * w * npsi[m] * (n1 * dh[0, 1] + n2 * dh[1, 1]) * dnz[k]
+        for j in range(3):
+            ke[8 + m, 8 + j] += geo * w * npsi[m] * (n1 * dh[0, 2] + n2 * dh[1, 2]) * npsi[j]
+
+
+@numba.njit(cache=True)
+def assemble_algorithmic(da, db, le, ksh_a, ksh_b, qxi, qw, stiff, theta, shift, tangent, geo):
+    """Pbar(a, b) (n_dof,), banded dPbar/db (21, n_dof) and the elastic strain increments
+    e(b) - e(a) (n_el, nq, 3) at the quadrature points (module docstring).
+
+    da, db: (n_dof,) dofs at t_n and t_{n+1}; ksh_a, ksh_b: kappa# (n_el, 4) [1/m] there;
+    qxi, qw, stiff: the element quadrature (element.quadrature); theta: stress point in [0, 1];
+    shift: (n_el, nq, 3) strains subtracted in the stresses, sigma = D (e_theta - shift);
+    geo: factor on the geometric part (2 with a = b, theta = 1 gives the static tangent).
+    """
+    ne, nq = le.shape[0], qxi.shape[0]
+    nd = da.shape[0]
+    p = np.zeros(nd)
+    ab = np.zeros((N_BAND, nd))
+    de = np.zeros((ne, nq, 3))
+    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
+    dea, deb = np.empty(11), np.empty(11)
+    fe, ke, sig = np.empty(11), np.empty((11, 11)), np.empty(3)
+    for e in range(ne):
+        for k in range(11):
+            dea[k], deb[k] = da[6 * e + loc[k]], db[6 * e + loc[k]]
+        fe[:] = 0.0
+        ke[:, :] = 0.0
+        for g in range(nq):
+            dnz, npsi, dnpsi, a1, a2, pa, ka = _point(dea, le[e], qxi[g])
+            _, _, _, b1, b2, pb, kb = _point(deb, le[e], qxi[g])
+            bb, bt, dh, cb, sb = _bbar(
+                dnz, npsi, dnpsi, np.array([a1, a2]), np.array([b1, b2]), pa, pb
+            )
+            ea = np.array(
+                [np.cos(pa) * a1 + np.sin(pa) * a2 - 1.0, -np.sin(pa) * a1 + np.cos(pa) * a2, ka]
+            )
+            eb = np.array([cb * b1 + sb * b2 - 1.0, -sb * b1 + cb * b2, kb])
+            if g < N_GAUSS:
+                ea[2] -= ksh_a[e, g]
+                eb[2] -= ksh_b[e, g]
+            w = qw[g] * le[e]
+            for r in range(3):
+                de[e, g, r] = eb[r] - ea[r]
+                sig[r] = stiff[g, r] * (theta * eb[r] + (1.0 - theta) * ea[r] - shift[e, g, r])
+            for i in range(11):
+                fe[i] += w * (bb[0, i] * sig[0] + bb[1, i] * sig[1] + bb[2, i] * sig[2])
+            if tangent:
+                for i in range(11):
+                    for j in range(11):
+                        kij = 0.0
+                        for r in range(3):
+                            kij += bb[r, i] * stiff[g, r] * bt[r, j]
+                        ke[i, j] += w * theta * kij
+                _geo(ke, w, sig[0], sig[1], dnz, npsi, dh, cb, sb, geo)
+        for i in range(11):
+            gi = 6 * e + loc[i]
+            p[gi] += fe[i]
+            if tangent:
+                for j in range(11):
+                    ab[HALF_BW + gi - 6 * e - loc[j], 6 * e + loc[j]] += ke[i, j]
+    return p, ab, de
