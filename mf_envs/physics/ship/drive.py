@@ -241,28 +241,39 @@ def _rk4_max_step(lam: complex) -> float:
     return lo
 
 
-def roll_gimbal_matrix(
-    D: NDArray[np.float64],
-    gimbal_inertia: float,
-    roll_inertia: float,
-    angular_momentum: float,
-    n_gyros: int,
-    roll_stiffness: float,
-    roll_damping: float,
-    saturated: bool,
-) -> NDArray[np.float64]:
+@dataclass(frozen=True)
+class RollGimbal:
+    """The linear roll + gimbal plant a drive is checked on (SI units): gimbal inertia J_g and
+    roll inertia J (kg m^2, J incl. added inertia and gyros), one rotor's H (N m s), number of
+    gyros, roll stiffness C (N m/rad) and linear roll damping B (N m s/rad)."""
+
+    gimbal_inertia: float
+    roll_inertia: float
+    angular_momentum: float
+    n_gyros: int = 1
+    roll_stiffness: float = 0.0
+    roll_damping: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_positive("gimbal_inertia", self.gimbal_inertia)
+        check_positive("roll_inertia", self.roll_inertia)
+        check_nonnegative("angular_momentum", self.angular_momentum)
+
+
+def roll_gimbal_matrix(D: NDArray[np.float64], plant: RollGimbal, saturated: bool) -> NDArray:
     """A (5, 5) of x = [roll, roll rate, phi, phi', z] linearised about rest (SI units).
 
     J r'' = -C r - B r' - n H phi';  J_g phi'' = H r' + tau;  tau from `drive_torque` with the
     loop closed (saturated=False) or its output frozen (saturated=True: the passive parts only,
     z' = -(K_i / K_p) z from the back-calculation).
     """
-    J, Jg, H, n = roll_inertia, gimbal_inertia, angular_momentum, n_gyros
+    J, Jg = plant.roll_inertia, plant.gimbal_inertia
+    H, n = plant.angular_momentum, plant.n_gyros
     kp, ki, ff = (0.0, 0.0, 0.0) if saturated else (D[DKP], D[DKI], D[DFF])
     k = D[DK] if int(D[DKIND]) in (KIND_PENDULOUS, KIND_SPRING) else 0.0
     A = np.zeros((5, 5))
     A[0, 1] = A[2, 3] = 1.0
-    A[1] = [-roll_stiffness / J, -roll_damping / J, 0.0, -n * H / J, 0.0]
+    A[1] = [-plant.roll_stiffness / J, -plant.roll_damping / J, 0.0, -n * H / J, 0.0]
     A[3] = [0.0, H * (1.0 - ff) / Jg, -k / Jg, -(kp + D[DC]) / Jg, ki / Jg]
     A[4, 3] = -1.0 if ki > 0.0 else 0.0
     if saturated and D[DKI] > 0.0:
@@ -270,33 +281,11 @@ def roll_gimbal_matrix(
     return A
 
 
-def stable_physics_dt(
-    D: NDArray[np.float64],
-    gimbal_inertia: float,
-    roll_inertia: float,
-    angular_momentum: float,
-    n_gyros: int,
-    roll_stiffness: float = 0.0,
-    roll_damping: float = 0.0,
-) -> float:
+def stable_physics_dt(D: NDArray[np.float64], plant: RollGimbal) -> float:
     """Largest RK4 physics step (s) for which the linearised roll-gimbal-drive system is stable
-    with the loop closed and with it saturated (module doc). Inertias kg m^2, H N m s,
-    stiffness N m/rad, damping N m s/rad."""
-    check_positive("gimbal_inertia", gimbal_inertia)
-    check_positive("roll_inertia", roll_inertia)
-    check_nonnegative("angular_momentum", angular_momentum)
+    with the loop closed and with it saturated (module doc)."""
     h = math.inf
     for sat in (False, True):
-        A = roll_gimbal_matrix(
-            D,
-            gimbal_inertia,
-            roll_inertia,
-            angular_momentum,
-            n_gyros,
-            roll_stiffness,
-            roll_damping,
-            sat,
-        )
-        for lam in np.linalg.eigvals(A):
+        for lam in np.linalg.eigvals(roll_gimbal_matrix(D, plant, sat)):
             h = min(h, _rk4_max_step(complex(lam)))
     return h

@@ -40,6 +40,9 @@ import math
 import numba
 import numpy as np
 
+from mf_envs.physics.ship.coupling import N_COUPLING, solve_sway_roll_yaw
+from mf_envs.physics.ship.drive import N_DRIVE, drive_torque, end_stop
+
 # ---- packed parameter vector P (built by ship_model.pack_params) ----
 J1, J2, J3 = 0, 1, 2  # hull inertia (+ A44 in J1 when added_inertia is on)
 D1, D2, D3 = 3, 4, 5  # gimbal + rotor transverse inertias in the gimbal frame
@@ -50,13 +53,18 @@ GMODE, GAMP, GFREQ, GPHASE = 17, 18, 19, 20  # gimbal mode, Eq. 118/119 amplitud
 TAU, RATEMAX, PHIMAX, LIMITS, TSTOP = 21, 22, 23, 24, 25  # servo lag, limits, end-stop time
 WMODE, WM0, WOMEGA, WPHASE, WF0 = 26, 27, 28, 29, 30  # wave moment mode, M0, omega, phase, heave
 TABDT, JG2, TRANS, MASS, KH, CH, CSS = 31, 32, 33, 34, 35, 36, 37
-KV, TAUMAX, CG, KSTOP = 38, 39, 40, 41  # torque drive: loop gain, torque limit, damping, stop
-N_PARAMS = 42
+GZ3 = 38  # cubic GZ term over GM (1/rad^2), `ship.hulls.Hull.gz_cubic`
+DRV0 = 39  # the packed gimbal drive `ship.drive.DriveParams.pack` occupies P[DRV0:DRV0 + N_DRIVE]
+SPEED = DRV0 + N_DRIVE  # ship speed U, m/s (sway-roll-yaw coupling)
+CPLON = SPEED + 1  # 1: sway-roll-yaw coupling on (`ship.coupling`)
+CPL0 = CPLON + 1  # `ship.coupling.SwayRollYaw.pack` at P[CPL0:CPL0 + N_COUPLING]
+N_PARAMS = CPL0 + N_COUPLING
 
 FORM_EXACT, FORM_SEED = 0, 1
 GIMBAL_SERVO, GIMBAL_SINUSOIDAL, GIMBAL_CONTINUOUS, GIMBAL_TORQUE = 0, 1, 2, 3
 WAVE_NONE, WAVE_REGULAR, WAVE_TABLE = 0, 1, 2
-N_STATE = 11
+N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt (J), sway v (m/s)
+Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
 
 @numba.njit(cache=True)
@@ -87,26 +95,11 @@ def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
 
 
 @numba.njit(cache=True)
-def gimbal_torque(phi: float, phid: float, u: float, P: np.ndarray) -> float:
-    """Torque (N m) on gyro 1's gimbal axis in the torque drive (gyro 2 gets the mirror torque).
-
-    Velocity loop K_v (u - phi') limited to +-tau_max (u clipped to the rate limit with
-    `gimbal_limits`), minus the gimbal damping / brake c_g phi' (effect `gimbal_damping`), plus
-    a spring-damper end stop beyond +-phi_max (`gimbal_limits`).
-    """
-    tau = 0.0
-    if P[KV] > 0.0:
-        ue = u
-        if P[LIMITS] > 0.5:
-            ue = min(max(ue, -P[RATEMAX]), P[RATEMAX])
-        tau = P[KV] * (ue - phid)
-        if P[TAUMAX] > 0.0:
-            tau = min(max(tau, -P[TAUMAX]), P[TAUMAX])
-    tau -= P[CG] * phid
-    if P[LIMITS] > 0.5 and abs(phi) > P[PHIMAX]:
-        over = phi - math.copysign(P[PHIMAX], phi)
-        tau -= P[KSTOP] * over + 2.0 * math.sqrt(P[KSTOP] * P[D2]) * phid
-    return tau
+def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P):
+    """(tau in N m, z' in rad/s) of the torque drive (`ship.drive.drive_torque`) on gyro 1's
+    gimbal; the gyroscopic torque it feeds forward is H w_g1 (one gyro) or H cos(phi) w1 (pair)."""
+    g = _gyro_torque(w1, w3, phi, P)
+    return drive_torque(phi, phid, z, u, g, r20, r22, int(P[NGYRO]), P[DRV0 : DRV0 + N_DRIVE])
 
 
 _TAN14_SQ = math.tan(1.4) ** 2  # the wall-sided GZ's tan(r) is clipped to |r| <= 1.4 rad
@@ -145,6 +138,9 @@ def hull_moment(w1, w2, w3, r20, r21, r22, P):
             m1 -= P[K44] * sr * (1.0 + 0.5 * P[GZR] * t2)
         else:
             m1 -= P[K44] * math.atan2(r21, r22)
+        if P[GZ3] > 0.0:  # cubic GZ (MSS's K_phiphiphi phi^3)
+            r = math.atan2(r21, r22)
+            m1 -= P[K44] * P[GZ3] * r * r * r
     if P[K55] > 0.0:
         m2 -= P[K55] * _asin(max(min(-r20, 1.0), -1.0))
     m1 -= P[B44] * w1 + P[B44Q] * abs(w1) * w1
@@ -198,7 +194,7 @@ def table_value(t: float, tab: np.ndarray, col: int, h: float) -> float:
 
 
 @numba.njit(cache=True)
-def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
+def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=0.0, roll=0.0):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
     at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame).
 
@@ -207,7 +203,9 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
     one gyro:  d2 (w2' + phi'') = tau + H w_g1 - (d1 - d3) w_g1 w_g3,
                w_g = (c w1 - s w3, w2, s w1 + c w3) the gimbal's body rates;
     the pair:  d2 phi'' = tau + H c w1 - (d1 - d3) s c (w1^2 - w3^2).
-    Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'').
+    With the coupling on (P[CPLON]) the roll and yaw rows are solved together with the sway
+    equation of `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad).
+    Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'', v' in m/s^2).
     """
     n = int(P[NGYRO])
     c = math.cos(phi)
@@ -246,9 +244,14 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
             jg = P[JG2]  # Eqs. 126 and 128 as printed
             r1 += jg * phid * w3
             r3 -= (jg - 0.25 * P[JR3] * c2) * phid * w1
-    det = jxx * jzz - jxz * jxz
-    a1 = (jzz * r1 - jxz * r3) / det
-    a3 = (jxx * r3 - jxz * r1) / det
+    dv = 0.0
+    if P[CPLON] > 0.5:
+        C = P[CPL0 : CPL0 + N_COUPLING]
+        dv, a1, a3 = solve_sway_roll_yaw(jxx, jzz, jxz, r1, r3, P[SPEED], v, w1, w3, roll, C)
+    else:
+        det = jxx * jzz - jxz * jxz
+        a1 = (jzz * r1 - jxz * r3) / det
+        a3 = (jxx * r3 - jxz * r1) / det
     if free_gimbal:
         if n == 1:
             wg1 = c * w1 - s * w3
@@ -260,12 +263,14 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
             a2 = r2 / jyy
     else:
         a2 = (r2 - d2 * phidd) / jyy if n == 1 else r2 / jyy
-    return a1, a2, a3, -n * H * phid * c, phidd
+    return a1, a2, a3, -n * H * phid * c, phidd, dv
 
 
 @numba.njit(cache=True)
-def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
-    """(w1', w2', w3', phi', phi'') of the rotational state at attitude third row (r20, r21, r22).
+def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P):
+    """(w1', w2', w3', phi', phi'', z', drive power n |tau phi'|, v') of the rotational state, the
+    drive-loop integral z and the sway velocity v (`ship.coupling`) at attitude third row
+    (r20, r21, r22).
 
     mw: wave roll moment (N m) at the stage time; pg: (phi, phi', phi'') of a prescribed gimbal
     at that time (`gimbal_motion`, ignored for the servo and torque drives).
@@ -273,16 +278,30 @@ def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
     mode = int(P[GMODE])
     free = mode == GIMBAL_TORQUE
     tau = 0.0
+    dz = 0.0
     phidd = 0.0
     if free:
-        tau = gimbal_torque(phi, phid, u, P)
+        tau, dz = gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P)
     elif mode == GIMBAL_SERVO:
         phi, phid, phidd = gimbal_motion(0.0, phi, phid, u, P)
+        tau = P[D2] * phidd - _gyro_torque(w1, w3, phi, P)  # what the kinematic servo applies
     else:
         phi, phid, phidd = pg
     m1, m2, m3 = hull_moment(w1, w2, w3, r20, r21, r22, P)
-    a1, a2, a3, _, phidd = ship_accel(w1, w2, w3, phi, phid, phidd, m1 + mw, m2, m3, P, free, tau)
-    return a1, a2, a3, phid, phidd
+    roll = math.atan2(r21, r22) if P[CPLON] > 0.5 else 0.0
+    a1, a2, a3, _, phidd, dv = ship_accel(
+        w1, w2, w3, phi, phid, phidd, m1 + mw, m2, m3, P, free, tau, v, roll
+    )
+    return a1, a2, a3, phid, phidd, dz, P[NGYRO] * abs(tau * phid), dv
+
+
+@numba.njit(cache=True)
+def _gyro_torque(w1, w3, phi, P):
+    """H w_g1 (N m): the gyroscopic torque on gyro 1's gimbal, H (cos phi w1 - sin phi w3) for
+    one gyro, H cos(phi) w1 on the common coordinate of the mirrored pair."""
+    c = math.cos(phi)
+    h = P[JR3] * P[PSID]
+    return h * (c * w1 - math.sin(phi) * w3) if int(P[NGYRO]) == 1 else h * c * w1
 
 
 @numba.njit(cache=True)
@@ -291,11 +310,14 @@ def deriv(t, y, u, R, P, tab, dy):
     (Reference form of the right-hand side that `rk4_step` evaluates stage by stage.)"""
     mw, fw = wave_loads(t, P, tab)
     pg = gimbal_motion(t, y[3], y[4], u, P)
-    a = ang_rates(y[0], y[1], y[2], y[3], y[4], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P)
+    a = ang_rates(
+        y[0], y[1], y[2], y[3], y[4], y[11], y[13], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P
+    )
+    for i in range(dy.shape[0]):
+        dy[i] = 0.0
     for i in range(5):
         dy[i] = a[i]
-    for i in range(5, dy.shape[0]):
-        dy[i] = 0.0
+    dy[Z_STATE], dy[E_STATE], dy[V_STATE] = a[5], a[6], a[7]
     if P[TRANS] > 0.5:
         # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
         v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
@@ -409,25 +431,37 @@ def rk4_step(t, y, R, u, dt, P, tab, mw0, fw0):
     pres = int(P[GMODE]) == GIMBAL_SINUSOIDAL or int(P[GMODE]) == GIMBAL_CONTINUOUS
     mwh, fwh = wave_loads(t + h, P, tab)
     mw1, fw1 = wave_loads(t + dt, P, tab)
-    w1, w2, w3, ph, pd = y[0], y[1], y[2], y[3], y[4]
+    w1, w2, w3, ph, pd, zz, vv = y[0], y[1], y[2], y[3], y[4], y[Z_STATE], y[V_STATE]
     pg0 = gimbal_motion(t, ph, pd, u, P)
     pgh = gimbal_motion(t + h, ph, pd, u, P) if pres else pg0
     pg1 = gimbal_motion(t + dt, ph, pd, u, P) if pres else pg0
     # stage 1 at R (dexpinv at theta = 0 is the identity)
-    k1 = ang_rates(w1, w2, w3, ph, pd, R[2, 0], R[2, 1], R[2, 2], u, mw0, pg0, P)
+    k1 = ang_rates(w1, w2, w3, ph, pd, zz, vv, R[2, 0], R[2, 1], R[2, 2], u, mw0, pg0, P)
     s0, s1, s2 = w1 + h * k1[0], w2 + h * k1[1], w3 + h * k1[2]
     r = _row3_step(R, h * w1, h * w2, h * w3)
-    k2 = ang_rates(s0, s1, s2, ph + h * k1[3], pd + h * k1[4], r[0], r[1], r[2], u, mwh, pgh, P)
+    z2 = zz + h * k1[5]
+    v2 = vv + h * k1[7]
+    k2 = ang_rates(
+        s0, s1, s2, ph + h * k1[3], pd + h * k1[4], z2, v2, r[0], r[1], r[2], u, mwh, pgh, P
+    )
     q2 = _dexpinv(h * w1, h * w2, h * w3, s0, s1, s2)
     # stage 3
     s0, s1, s2 = w1 + h * k2[0], w2 + h * k2[1], w3 + h * k2[2]
     r = _row3_step(R, h * q2[0], h * q2[1], h * q2[2])
-    k3 = ang_rates(s0, s1, s2, ph + h * k2[3], pd + h * k2[4], r[0], r[1], r[2], u, mwh, pgh, P)
+    z3 = zz + h * k2[5]
+    v3 = vv + h * k2[7]
+    k3 = ang_rates(
+        s0, s1, s2, ph + h * k2[3], pd + h * k2[4], z3, v3, r[0], r[1], r[2], u, mwh, pgh, P
+    )
     q3 = _dexpinv(h * q2[0], h * q2[1], h * q2[2], s0, s1, s2)
     # stage 4
     s0, s1, s2 = w1 + dt * k3[0], w2 + dt * k3[1], w3 + dt * k3[2]
     r = _row3_step(R, dt * q3[0], dt * q3[1], dt * q3[2])
-    k4 = ang_rates(s0, s1, s2, ph + dt * k3[3], pd + dt * k3[4], r[0], r[1], r[2], u, mw1, pg1, P)
+    z4 = zz + dt * k3[5]
+    v4 = vv + dt * k3[7]
+    k4 = ang_rates(
+        s0, s1, s2, ph + dt * k3[3], pd + dt * k3[4], z4, v4, r[0], r[1], r[2], u, mw1, pg1, P
+    )
     q4 = _dexpinv(dt * q3[0], dt * q3[1], dt * q3[2], s0, s1, s2)
     th = (
         dt * (w1 + 2.0 * q2[0] + 2.0 * q3[0] + q4[0]) / 6.0,
@@ -436,6 +470,12 @@ def rk4_step(t, y, R, u, dt, P, tab, mw0, fw0):
     )
     for i in range(5):
         y[i] += dt * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]) / 6.0
+    if not pres:
+        y[Z_STATE] += dt * (k1[5] + 2.0 * k2[5] + 2.0 * k3[5] + k4[5]) / 6.0
+        y[E_STATE] += dt * (k1[6] + 2.0 * k2[6] + 2.0 * k3[6] + k4[6]) / 6.0
+        y[V_STATE] += dt * (k1[7] + 2.0 * k2[7] + 2.0 * k3[7] + k4[7]) / 6.0
+        if int(P[GMODE]) == GIMBAL_TORQUE and P[LIMITS] > 0.5:
+            _stop_gimbal(y, P)
     _rot_update(R, th[0], th[1], th[2])
     if pres:
         y[3] = pg1[0]
@@ -443,6 +483,16 @@ def rk4_step(t, y, R, u, dt, P, tab, mw0, fw0):
     if P[TRANS] > 0.5:
         _trans_rk4(y, dt, fw0, fwh, fw1, P)
     return mw1, fw1
+
+
+@numba.njit(cache=True)
+def _stop_gimbal(y, P):
+    """Inelastic end stop of the free gimbal (`ship.drive.end_stop`) at +-phi_max; one gyro's
+    hull takes the reaction that keeps L_2 = J_yy w2 + J_g phi' (the pair's cancels)."""
+    phi, phid, jump = end_stop(y[3], y[4], P[PHIMAX])
+    y[3], y[4] = phi, phid
+    if jump != 0.0 and int(P[NGYRO]) == 1:
+        y[1] -= P[D2] * jump / (P[J2] + P[D2])
 
 
 @numba.njit(cache=True)
@@ -454,14 +504,34 @@ def gyro_moment(y, P):
 @numba.njit(cache=True)
 def advance(t, y, R, u, dt, n_sub, P, tab, out):
     """n_sub RK4 steps of size dt with the command u held; returns the new time.
-    out[0], out[1] <- gyro roll moment and wave moment (N m) at the end."""
+    out[0], out[1] <- gyro roll moment and wave moment (N m) at the end; out[2], out[3] <- gyro
+    1's drive torque (N m) and the drive power n tau phi' (W) at the end (`drive_output`)."""
     mw, fw = wave_loads(t, P, tab)
     for _ in range(n_sub):
         mw, fw = rk4_step(t, y, R, u, dt, P, tab, mw, fw)
         t += dt
     out[0] = gyro_moment(y, P)
     out[1] = mw
+    out[2], out[3] = drive_output(t, y, R, u, P)
     return t
+
+
+@numba.njit(cache=True)
+def drive_output(t, y, R, u, P):
+    """(torque on gyro 1's gimbal in N m, power n tau phi' in W) of the drive at state y.
+
+    Torque drives: the machine's torque (`gimbal_drive`). The kinematic servo (and prescribed
+    gimbals) report the torque they impose, J_g phi'' - H w_g1 (the gimbal's own equation with
+    the hull's pitch acceleration neglected), without any limit.
+    """
+    phi, phid = y[3], y[4]
+    mode = int(P[GMODE])
+    if mode == GIMBAL_TORQUE:
+        tau = gimbal_drive(y[0], y[2], phi, phid, y[Z_STATE], u, R[2, 0], R[2, 2], P)[0]
+    else:
+        phidd = gimbal_motion(t, phi, phid, u, P)[2]
+        tau = P[D2] * phidd - _gyro_torque(y[0], y[2], phi, P)
+    return tau, P[NGYRO] * tau * phid
 
 
 @numba.njit(cache=True)
