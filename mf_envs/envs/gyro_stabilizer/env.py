@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_choice, check_int, check_range, check_shape
+from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gyro_stabilizer import spec, wiring
@@ -22,7 +22,7 @@ from mf_envs.physics.ship.model import (
     initial_state,
     roll_angle,
 )
-from mf_envs.physics.ship.params import GyroParams, capacity_ratio, seakeeper_gyro
+from mf_envs.physics.ship.params import GyroParams, seakeeper_gyro
 
 DEFAULT_EFFECTS = (
     "gyroscopic",
@@ -50,31 +50,19 @@ class GyroStabilizerEnv(MFEnv):
     numba fast path of `mf_envs.physics.ship.kernels` (agrees with the multibody engine to
     round-off). Defaults: an 18 t, 12-13 m motor yacht (`physics.ship.hulls.Hull.yacht`, roll
     period 3.70 s) with one Seakeeper 9 (Table 3-1: H = 9 000 N m s), beam seas at the roll
-    resonance, wave roll moment 8 000 N m: capacity ratio M0 / (H w sin(phi_max)) = 0.60.
-    With the rotor off the yacht rolls about +-15 degrees (RMS 11.2 deg); on the default
-    torque-limited electric drive the `pid`, `rate` and `lqr` baselines cut the RMS roll by
-    91 %, 91 % and 96 % (`benchmarks/controllers/stabilizer.py`). The gimbal is driven by a
-    machine (`physics.ship.drive`): an electric servo drive with torque, rate and power limits
-    and an inner PI rate loop evaluated at every Runge-Kutta stage; `gimbal_drive` also gives a
-    controlled hydraulic brake (Seakeeper's principle), passive braked, pendulous (Schlick 1906)
-    and spring-restored gimbals, and the v0 kinematic servo ("kinematic", alias "servo").
-    Seas (`physics.ship.seas`) are met at `heading` beta (0 following, pi/2 beam, pi head) and
-    `ship_speed` U at the encounter frequency w_e = w - w^2 U cos(beta) / g; the roll moment is
-    the Froude-Krylov moment of the transverse wave slope averaged over the waterline length.
-    The hull is one `physics.ship.hulls.Hull` (`hull=`): every coefficient is the user's.
-    The seed's model is `effects=("gyroscopic",)` (no hydrostatics, damping or waves; add
-    "gimbal_inertia" for J2^(2) and "wave_moment" for M_e = M0 cos(2 pi t / T), Figs. 3-10/11).
+    resonance, M0 = 8 000 N m: capacity M0 / (H w sin(phi_max)) = 0.60. Rotor off: RMS roll
+    11.2 deg; on the default torque-limited electric drive `pid`, `rate` and `lqr` cut it by
+    91 %, 91 % and 96 % (`benchmarks/controllers/stabilizer.py`). The gimbal drive is a
+    machine (`physics.ship.drive`); seas (`physics.ship.seas`) are met at `heading` and
+    `ship_speed` (encounter frequency); the hull is one `physics.ship.hulls.Hull`.
+    The seed's model: `effects=("gyroscopic",)` (+ "gimbal_inertia", "wave_moment": Figs. 3-10/11).
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: precession-rate command / max_precession_rate (rad/s scaled).
-    The command is for gyro 1 (gyro 2 mirrors it), scaled by `max_precession_rate` (rad/s).
-    The default electric drive follows it with a PI rate loop (bandwidth `drive_bandwidth`,
-    feedforward of the gyroscopic torque) whose torque is limited to `max_gimbal_torque`
-    (default 0.1 H = 900 N m), its motoring power to `max_drive_power` (1 kW) and its speed to
-    1.1 max_precession_rate; the command is clipped to the rate limit and, with `gimbal_limits`,
-    to the stop envelope; the end stops +-max_gimbal_angle are inelastic. "brake" only
-    dissipates (tau phi' <= 0). "damper", "pendulous", "spring" are passive and ignore the
-    action. "kinematic" is the v0 servo (time constant `servo_time_constant`, no torque limit).
+    For gyro 1 (gyro 2 mirrors it). The electric drive follows it with a PI rate loop inside
+    each RK stage, torque <= max_gimbal_torque (0.1 H), motoring power <= max_drive_power,
+    speed <= 1.1 max_precession_rate, inelastic end stops; "brake" only dissipates; "damper",
+    "pendulous" (Schlick 1906), "spring" are passive (action ignored); "kinematic" is v0's servo.
 
     ## Observation Space
     `Box(float32, (6,))`, what a real controller measures, laid out by
@@ -91,32 +79,23 @@ class GyroStabilizerEnv(MFEnv):
 
     ## Rewards
     `reward = roll + effort`, the terms in `info["reward_terms"]`: roll = -(roll / roll_scale)^2,
-    effort = -effort_weight * E with E the drive energy of the step, int n |tau phi'| dt in J
-    (defaults roll_scale = 0.1745 rad = 10 deg, effort_weight = 1e-3 1/J). Info keys
-    (`spec.INFO_KEYS`, SI): the state (`gimbal_angle` unwrapped), `gyro_moment` =
-    -n H phi' cos(phi), `wave_moment`, `drive_torque` (N m, gyro 1's gimbal), `drive_power`
-    (n tau phi', W; negative: braking), `drive_energy` (E, J), `time` = steps x control_dt.
-    The kinematic servo reports the torque it imposes, J_g phi'' - H w_g1.
+    effort = -effort_weight * E, E = int n |tau phi'| dt the step's drive energy (J). Info keys:
+    `spec.INFO_KEYS` (SI; `drive_torque` N m, `drive_power` W, `drive_energy` J).
 
     ## Starting State
     Roll uniform in +-0.05 rad, roll rate in +-0.02 rad/s, pitch/yaw rates 0, gimbal at 0 and
     at rest, wave phase uniform in [0, 2 pi) (a new irregular sea each reset with
-    `irregular_waves`). `reset(options=...)` overrides `roll` (|.| <= pi/2 rad), `roll_rate`
-    (|.| <= 10 rad/s), `gimbal_angle` (|.| <= max_gimbal_angle with `gimbal_limits`, else pi),
-    `wave_phase` (|.| <= 4 pi rad); any other key or value raises ValueError naming it (and
-    draws nothing from the generator).
+    `irregular_waves`). `reset(options=...)` overrides `roll` (|.| <= pi/2), `roll_rate` (<= 10),
+    `gimbal_angle` (<= max_gimbal_angle), `wave_phase` (<= 4 pi); others: ValueError.
 
     ## Episode End
-    Truncation after `episode_seconds` (default 30 s = 600 steps of 0.05 s; `max_episode_steps`
-    = ceil(episode_seconds / control_dt)). Termination only on a numerical failure
-    (`info["numerical_failure"]`).
+    Truncation after `episode_seconds` (`max_episode_steps` = ceil(episode_seconds / control_dt));
+    termination only on a numerical failure (`info["numerical_failure"]`).
 
     ## Arguments
     | Argument | default | meaning |
     |---|---|---|
-    | hull | None | `Hull`, "yacht" (default), "mss_naval_vessel" or a dict of Hull fields |
-    | coupling | None | sway-roll-yaw coupling `ship.coupling.SwayRollYaw` (None/True: MSS's
-    navalvessel.m coefficients with hull "mss_naval_vessel", off otherwise; False: off) |
+    | hull, coupling | None | the hull and its sway-roll-yaw coupling: `wiring` module doc |
     | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 (overrides hull) |
     | n_gyros | 1 | 1 or 2 (counter-rotating pair) |
     | rotor_inertia | 9.549 | rotor polar J3^(3), kg m^2 (Seakeeper 9) |
@@ -131,29 +110,18 @@ class GyroStabilizerEnv(MFEnv):
     | episode_seconds | 30 | s |
     | effects | see DEFAULT_EFFECTS | tuple of names from `SHIP_EFFECTS` |
     | control_dt | 0.05 | s |
-    | physics_dt | None | s; None: kinematic min(0.05, servo tau), torque drives half of
-    min(control_dt, RK4 limit); beyond the limit (`ship.drive.stable_physics_dt`): ValueError |
+    | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |
     | form | "exact" | "seed": Eqs. 123-128 as printed |
     | servo_time_constant | 0.05 | s |
-    | gimbal_drive | "electric" | electric, brake, damper, pendulous, spring, kinematic
-    ("servo" = kinematic, "torque" = electric: the v0 names) |
-    | gimbal_loop_gain | None | K_p of the rate loop, N m s/rad (sets drive_bandwidth) |
-    | max_gimbal_torque | None | drive torque limit, N m (None: 0.1 H) |
-    | max_drive_power | 1000 | motoring power limit, W |
-    | drive_bandwidth | 20 | rate-loop bandwidth, rad/s |
-    | gimbal_damping | None | brake c, N m s/rad (passive default n H^2 / sqrt(C44 J)) |
-    | gimbal_stiffness | None | m g l or spring k, N m/rad (default J_g w_n^2) |
-    | heading | pi/2 | wave heading beta, rad (0 following, pi/2 beam, pi head) |
-    | ship_speed | 0 | U, m/s (encounter frequency; MSS's speed roll damping) |
-    | wave_spreading | None | cos-2s spreading s of the irregular sea (None: long-crested) |
+    | gimbal_drive | "electric" | and the drive arguments: `wiring` module doc |
+    | heading, ship_speed, wave_spreading | pi/2, 0, None | seas: `wiring` module doc |
     | significant_wave_height | 0.6 | m (irregular_waves, JONSWAP, peak period = wave_period) |
     | effective_slope | None | r_eff of the wave roll moment (hull field; yacht 0.7) |
     | roll_scale, effort_weight | 0.1745, 1e-3 | reward terms (effort per J) |
 
-    Ranges (ValueError naming the argument outside them): inertias, stiffness and damping >= 0
-    and finite; |rotor_speed| <= 1e4 rad/s; wave_period in [0.5, 60] s; servo_time_constant in
-    [1e-3, 10] s; max_gimbal_angle in (0, pi]; control_dt <= 60 s and at most 1e4 physics
-    substeps per control step. Accuracy of the default physics_dt: `spec.PHYSICS_DT_NOTE`.
+    Ranges (ValueError naming the argument): inertias, stiffness, damping >= 0; |rotor_speed|
+    <= 1e4 rad/s; wave_period in [0.5, 60] s; servo_time_constant in [1e-3, 10] s;
+    max_gimbal_angle in (0, pi]; control_dt <= 60 s, <= 1e4 physics substeps per step.
 
     ## Version History
     - v0: initial release; issue 15 made the torque-limited electric drive the default, added
@@ -203,14 +171,6 @@ class GyroStabilizerEnv(MFEnv):
         kind = check_choice("gimbal_drive", gimbal_drive, wiring.GIMBAL_DRIVES)
         self.gimbal_drive = wiring.DRIVE_ALIASES.get(kind, kind)
         tau_s = check_range("servo_time_constant", servo_time_constant, 1e-3, 10.0)
-        if ship_inertia is not None:
-            inertia = check_shape("ship_inertia", ship_inertia, (3,))
-            ship_inertia = tuple(check_range("ship_inertia", v, 1e-6, 1e12) for v in inertia)
-        for name, value in (("roll_stiffness", roll_stiffness), ("roll_damping", roll_damping)):
-            if value is not None:
-                check_range(name, value, 0.0, 1e12)
-        if effective_slope is not None:
-            check_range("effective_slope", effective_slope, 1e-6, 10.0)
         self.hull = wiring.build_hull(
             hull, ship_inertia, roll_stiffness, roll_damping, effective_slope
         )
@@ -239,8 +199,7 @@ class GyroStabilizerEnv(MFEnv):
         )
         dt_max = wiring.stable_step(self, effects)
         if physics_dt is None:  # see spec.PHYSICS_DT_NOTE for the accuracy of these defaults
-            cdt = check_range("control_dt", control_dt, 1e-9, 60.0)
-            physics_dt = min(0.05, tau_s) if machine is None else 0.5 * min(cdt, dt_max)
+            physics_dt = wiring.default_physics_dt(machine, tau_s, control_dt, dt_max)
         super().__init__(
             effects=effects,
             available_effects=SHIP_EFFECTS,
@@ -250,7 +209,9 @@ class GyroStabilizerEnv(MFEnv):
             render_mode=render_mode,
         )
         wiring.check_step(self.physics_dt, dt_max)
-        self.max_steps = self._episode_steps(episode_seconds)
+        self.max_steps = self._episode_steps(
+            check_range("episode_seconds", episode_seconds, 0, 1e9)
+        )
         self.episode_seconds = float(episode_seconds)
         self.form = check_choice("form", form, ("exact", "seed"))
         self.wave_moment_amplitude = check_range(
@@ -291,7 +252,6 @@ class GyroStabilizerEnv(MFEnv):
         """Control steps per episode, ceil(episode_seconds / control_dt)."""
         return self.max_steps
 
-    # ------------------------------------------------------------------ physics wiring
     @property
     def angular_momentum(self) -> float:
         """H = J3^(3) psi' of one rotor (N m s); 0 when `gyroscopic` is off."""
@@ -299,13 +259,7 @@ class GyroStabilizerEnv(MFEnv):
 
     def capacity(self) -> float:
         """M0 / (n H w sin(max_gimbal_angle)) for the regular wave (docs/design.md bound)."""
-        return capacity_ratio(
-            self.wave_moment_amplitude,
-            self.gyro.angular_momentum,
-            2.0 * math.pi / self.wave_period,
-            self.n_gyros,
-            self.max_gimbal_angle,
-        )
+        return wiring.capacity(self)
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         a0 = self._scalar_action(action)
@@ -372,7 +326,6 @@ class GyroStabilizerEnv(MFEnv):
         return {"t": self._t, "y": self._y, "R": self._R, "P": self._P, "tab": self._tab,
                 "out": self._out}  # fmt: skip
 
-    # ------------------------------------------------------------------ rendering
     def _draw_frame(self) -> np.ndarray:
         from mf_envs.render import draw_ship
 

@@ -3,6 +3,25 @@ drive and its physics-step bound from the public arguments, the packed parameter
 irregular-sea tables. Every hull field reaches the physics (`ship.hulls.Hull`); the drive is a
 `ship.drive.DriveParams` machine (or the v0 kinematic servo); seas are met at the env's heading
 and speed (`ship.seas`).
+
+Arguments of `GyroStabilizerEnv` handled here (SI units):
+
+| Argument | default | meaning |
+|---|---|---|
+| hull | None | `Hull`, "yacht" (default), "mss_naval_vessel" or a dict of Hull fields |
+| coupling | None | `ship.coupling.SwayRollYaw`; None/True: MSS's navalvessel.m coefficients
+with hull "mss_naval_vessel", off for other hulls; False: off |
+| gimbal_drive | "electric" | electric, brake, damper, pendulous, spring, kinematic ("servo" =
+kinematic, "torque" = electric: the v0 names) |
+| gimbal_loop_gain | None | K_p of the rate loop, N m s/rad (sets drive_bandwidth) |
+| max_gimbal_torque | None | drive torque limit, N m (None: 0.1 H) |
+| max_drive_power | 1000 | motoring power limit, W |
+| drive_bandwidth | 20 | rate-loop bandwidth, rad/s |
+| gimbal_damping | None | brake c, N m s/rad (passive default n H^2 / sqrt(C44 J)) |
+| gimbal_stiffness | None | m g l (pendulous) or spring k, N m/rad (default J_g w_n^2) |
+| heading | pi/2 | wave heading beta, rad (0 following, pi/2 beam, pi head) |
+| ship_speed | 0 | U, m/s (encounter frequency; MSS's speed roll damping) |
+| wave_spreading | None | cos-2s spreading s of the irregular sea (None: long-crested) |
 """
 
 from __future__ import annotations
@@ -14,13 +33,13 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs._validate import check_nonnegative, check_positive, check_range, check_shape
 from mf_envs.effects import resolve_effects
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DriveParams, RollGimbal, electric_drive, stable_physics_dt
 from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.model import SHIP_EFFECTS, WaveLoad, pack_params
-from mf_envs.physics.ship.params import ShipParams
+from mf_envs.physics.ship.params import ShipParams, capacity_ratio
 from mf_envs.physics.ship.seas import G, excitation_table, jonswap_sea, regular_roll_moment, sinc
 from mf_envs.physics.ship.waves import regular_heave_force
 
@@ -57,17 +76,15 @@ def build_hull(
         raise ValueError(f"hull: expected a Hull, a preset name or a dict, got {hull!r}")
     over: dict[str, Any] = {}
     if ship_inertia is not None:
-        inertia = np.ravel(check_positive("ship_inertia", ship_inertia))
-        if inertia.shape != (3,):
-            raise ValueError(f"ship_inertia: expected 3 principal inertias, got {ship_inertia!r}")
-        over["inertia"] = tuple(float(v) for v in inertia)
-    for name, value in (
-        ("roll_stiffness", roll_stiffness),
-        ("roll_damping", roll_damping),
-        ("effective_slope", effective_slope),
+        inertia = check_shape("ship_inertia", ship_inertia, (3,))
+        over["inertia"] = tuple(check_range("ship_inertia", v, 1e-6, 1e12) for v in inertia)
+    for name, value, lo, hi in (
+        ("roll_stiffness", roll_stiffness, 0.0, 1e12),
+        ("roll_damping", roll_damping, 0.0, 1e12),
+        ("effective_slope", effective_slope, 1e-6, 10.0),
     ):
         if value is not None:
-            over[name] = float(check_nonnegative(name, value))
+            over[name] = check_range(name, value, lo, hi)
     return dataclasses.replace(base, **over) if over else base
 
 
@@ -106,10 +123,12 @@ def build_machine(
     }
     if max_torque is not None:
         kw["max_torque"] = float(check_positive("max_gimbal_torque", max_torque))
+    elif gyro.angular_momentum == 0.0:  # rotor stopped: enough to reach max_rate in 1/w_b
+        kw["max_torque"] = jg * kw["bandwidth"] * kw["max_rate"]
     if kind in ("electric", "brake"):
         kw["damping"] = float(check_nonnegative("gimbal_damping", damping or 0.0))
-        return dataclasses.replace(electric_drive(gyro.angular_momentum, **kw), kind=kind)
-    h = gyro.angular_momentum
+        return dataclasses.replace(electric_drive(abs(gyro.angular_momentum), **kw), kind=kind)
+    h = abs(gyro.angular_momentum)
     stiff = math.sqrt(max(hull.roll_stiffness, 1.0) * j)
     c = n * h * h / stiff if damping is None else damping  # gyro roll damping ratio 0.5
     k = jg * wn * wn if stiffness is None else stiffness  # gimbal pendulum tuned to the roll
@@ -127,11 +146,26 @@ def stable_step(env: Any, effects: Any) -> float:
     jg = env.gyro.gimbal_inertia + env.gyro.rotor_j1
     hull = env.hull
     j = hull.inertia[0] + (hull.added_roll_inertia if "added_inertia" in eff else 0.0)
-    h = env.gyro.angular_momentum if "gyroscopic" in eff else 0.0
+    h = abs(env.gyro.angular_momentum) if "gyroscopic" in eff else 0.0
     c44 = hull.roll_stiffness if "hydrostatic_restoring" in eff else 0.0
     b44 = env.ship.roll_damping if "roll_damping" in eff else 0.0
     D = env.drive.machine.pack(jg)
     return stable_physics_dt(D, RollGimbal(jg, j + env.n_gyros * jg, h, env.n_gyros, c44, b44))
+
+
+def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: float) -> float:
+    """Kinematic servo: min(0.05, tau); torque drives: min(control_dt, RK4 limit) / 2. A drive so
+    stiff against its gimbal that the limit is below 1e-6 s is refused naming its arguments."""
+    cdt = check_range("control_dt", control_dt, 1e-9, 60.0)
+    if machine is None:
+        return min(0.05, tau_s)
+    if dt_max < 2e-6:
+        raise ValueError(
+            f"gimbal_damping, gimbal_stiffness, gimbal_loop_gain, drive_bandwidth, ship_inertia, "
+            f"gimbal_inertia: this drive needs physics steps below {dt_max:.3g} s (RK4 limit, "
+            "`ship.drive.stable_physics_dt`); soften the drive or enlarge the inertias"
+        )
+    return 0.5 * min(cdt, dt_max)
 
 
 def check_step(physics_dt: float, dt_max: float) -> None:
@@ -168,13 +202,21 @@ def pack(env: Any, phase: float) -> np.ndarray:
     phase = phase if we >= 0.0 else -phase  # cos(-w t + p) = cos(w t - p)
     k = (2.0 * math.pi / env.wave_period) ** 2 / G
     gain = float(sinc(0.5 * k * hull.length * math.cos(env.heading)))  # heave: length mean
-    heave = regular_heave_force(
-        env.wave_moment_amplitude,
-        env.wave_period,
-        hull.roll_stiffness,
-        hull.heave_stiffness,
-        env.effective_slope,
-    )
+    try:
+        heave = regular_heave_force(
+            env.wave_moment_amplitude,
+            env.wave_period,
+            hull.roll_stiffness,
+            hull.heave_stiffness,
+            env.effective_slope,
+        )
+    except ZeroDivisionError:
+        heave = math.inf
+    if not math.isfinite(heave * gain):
+        raise ValueError(
+            "roll_stiffness, wave_period: the wave of this roll moment would have an infinite "
+            f"heave force (C44 = {hull.roll_stiffness:g} N m/rad is too small)"
+        )
     wave = WaveLoad(m0, period, phase, heave * gain)
     return pack_params(
         env.ship,
@@ -213,4 +255,15 @@ def irregular_table(env: Any) -> np.ndarray:
         env.episode_seconds + 1.0,
         env.table_dt,
         env.effective_slope,
+    )
+
+
+def capacity(env: Any) -> float:
+    """M0 / (n H w sin(max_gimbal_angle)) of the env's regular wave (docs/design.md bound)."""
+    return capacity_ratio(
+        env.wave_moment_amplitude,
+        env.gyro.angular_momentum,
+        2.0 * math.pi / env.wave_period,
+        env.n_gyros,
+        env.max_gimbal_angle,
     )

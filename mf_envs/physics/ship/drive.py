@@ -139,7 +139,7 @@ class DriveParams:
 def electric_drive(angular_momentum: float, **over: float) -> DriveParams:
     """The default electric drive sized for a rotor of angular momentum H (N m s), module doc:
     tau_max = 0.1 H (holds the precession up to a roll rate of 0.1 rad/s), 2 rad/s, 1 kW."""
-    h = float(check_positive("angular_momentum", angular_momentum))
+    h = float(check_nonnegative("angular_momentum", angular_momentum))
     kw = {"max_torque": 0.1 * h, "max_rate": 2.0, "max_power": 1000.0}
     kw.update(over)
     return DriveParams("electric", **kw)
