@@ -3,7 +3,11 @@
 Importing the package registers the environments with Gymnasium (see `mf_envs.envs`).
 """
 
-from mf_envs.envs import register_envs
+from mf_envs import _first_run
+
+_first_run.install()  # one stderr line when numba compiles (its on-disk cache is cold)
+
+from mf_envs.envs import register_envs  # noqa: E402
 
 __version__ = "0.1.0"
 

@@ -1,7 +1,10 @@
-"""`mf-envs` command line: demo, benchmarks (and, as they land, train/evaluate/render).
+"""`mf-envs` command line: demo, bench, render, train, evaluate (docs/api.md, "CLI").
 
-User mistakes (bad ids, bad options, ValueError from the library) print one clear line on
-stderr and exit with status 2; everything else is a real bug and keeps its traceback.
+User mistakes (bad ids, bad options, ValueError from the library, an output path that cannot be
+written, a missing optional extra) print one line on stderr and exit with status 2; Ctrl-C prints
+one line and exits with 130. Outputs are written into a temporary folder beside the target and
+moved into place when complete (`mf_envs._staging`), so an interrupted run leaves the previous
+outputs intact. Everything else is a real bug and keeps its traceback.
 """
 
 from __future__ import annotations
@@ -14,17 +17,46 @@ from pathlib import Path
 BENCH_KINDS = ("accuracy", "speed", "controllers")
 
 
+# top-level module of an optional dependency -> the extra that installs it (pyproject.toml)
+EXTRAS = {
+    "stable_baselines3": "train",
+    "torch": "train",
+    "safetensors": "train",
+    "rich": "train",
+    "elastica": "compare",
+    "pygame": "render",
+    "mpmath": "dev",
+    "hypothesis": "dev",
+    "ray": "ray",
+    "capytaine": "hydro",
+    "xarray": "hydro",
+}
+
+
+def missing_extra(exc: ImportError) -> str | None:
+    """The extra whose install fixes `exc` (a ModuleNotFoundError), or None."""
+    name = (getattr(exc, "name", None) or "").partition(".")[0]
+    return EXTRAS.get(name)
+
+
 def _cmd_demo(args: argparse.Namespace) -> list[Path]:
+    from mf_envs._staging import moved, staged_dir
     from mf_envs.benchmarks import demos
 
-    return demos.run(Path(args.out), quick=args.quick, only=args.only)
+    with staged_dir(Path(args.out)) as tmp:
+        files = demos.run(tmp, quick=args.quick, only=args.only)
+    return moved(files, tmp, Path(args.out))
 
 
 def _cmd_bench(args: argparse.Namespace) -> list[Path]:
     import importlib
 
+    from mf_envs._staging import moved, staged_dir
+
     mod = importlib.import_module(f"mf_envs.benchmarks.{args.kind}")
-    return mod.run(Path(args.out), quick=args.quick, only=args.scene)
+    with staged_dir(Path(args.out)) as tmp:
+        files = mod.run(tmp, quick=args.quick, only=args.scene)
+    return moved(files, tmp, Path(args.out))
 
 
 def _cmd_render(args: argparse.Namespace) -> list[Path]:
@@ -34,9 +66,18 @@ def _cmd_render(args: argparse.Namespace) -> list[Path]:
 
 
 def _cmd_train(args: argparse.Namespace) -> list[Path]:
-    from mf_envs.train.cli import train_command
+    if args.backend == "rllib":
+        from mf_envs.train.rllib import train_command
+    else:
+        from mf_envs.train.cli import train_command
 
     return train_command(args)
+
+
+def _cmd_sweep(args: argparse.Namespace) -> list[Path]:
+    from mf_envs.sweep.cli import sweep_command
+
+    return sweep_command(args)
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> list[Path]:
@@ -55,7 +96,7 @@ class _OneLineParser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     p = _OneLineParser(
         prog="mf-envs",
-        description="Moving-frame Gymnasium environments (Rios 2017): demo, benchmarks.",
+        description="Moving-frame Gymnasium environments (Rios 2017): demo, bench, render, train.",
     )
     sub = p.add_subparsers(
         dest="command", required=True, metavar="COMMAND", parser_class=_OneLineParser
@@ -79,7 +120,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--policy", default="baseline", help="baseline | baseline:KIND | ppo | PATH")
     r.add_argument("--out", required=True, help="output .gif path")
     r.add_argument("--steps", type=int, default=None, help="number of env steps (default: env's)")
-    r.add_argument("--seed", type=int, default=0)
+    r.add_argument("--seed", type=int, default=0, help="reset seed, >= 0 (default: %(default)s)")
     r.set_defaults(func=_cmd_render)
 
     t = sub.add_parser("train", help="train a PPO agent (Stable-Baselines3) on an env")
@@ -87,8 +128,12 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--timesteps", type=int, default=None, help="default: from the env's config")
     t.add_argument("--seed", type=int, default=0)
     t.add_argument("--config", default=None, help="YAML hyperparameters (rl-zoo3 format)")
-    t.add_argument("--out", default="runs", help="output folder (default: %(default)s)")
+    t.add_argument(
+        "--out", default="runs", help="writes OUT/ENV_ID/seedSEED/ (default: %(default)s)"
+    )
+    t.add_argument("--force", action="store_true", help="replace an existing run folder")
     t.add_argument("--tensorboard", action="store_true", help="write TensorBoard logs")
+    t.add_argument("--backend", choices=("sb3", "rllib"), default="sb3", help="sb3 | rllib (Ray)")
     t.set_defaults(func=_cmd_train)
 
     e = sub.add_parser("evaluate", help="PPO vs every classical baseline on unseen seeds")
@@ -96,7 +141,19 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--policy", default=None, help="policy path (default: the shipped policy)")
     e.add_argument("--episodes", type=int, default=5)
     e.add_argument("--seed", type=int, default=1000, help="first evaluation seed")
+    e.add_argument(
+        "--out",
+        default="mf_envs_eval",
+        help="writes OUT/ENV_ID/evaluate.csv (default: %(default)s)",
+    )
+    e.add_argument("--force", action="store_true", help="replace an existing OUT/ENV_ID folder")
     e.set_defaults(func=_cmd_evaluate)
+
+    s = sub.add_parser("sweep", help="env kwargs x controllers x seeds on Ray (CSV + PNG)")
+    from mf_envs.sweep.cli import add_arguments
+
+    add_arguments(s)
+    s.set_defaults(func=_cmd_sweep)
     return p
 
 
@@ -104,10 +161,28 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     func: Callable[[argparse.Namespace], list[Path]] = args.func
+    who = f"mf-envs {args.command}"
     try:
         written = func(args)
     except ValueError as exc:
-        print(f"mf-envs {args.command}: error: {exc}", file=sys.stderr)
+        print(f"{who}: error: {exc}", file=sys.stderr)
+        return 2
+    except ModuleNotFoundError as exc:
+        extra = missing_extra(exc)
+        if extra is None:
+            raise
+        print(
+            f'{who}: needs the {extra} extra: pip install "mf-envs[{extra}]" ({exc})',
+            file=sys.stderr,
+        )
+        return 2
+    except KeyboardInterrupt:
+        print(f"{who}: interrupted; previous outputs left unchanged", file=sys.stderr)
+        return 130
+    except OSError as exc:
+        if exc.filename is None:
+            raise
+        print(f"{who}: error: {exc.strerror}: {exc.filename}", file=sys.stderr)
         return 2
     if written:
         folders = sorted({str(Path(w).parent) for w in written})

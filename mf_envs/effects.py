@@ -28,6 +28,8 @@ EFFECT_NAMES: dict[str, str] = {
     "shear_deformation": "Timoshenko shear strain (off = shear-rigid)",
     "terrain": "Bekker pressure-sinkage / Janosi shear-slip ground contact",
     "anchor_switching": "kinematic head/tail anchor switching (ch. 4 Eq. 102)",
+    "actuator_dynamics": "actuator lag and rate limit between commanded and realised kappa#",
+    "friction": "feet holding by anisotropic Coulomb friction with grip dynamics",
 }
 
 

@@ -180,4 +180,181 @@ def test_render_ppo_policy_renders_or_says_why(capsys, tmp_path, env_id):
             assert im.n_frames == 4
     else:
         _assert_one_line_error(code, err)
-        assert "policy" in err
+        assert "policy" in err or 'pip install "mf-envs[train]"' in err
+
+
+# ------------------------------------------------------------ outputs, extras, Ctrl-C (issue 12)
+def _fake_demo(files: dict[str, str], interrupt: bool = False):
+    """A stand-in for `demos.run` that writes `files` into its folder (then maybe Ctrl-C)."""
+
+    def run(out, quick=False, only=None):
+        written = []
+        for name, text in files.items():
+            (out / name).write_text(text)
+            written.append(out / name)
+        if interrupt:
+            raise KeyboardInterrupt
+        return written
+
+    return run
+
+
+def test_ctrl_c_leaves_previous_outputs_intact(capsys, tmp_path, monkeypatch):
+    from mf_envs.benchmarks import demos
+
+    out = tmp_path / "demo"
+    out.mkdir()
+    (out / "a.png").write_text("old a")
+    (out / "keep.csv").write_text("old csv")
+    monkeypatch.setattr(demos, "run", _fake_demo({"a.png": "new a", "b.png": "new b"}, True))
+    code, _, err = _run(capsys, ["demo", "--out", str(out)])
+    assert code == 130 and len(err.strip().splitlines()) == 1 and "interrupted" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["demo"]  # no temporary folder left
+    assert {p.name: p.read_text() for p in out.iterdir()} == {
+        "a.png": "old a",
+        "keep.csv": "old csv",
+    }
+    # completed: new files move in, replacing same-named ones; other files stay
+    monkeypatch.setattr(demos, "run", _fake_demo({"a.png": "new a", "b.png": "new b"}))
+    code, stdout, _ = _run(capsys, ["demo", "--out", str(out)])
+    assert code == 0 and str(out) in stdout
+    got = {p.name: p.read_text() for p in out.iterdir()}
+    assert got == {"a.png": "new a", "b.png": "new b", "keep.csv": "old csv"}
+
+
+def _read_only_dir(tmp_path):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o555)
+    if os.access(ro, os.W_OK):  # root ignores permission bits: use a read-only mount
+        ro = "/sys/mf_envs_out"
+        if os.access("/sys", os.W_OK) and os.path.ismount("/sys") is False:
+            pytest.skip("no read-only folder available")
+    return str(ro)
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["demo", "--out", "FILE"],
+        ["bench", "speed", "--out", "FILE"],
+        ["bench", "speed", "--out", "FILE/sub"],
+        ["demo", "--out", "READONLY/sub"],
+        ["render", "GOWEC-v0", "--out", "READONLY/a.gif"],
+        ["render", "GOWEC-v0", "--seed", "-1", "--out", "OK/a.gif"],
+        ["evaluate", "GOWEC-v0", "--out", "FILE"],
+        ["evaluate", "GOWEC-v0", "--seed", "-3"],
+        ["evaluate", "Nope-v0"],
+        ["train", "Nope-v0", "--out", "OK"],
+    ],
+    ids=[
+        "demo-out-file",
+        "bench-out-file",
+        "bench-out-under-file",
+        "demo-read-only",
+        "render-read-only",
+        "render-negative-seed",
+        "evaluate-out-file",
+        "evaluate-negative-seed",
+        "evaluate-unknown-env",
+        "train-unknown-env",
+    ],
+)
+def test_output_mistakes_are_one_line(capsys, tmp_path, monkeypatch, argv):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a_file").write_text("x")
+    subs = {"FILE": str(tmp_path / "a_file"), "OK": str(tmp_path / "ok")}
+    if any("READONLY" in a for a in argv):
+        subs["READONLY"] = _read_only_dir(tmp_path)
+    for key, val in subs.items():
+        argv = [a.replace(key, val) for a in argv]
+    code, _, err = _run(capsys, argv)
+    _assert_one_line_error(code, err)
+
+
+def test_unknown_policy_kwargs_key_is_one_line(capsys, tmp_path):
+    pytest.importorskip(
+        "stable_baselines3", reason="needs the train extra: pip install -e '.[train]'"
+    )
+    cfg = tmp_path / "c.yml"
+    cfg.write_text('GOWEC-v0:\n  n_timesteps: 64\n  policy_kwargs: "dict(net_arch=[8], evil=1)"\n')
+    code, _, err = _run(capsys, ["train", "GOWEC-v0", "--config", str(cfg), "--out", str(tmp_path)])
+    _assert_one_line_error(code, err)
+    assert "evil" in err
+
+
+def test_run_folders_are_not_overwritten_without_force(capsys, tmp_path):
+    pytest.importorskip(
+        "stable_baselines3", reason="needs the train extra: pip install -e '.[train]'"
+    )
+    run = tmp_path / "runs" / "GOWEC-v0" / "seed0"
+    run.mkdir(parents=True)
+    (run / "meta.json").write_text("{}")
+    code, _, err = _run(capsys, ["train", "GOWEC-v0", "--out", str(tmp_path / "runs")])
+    _assert_one_line_error(code, err)
+    assert "--force" in err and (run / "meta.json").read_text() == "{}"
+    ev = tmp_path / "eval" / "GOWEC-v0"
+    ev.mkdir(parents=True)
+    (ev / "evaluate.csv").write_text("old")
+    code, _, err = _run(capsys, ["evaluate", "GOWEC-v0", "--out", str(tmp_path / "eval")])
+    _assert_one_line_error(code, err)
+    assert "--force" in err and (ev / "evaluate.csv").read_text() == "old"
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["train", "GOWEC-v0", "--out", "OUT"],
+        ["evaluate", "GOWEC-v0", "--out", "OUT"],
+        ["render", "GOWEC-v0", "--policy", "ppo", "--out", "OUT/a.gif", "--steps", "2"],
+    ],
+    ids=["train", "evaluate", "render-ppo"],
+)
+def test_missing_train_extra_is_one_line(capsys, tmp_path, monkeypatch, argv):
+    for mod in ("stable_baselines3", "torch", "safetensors"):
+        monkeypatch.setitem(sys.modules, mod, None)  # `import mod` now fails as if not installed
+    argv = [a.replace("OUT", str(tmp_path / "o")) for a in argv]
+    code, _, err = _run(capsys, argv)
+    _assert_one_line_error(code, err)
+    assert 'pip install "mf-envs[train]"' in err
+
+
+def test_bench_speed_without_pyelastica_skips_that_case(capsys, tmp_path, monkeypatch):
+    from mf_envs.benchmarks.speed import beam_elastica as be
+
+    monkeypatch.setitem(sys.modules, "elastica", None)
+    row = {"case": "c", "variant": "v", "steps_per_s": 1.0, "reference": "r"}
+    row |= {"reference_steps_per_s": 1.0, "ratio": 1.0}
+
+    def must_not_run(quick):
+        raise AssertionError("the PyElastica case ran without PyElastica")
+
+    monkeypatch.setattr(be, "_static", must_not_run)
+    monkeypatch.setattr(be, "_inchworm_vs_pendulum", lambda quick: [row])
+    monkeypatch.setattr(be, "_step_vs_elements", lambda quick: [])
+    out = tmp_path / "speed"
+    code, _, err = _run(capsys, ["bench", "speed", "--scene", "beam_elastica", "--out", str(out)])
+    assert code == 0, err
+    assert sum('pip install "mf-envs[compare]"' in ln for ln in err.splitlines()) == 1
+    assert (out / "speed.csv").read_text().count("\n") == 2  # header + the one row
+
+
+@pytest.mark.slow
+def test_first_run_says_once_that_it_compiles(tmp_path):
+    """A cold numba cache: one stderr line (however many kernels compile); warm: silent."""
+    code = (
+        "import numpy as np, mf_envs\n"
+        "from mf_envs.frames.so3 import exp_so3_nb\n"
+        "exp_so3_nb(np.array([0.1, 0.2, 0.3])); exp_so3_nb(np.array([1e-9, 0.0, 0.0]))\n"
+    )
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path), "MPLBACKEND": "Agg"}
+
+    def run():
+        r = subprocess.run(
+            [sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300
+        )
+        assert r.returncode == 0, r.stderr
+        return [ln for ln in r.stderr.splitlines() if "compiling the numba kernels" in ln]
+
+    assert len(run()) == 1  # NUMBA_CACHE_DIR (empty) takes precedence over __pycache__
+    assert run() == []

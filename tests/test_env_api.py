@@ -36,6 +36,16 @@ INFO_KEYS: dict[str, tuple[str, ...]] = {
         "wave_moment",
     ),
     "Inchworm-v0": ("x_head", "x_tail", "centerline"),
+    "GOWEC-v1": (
+        "power",
+        "power_mechanical",
+        "buoy_pitch",
+        "buoy_roll",
+        "buoy_rate",
+        "excitation_moment",
+        "gimbal_angle",
+        "gimbal_rate",
+    ),
 }
 
 # docs/api.md kwargs with one physically invalid value each (the ValueError must name the kwarg)
@@ -58,6 +68,12 @@ INVALID_KWARGS: dict[str, list[tuple[str, Any]]] = {
         ("youngs_modulus", -1.0),
         ("mass_per_length", float("inf")),
     ],
+    "GOWEC-v1": [
+        ("rotor_inertia", -1.0),
+        ("wave_period", 0.0),
+        ("generator_efficiency", 1.5),
+        ("max_generator_torque", -5.0),
+    ],
 }
 
 # Steps of the long random-action soak per env: 1e5 where it fits the CI budget. Measured in
@@ -68,6 +84,7 @@ SOAK_STEPS: dict[str, int] = {
     "GOWEC-v0": 100_000,
     "GyroStabilizer-v0": 100_000,
     "Inchworm-v0": 1_000,
+    "GOWEC-v1": 20_000,  # ~1 ms per step (Cummins + gyro, 4 RK4 substeps)
 }
 
 # Random-action steps for the determinism/pickling checks ("a few hundred"); the quasi-static
@@ -80,6 +97,7 @@ POISON: dict[str, Any] = {
     "GOWEC-v0": lambda raw: raw.state.fill(np.nan),  # (phi, phi')
     "GyroStabilizer-v0": lambda raw: raw._y.fill(np.nan),  # ship rates, phi, phi', ...
     "Inchworm-v0": lambda raw: raw.sim.state.d.fill(np.nan),  # beam nodal dofs (Newmark d)
+    "GOWEC-v1": lambda raw: raw.state.fill(np.nan),  # buoy, gimbal, radiation states, energies
 }
 
 
@@ -164,7 +182,8 @@ def test_gymnasium_check_env(env_id, make):
 @pytest.mark.parametrize("env_id", ENV_IDS)
 def test_sb3_check_env(env_id, make):
     sb3_checker = pytest.importorskip(
-        "stable_baselines3.common.env_checker", reason="stable-baselines3 not installed"
+        "stable_baselines3.common.env_checker",
+        reason="needs the train extra: pip install -e '.[train]'",
     )
     env = make(env_id)
     with warnings.catch_warnings(record=True) as record:
@@ -258,18 +277,22 @@ def _effect_sets(env_id: str) -> list[tuple[str, ...]]:
     """All effects, none, the default minus each one, the default plus each other one."""
     env = gym.make(env_id)
     default = sorted(env.unwrapped.effects)
+    exclusive = getattr(env.unwrapped, "exclusive_effects", ())  # documented pairs (a, b)
     env.close()
     avail = _available_effects(env_id)
     sets = [tuple(avail), ()]
     sets += [tuple(e for e in default if e != d) for d in default]
     sets += [(*default, a) for a in avail if a not in default]
-    return sets
+    # a set holding both of an exclusive pair drops the first (the env rejects the pair)
+    return [tuple(e for e in s if not any(e == a and b in s for a, b in exclusive)) for s in sets]
 
 
 @pytest.mark.parametrize("env_id", ENV_IDS)
+@pytest.mark.slow
 def test_every_effect_set_runs_random_actions(env_id):
     """Each effect switched on/off alone (and all, and none): the env builds, resets and takes
-    20 random actions with finite observations, the docs/api.md info keys and no numerical failure."""
+    20 random actions with finite observations, the docs/api.md info keys and no numerical
+    failure."""
     failures = []
     for effects in _effect_sets(env_id):
         env = gym.make(env_id, effects=effects)
@@ -291,6 +314,7 @@ def test_every_effect_set_runs_random_actions(env_id):
 RESET_OPTIONS: dict[str, dict[str, float]] = {
     "GOWEC-v0": {"gimbal_angle": 0.3, "gimbal_rate": -0.5},
     "GyroStabilizer-v0": {"roll": 0.1, "roll_rate": 0.05, "gimbal_angle": 0.2},
+    "GOWEC-v1": {"buoy_pitch": 0.1, "buoy_roll": -0.05, "gimbal_angle": 0.3, "gimbal_rate": -0.5},
 }
 
 

@@ -23,6 +23,7 @@ from hypothesis import strategies as st
 import mf_envs  # noqa: F401  (registers the envs)
 from mf_envs.envs.gowec.env import AVAILABLE_EFFECTS as GOWEC_EFFECTS
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS
+from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS
 from mf_envs.physics.ship.model import SHIP_EFFECTS
 
 MAX_SECONDS = 10.0
@@ -110,7 +111,11 @@ KWARGS: dict[str, dict[str, st.SearchStrategy[Any]]] = {
         "increment_factor": _num(1.0, 10.0),
         "reset_noise_scale": _num(0.0, 1.0),
         "physics_dt": _num(0.01, 0.1),
-        "effects": _effects(INCHWORM_EFFECTS),
+        "actuator_time_constant": _num(0.01, 2.0),
+        "actuator_rate_limit": _num(0.5, 100.0),
+        "grip_time_constant": _num(0.01, 1.0),
+        "friction_coefficients": _mostly(st.tuples(*[st.floats(0.0, 2.0)] * 4)),
+        "effects": _effects({**INCHWORM_EFFECTS, **DRIVE_EFFECTS}),
     },
 }
 OPTIONS: dict[str, dict[str, st.SearchStrategy[Any]]] = {

@@ -24,10 +24,12 @@ from mf_envs.frames import (
     twist_from_time_rate,
     vee,
 )
-from mf_envs.frames.so3 import exp_so3_nb
+from mf_envs.frames.kernels import exp_so3 as exp_so3_nb
 
 vec3 = arrays(np.float64, 3, elements=st.floats(-10, 10, allow_nan=False))
 small_vec3 = arrays(np.float64, 3, elements=st.floats(-1e-5, 1e-5, allow_nan=False))
+# compile (or load) the numba kernels once here, not inside a hypothesis deadline
+exp_so3(np.zeros(3)), log_so3(np.eye(3)), hat(np.zeros(3)), vee(np.zeros((3, 3)))
 
 
 @given(vec3)
@@ -118,3 +120,30 @@ def test_project_to_so3_and_bad_shapes():
         exp_so3([1.0, 2.0])
     with pytest.raises(ValueError, match="R"):
         log_so3(np.eye(2))
+
+
+@settings(deadline=None)
+@given(vec3.filter(lambda w: np.linalg.norm(w) < 3.0), vec3)
+def test_dexp_right_and_left_match_finite_differences(theta, thd):
+    """omega = dexp(theta) theta' against the central difference of R = exp(hat(theta)),
+    body (R^T R') and spatial (R' R^T), and dexpinv inverts dexp (frames.kernels module doc)."""
+    from mf_envs.frames import kernels as k
+
+    eps = 1e-6
+    R = k.exp_so3(theta)
+    dR = (k.exp_so3(theta + eps * thd) - k.exp_so3(theta - eps * thd)) / (2 * eps)
+    scale = 1.0 + np.linalg.norm(thd)
+    assert np.allclose(vee(R.T @ dR), k.dexp_right(theta, thd), atol=1e-7 * scale)
+    assert np.allclose(vee(dR @ R.T), k.dexp_left(theta, thd), atol=1e-7 * scale)
+    assert np.allclose(k.dexpinv_right(theta, k.dexp_right(theta, thd)), thd, atol=1e-12 * scale)
+    assert np.allclose(k.dexpinv_left(theta, k.dexp_left(theta, thd)), thd, atol=1e-12 * scale)
+
+
+def test_dexpinv_right_series_is_the_body_frame_one():
+    """theta' = omega + 1/2 theta x omega + 1/12 theta x (theta x omega) + O(theta^4) for the
+    update R exp(hat(theta)) (the sign the ship's copy had wrong, issue 11)."""
+    from mf_envs.frames import kernels as k
+
+    th, w = np.array([1e-3, -2e-3, 1.5e-3]), np.array([0.6, 0.8, 0.4])
+    series = w + 0.5 * np.cross(th, w) + np.cross(th, np.cross(th, w)) / 12.0
+    assert np.allclose(k.dexpinv_right(th, w), series, rtol=0, atol=1e-12)  # next: x^2/720

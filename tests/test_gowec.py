@@ -26,6 +26,7 @@ def _pair(effects, params=None, wave=None):
     return gw.GimbalModel(params, wave, effects), build_engine_model(params, wave, effects)
 
 
+@pytest.mark.slow
 def test_fast_path_matches_engine_under_eq79_over_10_periods():
     """Thin disk, massless symmetric gimbal, head-on wave: identical up to integration error."""
     gm, mb = _pair(SEED_CASE)
@@ -55,6 +56,7 @@ def test_general_fast_path_matches_engine_with_inertias_and_oblique_wave():
     assert np.abs(e["phi"] - f["phi"]).max() < 1e-8
 
 
+@pytest.mark.slow
 def test_eq79_assumptions_vs_real_inertias_difference_is_quantified():
     """Without Eq. 79 (thick rotor, heavy gimbal) the seed's Eq. 81 drifts by a visible amount."""
     p = gw.GOWECParams(
@@ -70,6 +72,7 @@ def test_eq79_assumptions_vs_real_inertias_difference_is_quantified():
     assert 1e-3 < diff < 2.0, diff  # measured 0.79 rad (engine vs Eq. 81, dt 0.02 s)
 
 
+@pytest.mark.slow
 def test_sign_of_eq81_rotor_off_gimbal_turns_away_from_zero():
     """Rotor off, no torque, phi(0) = 0.05: phi'' = w1^2 sin(2 phi)/2 > 0 -> toward +90 deg."""
     effects = frozenset({"buoy_rocking", "wave_2d"})

@@ -72,6 +72,7 @@ def test_pll_reaches_95_percent_of_eq95_on_untuned_regular_waves(kw):
 
 
 @pytest.mark.parametrize("detune", [1.01, 0.99])
+@pytest.mark.slow
 def test_pll_holds_90_percent_under_1_percent_detuning_where_fixed_rate_drops(detune):
     kw = dict(wave_period=6.0 * detune)
     pll = episode_ratio("pll", seed=2, ctrl=dict(period=6.0), **kw)

@@ -94,7 +94,8 @@ def test_support_reactions_carry_the_weight():
     sim = Inchworm(P, effects=frozenset({"gravity", "anchor_switching"}))
     sim.actuate(np.full(sim.kappa.shape, -5.0))
     r_tail, r_head = sim.support_reactions()
-    assert r_tail + r_head == pytest.approx(P.mass_per_length * P.gravity * P.length, rel=1e-8)
+    # equilibrium to the Newton force tolerance (relative ~1e-8 of the weight)
+    assert r_tail + r_head == pytest.approx(P.mass_per_length * P.gravity * P.length, rel=5e-8)
 
 
 def test_bad_inputs():
@@ -161,6 +162,7 @@ def test_terrain_gait_is_translation_invariant():
     )
 
 
+@pytest.mark.slow
 def test_long_seed_gait_run_passes_10_m():
     """The coarsest seed gait (2 steps per cycle, the training helper's failure at 8.01 m) crawls
     past x = 10 m with the per-cycle advance of the first cycle (re-centring keeps the local

@@ -147,6 +147,7 @@ def test_B_and_Bdot_against_finite_differences_of_body_poses(seed):
     np.testing.assert_allclose(Bd, (Bp - Bm) / (2 * eps), atol=1e-5)
 
 
+@pytest.mark.slow
 def test_energy_balance_with_prescribed_buoy_rotor_and_generator_torque():
     """d/dt (K + U) = power of the applied torque + power of the prescribing actuators."""
     m = gowec_like(prescribe_buoy=True)

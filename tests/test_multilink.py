@@ -198,6 +198,7 @@ def test_free_chain_conserves_momentum_and_angular_momentum():
     assert np.allclose(mom, mom[0], atol=1e-9)
 
 
+@pytest.mark.slow
 def test_damped_dynamics_settle_on_the_static_solution():
     # two independent routes to the sagging cantilever: Newton on the potential, and the damped
     # dynamics (stiff: implicit LSODA) released from straight
@@ -308,6 +309,7 @@ def test_total_energy_includes_gravity():
     )
 
 
+@pytest.mark.slow
 def test_chain_resting_on_sand_sinks_like_a_bekker_plate():
     # terrain + Gauss-point lumping + free-chain dynamics against the closed-form plate sinkage
     from mf_envs.physics import terrain as tr

@@ -257,7 +257,7 @@ def test_headless_import_and_matplotlib_window_without_display():
 def test_pygame_window_shows_the_frame_exactly():
     """With the optional `render` extra: the pygame window's surface holds the frame's pixels
     (SDL's dummy video driver, no display)."""
-    pytest.importorskip("pygame", reason="optional extra mf-envs[render] not installed")
+    pytest.importorskip("pygame", reason="needs the render extra: pip install -e '.[render]'")
     code = (
         "import numpy as np, pygame\n"
         "from mf_envs.render import HumanWindow, draw_ship\n"

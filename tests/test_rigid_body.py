@@ -114,6 +114,7 @@ def _flip_times(tr):
 
 
 @pytest.mark.parametrize("method", METHODS)
+@pytest.mark.slow
 def test_racket_1000s_of_flips(method):
     """1000 s at dt = 2e-3: energy and |H| drift < 1e-3 for all; the conserving method keeps
     |H| to 1e-10 and the energy to 1e-7; flip count and flip times against the exact ones."""
@@ -229,8 +230,10 @@ def test_kernels_reusable():
 
 def test_ballistic_effect():
     v0 = np.array([0.0, 0.0, 24.5])
-    T = flight_time(24.5)
-    assert T == pytest.approx(4.9949, abs=1e-4)
+    assert flight_time(24.5, g=9.81) == pytest.approx(4.9949, abs=1e-4)  # the seed's g
+    assert flight_time(24.5, g=9.80665) == pytest.approx(2 * 24.5 / 9.80665, rel=1e-15)
+    T = flight_time(24.5)  # default g: the seed's 9.81 m/s^2 (physics.constants.G)
+    assert T == pytest.approx(2 * 24.5 / 9.81, rel=1e-15)
     tr = simulate(RACKET_J, RACKET_W0, T, T / 500, effects=("ballistic",), v0=v0)
     assert tr.x.shape == (501, 3)
     assert abs(tr.x[-1, 2]) < 1e-12 and tr.x[:, 2].max() == pytest.approx(24.5**2 / (2 * 9.81))

@@ -293,6 +293,7 @@ def test_mss_naval_vessel_roll_decay_matches_mss_model():
     assert np.abs(run.roll - ref.y[0]).max() < 0.01 * 0.05
 
 
+@pytest.mark.slow
 def test_translation_engine_matches_fast_path():
     """6-DOF hull on the engine (Free joint, gyros at offsets with mass) vs the fast path."""
     ship = small_yacht()

@@ -15,7 +15,10 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-sb3 = pytest.importorskip("stable_baselines3", reason="stable-baselines3 is not installed")
+sb3 = pytest.importorskip(
+    "stable_baselines3", reason="needs the train extra: pip install -e '.[train]'"
+)
+pytest.importorskip("safetensors", reason="needs the train extra: pip install -e '.[train]'")
 
 import mf_envs  # noqa: E402,F401  (registers the env ids)
 from mf_envs.envs import ENV_SPECS, available_env_ids  # noqa: E402
@@ -57,8 +60,8 @@ def test_config_errors(tmp_path):
         load_hyperparams("Nope-v0")
     with pytest.raises(ValueError, match="no such file"):
         read_config(tmp_path / "missing.yml")
-    with pytest.raises(ValueError, match="private"):
-        parse_policy_kwargs("dict(a=nn.__class__)")
+    with pytest.raises(ValueError, match="not allowed"):
+        parse_policy_kwargs("dict(activation_fn=nn.__class__)")
     pk = parse_policy_kwargs("dict(net_arch=[8], activation_fn=nn.Tanh)")
     assert pk["net_arch"] == [8] and pk["activation_fn"].__name__ == "Tanh"
 
@@ -137,33 +140,98 @@ def _trained_model(tmp_path):
 
 
 def test_load_policy_on_raw_obs_equals_sb3_on_normalized_obs(tmp_path):
-    from stable_baselines3 import PPO
-    from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
-
     model, venv = _trained_model(tmp_path)
     assert not np.allclose(venv.obs_rms.mean, 0.0)  # statistics really moved
-    policy = load_policy("Pendulum-v1", tmp_path / "pol")
-    # independent route: SB3's own pickle of VecNormalize + PPO.load
-    vn = VecNormalize.load(
-        str(tmp_path / "pol" / "vecnormalize.pkl"), DummyVecEnv([lambda: gym.make("Pendulum-v1")])
-    )
-    sb3_model = PPO.load(tmp_path / "pol" / "model.zip", device="cpu")
+    names = {p.name for p in (tmp_path / "pol").iterdir()}
+    assert names == {"policy.json", "policy.safetensors", "obs_normalization.json", "meta.json"}
+    policy = load_policy("Pendulum-v1", tmp_path / "pol")  # rebuilt from JSON + safetensors
     env = gym.make("Pendulum-v1")
     obs, _ = env.reset(seed=7)
     for _ in range(50):
         a, state = policy.predict(obs, deterministic=True)
         assert state is None and env.action_space.contains(a)
-        ref, _ = model.predict(venv.normalize_obs(obs), deterministic=True)  # in memory
-        ref2, _ = sb3_model.predict(vn.normalize_obs(obs), deterministic=True)  # reloaded
+        ref, _ = model.predict(venv.normalize_obs(obs), deterministic=True)  # SB3, in memory
         np.testing.assert_array_equal(a, ref)
-        np.testing.assert_array_equal(a, ref2)
         obs, *_ = env.step(a)
     batch = np.stack([env.observation_space.sample() for _ in range(4)])
     ab, _ = policy.predict(batch)
     assert ab.shape == (4, 1)
     # normalisation is not the identity, so skipping it would change the actions
-    raw, _ = sb3_model.predict(batch, deterministic=True)
+    raw, _ = model.predict(batch, deterministic=True)
     assert not np.allclose(raw, ab)
+
+
+def _payload_zip(path, marker):
+    """An SB3-style model.zip whose `data` entry unpickles to os.system('touch marker')."""
+    import base64
+    import os
+    import pickle
+    import zipfile
+
+    class Payload:
+        def __reduce__(self):
+            return (os.system, (f"touch {marker}",))
+
+    blob = base64.b64encode(pickle.dumps(Payload())).decode()
+    data = {"policy_class": {":type:": "<class 'abc.ABCMeta'>", ":serialized:": blob}}
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("data", json.dumps(data))
+        z.writestr("_stable_baselines3_version", "2.9.2")
+
+
+@pytest.mark.parametrize("as_folder", [False, True])
+def test_pickle_payload_is_refused_and_never_runs(tmp_path, capsys, as_folder):
+    from mf_envs.cli import main
+
+    marker = tmp_path / "PWNED"
+    folder = tmp_path / "evil"
+    folder.mkdir()
+    _payload_zip(folder / "model.zip", marker)
+    target = folder if as_folder else folder / "model.zip"
+    with pytest.raises(ValueError, match="pickle"):
+        load_policy("Pendulum-v1", target)
+    assert main(["evaluate", "Pendulum-v1", "--policy", str(target), "--out", str(tmp_path / "e")])
+    assert main(["render", "GOWEC-v0", "--policy", str(target), "--out", str(tmp_path / "r.gif")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert all("pickle" in line for line in err) and len(err) == 2
+    assert not marker.exists()
+    # the payload is real: SB3's own loader does run it (so the test above can fail)
+    from stable_baselines3.common.save_util import json_to_data
+
+    json_to_data(_zip_data(folder / "model.zip"))
+    assert marker.exists()
+
+
+def _zip_data(path):
+    import zipfile
+
+    with zipfile.ZipFile(path) as z:
+        return z.read("data").decode()
+
+
+def test_policy_kwargs_whitelist(tmp_path):
+    from mf_envs.train.kwargs import parse_policy_kwargs as whitelist
+
+    marker = tmp_path / "ran"
+    for text in (
+        f"dict(x=th.os.system('touch {marker}'))",
+        f"dict(net_arch=__import__('os').system('touch {marker}'))",
+        "dict(activation_fn=nn.Module)",
+        "dict(activation_fn=nn.Tanh.__class__)",
+        "[i for i in range(3)]",
+    ):
+        with pytest.raises(ValueError, match="not allowed"):
+            whitelist(text)
+    with pytest.raises(ValueError, match="unknown key 'foo'"):
+        whitelist("dict(net_arch=[8], foo=1)")
+    with pytest.raises(ValueError, match="net_arch"):
+        whitelist({"net_arch": [8, "x"]})
+    assert not marker.exists()
+    pk = whitelist(
+        "dict(log_std_init=-1.5, activation_fn=th.nn.ReLU, net_arch=dict(pi=[4], vf=[4]))"
+    )
+    assert pk == {"log_std_init": -1.5, "activation_fn": "ReLU", "net_arch": {"pi": [4], "vf": [4]}}
+    assert whitelist({"activation_fn": "nn.Tanh", "ortho_init": False})["activation_fn"] == "Tanh"
 
 
 def test_load_policy_errors(tmp_path):
@@ -190,6 +258,7 @@ def test_shipped_policies_load_and_act(env_id):
 
 # --------------------------------------------------------------------------- smoke runs
 @pytest.mark.parametrize("env_id", SMOKE_IDS)
+@pytest.mark.slow
 def test_smoke_train_then_evaluate(env_id, tmp_path):
     from mf_envs.train.trainer import train
 
@@ -204,7 +273,8 @@ def test_smoke_train_then_evaluate(env_id, tmp_path):
         overrides=TINY,
     )
     names = {p.name for p in res.files}
-    assert {"model.zip", "meta.json", "obs_normalization.json"} <= names
+    assert {"policy.json", "policy.safetensors", "meta.json", "obs_normalization.json"} <= names
+    assert not list(res.run_dir.rglob("*.zip")) and not list(res.run_dir.rglob("*.pkl"))
     assert res.meta["timesteps"] >= 256 and res.meta["steps_per_s"] > 0
     assert (res.run_dir / "evaluations.npz").is_file()
     policy = load_policy(env_id, res.run_dir)
@@ -245,6 +315,7 @@ def test_env_metrics_from_info(env_id):
     m = run_episode(env_id, env, _ZeroFor(env), seed=0)
     key = {
         "GOWEC-v0": "power_ratio",
+        "GOWEC-v1": "capture_width",
         "GyroStabilizer-v0": "rms_roll",
         "Inchworm-v0": "tail_advance_per_step",
     }[env_id]
@@ -368,7 +439,7 @@ def test_training_is_reproducible(tmp_path):
         return load_policy("Pendulum-v1", res.run_dir)
 
     a, b = weights(tmp_path / "a"), weights(tmp_path / "b")
-    for pa, pb in zip(a.model.policy.parameters(), b.model.policy.parameters()):
+    for pa, pb in zip(a.policy.parameters(), b.policy.parameters()):
         assert torch.equal(pa, pb)
     np.testing.assert_array_equal(a.normalization.mean, b.normalization.mean)
 
@@ -450,6 +521,7 @@ NATIVE_IDS = [e for e in available_env_ids() if gym.spec(e).vector_entry_point i
 
 
 @pytest.mark.parametrize("env_id", NATIVE_IDS)
+@pytest.mark.slow
 def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
     """The env's native vector env (via GymVectorToSB3) and SB3's DummyVecEnv of single envs
     give bit-identical PPO weights: same seeds, same transitions, same autoreset semantics."""
@@ -479,6 +551,6 @@ def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
         assert res.meta["vectorization"].startswith("native" if mode == "auto" else "dummy")
         policies[mode] = load_policy(env_id, res.run_dir)
     a, b = policies["auto"], policies["dummy"]
-    for pa, pb in zip(a.model.policy.parameters(), b.model.policy.parameters()):
+    for pa, pb in zip(a.policy.parameters(), b.policy.parameters()):
         assert torch.equal(pa, pb)
     np.testing.assert_array_equal(a.normalization.var, b.normalization.var)

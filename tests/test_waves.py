@@ -42,7 +42,7 @@ def test_energy_and_power_per_metre():
     a = W.amplitude_from_hs(hs)
     assert W.energy_density(a) == pytest.approx(W.energy_density_hs(hs))  # Eqs. 15-17
     P_deep = W.deep_water_power_per_metre(hs, T)
-    assert P_deep == pytest.approx(0.4877e3 * hs**2 * T, rel=2e-3)  # "0.48 Hs^2 T kW/m"
+    assert P_deep == pytest.approx(0.49e3 * hs**2 * T, rel=2e-3)  # "0.49 Hs^2 T kW/m" (rho 1025)
     assert W.power_per_metre(hs, T) == pytest.approx(P_deep, rel=1e-12)
     assert W.power_per_metre(hs, T, depth=1e4) == pytest.approx(P_deep, rel=1e-9)
 

@@ -1,7 +1,8 @@
 """Record env trajectories (default baseline + fixed random actions) to an npz; compare two records.
 
 Used to prove a refactor bit-identical: `python tools/record_trajectories.py before.npz` on the old
-commit, again on the new one, then `python tools/record_trajectories.py --compare before.npz after.npz`.
+commit, again on the new one, then
+`python tools/record_trajectories.py --compare before.npz after.npz`.
 """
 
 import sys

@@ -21,6 +21,7 @@ _MODULES = {
     "GOWEC-v0": "mf_envs.controllers.gowec",
     "GyroStabilizer-v0": "mf_envs.controllers.stabilizer",
     "Inchworm-v0": "mf_envs.controllers.inchworm",
+    "GOWEC-v1": "mf_envs.controllers.gowec_v1",
 }
 _REGISTRY: dict[str, dict[str, Callable[..., Any]]] = {}
 _DEFAULT: dict[str, str] = {}

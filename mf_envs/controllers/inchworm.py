@@ -1,26 +1,88 @@
-"""The seed's open-loop inchworm gaits for Inchworm-v0, driven through the env's action interface.
+"""Open-loop inchworm gaits for Inchworm-v0, driven through the env's action interface.
 
-* `seed_uniform` (default): uniform kappa#(t) = -kappa0 (1 + cos(t - pi)) / 2 (Rios 2017 Eq. 101);
-* `seed_linear`: kappa#(S, t) = -kappa0 (c1 + c2 S / L)(1 + cos(t - pi)) / 2, c1 = 0.2, c2 = 0.8
-  (Eq. 103).
+* `seed_uniform` (default): uniform kappa#(t) = -kappa0 (1 + cos(2 pi t / T - pi)) / 2 (Rios 2017
+  Eq. 101, bookkeeping time 2 pi t / T);
+* `seed_linear`: kappa#(S, t) = -kappa0 (c1 + c2 S / L)(1 + cos(2 pi t / T - pi)) / 2, c1 = 0.2,
+  c2 = 0.8 (Eq. 103);
+* `tuned`: a bang-bang (square-wave) command of amplitude a and period T, both optimised for
+  speed with scipy.optimize (Nelder-Mead, bounded) on the env's own physics; the actuator's lag
+  and rate limit shape the realised kappa#.
 
-The bookkeeping period 2 pi is mapped to `steps_per_cycle` env steps. The anchor follows Eq. 102:
-the head grips while kappa# decreases (loading), the tail while it increases (unloading). The
-controllers keep their own step counter (open loop); the observation is not used.
+Cycle period: with the env's actuator dynamics (`actuator_dynamics`), the seed gaits run at the
+fastest cycle the actuator allows (`ActuatorParams.fastest_cycle`: peak commanded rate
+pi kappa0 / T = rate limit, and T >= 2 pi tau), rounded up to whole control steps; without them
+(the seed's scene) 40 steps per cycle as before. The grip follows Eq. 102 on the realised
+kappa#: the head grips while it decreases (loading, neutral included), the tail while it
+increases. The gaits predict the realised kappa# with their own copy of the actuator model
+(synchronised with the env's actuator state at reset), so they stay open loop: the
+observation is not used.
 """
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
+from scipy.optimize import brute, minimize
 
 from mf_envs._validate import check_int, check_positive
 from mf_envs.controllers import register
+from mf_envs.physics.inchworm.actuators import RateLimitedLag
+from mf_envs.physics.inchworm.drive import (
+    CommandFn,
+    cosine_gait,
+    make_driven,
+    run_open_loop,
+    square_gait,
+)
+
+SEED_STEPS_PER_CYCLE = 40  # the seed's scene (no actuator dynamics)
 
 
-class SeedGait:
-    """Open-loop gait kappa#(S, t) = -kappa0 (c1 + c2 S / L) (1 + cos(t - pi)) / 2."""
+class OpenLoopGait:
+    """Open-loop command kappa#(t) at the control points with Eq. 102 grips (module docstring)."""
+
+    def __init__(self, env: Any, command: CommandFn, period: float) -> None:
+        self.base = env.unwrapped
+        self.max_curvature = float(self.base.max_curvature)
+        self.dt = float(self.base.control_dt)
+        self.command = command
+        self.period = float(check_positive("period", period))
+        self.steps_per_cycle = max(1, int(round(self.period / self.dt)))  # for reporting
+        self.switching = bool(self.base.switching)
+        act = self.base.actuator
+        self.lag = RateLimitedLag(act, self.base.n_ctrl) if act is not None else None
+        self.reset()
+
+    def reset(self) -> None:
+        self.k = 0
+        self.kappa_now = np.array(self.base.driven.kappa_ctrl, float)  # realised, at reset
+        if self.lag is not None:
+            self.lag.reset(self.kappa_now)
+
+    def kappa(self, k: int) -> np.ndarray:
+        """Commanded kappa# at the control points [1/m] after k steps."""
+        return self.command(k * self.dt)
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        del obs, deterministic  # open loop
+        c = self.kappa(self.k + 1)
+        self.k += 1
+        if self.lag is None:
+            change = c - self.kappa_now
+            self.kappa_now = c
+        else:
+            before = self.lag.kappa.copy()
+            change = self.lag.advance(c, self.dt) - before
+        a = 2.0 * c / -self.max_curvature - 1.0
+        if self.switching:  # Eq. 102 on the realised kappa# (neutral counted as loading)
+            a = np.append(a, 1.0 if float(np.mean(change)) <= 0.0 else -1.0)
+        return np.clip(a, -1.0, 1.0).astype(np.float32), None
+
+
+class SeedGait(OpenLoopGait):
+    """Eqs. 101/103: kappa# = -kappa0 (c1 + c2 S / L) (1 + cos(2 pi t / T - pi)) / 2."""
 
     def __init__(
         self,
@@ -28,36 +90,24 @@ class SeedGait:
         kappa0: float | None = None,
         c1: float = 1.0,
         c2: float = 0.0,
-        steps_per_cycle: int = 40,
+        steps_per_cycle: int | None = None,
     ) -> None:
         base = env.unwrapped
-        self.max_curvature = float(base.max_curvature)
-        self.kappa0 = self.max_curvature if kappa0 is None else float(kappa0)
+        max_k = float(base.max_curvature)
+        self.kappa0 = max_k if kappa0 is None else float(kappa0)
         check_positive("kappa0", self.kappa0)
-        if self.kappa0 * max(abs(c1), abs(c1 + c2)) > self.max_curvature * (1 + 1e-12):
+        peak = self.kappa0 * max(abs(c1), abs(c1 + c2))
+        if peak > max_k * (1 + 1e-12):
             raise ValueError("kappa0: the gait exceeds the env's max_curvature")
-        self.steps_per_cycle = check_int("steps_per_cycle", steps_per_cycle, low=2)
-        self.shape = c1 + c2 * base.S_ctrl / base.params.length  # kappa0#(S) / kappa0
-        self.switching = bool(base.switching)
-        self.reset()
-
-    def reset(self) -> None:
-        self.k = 0
-
-    def kappa(self, k: int) -> np.ndarray:
-        """kappa# at the control points [1/m] after k steps."""
-        t = 2.0 * np.pi * k / self.steps_per_cycle
-        return -0.5 * self.kappa0 * self.shape * (1.0 + np.cos(t - np.pi))
-
-    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
-        del obs, deterministic  # open loop
-        now, nxt = self.kappa(self.k), self.kappa(self.k + 1)
-        self.k += 1
-        a = 2.0 * nxt / -self.max_curvature - 1.0
-        if self.switching:  # Eq. 102 (neutral phase counted as loading)
-            grip = 1.0 if float(np.mean(nxt - now)) <= 0.0 else -1.0
-            a = np.append(a, grip)
-        return np.clip(a, -1.0, 1.0).astype(np.float32), None
+        if steps_per_cycle is None:
+            steps_per_cycle = SEED_STEPS_PER_CYCLE
+            if base.actuator is not None:  # the fastest cycle the actuator allows
+                fastest = base.actuator.fastest_cycle(peak)
+                steps_per_cycle = max(2, int(np.ceil(fastest / base.control_dt - 1e-9)))
+        shape = c1 + c2 * base.S_ctrl / base.params.length
+        n = check_int("steps_per_cycle", steps_per_cycle, low=2)
+        period = n * base.control_dt
+        super().__init__(env, cosine_gait(self.kappa0, shape, period), period)
 
 
 def seed_uniform(env: Any, **params: Any) -> SeedGait:
@@ -70,5 +120,59 @@ def seed_linear(env: Any, c1: float = 0.2, c2: float = 0.8, **params: Any) -> Se
     return SeedGait(env, c1=c1, c2=c2, **params)
 
 
+@lru_cache(maxsize=8)
+def _tune(config: tuple, max_evals: int) -> tuple[float, float, float]:
+    """(period [s], amplitude [1/m], speed [L/s]) of the fastest square-wave gait of the env
+    configured by `config` (its `drive_config()`: make_driven's arguments + control_dt,
+    max_curvature), from a straight body at rest, speed over one cycle after one warm-up
+    cycle: a grid (scipy.optimize.brute: 8 log-spaced periods from 2 control steps to twice the
+    seed gait's period, 3 amplitudes) then a bounded Nelder-Mead polish (<= max_evals runs)."""
+    cfg = dict(config)
+    dt, max_k = cfg.pop("control_dt"), cfg.pop("max_curvature")
+    shape = np.ones(cfg["n_control_points"])
+
+    def neg_speed(x: np.ndarray) -> float:  # x = (log period [log s], amplitude [1/m])
+        period, amp = float(np.exp(x[0])), float(x[1])
+        driven = make_driven(**cfg)
+        driven.reset(np.zeros(len(shape)))
+        m = run_open_loop(driven, square_gait(amp, shape, period), period, dt, 1, 1)
+        return -m.speed
+
+    act = cfg["actuator"] if "actuator_dynamics" in cfg["effects"] else None
+    start = act.fastest_cycle(max_k) if act is not None else SEED_STEPS_PER_CYCLE * dt
+    lo, hi = np.log(2 * dt), np.log(2.0 * start)
+    grid = (slice(lo, hi + 1e-9, (hi - lo) / 7), slice(0.5 * max_k, 1.0001 * max_k, 0.25 * max_k))
+    x0 = brute(neg_speed, grid, finish=None)
+    res = minimize(
+        neg_speed,
+        x0=x0,
+        method="Nelder-Mead",
+        bounds=[(lo, hi), (0.25 * max_k, max_k)],
+        options={"xatol": 0.02, "fatol": 1e-4, "maxfev": max_evals},
+    )
+    return float(np.exp(res.x[0])), float(res.x[1]), float(-res.fun)
+
+
+def tuned(
+    env: Any, period: float | None = None, amplitude: float | None = None, max_evals: int = 30
+) -> OpenLoopGait:
+    """Square-wave gait with period [s] and amplitude [1/m] optimised for speed on the env's
+    physics (`_tune`, cached per configuration; ~1 min on the defaults) unless given."""
+    base = env.unwrapped
+    if period is None or amplitude is None:
+        t_opt, a_opt, _ = _tune(base.drive_config(), max_evals)
+        period = t_opt if period is None else period
+        amplitude = a_opt if amplitude is None else amplitude
+    check_positive("period", period)
+    check_positive("amplitude", amplitude)
+    if amplitude > base.max_curvature * (1 + 1e-12):
+        raise ValueError("amplitude: exceeds the env's max_curvature")
+    shape = np.ones(base.n_ctrl)
+    gait = OpenLoopGait(env, square_gait(float(amplitude), shape, float(period)), float(period))
+    gait.amplitude = float(amplitude)
+    return gait
+
+
 register("Inchworm-v0", "seed_uniform", seed_uniform, default=True)
 register("Inchworm-v0", "seed_linear", seed_linear)
+register("Inchworm-v0", "tuned", tuned)

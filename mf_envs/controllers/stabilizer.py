@@ -39,6 +39,7 @@ import numpy as np
 
 from mf_envs.controllers import register
 from mf_envs.envs.gyro_stabilizer.spec import OBS
+from mf_envs.physics.ship import gyro_roll_moment
 
 _ROLL, _ROLL_RATE = OBS.index("roll"), OBS.index("roll_rate")
 _PHI, _PHI_RATE = OBS.index("gimbal_angle"), OBS.index("gimbal_rate")
@@ -165,7 +166,7 @@ def roll_gimbal_nlsys(m: RollModel) -> Any:
 
     def update(t: float, x: np.ndarray, u: np.ndarray, params: dict) -> np.ndarray:
         r, rd, phi, phid = x
-        rdd = (-m.c * r - m.b * rd - m.nh * phid * math.cos(phi)) / m.j_eff
+        rdd = (-m.c * r - m.b * rd + gyro_roll_moment(phi, phid, m.nh, 1)) / m.j_eff
         return np.array([rd, rdd, phid, (u[0] - phid) / m.tau])
 
     return ct.nlsys(

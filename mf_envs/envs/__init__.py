@@ -2,18 +2,26 @@
 
 from __future__ import annotations
 
+import warnings
+
 import gymnasium as gym
+
+# GOWEC-v0 (the dissertation's prescribed buoy) stays supported next to GOWEC-v1 (the floating
+# buoy): silence gymnasium's "GOWEC-v0 is out of date, upgrade to v1" deprecation warning
+warnings.filterwarnings("ignore", message=r".*GOWEC-v0 is out of date")
 
 # id -> (entry point, default max_episode_steps or None); each env module owns its episode length
 ENV_SPECS: dict[str, str] = {
     "GOWEC-v0": "mf_envs.envs.gowec.env:GOWECEnv",
     "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.env:GyroStabilizerEnv",
     "Inchworm-v0": "mf_envs.envs.inchworm.env:InchwormEnv",
+    "GOWEC-v1": "mf_envs.envs.gowec_v1.env:GOWECV1Env",
 }
 # id -> native batched vector env (`gym.make_vec(id, vectorization_mode="vector_entry_point")`)
 VECTOR_SPECS: dict[str, str] = {
     "GOWEC-v0": "mf_envs.envs.gowec.vector:GOWECVectorEnv",
     "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.vector:GyroStabilizerVectorEnv",
+    "GOWEC-v1": "mf_envs.envs.gowec_v1.vector:GOWECV1VectorEnv",
 }
 
 

@@ -6,10 +6,11 @@ rewards, flags and batched infos, bit for bit) for the same seeds:
 
 - seeding: `reset(seed=s)` gives sub-env i the seed s + i, `reset(seed=[s_0, ...])` seed s_i, and
   each sub-env keeps its own `np.random.Generator` for the resets that follow (autoreset);
-- resets (rare: once per episode) go through one "template" instance of the single env: its
-  generator is swapped for sub-env i's, `reset` is called, and the subclass copies the resulting
-  state into row i of the batch arrays (`_load`), so reset semantics cannot drift from the
-  single env's;
+- resets go through one "template" instance of the single env: its generator is swapped for
+  sub-env i's, `reset` is called, and the subclass copies the resulting state into row i of the
+  batch arrays (`_load`), so reset semantics cannot drift from the single env's; a subclass may
+  add a compiled path for the hot case (autoresets and seedless resets without options,
+  `_batch_reset`) that draws the same numbers from the same generators (GOWEC-v0);
 - steps (hot) call a batched numba kernel that calls the single env's scalar physics kernel for
   every active row (`mf_envs.physics.gowec.batch`, `ship_batch`);
 - autoreset: `AutoresetMode.NEXT_STEP` (Gymnasium's default: the step after a done one resets that
@@ -115,6 +116,13 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         """Advance the active rows: (obs, reward, terminated, truncated, info)."""
 
+    def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
+        """Optional fast path: reset rows `idx` (no seed, no options) in one compiled call and
+        return their batched reset infos (masks True on idx only), drawing from each row's
+        generator exactly what the single env's `reset()` draws; None: no fast path, reset
+        row by row through the template."""
+        return None
+
     # ------------------------------------------------------------------ resets
     def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
         env = self.template
@@ -143,9 +151,13 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
                 )
             if not options:
                 options = None
-        infos: dict[str, Any] = {}
-        for i in np.flatnonzero(mask):
-            infos = self._add_info(infos, self._reset_one(int(i), seeds[i], options), int(i))
+        idx = np.flatnonzero(mask)
+        fresh = options is None and all(seeds[i] is None for i in idx)
+        infos = self._batch_reset(idx) if fresh else None
+        if infos is None:
+            infos = {}
+            for i in idx:
+                infos = self._add_info(infos, self._reset_one(int(i), seeds[i], options), int(i))
         self._done[mask] = False
         self._is_reset = True
         return self._obs.copy(), infos
@@ -194,9 +206,11 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
 
     def _merge_resets(self, info: dict[str, Any], idx: np.ndarray) -> None:
         """Reset the sub-envs `idx` now and put their reset infos in place of the step infos."""
-        resets: dict[str, Any] = {}
-        for i in idx:
-            resets = self._add_info(resets, self._reset_one(int(i), None, None), int(i))
+        resets = self._batch_reset(idx)
+        if resets is None:
+            resets = {}
+            for i in idx:
+                resets = self._add_info(resets, self._reset_one(int(i), None, None), int(i))
         _overwrite(info, resets, idx)
 
 

@@ -1,6 +1,8 @@
 """The moving-frame kernel: SO(3)/SE(3) frame connection matrices (Rios 2017, ch. 2-3).
 
-Pure numpy (with numba-compiled scalar kernels); no Gymnasium imports.
+`so3`, `se3`: numpy faces (batched, validated). `kernels`: the numba kernels every model calls
+(hat/vee, Rodrigues exp, log, dexp and dexp^-1 left and right, the RK4 and RKMK4 steppers).
+No Gymnasium imports.
 """
 
 from mf_envs.frames.se3 import (

@@ -63,8 +63,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import check_finite, check_nonnegative, check_positive
-
-STANDARD_GRAVITY = 9.80665  # m/s^2
+from mf_envs.physics.constants import G as STANDARD_GRAVITY
 
 
 @dataclass(frozen=True)

@@ -40,9 +40,8 @@ from scipy.integrate import quad
 from scipy.special import j1
 
 from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
+from mf_envs.physics.constants import RHO_SEAWATER, G  # G re-exported: waves.G (ch. 3 Eq. 15)
 
-G = 9.81  # gravitational acceleration, m/s^2 (ch. 3 Eq. 15)
-RHO_SEA = 1020.0  # sea water density, kg/m^3 (ch. 3 Eq. 15)
 BREAKING_STEEPNESS = 1.0 / (24.0 * math.pi)  # a/(g T^2) at a 30 deg crest slope (Eq. 97: 0.01326)
 
 
@@ -95,7 +94,7 @@ def group_velocity(omega: ArrayLike, depth: float = math.inf, g: float = G) -> N
 
 
 # ---------------------------------------------------------------------- energy and power (15-19)
-def energy_density(amplitude: ArrayLike, rho: float = RHO_SEA, g: float = G) -> NDArray:
+def energy_density(amplitude: ArrayLike, rho: float = RHO_SEAWATER, g: float = G) -> NDArray:
     """E = rho g a^2 / 2 (J/m^2) per unit horizontal area of a harmonic wave (Eq. 15)."""
     a = check_finite("amplitude", amplitude)
     return 0.5 * rho * g * a * a
@@ -106,14 +105,18 @@ def amplitude_from_hs(hs: ArrayLike) -> NDArray[np.float64]:
     return np.asarray(check_positive("hs", hs)) / (2.0 * math.sqrt(2.0))
 
 
-def energy_density_hs(hs: ArrayLike, rho: float = RHO_SEA, g: float = G) -> NDArray:
+def energy_density_hs(hs: ArrayLike, rho: float = RHO_SEAWATER, g: float = G) -> NDArray:
     """E = rho g Hs^2 / 16 (J/m^2) (Eq. 17)."""
     h = check_positive("hs", hs)
     return rho * g * h * h / 16.0
 
 
 def power_per_metre(
-    hs: ArrayLike, period: ArrayLike, depth: float = math.inf, rho: float = RHO_SEA, g: float = G
+    hs: ArrayLike,
+    period: ArrayLike,
+    depth: float = math.inf,
+    rho: float = RHO_SEAWATER,
+    g: float = G,
 ) -> NDArray[np.float64]:
     """P = E c_g (W per metre of crest) with E from Hs (Eqs. 17-18)."""
     T = check_positive("period", period)
@@ -121,7 +124,7 @@ def power_per_metre(
 
 
 def deep_water_power_per_metre(
-    hs: ArrayLike, period: ArrayLike, rho: float = RHO_SEA, g: float = G
+    hs: ArrayLike, period: ArrayLike, rho: float = RHO_SEAWATER, g: float = G
 ) -> NDArray[np.float64]:
     """P = rho g^2 Hs^2 T / (64 pi) (W/m), ~0.48 Hs^2 T kW/m (Eq. 19)."""
     h, T = check_positive("hs", hs), check_positive("period", period)

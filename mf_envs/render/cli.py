@@ -36,8 +36,8 @@ def _check_env_id(env_id: str) -> None:
 def make_policy(env: Any, env_id: str, policy: str) -> Any:
     """An object with `predict(obs, deterministic=True) -> (action, state)` for `policy`:
     "baseline" (the env's default controller), "baseline:KIND", "ppo" (the shipped policy,
-    `train.load_policy`) or the path of a saved policy (a folder written by `mf-envs train`,
-    or its model.zip)."""
+    `train.load_policy`) or the path of a saved policy (a folder written by `mf-envs train`;
+    pickle-based SB3 `model.zip` files are refused)."""
     if policy == "baseline" or policy.startswith("baseline:"):
         from mf_envs import controllers
 
@@ -52,19 +52,11 @@ def make_policy(env: Any, env_id: str, policy: str) -> Any:
         if not path.exists():
             raise ValueError(
                 f"policy: expected baseline, baseline:KIND, ppo or the path of a saved policy "
-                f"(folder or model.zip), got {policy!r} (no such file)"
+                f"(a folder with policy.json), got {policy!r} (no such file)"
             )
-    try:
-        from mf_envs.train import load_policy
-    except ImportError as exc:
-        raise ValueError(
-            f"policy: {policy!r} needs the train package and its extras "
-            f"(pip install 'mf-envs[train]'): {exc}"
-        ) from exc
-    try:
-        return load_policy(env_id, path)
-    except ImportError as exc:  # stable-baselines3 / torch missing
-        raise ValueError(f"policy: loading a PPO policy needs 'mf-envs[train]' ({exc})") from exc
+    from mf_envs.train import load_policy
+
+    return load_policy(env_id, path)  # ModuleNotFoundError -> one line naming the train extra
 
 
 def render_command(args: argparse.Namespace) -> list[Path]:
@@ -72,6 +64,7 @@ def render_command(args: argparse.Namespace) -> list[Path]:
     import gymnasium as gym
     from tqdm import tqdm
 
+    from mf_envs._staging import staged_file
     from mf_envs.render import save_gif
 
     _check_env_id(args.env_id)
@@ -80,27 +73,33 @@ def render_command(args: argparse.Namespace) -> list[Path]:
         raise ValueError(f"out: expected a .gif path, got {str(out)!r}")
     if args.steps is not None and args.steps < 1:
         raise ValueError(f"steps: must be >= 1, got {args.steps}")
-    env = gym.make(args.env_id, render_mode="rgb_array")
-    try:
-        policy = make_policy(env, args.env_id, args.policy)
-        steps = args.steps or (env.spec.max_episode_steps if env.spec else None) or DEFAULT_STEPS
-        every = max(1, math.ceil(steps / MAX_FRAMES))  # keep memory bounded on long runs
-        obs, _ = env.reset(seed=args.seed)
-        if hasattr(policy, "reset"):
-            policy.reset()
-        frames = [env.render()]
-        for i in tqdm(range(1, steps + 1), desc=f"render {args.env_id}", unit="step"):
-            action, _ = policy.predict(obs, deterministic=True)
-            obs, _, terminated, truncated, info = env.step(action)
-            if info.get("numerical_failure"):  # the state is not finite: nothing to draw
-                msg = f"render {args.env_id}: numerical failure at step {i}, episode ended"
-                tqdm.write(msg, file=sys.stderr)
-                break
-            if i % every == 0 or terminated or truncated:
-                frames.append(env.render())
-            if terminated or truncated:
-                break
-        fps = env.metadata.get("render_fps", 30) / every  # playback speed kept
-    finally:
-        env.close()
-    return [save_gif(frames, out, fps=fps)]
+    if args.seed < 0:
+        raise ValueError(f"seed: must be >= 0, got {args.seed}")
+    with staged_file(out) as tmp:  # created now: an unwritable --out fails before the run
+        env = gym.make(args.env_id, render_mode="rgb_array")
+        try:
+            policy = make_policy(env, args.env_id, args.policy)
+            steps = (
+                args.steps or (env.spec.max_episode_steps if env.spec else None) or DEFAULT_STEPS
+            )
+            every = max(1, math.ceil(steps / MAX_FRAMES))  # keep memory bounded on long runs
+            obs, _ = env.reset(seed=args.seed)
+            if hasattr(policy, "reset"):
+                policy.reset()
+            frames = [env.render()]
+            for i in tqdm(range(1, steps + 1), desc=f"render {args.env_id}", unit="step"):
+                action, _ = policy.predict(obs, deterministic=True)
+                obs, _, terminated, truncated, info = env.step(action)
+                if info.get("numerical_failure"):  # the state is not finite: nothing to draw
+                    msg = f"render {args.env_id}: numerical failure at step {i}, episode ended"
+                    tqdm.write(msg, file=sys.stderr)
+                    break
+                if i % every == 0 or terminated or truncated:
+                    frames.append(env.render())
+                if terminated or truncated:
+                    break
+            fps = env.metadata.get("render_fps", 30) / every  # playback speed kept
+        finally:
+            env.close()
+        save_gif(frames, tmp, fps=fps)
+    return [out]

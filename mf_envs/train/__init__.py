@@ -1,7 +1,7 @@
 """Stable-Baselines3 PPO training and evaluation for the mf_envs environments.
 
 - `mf-envs train ENV_ID` / `mf-envs evaluate ENV_ID` (`train.cli`), hyperparameters in
-  `train/configs/ppo.yml` (rl-zoo3 format);
+  `mf_envs/train/configs/ppo.yml` (rl-zoo3 format);
 - `train.load_policy(env_id, path=None)`: a shipped (or given) policy acting on raw observations;
 - `train.randomize.DomainRandomization`: physical-parameter randomisation at every reset.
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Any
 
 from mf_envs.train.evaluate import (
     baseline_factories,
@@ -12,8 +13,6 @@ from mf_envs.train.evaluate import (
     primary_metric,
     write_rows_csv,
 )
-
-EVAL_OUT = Path("mf_envs_eval")  # `mf-envs evaluate` writes <EVAL_OUT>/<env_id>/evaluate.csv
 
 
 def train_command(args: argparse.Namespace) -> list[Path]:
@@ -28,6 +27,7 @@ def train_command(args: argparse.Namespace) -> list[Path]:
         config=args.config,
         out=args.out,
         tensorboard=args.tensorboard,
+        force=args.force,
     )
     m = res.meta
     print(
@@ -49,14 +49,26 @@ def train_command(args: argparse.Namespace) -> list[Path]:
 
 
 def evaluate_command(args: argparse.Namespace) -> list[Path]:
-    """`mf-envs evaluate ENV_ID [--policy PATH] [--episodes N] [--seed S]`: PPO vs baselines."""
+    """`mf-envs evaluate ENV_ID [--policy PATH] [--episodes N] [--seed S] [--out DIR] [--force]`:
+    PPO vs baselines; writes DIR/ENV_ID/evaluate.csv (DIR default `mf_envs_eval`)."""
+    from mf_envs._staging import check_out, moved, staged_dir
     from mf_envs.train.policy import load_policy
     from mf_envs.train.trainer import check_env_id
 
     check_env_id(args.env_id)
     if args.episodes < 1:
         raise ValueError(f"episodes: must be >= 1, got {args.episodes}")
-    policy = load_policy(args.env_id, args.policy)
+    if args.seed < 0:
+        raise ValueError(f"seed: must be >= 0, got {args.seed}")
+    target = check_out(Path(args.out)) / args.env_id
+    with staged_dir(target, replace=True, force=args.force) as tmp:  # fails before the episodes
+        rows = _evaluate_rows(args, load_policy(args.env_id, args.policy))
+        files = [write_rows_csv(tmp / "evaluate.csv", rows)]
+    return moved(files, tmp, target)
+
+
+def _evaluate_rows(args: argparse.Namespace, policy: Any) -> list[dict[str, Any]]:
+    """Rows of the shipped/given PPO policy and every baseline on the evaluation seeds."""
     seeds = list(range(args.seed, args.seed + args.episodes))
     train_seed = policy.meta.get("seed")
     if train_seed is not None and train_seed in seeds:
@@ -66,4 +78,4 @@ def evaluate_command(args: argparse.Namespace) -> list[Path]:
     print(format_table(rows, args.env_id))
     metric = primary_metric(args.env_id)
     print(f"({metric.name}: {'higher' if metric.higher_is_better else 'lower'} is better)")
-    return [write_rows_csv(EVAL_OUT / args.env_id / "evaluate.csv", rows)]
+    return rows

@@ -6,8 +6,8 @@ One top-level key per env id. Recognised keys, as in rl-zoo3:
 - `normalize`: `true`/`false`, or a string/dict of `VecNormalize` kwargs, e.g.
   `"{'norm_obs': True, 'norm_reward': False}"`;
 - `policy_kwargs`: a dict, or the zoo's string form
-  `"dict(net_arch=[64, 64], activation_fn=nn.Tanh)"` (evaluated with only `dict`,
-  `nn` = `torch.nn` and `th` = `torch` in scope);
+  `"dict(net_arch=[64, 64], activation_fn=nn.Tanh)"`, parsed by a whitelist (`train.kwargs`:
+  numbers, booleans, lists, dicts, activation names; never `eval`);
 - `env_wrapper`: dotted path of a `gymnasium.Wrapper`, or `{path: {kwargs}}` (a list of either);
 - `env_kwargs`: `gym.make` kwargs (the zoo takes these on its command line; here they may live
   in the file so a config alone reproduces a run);
@@ -27,6 +27,9 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+
+from mf_envs.train.kwargs import parse_policy_kwargs as whitelist_policy_kwargs
+from mf_envs.train.kwargs import resolve_activation
 
 DEFAULT_CONFIG = Path(__file__).parent / "configs" / "ppo.yml"
 _ZOO_KEYS = (
@@ -73,7 +76,7 @@ def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
 
 
 def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
-    """Hyperparameters of `env_id` from `path` (default `train/configs/ppo.yml`)."""
+    """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`)."""
     data = read_config(path)
     if env_id not in data:
         raise ValueError(f"config: no entry for {env_id!r} in {path or DEFAULT_CONFIG}")
@@ -84,7 +87,7 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
     if "n_timesteps" not in raw:
         raise ValueError(f"config: {env_id} needs n_timesteps")
     ppo = {k: v for k, v in raw.items() if k not in _ZOO_KEYS}
-    if isinstance(ppo.get("policy_kwargs"), str):
+    if "policy_kwargs" in ppo:
         ppo["policy_kwargs"] = parse_policy_kwargs(ppo["policy_kwargs"])
     return Hyperparams(
         env_id=env_id,
@@ -100,23 +103,10 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
     )
 
 
-def parse_policy_kwargs(text: str) -> dict[str, Any]:
-    """Evaluate the zoo's `"dict(net_arch=[64, 64], activation_fn=nn.Tanh)"` form.
-
-    Only `dict`, `nn` (torch.nn) and `th` (torch) are in scope and no builtins, as in rl-zoo3.
-    """
-    import torch
-    from torch import nn
-
-    tree = ast.parse(text, mode="eval")
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Attribute) and node.attr.startswith("_"):
-            raise ValueError(f"policy_kwargs: private attribute access in {text!r}")
-    scope = {"__builtins__": {}, "dict": dict, "nn": nn, "th": torch}
-    value = eval(compile(tree, "<policy_kwargs>", "eval"), scope)  # noqa: S307 (zoo format)
-    if not isinstance(value, dict):
-        raise ValueError(f"policy_kwargs: must evaluate to a dict, got {value!r}")
-    return value
+def parse_policy_kwargs(text: str | dict[str, Any]) -> dict[str, Any]:
+    """The zoo's `"dict(net_arch=[64, 64], activation_fn=nn.Tanh)"` (or a mapping) -> PPO's
+    `policy_kwargs`, parsed by the whitelist of `train.kwargs` (never `eval`)."""
+    return resolve_activation(whitelist_policy_kwargs(text))
 
 
 def resolve_schedules(ppo_kwargs: dict[str, Any]) -> dict[str, Any]:

@@ -1,15 +1,17 @@
 """One evaluation loop for PPO policies and classical baselines: unseen seeds -> metrics.
 
 Every controller (an SB3-like object with `reset()` and `predict(obs, deterministic=True)`) runs
-full episodes of `gym.make(env_id, **env_kwargs)` from `reset(seed=s)` for each seed; per episode
-the env's metrics are computed from the SI quantities in `info` (docs/api.md keys), then summarised as
-mean and sample std over seeds. The primary metric of each env is the one its issue judges by,
-defined as in that env's own `benchmarks/controllers/<env>.py` (GOWEC: `episode_ratio`, the
-last three quarters of the episode; stabilizer: RMS after its `SETTLE` = 10 s transient):
+full episodes of `gym.make(env_id, **env_kwargs)` from `reset(seed=s)` for each seed; per
+episode the env's metrics are computed from the SI quantities in `info` (docs/api.md keys), then
+summarised as mean and sample std over seeds. The primary metric of each env is the one its
+issue judges by, defined as in that env's own `benchmarks/controllers/<env>.py` (GOWEC:
+`episode_ratio`, the last three quarters of the episode; stabilizer: RMS after its `SETTLE` =
+10 s transient):
 
 | env | primary metric | better | definition |
 |---|---|---|---|
 | GOWEC-v0 | `power_ratio` | higher | mean power after the first 1/4 episode / Eq. 95 (W/W) |
+| GOWEC-v1 | `capture_width` | higher | mean mechanical PTO power (last half) / wave power flux, m |
 | GyroStabilizer-v0 | `rms_roll` | lower | sqrt(mean(info["roll"]^2)) after 10 s, rad |
 | Inchworm-v0 | `tail_advance_per_step` | higher | (x_tail(end) - x_tail(reset)) / steps, m |
 | (Inchworm-v0) | `tail_advance_per_cycle` | higher | same per head->tail grip switch (cycle) |
@@ -38,6 +40,7 @@ class Metric:
 
 PRIMARY: dict[str, Metric] = {
     "GOWEC-v0": Metric("power_ratio", True, "1"),
+    "GOWEC-v1": Metric("capture_width", True, "m"),
     "GyroStabilizer-v0": Metric("rms_roll", False, "rad"),
     "Inchworm-v0": Metric("tail_advance_per_step", True, "m"),
 }
@@ -61,6 +64,12 @@ def episode_metrics(
         out["mean_power"] = float(power.mean())
         out["power_ratio"] = float(power[len(power) // 4 :].mean()) / ref  # steady 3/4
         out["power_ratio_all"] = float(power.mean()) / ref
+    elif env_id == "GOWEC-v1":  # as benchmarks/controllers/gowec_v1.py: the last half
+        half = len(steps) // 2
+        p_mech = float(np.mean([i["power_mechanical"] for i in steps[half:]]))
+        out["capture_width"] = p_mech / float(env.unwrapped.wave_power_flux())
+        out["bound_ratio"] = p_mech / float(env.unwrapped.power_bound())
+        out["net_power"] = float(np.mean([i["power"] for i in steps[half:]]))
     elif env_id == "GyroStabilizer-v0":
         roll = np.array([i["roll"] for i in steps])
         settled = roll[np.array([i["time"] for i in steps]) > _stabilizer_settle()]

@@ -1,13 +1,17 @@
-"""Saved PPO policies: files beside the model, and `load_policy` on raw env observations.
+"""Saved PPO policies: JSON + safetensors, and `load_policy` on raw env observations.
 
-A policy folder (as written by `mf-envs train` and shipped under `train/policies/<env_id>/`):
+A policy folder (written by `mf-envs train`, shipped under `mf_envs/train/policies/<env_id>/`):
 
-- `model.zip` — the SB3 PPO model;
-- `obs_normalization.json` — the `VecNormalize` observation statistics (mean, var, epsilon, clip),
-  plain JSON so loading needs no pickle; absent if the run did not normalise observations;
-- `vecnormalize.pkl` — the full `VecNormalize` object (rl-zoo3 convention, to resume training);
-- `evaluations.npz` — the `EvalCallback` log (learning curve);
+- `policy.json` — what to rebuild: algorithm, spaces, `policy_kwargs` (by the whitelist of
+  `train.kwargs`: net_arch, activation by name, log_std_init, ...), `use_sde`;
+- `policy.safetensors` — the weights of SB3's `ActorCriticPolicy` (tensors only);
+- `obs_normalization.json` — the `VecNormalize` observation statistics (mean, var, epsilon, clip);
+  absent if the run did not normalise observations;
+- `evaluations.npz` — the `EvalCallback` log (learning curve, read with `allow_pickle=False`);
 - `meta.json` — env id, exact command, seed, timesteps, wall time, evaluation scores.
+
+Nothing in a policy folder is unpickled or evaluated (docs/design.md): SB3's `model.zip` keeps
+cloudpickled objects in its `data` entry that run code on load, so `load_policy` refuses it.
 """
 
 from __future__ import annotations
@@ -19,11 +23,15 @@ from typing import Any
 
 import numpy as np
 
+from mf_envs.train.kwargs import activation_name, parse_policy_kwargs, resolve_activation
+
 POLICY_ROOT = Path(__file__).parent / "policies"
-MODEL_FILE = "model.zip"
+POLICY_FILE = "policy.json"
+WEIGHTS_FILE = "policy.safetensors"
 NORM_FILE = "obs_normalization.json"
-VECNORM_FILE = "vecnormalize.pkl"
 META_FILE = "meta.json"
+FORMAT = "mf-envs-policy/1"
+REFUSED_SUFFIXES = (".zip", ".pkl", ".pickle", ".pt", ".pth")
 
 
 @dataclass(frozen=True)
@@ -66,14 +74,15 @@ class ObsNormalization:
 
 
 class PPOPolicy:
-    """A trained PPO model acting on the RAW observations of `gym.make(env_id)`.
+    """A trained PPO policy acting on the RAW observations of `gym.make(env_id)`.
 
     Same call as a baseline controller: `reset()` and `predict(obs, deterministic=True) ->
     (action, None)`; actions are clipped to the action space as SB3's `predict` does.
+    `policy` is the rebuilt SB3 `ActorCriticPolicy` (torch module, eval mode).
     """
 
-    def __init__(self, model: Any, normalization: ObsNormalization | None, meta: dict) -> None:
-        self.model = model
+    def __init__(self, policy: Any, normalization: ObsNormalization | None, meta: dict) -> None:
+        self.policy = policy
         self.normalization = normalization
         self.meta = meta
 
@@ -82,7 +91,7 @@ class PPOPolicy:
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         x = self.normalization.apply(obs) if self.normalization is not None else obs
-        action, _ = self.model.predict(x, deterministic=deterministic)
+        action, _ = self.policy.predict(x, deterministic=deterministic)
         return action, None
 
 
@@ -94,33 +103,122 @@ def policy_dir(env_id: str) -> Path:
 def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     """The PPO policy for `env_id` (default: the shipped one) acting on raw observations.
 
-    `path`: a policy folder or its `model.zip`. ValueError if there is none, or if its
-    `meta.json` names another env.
+    `path`: a policy folder or its `policy.json`. Nothing is unpickled: the policy is rebuilt
+    from `policy.json` and its weights read from `policy.safetensors`. ValueError if there is
+    none, if it is a pickle-based file (an SB3 `model.zip`), or if its `meta.json` names
+    another env. ImportError if stable-baselines3/torch/safetensors (the `train` extra) are
+    missing.
     """
-    from stable_baselines3 import PPO
-
     folder = Path(path) if path is not None else policy_dir(env_id)
-    model_path = folder if folder.suffix == ".zip" else folder / MODEL_FILE
-    folder = model_path.parent
-    if not model_path.is_file():
+    if folder.name == POLICY_FILE:
+        folder = folder.parent
+    _refuse_pickles(folder, path)
+    if not (folder / POLICY_FILE).is_file():
         where = "no shipped policy" if path is None else "no policy"
-        raise ValueError(f"policy: {where} for {env_id} at {str(model_path)!r}")
+        raise ValueError(f"policy: {where} for {env_id} at {str(folder / POLICY_FILE)!r}")
     meta = read_meta(folder)
     if meta.get("env_id", env_id) != env_id:
         raise ValueError(f"policy: {folder} was trained on {meta['env_id']}, not {env_id}")
     norm_path = folder / NORM_FILE
-    norm = (
-        ObsNormalization.from_json(json.loads(norm_path.read_text()))
-        if norm_path.is_file()
-        else None
+    norm = ObsNormalization.from_json(_read_json(norm_path)) if norm_path.is_file() else None
+    return PPOPolicy(_rebuild(folder), norm, meta)
+
+
+def _refuse_pickles(folder: Path, path: str | Path | None) -> None:
+    """ValueError for a pickle-based policy file (SB3 model.zip, vecnormalize.pkl, torch.save)."""
+    legacy = folder if folder.suffix in REFUSED_SUFFIXES else folder / "model.zip"
+    if legacy.is_file() and (
+        folder.suffix in REFUSED_SUFFIXES or not (folder / POLICY_FILE).is_file()
+    ):
+        raise ValueError(
+            f"policy: {str(legacy)!r} is a pickle-based file (SB3 model.zip); mf-envs does not "
+            "load it because unpickling can run code. Use a folder with policy.json + "
+            "policy.safetensors (written by `mf-envs train`)"
+        )
+
+
+def _rebuild(folder: Path) -> Any:
+    """SB3 `ActorCriticPolicy` from `policy.json` + `policy.safetensors` (eval mode, CPU)."""
+    from safetensors.torch import load_file
+    from stable_baselines3.common.policies import ActorCriticPolicy
+
+    desc = _read_json(folder / POLICY_FILE)
+    if desc.get("format") != FORMAT or desc.get("policy") != "MlpPolicy":
+        raise ValueError(f"policy: {folder / POLICY_FILE} is not an {FORMAT} MlpPolicy file")
+    kwargs = resolve_activation(parse_policy_kwargs(desc.get("policy_kwargs", {})))
+    pol = ActorCriticPolicy(
+        _box(desc["observation_space"]),
+        _box(desc["action_space"]),
+        lambda _: 0.0,
+        use_sde=bool(desc.get("use_sde", False)),
+        **kwargs,
     )
-    # schedules are training-only; do not deserialise them
-    model = PPO.load(
-        model_path,
-        device="cpu",
-        custom_objects={"learning_rate": 0.0, "lr_schedule": lambda _: 0.0, "clip_range": 0.2},
-    )
-    return PPOPolicy(model, norm, meta)
+    try:
+        pol.load_state_dict(load_file(folder / WEIGHTS_FILE, device="cpu"), strict=True)
+    except (RuntimeError, OSError) as exc:
+        raise ValueError(f"policy: weights in {folder / WEIGHTS_FILE} do not fit ({exc})") from exc
+    pol.set_training_mode(False)
+    return pol
+
+
+def _box(d: dict[str, Any]) -> Any:
+    from gymnasium.spaces import Box
+
+    low = np.array([_num(v) for v in d["low"]], dtype=np.float32).reshape(d["shape"])
+    high = np.array([_num(v) for v in d["high"]], dtype=np.float32).reshape(d["shape"])
+    return Box(low, high, dtype=np.float32)
+
+
+def _num(v: Any) -> float:
+    if isinstance(v, int | float) and not isinstance(v, bool):
+        return float(v)
+    raise ValueError(f"policy: space bound {v!r} is not a number")
+
+
+def _space_json(space: Any) -> dict[str, Any]:
+    return {
+        "shape": list(space.shape),
+        "low": [float(v) for v in np.ravel(space.low)],
+        "high": [float(v) for v in np.ravel(space.high)],
+    }
+
+
+def _read_json(p: Path) -> dict[str, Any]:
+    try:
+        d = json.loads(p.read_text())
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"policy: cannot read {p} ({exc})") from exc
+    if not isinstance(d, dict):
+        raise ValueError(f"policy: {p} must hold a JSON object")
+    return d
+
+
+def save_policy_files(folder: Path, model: Any, vecnorm: Any | None = None) -> list[Path]:
+    """Write `policy.json`, `policy.safetensors` (and the obs statistics) of an SB3 PPO model."""
+    from safetensors.torch import save_file
+
+    pk = dict(model.policy_kwargs)
+    if "activation_fn" in pk:
+        pk["activation_fn"] = activation_name(pk["activation_fn"])
+    desc = {
+        "format": FORMAT,
+        "algo": "PPO",
+        "policy": "MlpPolicy",
+        "observation_space": _space_json(model.observation_space),
+        "action_space": _space_json(model.action_space),
+        "policy_kwargs": parse_policy_kwargs(pk),
+        "use_sde": bool(model.use_sde),
+    }
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / POLICY_FILE).write_text(json.dumps(desc, indent=1) + "\n")
+    state = {k: v.detach().cpu().contiguous() for k, v in model.policy.state_dict().items()}
+    save_file(state, folder / WEIGHTS_FILE)
+    written = [folder / POLICY_FILE, folder / WEIGHTS_FILE]
+    norm = ObsNormalization.from_vecnormalize(vecnorm) if vecnorm is not None else None
+    if norm is not None:
+        (folder / NORM_FILE).write_text(json.dumps(norm.to_json(), indent=1))
+        written.append(folder / NORM_FILE)
+    return written
 
 
 def read_meta(folder: Path) -> dict[str, Any]:
@@ -129,19 +227,8 @@ def read_meta(folder: Path) -> dict[str, Any]:
 
 
 def save_policy(folder: Path, model: Any, vecnorm: Any | None, meta: dict[str, Any]) -> list[Path]:
-    """Write model, normalisation statistics and meta.json into `folder`; returns the files."""
-    folder.mkdir(parents=True, exist_ok=True)
-    model.save(folder / MODEL_FILE)
-    written = [folder / MODEL_FILE]
-    norm = ObsNormalization.from_vecnormalize(vecnorm) if vecnorm is not None else None
-    if norm is not None:
-        (folder / NORM_FILE).write_text(json.dumps(norm.to_json(), indent=1))
-        written.append(folder / NORM_FILE)
-    if vecnorm is not None:
-        vecnorm.save(str(folder / VECNORM_FILE))
-        written.append(folder / VECNORM_FILE)
-    written.append(write_meta(folder, meta))
-    return written
+    """Write the policy files (`save_policy_files`) and meta.json into `folder`."""
+    return [*save_policy_files(folder, model, vecnorm), write_meta(folder, meta)]
 
 
 def write_meta(folder: Path, meta: dict[str, Any]) -> Path:

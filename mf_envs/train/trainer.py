@@ -2,12 +2,14 @@
 
 A run folder `<out>/<env_id>/seed<S>/` holds the policy files described in `train.policy`, a
 `best/` folder (the EvalCallback's best model with the normalisation statistics of that moment),
-`evaluations.npz` and `learning_curve.png`. `ship_run` copies a run into `train/policies/<env_id>/`.
+`evaluations.npz` and `learning_curve.png`. `ship_run` copies a run into
+`mf_envs/train/policies/<env_id>/`.
 """
 
 from __future__ import annotations
 
 import functools
+import importlib.util
 import json
 import platform
 import shutil
@@ -18,10 +20,11 @@ from typing import Any
 
 import gymnasium as gym
 
+from mf_envs._staging import moved, staged_dir
 from mf_envs.train.config import Hyperparams, import_object, load_hyperparams, resolve_schedules
 from mf_envs.train.evaluate import baseline_factories, evaluate_controllers, primary_metric, score
 from mf_envs.train.policy import (
-    MODEL_FILE,
+    POLICY_FILE,
     POLICY_ROOT,
     load_policy,
     read_meta,
@@ -33,9 +36,9 @@ from mf_envs.train.policy import (
 EVAL_SEEDS = tuple(range(1000, 1005))
 EVALS_PER_RUN = 12  # EvalCallback checks per run (learning-curve points)
 SHIP_FILES = (
-    "model.zip",
+    "policy.json",
+    "policy.safetensors",
     "obs_normalization.json",
-    "vecnormalize.pkl",
     "evaluations.npz",
     "meta.json",
 )
@@ -72,12 +75,15 @@ def train(
     final_eval_seeds: tuple[int, ...] = EVAL_SEEDS,
     command: str | None = None,
     overrides: dict[str, Any] | None = None,
+    force: bool = False,
 ) -> TrainResult:
     """Train PPO on `env_id` with the YAML hyperparameters; returns the run folder and files.
 
     `overrides`: PPO kwargs replacing the config's (tests use a tiny `policy_kwargs`).
     `eval_episodes`: per EvalCallback check (default: the config's `eval_episodes`).
     `final_eval_seeds`: episodes scored after training for meta.json (empty: skip).
+    The run is written into a temporary folder beside `<out>/<env_id>/seed<S>/` and moved there
+    when complete; an existing run folder is replaced only with `force` (ValueError otherwise).
     """
     import torch
     from stable_baselines3 import PPO
@@ -89,53 +95,55 @@ def train(
     if total <= 0:
         raise ValueError(f"timesteps: must be positive, got {total}")
     tb_dir = _tensorboard_dir(out, env_id) if tensorboard else None
-    run_dir = Path(out) / env_id / f"seed{seed}"
-    run_dir.mkdir(parents=True, exist_ok=True)
-    torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
+    if seed < 0:
+        raise ValueError(f"seed: must be >= 0, got {seed}")
+    final = Path(out) / env_id / f"seed{seed}"
+    if progress_bar and importlib.util.find_spec("rich") is None:
+        progress_bar = False  # SB3's bar needs tqdm and rich; train without it
+    with staged_dir(final, replace=True, force=force) as run_dir:
+        torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
-    venv, vec_kind, eval_env = _make_envs(hp, seed)
-    ppo_kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
-    model = PPO(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **ppo_kwargs)
-    n_steps = int(model.n_steps)
-    on_best = _SaveNormalization(run_dir / "best")
-    eval_cb = EvalCallback(
-        eval_env,
-        n_eval_episodes=eval_episodes or hp.eval_episodes,
-        eval_freq=max(total // (EVALS_PER_RUN * hp.n_envs), n_steps),
-        log_path=str(run_dir),
-        best_model_save_path=str(run_dir / "best"),
-        callback_on_new_best=on_best,
-        deterministic=True,
-        verbose=0,
-    )
-    t0 = time.perf_counter()
-    model.learn(total_timesteps=total, callback=eval_cb, progress_bar=progress_bar)
-    wall = time.perf_counter() - t0
-    meta = {
-        "env_id": env_id,
-        "command": command or _command(env_id, timesteps, seed, config),
-        "seed": seed,
-        "timesteps": int(model.num_timesteps),
-        "wall_time_s": round(wall, 2),
-        "steps_per_s": round(model.num_timesteps / wall, 1),
-        "vectorization": f"{vec_kind} x{hp.n_envs}",
-        "selected": "final",
-        "hyperparams": _jsonable_hp(hp, overrides),
-        "versions": _versions(),
-    }
-    vecnorm = venv if hp.normalize is not None else None
-    files = save_policy(run_dir, model, vecnorm, meta)
-    venv.close()
-    eval_env.close()
-    best = run_dir / "best"
-    if (best / "best_model.zip").is_file():
-        (best / "best_model.zip").replace(best / MODEL_FILE)
-        best_meta = {**meta, "selected": "best (EvalCallback return, seeds 10000+)"}
-        best_meta["best_timestep"] = getattr(on_best, "best_timestep", None)
-        best_meta["best_eval_return"] = float(eval_cb.best_mean_reward)
-        files.append(write_meta(best, best_meta))
-    files += _finish_run(env_id, run_dir, final_eval_seeds)
-    return TrainResult(run_dir, files, read_meta(run_dir))
+        venv, vec_kind, eval_env = _make_envs(hp, seed)
+        ppo_kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
+        model = PPO(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **ppo_kwargs)
+        n_steps = int(model.n_steps)
+        on_best = _SaveNormalization(run_dir / "best")
+        eval_cb = EvalCallback(
+            eval_env,
+            n_eval_episodes=eval_episodes or hp.eval_episodes,
+            eval_freq=max(total // (EVALS_PER_RUN * hp.n_envs), n_steps),
+            log_path=str(run_dir),
+            callback_on_new_best=on_best,
+            deterministic=True,
+            verbose=0,
+        )
+        t0 = time.perf_counter()
+        model.learn(total_timesteps=total, callback=eval_cb, progress_bar=progress_bar)
+        wall = time.perf_counter() - t0
+        meta = {
+            "env_id": env_id,
+            "command": command or _command(env_id, timesteps, seed, config),
+            "seed": seed,
+            "timesteps": int(model.num_timesteps),
+            "wall_time_s": round(wall, 2),
+            "steps_per_s": round(model.num_timesteps / wall, 1),
+            "vectorization": f"{vec_kind} x{hp.n_envs}",
+            "selected": "final",
+            "hyperparams": _jsonable_hp(hp, overrides),
+            "versions": _versions(),
+        }
+        vecnorm = venv if hp.normalize is not None else None
+        files = save_policy(run_dir, model, vecnorm, meta)
+        venv.close()
+        eval_env.close()
+        best = run_dir / "best"
+        if (best / POLICY_FILE).is_file():
+            best_meta = {**meta, "selected": "best (EvalCallback return, seeds 10000+)"}
+            best_meta["best_timestep"] = getattr(on_best, "best_timestep", None)
+            best_meta["best_eval_return"] = float(eval_cb.best_mean_reward)
+            files.append(write_meta(best, best_meta))
+        files += _finish_run(env_id, run_dir, final_eval_seeds)
+    return TrainResult(final, moved(files, run_dir, final), read_meta(final))
 
 
 def _finish_run(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> list[Path]:
@@ -144,7 +152,7 @@ def _finish_run(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> list[Path
 
     files = []
     for folder in (run_dir, run_dir / "best"):
-        if not (folder / MODEL_FILE).is_file():
+        if not (folder / POLICY_FILE).is_file():
             continue
         meta = read_meta(folder)
         if seeds:
@@ -226,21 +234,18 @@ def _make_envs(hp: Hyperparams, seed: int) -> tuple[Any, str, Any]:
 
 
 class _SaveNormalization:
-    """EvalCallback `callback_on_new_best`: save the VecNormalize stats beside `best_model.zip`."""
+    """EvalCallback `callback_on_new_best`: save the best policy (JSON + safetensors) with the
+    VecNormalize statistics of that moment into `folder`."""
 
     def __new__(cls, folder: Path) -> Any:
         from stable_baselines3.common.callbacks import BaseCallback
 
-        from mf_envs.train.policy import NORM_FILE, ObsNormalization
+        from mf_envs.train.policy import save_policy_files
 
         class SaveNorm(BaseCallback):
             def _on_step(self) -> bool:
                 self.best_timestep = int(self.num_timesteps)
-                vn = self.model.get_vec_normalize_env()
-                norm = ObsNormalization.from_vecnormalize(vn) if vn is not None else None
-                if norm is not None:
-                    folder.mkdir(parents=True, exist_ok=True)
-                    (folder / NORM_FILE).write_text(json.dumps(norm.to_json()))
+                save_policy_files(folder, self.model, self.model.get_vec_normalize_env())
                 return True
 
         return SaveNorm()

@@ -8,8 +8,8 @@ chaotic), so that every dt integrates the same sampled-data system.
 - quantity `phi (real inertias)`: truth = engine with a thick rotor (Jt = 0.7 Ja) and a 10 kg m^2
   gimbal at dt/16; `engine` converges to it, `eq81_fast_path` stalls at the model error of the
   Eq. 79 assumptions.
-- quantity `mean power / Eq. 86 - 1`: fast path with the exact locking law (feed-forward of the
-  gyroscopic moment + PD) against Eq. 86.
+- quantity `mean power / Eq. 95 - 1`: fast path with the exact locking law (feed-forward of the
+  gyroscopic moment + PD) against Eq. 95 (Eq. 86 for this head-on wave).
 """
 
 from __future__ import annotations
@@ -118,7 +118,7 @@ def _power_rows(dts, n_periods):
                 method="fast_path_locked",
                 dt=dt,
                 param="dt",
-                quantity="mean power / Eq. 86 - 1",
+                quantity="mean power / Eq. 95 - 1",
                 error=abs(Pm / P86 - 1.0),
                 seconds=sec,
                 reference_W=P86,

@@ -15,4 +15,4 @@ COLUMNS = ("env_id", "scene", "controller", "metric", "mean", "std", "n_seeds")
 
 
 def run(out: Path, quick: bool = False, only: list[str] | None = None) -> list[Path]:
-    return run_modules(__name__, out, quick, only, "mf_envs.controllers.csv", COLUMNS)
+    return run_modules(__name__, out, quick, only, "controllers.csv", COLUMNS)

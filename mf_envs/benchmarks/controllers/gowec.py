@@ -103,7 +103,7 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
             for s in scenes
         ]
         ax1.bar(np.arange(len(scenes)) + (i - 1) * width, ys, width, yerr=es, label=kind)
-    ax1.axhline(1.0, color="k", lw=1, label="Eq. 86/95 (locked gimbal)")
+    ax1.axhline(1.0, color="k", lw=1, label="Eq. 95 (locked gimbal)")
     ax1.axhline(4 / math.pi, color="r", ls="--", lw=1, label="4/pi ceiling (regular)")
     ax1.set_xticks(np.arange(len(scenes)), scenes, rotation=15, fontsize=8)
     ax1.set_ylabel("mean power / Eq. 95")
@@ -120,7 +120,7 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
         100 * d, detuned_mean_power(d * T0, T0), "k:", label="Eq. 96 mean over 20 T (Fig. 3-4)"
     )
     ax2.set_xlabel("period detuning (T - T_nominal) / T_nominal [%]")
-    ax2.set_ylabel("mean power / Eq. 86")
+    ax2.set_ylabel("mean power / Eq. 95 [-]")
     ax2.set_title("Fig. 3-4: fixed rate vs phase-locked loop")
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=7)

@@ -22,6 +22,8 @@ PPO is evaluated on unseen seeds 2000.. (training used 0.., `train`'s own evalua
 from __future__ import annotations
 
 import importlib
+import importlib.util
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -42,9 +44,9 @@ def shipped_env_ids() -> list[str]:
     """Env ids that are registered and have a shipped policy."""
     import mf_envs  # noqa: F401
     from mf_envs.envs import available_env_ids
-    from mf_envs.train.policy import MODEL_FILE, policy_dir
+    from mf_envs.train.policy import POLICY_FILE, policy_dir
 
-    return [e for e in available_env_ids() if (policy_dir(e) / MODEL_FILE).is_file()]
+    return [e for e in available_env_ids() if (policy_dir(e) / POLICY_FILE).is_file()]
 
 
 def env_scenes(env_id: str) -> dict[str, dict[str, Any]]:
@@ -58,6 +60,23 @@ def env_scenes(env_id: str) -> dict[str, dict[str, Any]]:
 
 
 def rows(quick: bool) -> list[dict[str, Any]]:
+    """PPO rows; without the `train` extra they are skipped with one line on stderr."""
+    missing = [m for m in ("stable_baselines3", "torch", "safetensors") if not _has(m)]
+    if missing:
+        print(
+            f"bench controllers: skipping the PPO rows (needs the train extra: "
+            f'pip install "mf-envs[train]"; missing {", ".join(missing)})',
+            file=sys.stderr,
+        )
+        return []
+    return _rows(quick)
+
+
+def _has(module: str) -> bool:
+    return importlib.util.find_spec(module) is not None
+
+
+def _rows(quick: bool) -> list[dict[str, Any]]:
     from mf_envs.train.evaluate import baseline_factories, episodes, primary_metric, summarize
     from mf_envs.train.policy import load_policy
     from mf_envs.train.randomize import shift_scenes

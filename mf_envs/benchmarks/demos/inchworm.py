@@ -1,7 +1,8 @@
 """Inchworm showcase (Rios 2017 §4.6-4.10): the active beam, the seed gaits, Inchworm-v0.
 
 Writes into `out`:
-- beam_fig4_5.png          linear active cantilever (seed numbers, Eqs. 65-67): Eq. 65/67 lines
+- beam_fig4_5.png          linear active cantilever (seed numbers, Eqs. 65-67, in m and mm; the
+                           seed's inches on the second axes): Eq. 65/67 lines
                            vs the nonlinear C1 beam (dots) for alpha = 0, 0.25, ..., 1
 - beam_rollup.png          roll-up under end moments up to 2 pi EI / L (16 elements)
 - inchworm_fig4_8.png      curling with the head held (no switching), kappa# 0 .. -13 1/m
@@ -61,14 +62,21 @@ def _fig4_5(out: Path) -> Path:
         sol = solve_cantilever(
             C["L"], ea, gas, ei, 4, distributed_load=(0, -C["q0"]), kappa_sharp=alpha * C["kappa0"]
         )
-        line = ax.plot(s / 0.0254, v / 0.0254, label=f"alpha = {alpha:.2f}")[0]
+        line = ax.plot(s, v * 1e3, label=f"α = {alpha:.2f}")[0]
         pts = sol.centerline[::4]
-        ax.plot(pts[:, 0] / 0.0254, pts[:, 1] / 0.0254, "o", ms=3, color=line.get_color())
+        ax.plot(pts[:, 0], pts[:, 1] * 1e3, "o", ms=3, color=line.get_color())
     ax.set(
-        xlabel="S [in]",
-        ylabel="v [in]",
+        xlabel="arc length S [m]",
+        ylabel="deflection v [mm]",
         title="Active cantilever: Eqs. 65-67 (lines) vs C1 beam, 4 elements (dots)",
     )
+    inch = 0.0254  # the seed's Fig. 4-5 is in inches: a second axis only
+    top = ax.secondary_xaxis("top", functions=(lambda x: x / inch, lambda x: x * inch))
+    top.set_xlabel("S [in] (seed's unit)", fontsize=8)
+    right = ax.secondary_yaxis(
+        "right", functions=(lambda y: y / 1e3 / inch, lambda y: y * 1e3 * inch)
+    )
+    right.set_ylabel("v [in]", fontsize=8)
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     fig.tight_layout()
@@ -82,9 +90,11 @@ def _rollup(out: Path) -> Path:
     fig, ax = plt.subplots(figsize=(5, 4.5))
     for frac in (0.25, 0.5, 0.75, 1.0):
         sol = solve_cantilever(1.0, 1e4, 1e4, 1.0, 16, tip_moment=frac * 2 * np.pi)
-        ax.plot(*sol.centerline.T, label=f"M = {frac:.2f} x 2 pi EI/L")
+        ax.plot(*sol.centerline.T, label=f"M = {frac:.2f} × 2πEI/L")
     ax.set_aspect("equal")
-    ax.set(title="Roll-up of a cantilever (16 C1 elements)", xlabel="x / L", ylabel="z / L")
+    ax.set(
+        title="Roll-up of a cantilever (16 C1 elements, L = 1 m)", xlabel="x [m]", ylabel="z [m]"
+    )
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     fig.tight_layout()
@@ -94,21 +104,35 @@ def _rollup(out: Path) -> Path:
 
 
 def _snapshots(out: Path, name: str, hist, title: str, every: int = 5) -> Path:
+    """Centre lines at every `every`-th increment, coloured by time (colour bar = fraction of
+    the shown sequence, 0 = first); black triangles mark the gripping foot."""
     plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 3.2))
-    cmap = plt.get_cmap("viridis")
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+
     n = len(hist.centerlines)
+    pts = np.concatenate([hist.centerlines[i] for i in range(0, n, every)])
+    (x0, z0), (x1, z1) = pts.min(axis=0), pts.max(axis=0)
+    pad = 0.03 * (x1 - x0)
+    width = 8.0
+    height = max(1.6, width * (z1 - z0 + 2 * pad) / (x1 - x0 + 2 * pad)) + 1.1
+    fig, ax = plt.subplots(figsize=(width, height))
+    cmap = plt.get_cmap("viridis")
     for i in range(0, n, every):
         c = hist.centerlines[i]
         ax.plot(c[:, 0], c[:, 1], color=cmap(i / (n - 1)), lw=1.5)
         grip = c[-1] if hist.anchors[i] == "head" else c[0]
         ax.plot(*grip, "k^", ms=5)
     ax.axhline(0, color="0.4", lw=1)
+    ax.set_xlim(x0 - pad, x1 + pad)
+    ax.set_ylim(min(z0, 0.0) - pad, z1 + pad)
     ax.set_aspect("equal")
     ax.set(title=title, xlabel="x [m]", ylabel="z [m]")
-    fig.tight_layout()
+    sm = ScalarMappable(norm=Normalize(0.0, 1.0), cmap=cmap)
+    bar = fig.colorbar(sm, ax=ax, orientation="vertical", fraction=0.03, pad=0.02)
+    bar.set_label("time order\n(0 = first, 1 = last)", fontsize=8)
     path = out / name
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
     return path
 
@@ -183,8 +207,12 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
         )
         ax.plot(hist.t / (2 * np.pi), hist.x_tail, label=f"{name}: tail")
         ax.plot(hist.t / (2 * np.pi), hist.x_head, "--", label=f"{name}: head")
-    ax.set(xlabel="cycles", ylabel="x [m]", title="Seed gaits, kappa0# = 13 1/m, L = 0.3 m")
-    ax.legend(fontsize=7)
+    ax.set(
+        xlabel="time [gait cycles]",
+        ylabel="position x [m]",
+        title="Seed gaits, κ0# = 13 1/m, L = 0.3 m",
+    )
+    ax.legend(fontsize=7, loc="upper left")
     ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(out / "inchworm_progress.png", dpi=110)

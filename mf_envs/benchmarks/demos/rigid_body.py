@@ -72,7 +72,8 @@ def polhode_figure(path: Path, dpi: int = 100) -> Path:
         ax3.plot(*curve.T, "r--", linewidth=1.0)
         for ax, (p, q) in zip(planes, pairs):
             ax.plot(curve[:, p], curve[:, q], "r--", linewidth=1.0)
-    names = ("h1", "h2", "h3")
+    names = ("h1 [-]", "h2 [-]", "h3 [-]")  # H / sqrt(2 K0 J2): dimensionless (Eq. 35a)
+    ax3.set(xlabel=names[0], ylabel=names[1], zlabel=names[2])
     for ax, (p, q), tag in zip(planes, pairs, "bcd"):
         ax.set_xlabel(names[p])
         ax.set_ylabel(names[q])
@@ -81,7 +82,7 @@ def polhode_figure(path: Path, dpi: int = 100) -> Path:
     ax3.set_title("(a) polhodes on the energy ellipsoid\n(lines exact, dots RK4 + Rodrigues)")
     ax3.set_box_aspect((np.sqrt(2), 1, np.sqrt(0.5)))
     fig.suptitle("Polhodes, J1/J2 = 2, J3/J2 = 0.5, d = 0.65 ... 1.95; separatrices red (Eq. 40b)")
-    fig.tight_layout()
+    fig.tight_layout(w_pad=4.0)  # room between the 3D z label and panel (b)
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return path
@@ -98,7 +99,7 @@ def momentum_figure(path: Path, nut, racket, dpi: int = 100) -> Path:
                 ax.plot(tr.t, H[:, i], label=f"H{i + 1}")
             ax.plot(tr.t, np.linalg.norm(H, axis=1), "k--", label="|H|")
             ax.set_title(f"{name}: H in the {frame} frame")
-            ax.set_ylabel("kg m^2/s")
+            ax.set_ylabel("angular momentum H [kg·m²/s]")
             ax.grid(alpha=0.3)
             ax.legend(fontsize=7, loc="lower left")
         axes[1, col].set_xlabel("t [s]")
@@ -116,12 +117,12 @@ def racket_vs_exact_figure(path: Path, tr, exact, dpi: int = 100) -> Path:
     for i, c in enumerate(("C0", "C1", "C2")):
         ax.plot(tr.t, exact[:, i], color=c, label=f"omega{i + 1} exact")
         ax.plot(tr.t[::8], tr.omega[::8, i], ".", color=c, markersize=4, label=f"omega{i + 1} RK4")
-    ax.set_ylabel("rad/s")
+    ax.set_ylabel("angular velocity ω [rad/s]")
     ax.legend(fontsize=7, ncol=3)
     ax.grid(alpha=0.3)
     rel = np.abs(tr.omega - exact) / np.max(np.abs(exact))
     ax_err.semilogy(tr.t, np.maximum(rel, 1e-17))
-    ax_err.set_ylabel("|error| / max|omega|")
+    ax_err.set_ylabel("|error| / max|ω| [-]")
     ax_err.set_xlabel("t [s]")
     ax_err.grid(alpha=0.3, which="both")
     ax.set_title(f"Tennis racket, seed scheme dt = {tr.dt:g} s: max rel. error {rel.max():.2e}")

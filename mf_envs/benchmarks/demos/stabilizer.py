@@ -66,25 +66,25 @@ def _run(
 
 def fig_3_9(out: Path, quick: bool) -> tuple[Path, str]:
     plt = _plt()
-    fig, ax = plt.subplots(1, 3, figsize=(13, 3.6))
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4.6))
     peaks = {}
     for mode, style in (("continuous", "-"), ("sinusoidal", "--")):
         r, ship, gyro = _run(mode, math.pi / 2)
         peaks[mode] = np.abs(r.omega[:, 0]).max()
         ax[0].plot(r.t, r.phi, style, label=mode)
         ax[1].plot(r.t, r.phi_rate, style, label=mode)
-        ax[2].plot(r.t, r.omega[:, 0], style, label=f"{mode}: omega_1")
+        ax[2].plot(r.t, r.omega[:, 0], style, label=f"{mode}: ω1")
         drive = GimbalDrive(mode, amplitude=math.pi / 2, frequency=1.0 / T_SEED)
         e = simulate_engine(ship, gyro, 2, SEED_EFFECTS, drive, 2 * T_SEED, 0.05)
         ax[2].plot(e.t[::4], e.omega[::4, 0], "o", ms=3, mfc="none", label=f"{mode}: engine")
     for a_, t_ in zip(
-        ax, ("gimbal angle phi [rad]", "gimbal rate phi' [rad/s]", "ship roll rate [rad/s]")
+        ax, ("gimbal angle φ [rad]", "gimbal rate φ' [rad/s]", "ship roll rate ω1 [rad/s]")
     ):
         a_.set_xlabel("t [s]")
-        a_.set_title(t_)
+        a_.set_ylabel(t_)
         a_.grid(alpha=0.3)
-        a_.legend(fontsize=7)
-    fig.suptitle("Fig. 3-9: continuous vs sinusoidal gimbal excitation, a = pi/2 (two gyros)")
+        a_.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
+    fig.suptitle("Fig. 3-9: continuous vs sinusoidal gimbal excitation, a = π/2 (two gyros)")
     fig.tight_layout()
     p = out / "stabilizer_fig3_9.png"
     fig.savefig(p, dpi=100)
@@ -97,12 +97,12 @@ def fig_3_9(out: Path, quick: bool) -> tuple[Path, str]:
 
 def fig_3_10_11(out: Path, quick: bool) -> tuple[Path, str]:
     plt = _plt()
-    fig, ax = plt.subplots(1, 2, figsize=(12, 3.8))
+    fig, ax = plt.subplots(1, 2, figsize=(13, 5.2))
     ship, gyro = seed_test_hull()
     w = 2 * math.pi / T_SEED
     H = gyro.angular_momentum
     off, _, _ = _run("sinusoidal", 0.0, moment=M_E, gyro=GyroParams(50.0, 10.0, 0.0))
-    for k, lab in enumerate(("omega_1", "omega_2", "omega_3")):
+    for k, lab in enumerate(("ω1 (roll)", "ω2 (pitch)", "ω3 (yaw)")):
         ax[0].plot(off.t, off.omega[:, k], label=lab)
     base = np.abs(off.omega[:, 0]).max()
     ax[1].plot(off.t, off.omega[:, 0], "k", label="rotor off")
@@ -114,16 +114,17 @@ def fig_3_10_11(out: Path, quick: bool) -> tuple[Path, str]:
         ax[1].plot(
             r.t,
             r.omega[:, 0],
-            label=f"a = pi/{math.pi / a:.1f}: residual {pk / base:.3f} (bound {bound:.3f})",
+            label=f"a = π/{math.pi / a:.1f}: residual {pk / base:.3f} (bound {bound:.3f})",
         )
         lines.append(f"a=pi/{math.pi / a:.1f}: residual {pk / base:.3f}, bound {bound:.3f}")
-    ax[0].set_title("Fig. 3-10: M_e = 1e5 cos(2 pi t/T), rotor off")
-    ax[1].set_title(f"Fig. 3-11: rotor on; capacity M0/(2 H w) = {M_E / (2 * H * w):.2f} > 1")
+    ax[0].set_title("Fig. 3-10: M_e = 1e5 N·m cos(2πt/T), rotor off")
+    ax[1].set_title(f"Fig. 3-11: rotor on; M0/(2Hω) = {M_E / (2 * H * w):.2f} > 1 (over capacity)")
+    ax[0].set_ylabel("body angular velocity [rad/s]")
+    ax[1].set_ylabel("roll rate ω1 [rad/s]")
     for a_ in ax:
         a_.set_xlabel("t [s]")
-        a_.set_ylabel("rad/s")
         a_.grid(alpha=0.3)
-        a_.legend(fontsize=7)
+        a_.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
     fig.tight_layout()
     p = out / "stabilizer_fig3_10_11.png"
     fig.savefig(p, dpi=100)
@@ -152,19 +153,20 @@ def fig_3_12_13(out: Path, quick: bool) -> tuple[Path, str]:
     amps, x, y = slope_law(quick)
     slopes = np.array([np.polyfit(x, yi, 1)[0] for yi in y])
     (A, B), _ = curve_fit(lambda a, A, B: A * np.sin(B * a), amps, slopes, p0=(2.0, 1.0))
-    fig, ax = plt.subplots(1, 2, figsize=(11, 3.8))
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.2))
     for a, yi in zip(amps, y):
-        ax[0].plot(x, yi, "o-", ms=3, label=f"a = {a:.2f}")
-    ax[0].set_xlabel("J_rotor / J_ship")
-    ax[0].set_ylabel("peak omega_1 / psi'")
-    ax[0].set_title("Fig. 3-12")
-    ax[0].legend(fontsize=6)
+        ax[0].plot(x * 1e4, yi * 1e4, "o-", ms=3, label=f"a = {a:.2f} rad")
+    ax[0].set_xlabel("inertia ratio J_rotor / J_ship [×10⁻⁴]")
+    ax[0].set_ylabel("peak roll rate / rotor speed ω1/ψ' [×10⁻⁴]")
+    ax[0].set_title("Fig. 3-12: peak roll rate vs inertia ratio")
+    ax[0].legend(fontsize=6, title="gimbal amplitude", title_fontsize=6, loc="upper left")
     aa = np.linspace(0, math.pi / 2, 100)
     ax[1].plot(amps, slopes, "o", label="slope of Fig. 3-12")
     ax[1].plot(aa, 2 * np.sin(aa), "k-", label="2 sin(a)")
     ax[1].plot(aa, A * np.sin(B * aa), "r--", label=f"fit {A:.3f} sin({B:.3f} a)")
-    ax[1].set_xlabel("a [rad]")
-    ax[1].set_title("Fig. 3-13 (seed fit 2.003 sin(1.002 a))")
+    ax[1].set_xlabel("gimbal amplitude a [rad]")
+    ax[1].set_ylabel("slope d(ω1/ψ')/d(J_rotor/J_ship) [-]")
+    ax[1].set_title("Fig. 3-13: slope vs amplitude (seed fit 2.003 sin(1.002 a))")
     ax[1].legend(fontsize=7)
     for a_ in ax:
         a_.grid(alpha=0.3)
@@ -188,10 +190,10 @@ def fig_3_14_15(out: Path, quick: bool) -> tuple[Path, str]:
     fig, ax = plt.subplots(1, 2, figsize=(11, 3.6))
     ax[0].plot(periods, roll_amp, "o-")
     ax[0].set_title("Fig. 3-14: roll angle amplitude vs period (linear, no restoring)")
-    ax[0].set_ylabel("rad")
+    ax[0].set_ylabel("roll angle amplitude [rad]")
     ax[1].plot(periods, acc_amp, "o-")
     ax[1].set_title("Fig. 3-15: peak roll acceleration vs period (~1/T)")
-    ax[1].set_ylabel("rad/s^2")
+    ax[1].set_ylabel("peak roll acceleration [rad/s²]")
     for a_ in ax:
         a_.set_xlabel("excitation period T [s]")
         a_.grid(alpha=0.3)

@@ -229,7 +229,20 @@ def _step_vs_elements(quick: bool) -> list[dict]:
 
 
 def rows(quick: bool) -> list[dict]:
-    return _static(quick) + _inchworm_vs_pendulum(quick) + _step_vs_elements(quick)
+    """All cases; without PyElastica (`compare` extra) the static case is skipped with a note."""
+    import importlib.util
+    import sys
+
+    if importlib.util.find_spec("elastica") is None:
+        print(
+            "bench speed: skipping static_cantilever (needs PyElastica: "
+            'pip install "mf-envs[compare]")',
+            file=sys.stderr,
+        )
+        static = []
+    else:
+        static = _static(quick)
+    return static + _inchworm_vs_pendulum(quick) + _step_vs_elements(quick)
 
 
 def plot(out: Path, rows_: list[dict]) -> list[Path]:

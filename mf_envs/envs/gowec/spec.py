@@ -14,6 +14,7 @@ import numba
 
 from mf_envs.envs._spec import Field, ObsLayout
 from mf_envs.physics import gowec as gw
+from mf_envs.physics.constants import G
 
 MAX_GIMBAL_RATE = 60.0  # rad/s, default overspeed trip (and observation bound)
 MAX_BUOY_RATE = 5.0  # rad/s, observation bound (breaking waves stay below ~1.6 rad/s)
@@ -75,7 +76,7 @@ def reference_power(
     )
     w = 2.0 * math.pi / wave_period
     spin = max(abs(rotor_speed), 10.0 * w)
-    floor = REFERENCE_FLOOR * 0.5 * rotor_inertia * spin * wave_amplitude * w**4 / gw.G
+    floor = REFERENCE_FLOOR * 0.5 * rotor_inertia * spin * wave_amplitude * w**4 / G
     return max(abs(eq95), floor)
 
 

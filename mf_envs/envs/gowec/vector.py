@@ -4,22 +4,62 @@
 it; `kwargs` are those of `gym.make("GOWEC-v0", ...)` plus `autoreset_mode`
 (`gymnasium.vector.AutoresetMode`, default NEXT_STEP). Trajectories are identical, bit for bit,
 to `SyncVectorEnv` over N single `GOWECEnv`s with the same seeds (`tests/test_vector_envs.py`):
-resets go through a template single env (its public `batch_row()`), steps through
-`physics.gowec.batch.batch_fast_step`, which calls the single env's scalar kernel for every row,
-and the observation, reward, info and failure contract come from `gowec.spec`, as in the single
-env. See `mf_envs.envs._vector`.
+seeded resets and resets with options go through a template single env (its public
+`batch_row()`), steps through `physics.gowec.batch.batch_fast_step`, which calls the single env's
+scalar kernel for every row, and the observation, reward, info and failure contract come from
+`gowec.spec`, as in the single env. See `mf_envs.envs._vector`.
+
+Compiled resets (regular waves): autoresets and seedless resets without options run in one
+numba call (`reset_rows`). `GOWECEnv.reset()` draws exactly two doubles from its generator,
+phi = U(-0.1, 0.1) then the wave phase U(0, 2 pi) (numpy: low + (high - low) * next_double),
+so each row pre-draws `DRAW_BUFFER` future resets' doubles in one `rng.random(2 K)` right after
+each template reset (same stream, same order as the single env's calls) and the kernel consumes
+them; before a template reset without a seed the row's generator is rewound to where the single
+env's would be (state snapshot + the doubles consumed), so any mix of resets stays bit-identical
+to `SyncVectorEnv`. Irregular seas (many draws per reset) keep the template path.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
+import numba
 import numpy as np
 
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec import spec
 from mf_envs.envs.gowec.env import GOWECEnv
+from mf_envs.physics.gowec import buoy_rates_into
 from mf_envs.physics.gowec.batch import alloc_batch, batch_fast_step
+
+DRAW_BUFFER = 16  # resets pre-drawn per row (2 doubles each)
+PHI0, PHASE0 = (-0.1, 0.1), (0.0, 2.0 * math.pi)  # GOWECEnv.reset's U(low, high) draws
+
+
+@numba.njit(cache=True)
+def reset_rows(idx, draws, ptr, phi, phid, t, steps, amp, om, eps, k, cth, sth, two_d, w, eta,
+               max_rate, obs):  # fmt: skip
+    """GOWECEnv.reset() (regular wave, no options) for the rows idx, from pre-drawn doubles.
+
+    draws (N, 2K) next_double()s of each row's generator, ptr (N,) the next unused one (the
+    caller refills rows with ptr == 2K first). Writes phi ~ U(-0.1, 0.1) rad, phi' = 0, the
+    phase eps[:, 0] ~ U(0, 2 pi), t = 0, steps = 0, the buoy rates w (N, 3) at t = 0, eta (N,)
+    m and the float32 observation rows, with the single env's own kernels and expressions.
+    """
+    wv = np.empty(3)
+    wd = np.empty(3)
+    for j in range(idx.shape[0]):
+        i = idx[j]
+        p = ptr[i]
+        phi[i] = PHI0[0] + (PHI0[1] - PHI0[0]) * draws[i, p]
+        eps[i, 0] = PHASE0[0] + (PHASE0[1] - PHASE0[0]) * draws[i, p + 1]
+        ptr[i] = p + 2
+        phid[i], t[i], steps[i] = 0.0, 0.0, 0
+        buoy_rates_into(0.0, amp[i], om[i], eps[i], k[i], cth, sth, two_d, wv, wd)
+        w[i, 0], w[i, 1], w[i, 2] = wv[0], wv[1], wv[2]
+        eta[i] = amp[i, 0] * math.cos(eps[i, 0])
+        spec.observe(phi[i], 0.0, 0.0, wv[0], wv[1], wv[2], max_rate, obs[i])
 
 
 class GOWECVectorEnv(BatchedVectorEnv):
@@ -40,6 +80,54 @@ class GOWECVectorEnv(BatchedVectorEnv):
         self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
         self._ok = np.ones(n, dtype=bool)
         self._overspeed = np.zeros(n, dtype=bool)
+        self._fast = "irregular_waves" not in env.effects
+        self._draws = np.zeros((n, 2 * DRAW_BUFFER))
+        self._ptr = np.zeros(n, dtype=np.int64)
+        self._snap: list[dict[str, Any] | None] = [None] * n
+
+    def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
+        rng, snap = self._rngs[i], self._snap[i]
+        if seed is None and rng is not None and snap is not None:  # rewind the pre-draw
+            rng.bit_generator.state = snap
+            rng.random(int(self._ptr[i]))
+        info = super()._reset_one(i, seed, options)
+        if self._fast:
+            self._refill(i)
+        return info
+
+    def _refill(self, i: int) -> None:
+        """Pre-draw row i's next DRAW_BUFFER resets from its generator (its state kept)."""
+        rng = self._rngs[i]
+        self._snap[i] = rng.bit_generator.state
+        self._draws[i] = rng.random(2 * DRAW_BUFFER)
+        self._ptr[i] = 0
+
+    def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
+        if not self._fast or any(self._snap[i] is None for i in idx):
+            return None
+        for i in idx[self._ptr[idx] >= 2 * DRAW_BUFFER]:
+            self._refill(int(i))
+        b, kn, env = self.b, self._kernel, self.template
+        reset_rows(
+            idx, self._draws, self._ptr, b["phi"], b["phid"], b["t"], self._steps, b["amp"],
+            b["om"], b["eps"], b["k"], kn["cth"], kn["sth"], kn["two_d"], b["w"], b["eta"],
+            env.max_gimbal_rate, self._obs,
+        )  # fmt: skip
+        return self._reset_infos(idx)
+
+    def _reset_infos(self, idx: np.ndarray) -> dict[str, Any]:
+        """The batched reset infos of rows idx (GOWECEnv.reset's keys, dtypes and values)."""
+        n, b = self.num_envs, self.b
+        zero, mask = np.zeros(n), np.zeros(n, dtype=bool)
+        mask[idx] = True
+        phi, w1, eta = zero.copy(), zero.copy(), zero.copy()
+        phi[idx], w1[idx], eta[idx] = b["phi"][idx], b["w"][idx, 0], b["eta"][idx]
+        info = spec.step_info(zero.copy(), phi, zero.copy(), w1, eta, zero.copy(), zero.copy())
+        info["reward_terms"]["_energy"] = mask.copy()
+        info["overspeed"] = np.zeros(n, dtype=bool)
+        for key in list(info):
+            info[f"_{key}"] = mask.copy()
+        return info
 
     def _load(self, i: int) -> None:
         row, b = self.template.batch_row(), self.b

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any
 
 import numpy as np
@@ -11,17 +10,21 @@ from gymnasium import spaces
 from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
-from mf_envs.envs.inchworm import spec
+from mf_envs.envs.inchworm import robot, spec
 from mf_envs.physics.beam import NewtonDivergence
-from mf_envs.physics.inchworm import INCHWORM_EFFECTS, Inchworm, InchwormParams, kappa_at_gauss
+from mf_envs.physics.inchworm import INCHWORM_EFFECTS
+from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS, make_driven
+from mf_envs.physics.inchworm.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.terrain import SOILS
 
-DEFAULT_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
+# the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
+SEED_SCENE_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
+DEFAULT_EFFECTS = (*SEED_SCENE_EFFECTS, "actuator_dynamics", "friction")
 CURVATURE_OBS_LIMIT = spec.CURVATURE_OBS_LIMIT
 REACTION_OBS_LIMIT = spec.REACTION_OBS_LIMIT
 # what a diverging solve raises: a failed step ends the episode (numerical_failure)
-SOLVER_ERRORS = (NewtonDivergence, np.linalg.LinAlgError, FloatingPointError, OverflowError)
-MAX_INCREMENTS = 200  # increments (or Newmark steps) of a full-range step: a step stays fast
+SOLVER_ERRORS = (NewtonDivergence, NoQuasiStaticEquilibrium, np.linalg.LinAlgError)
+SOLVER_ERRORS += (FloatingPointError, OverflowError)
 
 
 class InchwormEnv(MFEnv):
@@ -31,14 +34,25 @@ class InchwormEnv(MFEnv):
     exact active beam with three-node C1 elements (Eqs. 68-83). The agent sets the actuation
     curvature kappa#(S) (the pre-curvature of the active law M3 = EI (kappa - kappa#), Eq. 53);
     the body's shape follows from equilibrium (quasi-static by default, as in the seed; Newmark
-    dynamics with the `inertia` effect). Both ends rest on the ground (z = 0, sliding simple
-    supports, Eq. 100); with `anchor_switching` the agent chooses which foot grips (its x is
-    held, Eq. 102). With `terrain` the body instead rests on Bekker/Janosi soil (Eqs. 56-57):
+    dynamics with the `inertia` effect). Both ends rest on the ground (z = 0, Eq. 100); with
+    `anchor_switching` the agent chooses which foot grips. By default (issue 16) the command
+    reaches the beam through the actuators' own dynamics (`actuator_dynamics`: a first-order
+    lag tau with a rate limit on kappa#, SMA-wire defaults, `mf_envs.physics.inchworm.actuators`)
+    and the feet hold by anisotropic Coulomb friction with engage/release dynamics (`friction`,
+    `mf_envs.physics.inchworm.feet`): a foot slips when the pull exceeds mu N. Without them
+    (`SEED_SCENE_EFFECTS`, the seed's scene) kappa# is as commanded and the gripping foot's x is
+    held kinematically (Eq. 102). With `terrain` the body instead rests on Bekker/Janosi soil
+    (Eqs. 56-57):
     no kinematic supports, and the anchor choice gives the gripping half of the body the soil's
     shear strength while the other half slides (slick foot), so the grip comes out of the
     contact law (`terrain` implies the weight). Curling with the head anchored pulls the tail
     forward; uncurling with the tail anchored pushes the head forward. Goal: crawl forward
-    (+x) with little actuation effort.
+    (+x) with little actuation energy.
+
+    Control step and actuator bandwidth: the default control_dt = 0.1 s is a third of the
+    actuator time constant (0.3 s; corner frequency 1 / (2 pi tau) = 0.53 Hz, the control rate
+    is 19x that), and in one step kappa# moves at most actuator_rate_limit x dt = 1.3 1/m,
+    10 % of its range: a bang-bang policy cannot sweep the range in one step.
 
     ## Action Space
     `Box(-1, 1, (n_control_points + 1,), float32)` with `anchor_switching`, else
@@ -48,8 +62,9 @@ class InchwormEnv(MFEnv):
 
     | Num | Action | Scaling |
     |-----|--------|---------|
-    | 0..n-1 | kappa# at control points S = 0 .. L (tail to head), linear between | [1/m] |
-    | n | anchor choice | a > 0: head grips, a <= 0: tail grips |
+    | 0..n-1 | commanded kappa# at control points S = 0 .. L, linear between | [1/m] |
+    | n | anchor / grip choice | a > 0: head grips, a <= 0: tail grips (with `friction`: the |
+    |   |   | other foot releases; without switching both feet grip) |
 
     ## Observation Space
     `Box(float32, (2 n + 6,))`, what an on-board robot can sense, laid out by
@@ -70,8 +85,12 @@ class InchwormEnv(MFEnv):
     ## Rewards
     `reward = progress + effort`, the terms in `info["reward_terms"]`:
     `progress` = tail advance this step / L (computed in the body's local coordinates, exact at
-    any distance); `effort` = -effort_weight * mean((Delta kappa# / max_curvature)^2) over the
-    control points. Info keys: `spec.INFO_KEYS` (`time` = steps x control_dt).
+    any distance); `effort` = -effort_weight * actuation energy of the step [J] (the positive
+    work of P = -int M3 d kappa#/dt dS, no regeneration; default weight 1 / (m_A g L * L), so the
+    reward is (dx - E / weight) / L). Info keys: `spec.INFO_KEYS` (`time` = steps x control_dt;
+    `kappa_sharp` = realised actuation curvature at the control points [1/m], `actuation_power`
+    = mean mechanical actuation power of the step [W], `actuation_energy` [J], `grip` = the
+    feet's engagement (tail, head) in [0, 1], `foot_slip` (tail, head) [m]).
 
     ## Starting State
     Straight body at rest, tail at x = 0, head gripping, with a small random initial actuation
@@ -82,7 +101,8 @@ class InchwormEnv(MFEnv):
     ## Episode End
     Truncation after `episode_seconds` (default 40 s = 400 steps of 0.1 s; or give
     `max_episode_steps`). Termination when Newton-Raphson fails even after step halving
-    (info["numerical_failure"] = True); render() then draws the last finite state.
+    (info["numerical_failure"] = True), or when both feet would slip at once (no quasi-static
+    equilibrium: the body would accelerate); render() then draws the last finite state.
     The physics is translation invariant to round-off at any distance crawled (local
     coordinates re-centred on the tail, see `mf_envs.physics.inchworm`).
 
@@ -99,18 +119,26 @@ class InchwormEnv(MFEnv):
     | control_dt, physics_dt | 0.1, 0.1 | s per step; Newmark step with `inertia` |
     | episode_seconds | None | episode length [s]; None: max_episode_steps steps |
     | max_episode_steps | 400 | 10 seed gait cycles (when episode_seconds is None) |
-    | effort_weight | 0.05 | weight of the effort term, >= 0 |
+    | effort_weight | None | weight of the effort term [1/J], >= 0; None: 1 / (m_A g L^2) |
+    | actuator_time_constant | 0.3 | tau [s] of the actuator lag (SMA wire, see actuators) |
+    | actuator_rate_limit | 13.0 | largest abs(d kappa#/dt) [1/(m s)] |
+    | grip_time_constant | 0.2 | engage/release time constant of the feet [s] |
+    | friction_coefficients | None | dict grip_forward, grip_backward, slide_forward, |
+    |  |  | slide_backward (defaults 0.6, 1.0, 0.1, 0.15) or 4 numbers in that order |
     | increment_factor | 4.0 | increments up to factor * 2h/L^2 (seed: 1; same equilibria) |
     |  |  | at most 200 increments (or Newmark steps) per step |
     | reset_noise_scale | 0.05 | initial actuation noise, in [0, 1] |
     | soil | "dry_sand" | soil preset for `terrain` (Wong 2008 Table 2.3 values) |
-    | effects | gravity, shear_deformation, anchor_switching | also: inertia, terrain |
+    | effects | gravity, shear_deformation, anchor_switching, | also: inertia, terrain |
+    |  | actuator_dynamics, friction | (friction excludes both) |
 
     ## Version History
-    * v0: initial release (kinematic anchoring of Eq. 102; quasi-static by default).
+    * v0: initial release (kinematic anchoring of Eq. 102; quasi-static by default); issue 16:
+      actuator dynamics, friction feet and the energy effort term by default.
     """
 
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 10}
+    exclusive_effects = (("friction", "inertia"), ("friction", "terrain"))  # ValueError
 
     def __init__(
         self,
@@ -127,22 +155,26 @@ class InchwormEnv(MFEnv):
         control_dt: float = 0.1,
         physics_dt: float = 0.1,
         max_episode_steps: int | None = None,
-        effort_weight: float = 0.05,
+        effort_weight: float | None = None,
         increment_factor: float = 4.0,
         reset_noise_scale: float = 0.05,
         soil: str = "dry_sand",
         episode_seconds: float | None = None,
+        actuator_time_constant: float = robot.SMA_TIME_CONSTANT,
+        actuator_rate_limit: float = robot.SMA_RATE_LIMIT,
+        grip_time_constant: float = robot.GRIP_TIME_CONSTANT,
+        friction_coefficients: Any = None,
         render_mode: str | None = None,
     ) -> None:
         super().__init__(
             effects=effects,
-            available_effects=INCHWORM_EFFECTS,
+            available_effects={**INCHWORM_EFFECTS, **DRIVE_EFFECTS},
             default_effects=DEFAULT_EFFECTS,
             control_dt=control_dt,
             physics_dt=physics_dt,
             render_mode=render_mode,
         )
-        self.params = self._params(
+        self.params = robot.beam_params(
             length, width, height, youngs_modulus, shear_modulus, mass_per_length, n_elements
         )
         L = self.params.length
@@ -152,20 +184,14 @@ class InchwormEnv(MFEnv):
                 f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
                 f"curvature observation bound), got {self.max_curvature:g} 1/m x {L:g} m"
             )
+        self._weight = self.params.mass_per_length * self.params.gravity * L
+        if effort_weight is None:
+            effort_weight = 1.0 / (self._weight * L)
         self.effort_weight = check_range("effort_weight", effort_weight, 0.0, 1e6)
         self.reset_noise_scale = check_range("reset_noise_scale", reset_noise_scale, 0.0, 1.0)
-        increment_factor = check_range("increment_factor", increment_factor, 1e-3, 1e6)
-        if self.max_curvature / (increment_factor * self.params.max_dkappa) > MAX_INCREMENTS:
-            raise ValueError(
-                f"increment_factor: a full-range step (max_curvature {self.max_curvature:g} 1/m) "
-                f"would take more than {MAX_INCREMENTS} increments of "
-                f"increment_factor * 2 height / length^2; raise increment_factor"
-            )
-        if "inertia" in self.effects and self.n_substeps > MAX_INCREMENTS:
-            raise ValueError(
-                f"physics_dt: with `inertia` a step takes control_dt / physics_dt Newmark steps, "
-                f"at most {MAX_INCREMENTS}; got {self.n_substeps}"
-            )
+        increment_factor = robot.step_budget(
+            increment_factor, self.max_curvature, self.params, self.n_substeps, self.effects
+        )
         self.n_ctrl = check_int("n_control_points", n_control_points, low=2, high=64)
         if episode_seconds is not None and max_episode_steps is not None:
             raise ValueError("episode_seconds: give episode_seconds or max_episode_steps, not both")
@@ -176,46 +202,39 @@ class InchwormEnv(MFEnv):
             self.max_episode_steps = self._episode_steps(episode_seconds)
         self.episode_seconds = self.max_episode_steps * self.control_dt
         check_choice("soil", soil, tuple(SOILS))
+        act, feet = robot.robot_params(
+            actuator_time_constant, actuator_rate_limit, grip_time_constant, friction_coefficients
+        )
+        self.actuator_rate_limit = act.rate_limit  # 1/(m s), with `actuator_dynamics`
+        self.actuator = act if "actuator_dynamics" in self.effects else None
+        self._drive = dict(params=self.params, effects=self.effects, n_control_points=self.n_ctrl)
+        self._drive.update(
+            actuator=act, friction=feet, increment_factor=increment_factor, soil=soil
+        )
         try:
-            self.sim = Inchworm(
-                self.params, self.effects, increment_factor=increment_factor, soil=soil
-            )
+            self.driven = make_driven(**self._drive)
         except SOLVER_ERRORS as exc:
             raise ValueError(
                 "length, youngs_modulus, mass_per_length, height: the body finds no static "
                 f"equilibrium under its own weight ({exc}); stiffen or shorten it"
             ) from None
-        self.S_ctrl = np.linspace(0.0, L, self.n_ctrl)
+        self.sim = self.driven.sim
+        self.S_ctrl = self.driven.S_ctrl
         self.switching = "anchor_switching" in self.effects
         n_act = self.n_ctrl + (1 if self.switching else 0)
         self.action_space = spaces.Box(-1.0, 1.0, (n_act,), np.float32)
         self.obs_layout = spec.observation_layout(self.n_ctrl)
         hi = self.obs_layout.high()
         self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
-        self._weight = self.params.mass_per_length * self.params.gravity * L
         self._kappa_ctrl = np.zeros(self.n_ctrl)
         self._steps = 0
         self._frame_state: dict[str, Any] | None = None  # last finite state, for render()
 
-    @staticmethod
-    def _params(length, width, height, youngs, shear, mass, n_elements) -> InchwormParams:
-        """The beam parameters from the public arguments (errors name them)."""
-        L = check_range("length", length, 0.01, 10.0)
-        h = check_range("height", height, 1e-4, 1.0)
-        if h > L / 5:
-            raise ValueError(f"height: must be <= length / 5 (a slender beam), got {height!r}")
-        m = check_range("mass_per_length", mass, 1e-6, 1e4)
-        return dataclasses.replace(
-            InchwormParams(),
-            length=L,
-            width=check_range("width", width, 1e-4, 1.0),
-            height=h,
-            youngs_modulus=check_range("youngs_modulus", youngs, 1e3, 1e13),
-            shear_modulus=check_range("shear_modulus", shear, 1e3, 1e13),
-            mass_per_length=m,
-            rotary_inertia=m * h**2 / 12.0,
-            n_elements=check_int("n_elements", n_elements, low=1, high=64),
-        )
+    def drive_config(self) -> tuple:
+        """Hashable configuration of the physics (make_driven's arguments, control_dt,
+        max_curvature): what an open-loop gait tuner needs to rebuild this robot."""
+        cfg = dict(self._drive, control_dt=self.control_dt, max_curvature=self.max_curvature)
+        return tuple(cfg.items())
 
     # ------------------------------------------------------------------ API
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
@@ -224,22 +243,18 @@ class InchwormEnv(MFEnv):
         anchor = None
         if self.switching:
             anchor = "head" if a[-1] > 0.0 else "tail"
-        tail_old, kappa_old = spec.tail_position(self.sim), self._kappa_ctrl
+        tail_old = spec.tail_position(self.sim)
         ok, report = True, None
         try:
-            report = self.sim.actuate(
-                kappa_at_gauss(self.S_ctrl, kappa_new, self.sim.model.gauss_S),
-                dt=self.control_dt,
-                anchor=anchor,
-                min_increments=self.n_substeps if "inertia" in self.effects else 1,
-            )
+            n_min = self.n_substeps if "inertia" in self.effects else 1
+            report = self.driven.step(kappa_new, anchor, self.control_dt, n_min)
             self._kappa_ctrl = kappa_new
         except SOLVER_ERRORS:
             ok = False
         self._steps += 1
-        rate = (kappa_new - kappa_old) / self.max_curvature
+        energy = 0.0 if report is None else report.energy
         terms = spec.reward_terms(
-            tail_old, spec.tail_position(self.sim), self.params.length, rate, self.effort_weight
+            tail_old, spec.tail_position(self.sim), self.params.length, energy, self.effort_weight
         )
         obs = self._observe() if ok else np.full(self.observation_space.shape, np.nan)
         info = self._get_info(terms, report)
@@ -266,10 +281,7 @@ class InchwormEnv(MFEnv):
         noise = self.np_random.uniform(0.0, self.reset_noise_scale, self.n_ctrl)
         kappa = -self.max_curvature * noise if kappa is None else kappa
         try:
-            self.sim.reset(x_tail=x_tail)
-            self.sim.actuate(
-                kappa_at_gauss(self.S_ctrl, kappa, self.sim.model.gauss_S), anchor="head"
-            )
+            self.driven.reset(kappa, x_tail=x_tail)
         except SOLVER_ERRORS:
             raise ValueError(
                 "kappa, reset_noise_scale, max_curvature: no equilibrium for this initial "
@@ -295,7 +307,12 @@ class InchwormEnv(MFEnv):
             "x_tail": sim.x_tail,
             "centerline": sim.centerline(),
             "anchor": sim.anchor,
-            "kappa_sharp": self._kappa_ctrl.copy(),
+            "kappa_sharp": self.driven.kappa_ctrl.copy(),
+            "kappa_command": self._kappa_ctrl.copy(),
+            "actuation_power": 0.0 if report is None else report.net_work / self.control_dt,
+            "actuation_energy": 0.0 if report is None else report.energy,
+            "grip": self.driven.grip.copy(),
+            "foot_slip": np.zeros(2) if report is None else report.slip.copy(),
             "elastic_energy": sim.elastic_energy(),
             "newton_iterations": 0 if report is None else report.iterations,
             "increments": 0 if report is None else report.increments,

@@ -20,7 +20,12 @@ INFO_KEYS = (
     "x_tail",  # m
     "centerline",  # (N, 2) m, (x, z) of the centroid line
     "anchor",  # "head" or "tail", the gripping foot
-    "kappa_sharp",  # (n,) 1/m, commanded actuation curvature at the control points
+    "kappa_sharp",  # (n,) 1/m, realised actuation curvature at the control points
+    "kappa_command",  # (n,) 1/m, commanded actuation curvature at the control points
+    "actuation_power",  # W, mean mechanical actuation power of the step (A2, signed)
+    "actuation_energy",  # J, energy drawn by the actuators in the step (no regeneration)
+    "grip",  # (2,) engagement of the tail, head foot in [0, 1] (1: gripping)
+    "foot_slip",  # (2,) m, x-slip of the tail, head foot in the step (friction)
     "elastic_energy",  # J
     "newton_iterations",  # of the step
     "increments",  # load increments of the step
@@ -72,13 +77,10 @@ def reward_terms(
     before: tuple[float, float],
     after: tuple[float, float],
     length: float,
-    rate: np.ndarray,
+    energy: float,
     effort_weight: float,
 ) -> dict[str, float]:
     """progress = tail advance / L from `tail_position` before and after the step (origin
-    shifts added separately); effort = -w mean((Delta kappa# / max_curvature)^2)."""
+    shifts added separately); effort = -w x actuation energy of the step [J]."""
     advance = (after[1] - before[1]) + (after[0] - before[0])
-    return {
-        "progress": float(advance / length),
-        "effort": -effort_weight * float(np.mean(rate**2)),
-    }
+    return {"progress": float(advance / length), "effort": -effort_weight * float(energy)}

@@ -29,17 +29,22 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from mf_envs.frames.kernels import rodrigues_coeffs
 from mf_envs.physics.beam.element import HALF_BW, N_BAND, N_GAUSS, _shape
 
 
 @numba.njit(cache=True)
 def _sinc_half(delta):
-    """sigma(x) = sin x / x and sigma'(x) at x = delta / 2 (series near 0)."""
+    """sigma(x) = sin x / x and sigma'(x) = (cos x - sigma) / x at x = delta / 2 (series near 0).
+
+    sigma is the Rodrigues coefficient a(x) of `mf_envs.frames.kernels.rodrigues_coeffs` (the
+    planar rotation is its SO(2) restriction); only the derivative is formed here."""
     x = 0.5 * delta
     if abs(x) < 1e-3:
         x2 = x * x
         return 1.0 - x2 / 6.0 + x2 * x2 / 120.0, -x / 3.0 + x * x2 / 30.0
-    return np.sin(x) / x, (x * np.cos(x) - np.sin(x)) / (x * x)
+    sig = rodrigues_coeffs(x * x)[0]
+    return sig, (np.cos(x) - sig) / x
 
 
 @numba.njit(cache=True)

@@ -21,7 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import solve_banded
+from scipy.linalg import get_lapack_funcs
 
 from mf_envs._validate import check_int, check_nonnegative, check_positive
 from mf_envs.physics.beam import element as el
@@ -184,10 +184,22 @@ class BeamModel:
         return np.column_stack([d[0::6][: self.n_elements + 1], d[2::6][: self.n_elements + 1]])
 
 
+_GBSV = get_lapack_funcs(("gbsv",), (np.zeros((1, 1)),))[0]  # LAPACK dgbsv
+
+
 def _solve(ab: np.ndarray, r: np.ndarray) -> np.ndarray:
-    return solve_banded(
-        (el.HALF_BW, el.HALF_BW), ab, r, overwrite_ab=True, overwrite_b=False, check_finite=False
-    )
+    """x with A x = r, A banded (ab (2 HALF_BW + 1, n), LAPACK layout): the dgbsv call of
+    scipy.linalg.solve_banded made directly (same routine, same result, without its input
+    validation, which cost as much as the solve in the Newton loop)."""
+    hb = el.HALF_BW
+    a2 = np.zeros((3 * hb + 1, ab.shape[1]))
+    a2[hb:] = ab
+    _, _, x, info = _GBSV(hb, hb, a2, r, overwrite_ab=True, overwrite_b=False)
+    if info > 0:
+        raise np.linalg.LinAlgError("singular matrix")
+    if info < 0:
+        raise ValueError(f"illegal value in argument {-info} of dgbsv")
+    return x
 
 
 @dataclass

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from mf_envs.physics.gowec import fast_step
+from mf_envs.physics.gowec.kernels import fast_step
 
 
 @numba.njit(cache=True)

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs.frames.so3 import rot_x
+from mf_envs.physics.constants import G
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.multibody import Body, MBState, Multibody, Revolute, Spherical, constant_rate
 from mf_envs.physics.waves import WaveField
@@ -60,7 +61,7 @@ def build_engine_model(
                 prescribed=constant_rate(psid),
             ),
         ],
-        gravity=(0.0, 0.0, -9.81),
+        gravity=(0.0, 0.0, -G),
     )
 
 

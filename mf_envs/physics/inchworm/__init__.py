@@ -62,7 +62,7 @@ INCHWORM_EFFECTS = {
     "terrain": "Bekker/Janosi soil contact (Eqs. 56-57) instead of kinematic supports/anchors",
 }
 SHEAR_RIGID_FACTOR = 100.0
-STANDARD_GRAVITY = 9.80665
+from mf_envs.physics.constants import G as STANDARD_GRAVITY  # noqa: E402
 
 
 @dataclass(frozen=True)

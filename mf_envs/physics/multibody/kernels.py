@@ -23,12 +23,10 @@ B (6 nb, nu): rows 6b..6b+2 = inertial velocity of the centre of mass of body b,
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
-from mf_envs.frames.so3 import exp_so3_nb
+from mf_envs.frames.kernels import dexpinv_right, exp_so3, hat, make_rk4, rk4_work
 
 FIXED, REVOLUTE, PRISMATIC, SPHERICAL, FREE = 0, 1, 2, 3, 4
 NQ = (0, 1, 1, 9, 12)  # configuration slots per joint type
@@ -64,31 +62,6 @@ def _mv(A, v):
 
 
 @numba.njit(cache=True)
-def _hat(w):
-    W = np.zeros((3, 3))
-    W[0, 1] = -w[2]
-    W[0, 2] = w[1]
-    W[1, 0] = w[2]
-    W[1, 2] = -w[0]
-    W[2, 0] = -w[1]
-    W[2, 1] = w[0]
-    return W
-
-
-@numba.njit(cache=True)
-def _dexpinv_right(th, w):
-    """theta' = J_r^-1(theta) omega for R = R0 exp(hat(theta)) with R^T R' = hat(omega)."""
-    t = math.sqrt(th[0] * th[0] + th[1] * th[1] + th[2] * th[2])
-    if t < 1e-3:
-        c = 1.0 / 12.0 + t * t / 720.0
-    else:
-        c = 1.0 / (t * t) - (1.0 + math.cos(t)) / (2.0 * t * math.sin(t))
-    T = _hat(th)
-    Tw = _mv(T, w)
-    return w + 0.5 * Tw + c * _mv(T, Tw)
-
-
-@numba.njit(cache=True)
 def _joint_parts(jt, axis, q, qo, nd):
     """Rj, xj, S_w (3, nd), S_v (3, nd) of one joint."""
     Rj = np.eye(3)
@@ -96,7 +69,7 @@ def _joint_parts(jt, axis, q, qo, nd):
     Sw = np.zeros((3, nd))
     Sv = np.zeros((3, nd))
     if jt == REVOLUTE:
-        Rj = exp_so3_nb(axis * q[qo])
+        Rj = exp_so3(axis * q[qo])
         Sw[:, 0] = axis
     elif jt == PRISMATIC:
         xj = axis * q[qo]
@@ -133,7 +106,7 @@ def kinematics(q, u, parent, jtype, qoff, uoff, ndof, Rpre, spre, Rpost, spost, 
         Rj, xj, Sw, Sv = _joint_parts(jt, axis[b], q, qoff[b], nd)
         Rr = _mm(_mm(Rpre[b], Rj), Rpost[b])
         s = spre[b] + _mv(Rpre[b], xj + _mv(Rj, spost[b]))
-        Hs = _hat(spost[b])
+        Hs = hat(spost[b])
         RjHs = _mm(Rj, Hs)
         G = _mm(Rpre[b], Sv - _mm(RjHs, Sw))
         uj = u[uo : uo + nd].copy()
@@ -141,7 +114,7 @@ def kinematics(q, u, parent, jtype, qoff, uoff, ndof, Rpre, spre, Rpost, spost, 
         RpostT = np.ascontiguousarray(Rpost[b].T)
         w_rel = _mv(RpostT, wj)
         sd = _mv(G, uj)
-        Gd = -_mm(_mm(_mm(Rpre[b], Rj), _mm(_hat(wj), Hs)), Sw)
+        Gd = -_mm(_mm(_mm(Rpre[b], Rj), _mm(hat(wj), Hs)), Sw)
         p = parent[b]
         if p < 0:
             Rp = np.eye(3)
@@ -162,13 +135,13 @@ def kinematics(q, u, parent, jtype, qoff, uoff, ndof, Rpre, spre, Rpost, spost, 
         R[b] = _mm(Rp, Rr)
         x[b] = xp + _mv(Rp, s)
         RrT = np.ascontiguousarray(Rr.T)
-        Hsh = _hat(s)
+        Hsh = hat(s)
         RpHs = _mm(Rp, Hsh)
         Jw = _mm(RrT, Jwp)
         Jv = Jvp - _mm(RpHs, Jwp)
-        Jwd = -_mm(_hat(w_rel), Jw) + _mm(RrT, Jwdp)
-        RpWp = _mm(Rp, _hat(wp))
-        Jvd = Jvdp - _mm(_mm(RpWp, Hsh) + _mm(Rp, _hat(sd)), Jwp) - _mm(RpHs, Jwdp)
+        Jwd = -_mm(hat(w_rel), Jw) + _mm(RrT, Jwdp)
+        RpWp = _mm(Rp, hat(wp))
+        Jvd = Jvdp - _mm(_mm(RpWp, Hsh) + _mm(Rp, hat(sd)), Jwp) - _mm(RpHs, Jwdp)
         if nd > 0:
             Jw[:, uo : uo + nd] += _mm(RpostT, Sw)
             Jv[:, uo : uo + nd] += _mm(Rp, G)
@@ -205,7 +178,7 @@ def reduced_matrices(B, Bd, om, mass, inertia, wrench, gravity, tau):
         JvT = np.ascontiguousarray(Jv.T)
         JwT = np.ascontiguousarray(Jw.T)
         Ms += m * _mm(JvT, Jv) + _mm(JwT, JJw)
-        Ns += m * _mm(JvT, Jvd) + _mm(JwT, _mm(Jb, Jwd) + _mm(_hat(om[b]), JJw))
+        Ns += m * _mm(JvT, Jvd) + _mm(JwT, _mm(Jb, Jwd) + _mm(hat(om[b]), JJw))
         Fs += _mv(JvT, wrench[b, 0:3] + m * gravity) + _mv(JwT, wrench[b, 3:6].copy())
     return Ms, Ns, Fs
 
@@ -253,7 +226,7 @@ def retract(q0, z, jtype, qoff, uoff, free_joint):
             q[qo] = q0[qo] + z[uo]
         elif jt == SPHERICAL or jt == FREE:
             th = z[uo : uo + 3].copy() if jt == SPHERICAL else z[uo + 3 : uo + 6].copy()
-            Rn = _mm(q0[qo : qo + 9].copy().reshape((3, 3)), exp_so3_nb(th))
+            Rn = _mm(q0[qo : qo + 9].copy().reshape((3, 3)), exp_so3(th))
             q[qo : qo + 9] = Rn.ravel()
             if jt == FREE:
                 q[qo + 9 : qo + 12] = q0[qo + 9 : qo + 12] + z[uo : uo + 3]
@@ -271,10 +244,10 @@ def local_rate(z, u, jtype, uoff, free_joint):
         if jt == REVOLUTE or jt == PRISMATIC:
             dz[uo] = u[uo]
         elif jt == SPHERICAL:
-            dz[uo : uo + 3] = _dexpinv_right(z[uo : uo + 3].copy(), u[uo : uo + 3].copy())
+            dz[uo : uo + 3] = dexpinv_right(z[uo : uo + 3].copy(), u[uo : uo + 3].copy())
         elif jt == FREE:
             dz[uo : uo + 3] = u[uo : uo + 3]
-            dz[uo + 3 : uo + 6] = _dexpinv_right(
+            dz[uo + 3 : uo + 6] = dexpinv_right(
                 z[uo + 3 : uo + 6].copy(), u[uo + 3 : uo + 6].copy()
             )
     return dz
@@ -302,32 +275,42 @@ def _overlay(base, over, mask):
 
 
 @numba.njit(cache=True)
+def _stage_inputs(t, args):
+    """Index k = 0, 1, 2 of the prescribed-slot samples at t, t + dt/2, t + dt (t from 0)."""
+    return int(round(2.0 * t / args[0]))
+
+
+@numba.njit(cache=True)
+def _stage_rhs(t, x, k, args, out):
+    """(dz/dt, du/dt) of x = (z, u) at stage k into out: RKMK in local coordinates q = q0 (+) z."""
+    dt, q, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau = args
+    jtype, qoff, uoff, free_joint = topo[1], topo[2], topo[3], topo[12]
+    nu = x.shape[0] // 2
+    zs, us = x[:nu], _overlay(x[nu:], uP[k], umask)
+    qs = _overlay(retract(q, zs, jtype, qoff, uoff, free_joint), qP[k], qmask)
+    ud, _ = dynamics(qs, us, udP[k], topo, wrench, gravity, tau)
+    out[:nu] = local_rate(zs, us, jtype, uoff, free_joint)
+    out[nu:] = ud
+
+
+_rk4 = make_rk4(_stage_rhs, _stage_inputs)
+
+
+@numba.njit(cache=True)
 def rkmk4_step(q, u, dt, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau):
     """One Runge-Kutta-Munthe-Kaas step of order 4 on the configuration manifold.
 
-    Free joints: classical RK4 on (z, u) with z the local coordinates of q = q0 (+) z (rotations
-    R0 exp(hat(theta)), ch. 2 Rodrigues), dz/dt from `local_rate`. Prescribed slots are
+    Free joints: the frames RK4 stepper on (z, u) with z the local coordinates of q = q0 (+) z
+    (rotations R0 exp(hat(theta)), ch. 2 Rodrigues), dz/dt from `local_rate`. Prescribed slots are
     overwritten at the stage times t, t + dt/2, t + dt by qP[k], uP[k], udP[k] (k = 0, 1, 2).
     Wrench and tau are held over the step (zero-order hold). Returns (q_new, u_new).
     """
     jtype, qoff, uoff, free_joint = topo[1], topo[2], topo[3], topo[12]
     nu = u.shape[0]
-    z = np.zeros(nu)
-    ks = (0, 1, 1, 2)
-    cz = (0.0, 0.5, 0.5, 1.0)
-    kz = np.zeros((4, nu))
-    ku = np.zeros((4, nu))
-    for s in range(4):
-        zs = z + cz[s] * dt * kz[s - 1] if s > 0 else z.copy()
-        us = u + cz[s] * dt * ku[s - 1] if s > 0 else u.copy()
-        k = ks[s]
-        qs = _overlay(retract(q, zs, jtype, qoff, uoff, free_joint), qP[k], qmask)
-        us = _overlay(us, uP[k], umask)
-        ud, _ = dynamics(qs, us, udP[k], topo, wrench, gravity, tau)
-        kz[s] = local_rate(zs, us, jtype, uoff, free_joint)
-        ku[s] = ud
-    z1 = z + dt / 6.0 * (kz[0] + 2.0 * kz[1] + 2.0 * kz[2] + kz[3])
-    u1 = u + dt / 6.0 * (ku[0] + 2.0 * ku[1] + 2.0 * ku[2] + ku[3])
-    q1 = _overlay(retract(q, z1, jtype, qoff, uoff, free_joint), qP[2], qmask)
-    u1 = _overlay(u1, uP[2], umask)
+    x = np.zeros(2 * nu)
+    x[nu:] = u
+    args = (dt, q, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau)
+    dx, _ = _rk4(0.0, x, dt, args, rk4_work(2 * nu))
+    q1 = _overlay(retract(q, dx[:nu], jtype, qoff, uoff, free_joint), qP[2], qmask)
+    u1 = _overlay(u + dx[nu:], uP[2], umask)
     return q1, u1

@@ -15,7 +15,8 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
-from mf_envs.physics.multilink import ChainParams, coefficient_matrix
+from mf_envs.physics.multilink.model import coefficient_matrix
+from mf_envs.physics.multilink.params import ChainParams
 
 
 @lru_cache(maxsize=64)

@@ -13,7 +13,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import check_finite, check_int
-from mf_envs.physics.multilink import ChainParams, _e, _split, b_matrix, link_centers
+from mf_envs.physics.multilink.model import _e, _split, b_matrix, link_centers
+from mf_envs.physics.multilink.params import ChainParams
 
 
 def gauss_points(

@@ -25,8 +25,8 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import LinAlgError, solveh_banded
 
 from mf_envs._validate import check_choice, check_finite, check_positive, check_shape
-from mf_envs.physics.multilink import (
-    ChainParams,
+from mf_envs.physics.multilink.kernels import chain_constants, eom_kernel
+from mf_envs.physics.multilink.model import (
     _difference,
     actuation_forces,
     centerline,
@@ -38,7 +38,7 @@ from mf_envs.physics.multilink import (
     stiffness_matrix,
     velocity_forces,
 )
-from mf_envs.physics.multilink.kernels import chain_constants, eom_kernel
+from mf_envs.physics.multilink.params import ChainParams
 
 METHODS = ("DOP853", "RK45", "Radau", "BDF", "LSODA")
 

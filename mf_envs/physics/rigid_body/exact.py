@@ -36,9 +36,11 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.integrate import solve_ivp
 from scipy.special import elliprf
 
 from mf_envs._validate import check_finite, check_positive, check_shape
+from mf_envs.frames.so3 import hat
 
 _AGM_TOL = 1e-17
 
@@ -212,3 +214,24 @@ def analytic_omega(J: ArrayLike, omega0: ArrayLike, t: ArrayLike) -> NDArray[np.
     """
     t_arr = check_finite("t", t)
     return elliptic_solution(J, omega0).omega(t_arr)
+
+
+def attitude_reference(
+    J: ArrayLike, omega0: ArrayLike, t: ArrayLike, R0: ArrayLike | None = None, rtol: float = 1e-13
+) -> NDArray[np.float64]:
+    """Reference attitude R(t) (N, 3, 3) of the torque-free body, inertial <- body, R(0) = R0.
+
+    There is no closed form here for R (it needs Jacobi theta functions), so this integrates the
+    kinematics R' = R hat(omega(t)) (ch. 2 Eq. 24) driven by the EXACT omega(t) of
+    `analytic_omega`, with scipy's DOP853 at `rtol` (global error ~1e-12 at the default): a
+    reference independent of the package's Lie-group steppers. t: (N,) increasing times in s."""
+    sol = elliptic_solution(J, omega0)
+    t_arr = np.atleast_1d(check_finite("t", t)).astype(float)
+    R_init = np.eye(3) if R0 is None else check_shape("R0", R0, (3, 3))
+
+    def rhs(s: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
+        w = sol.omega(np.array([s]))[0]
+        return (y.reshape(3, 3) @ hat(w)).ravel()
+
+    out = solve_ivp(rhs, (0.0, t_arr[-1]), R_init.ravel(), "DOP853", t_arr, rtol=rtol, atol=rtol)
+    return out.y.T.reshape(-1, 3, 3)

@@ -23,7 +23,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.so3 import exp_so3_nb
+from mf_envs.frames.kernels import cross, exp_so3, make_rk4, rk4_work
 
 # method codes used by `integrate` (names in rigid_body.METHODS, same order)
 RK4_RODRIGUES, RK4_MAGNUS4, RK4_MAGNUS4_PROJ, SPLITTING2, SPLITTING4 = 0, 1, 2, 3, 4
@@ -35,29 +35,30 @@ YOSHIDA_G0 = -_CBRT2 / (2.0 - _CBRT2)
 
 
 @numba.njit(cache=True)
-def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b for 3-vectors."""
-    out = np.empty(3)
-    out[0] = a[1] * b[2] - a[2] * b[1]
-    out[1] = a[2] * b[0] - a[0] * b[2]
-    out[2] = a[0] * b[1] - a[1] * b[0]
-    return out
+def euler_rhs(H: np.ndarray, Jinv: np.ndarray) -> np.ndarray:
+    """dH/dt (3,) = H x (J^-1 H): torque-free Euler equations in body components (Eq. 22a-c)."""
+    return cross(H, Jinv * H)
 
 
 @numba.njit(cache=True)
-def euler_rhs(H: np.ndarray, Jinv: np.ndarray) -> np.ndarray:
-    """dH/dt (3,) = H x (J^-1 H): torque-free Euler equations in body components (Eq. 22a-c)."""
-    return cross3(H, Jinv * H)
+def _no_inputs(t: float, Jinv: np.ndarray) -> float:
+    """The torque-free body has no exogenous inputs."""
+    return 0.0
+
+
+@numba.njit(cache=True)
+def _euler_stage(t: float, H: np.ndarray, inp: float, Jinv: np.ndarray, out: np.ndarray) -> None:
+    """Eq. 22 in the frames RK4 stepper's signature."""
+    out[:] = euler_rhs(H, Jinv)
+
+
+_rk4 = make_rk4(_euler_stage, _no_inputs)
 
 
 @numba.njit(cache=True)
 def rk4_momentum_step(H: np.ndarray, Jinv: np.ndarray, dt: float) -> np.ndarray:
     """One classical RK4 step of Eq. 22 from H(t) to H(t + dt) (body components, kg m^2/s)."""
-    k1 = euler_rhs(H, Jinv)
-    k2 = euler_rhs(H + 0.5 * dt * k1, Jinv)
-    k3 = euler_rhs(H + 0.5 * dt * k2, Jinv)
-    k4 = euler_rhs(H + dt * k3, Jinv)
-    return H + (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+    return H + _rk4(0.0, H, dt, Jinv, rk4_work(3))[0]
 
 
 @numba.njit(cache=True)
@@ -67,7 +68,7 @@ def rodrigues_midpoint_step(R: np.ndarray, w0: np.ndarray, w1: np.ndarray, dt: f
     R: (3, 3) body-to-inertial attitude; w0, w1: (3,) body angular velocity (rad/s) at t, t + dt.
     Second order in dt (the exact step has the commutator term dt^2/12 w0 x w1 and more).
     """
-    return R @ exp_so3_nb((0.5 * dt) * (w0 + w1))
+    return R @ exp_so3((0.5 * dt) * (w0 + w1))
 
 
 @numba.njit(cache=True)
@@ -81,15 +82,15 @@ def magnus4_step(
     w0, w1: omega (3,) at t, t + dt; wd0, wd1: d omega/dt (3,) at t, t + dt (rad/s^2).
     """
     h2 = dt * dt / 12.0
-    theta = (0.5 * dt) * (w0 + w1) + h2 * (wd0 - wd1) + h2 * cross3(w0, w1)
-    return R @ exp_so3_nb(theta)
+    theta = (0.5 * dt) * (w0 + w1) + h2 * (wd0 - wd1) + h2 * cross(w0, w1)
+    return R @ exp_so3(theta)
 
 
 @numba.njit(cache=True)
 def _rotate_about(v: np.ndarray, axis: np.ndarray, angle: float) -> np.ndarray:
     """Rotate v by `angle` about the unit vector `axis` (Rodrigues)."""
     c, s = math.cos(angle), math.sin(angle)
-    k = cross3(axis, v)
+    k = cross(axis, v)
     d = axis[0] * v[0] + axis[1] * v[1] + axis[2] * v[2]
     return c * v + s * k + (1.0 - c) * d * axis
 
@@ -117,7 +118,7 @@ def project_invariants(H: np.ndarray, Jinv: np.ndarray, h2: float, e2: float) ->
         gn = math.sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2])
         if gn <= 1e-300 or gn * math.sqrt(h2) <= 1e-14 * abs(E2):
             break
-        axis = cross3(Hn, g) / (gn * math.sqrt(h2))  # rotating H about it moves H along +g
+        axis = cross(Hn, g) / (gn * math.sqrt(h2))  # rotating H about it moves H along +g
         # d(E2)/d(angle) = 2 |H| |g| at angle 0
         Hn = _rotate_about(Hn, axis, -res / (2.0 * math.sqrt(h2) * gn))
     return Hn

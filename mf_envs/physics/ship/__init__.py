@@ -1,14 +1,21 @@
 """Ship with one or two gyroscopic roll stabilizers (Rios 2017, ch. 3 §3.3 and appendix §3.5).
 
+        e3 (yaw)          ship e^(1), attitude R(t) in SO(3)
+         |   gimbal e^(2) = e^(1) R_2(phi)       precession axis e_2 (athwartships)
+         |   rotor  e^(3) = e^(2) R_3(psi)       spin axis: the gimbal's e_3
+         +----- e1 (roll)          gyro roll moment on the hull: -n H phi' cos(phi) (Eq. 123)
+
 Public facade over the concept modules:
 
-- `ship_params`: `ShipParams`, `GyroParams`, presets (`small_yacht`, `seed_test_hull`,
+- `params`: `ShipParams`, `GyroParams`, presets (`small_yacht`, `seed_test_hull`,
   `seakeeper_gyro` from Table 3-1) and the capacity bound `capacity_ratio`;
-- `ship_kernels`: the numba fast paths (exact angular-momentum balance; the seed's Eqs. 123-128);
-- `ship_model`: effects, `GimbalDrive`, `WaveLoad`, `pack_params`, `simulate`, named quantities;
-- `ship_engine`: the same ship on the general multibody engine (`build_ship_multibody`,
+- `kernels`: the numba fast paths (exact angular-momentum balance; the seed's Eqs. 123-128),
+  stepped by the RKMK4 of `mf_envs.frames.kernels`; `loads`: moments and gimbal drives;
+  `layout`: the packed parameter vector, generated from `layout.KernelParams`;
+- `model`: effects, `GimbalDrive`, `WaveLoad`, `pack_params`, `simulate`, named quantities;
+- `engine`: the same ship on the general multibody engine (`build_ship_multibody`,
   `simulate_engine`) used to check the fast paths;
-- `ship_waves`: wave roll moment / heave force tables from an irregular sea.
+- `waves`: wave roll moment / heave force tables from an irregular sea.
 """
 
 from mf_envs.physics.ship.engine import build_ship_multibody, simulate_engine

@@ -26,8 +26,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs.effects import resolve_effects
+from mf_envs.frames.so3 import rot_x
 from mf_envs.physics.multibody import Body, Free, MBState, Multibody, Revolute, Spherical
 from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.layout import Slot as S
 from mf_envs.physics.ship.model import (
     SEED_EFFECTS,
     SHIP_EFFECTS,
@@ -153,8 +155,7 @@ def simulate_engine(
     m = build_ship_multibody(ship, gyro, n_gyros, eff, drive, gyro_mass, offset)
     P = pack_params(ship, gyro, n_gyros, eff - {"irregular_waves"}, drive, wave)
     tab = np.zeros((1, 2))
-    c, s = math.cos(roll0), math.sin(roll0)
-    R0 = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    R0 = rot_x(roll0)
     w0 = np.asarray(tuple(omega0), dtype=float)
     trans = "translation" in eff
     # the fast path's x is the composite CM, fixed in the hull at s_cm: start it at rest
@@ -204,16 +205,16 @@ def _composite_cm_offset(
 
 
 def _hull_force(m: Multibody, st: MBState, P: NDArray, dt: float, s_cm: NDArray) -> NDArray:
-    """Inertial force on the hull (N) of the `translation` effect, as in `ship_kernels.deriv`
+    """Inertial force on the hull (N) of the `translation` effect, as in `ship.kernels.stage_rhs`
     on the composite CM (regular-wave heave force at the step midpoint; restoring and damping
     at the step start)."""
     (R, x), u = m.coordinate(st, "ship"), m.velocity(st, "ship")
     x = x + R @ s_cm
     v = u[0:3] + R @ np.cross(u[3:6], s_cm)
     fw = 0.0
-    if int(P[K.WMODE]) == K.WAVE_REGULAR:
-        fw = P[K.WF0] * math.sin(P[K.WOMEGA] * (st.t + 0.5 * dt) + P[K.WPHASE])
-    return np.array([-P[K.CSS] * v[0], -P[K.CSS] * v[1], fw - P[K.KH] * x[2] - P[K.CH] * v[2]])
+    if int(P[S.WMODE]) == K.WAVE_REGULAR:
+        fw = P[S.WF0] * math.sin(P[S.WOMEGA] * (st.t + 0.5 * dt) + P[S.WPHASE])
+    return np.array([-P[S.CSS] * v[0], -P[S.CSS] * v[1], fw - P[S.KH] * x[2] - P[S.CH] * v[2]])
 
 
 class _Recorder:
@@ -244,7 +245,8 @@ class _Recorder:
             self.x[k] = m.coordinate(st, "ship")[1] + R @ s_cm
         self.phi[k] = m.coordinate(st, "gimbal1")
         self.phid[k] = m.velocity(st, "gimbal1")
-        self.mg[k] = -n_gyros * P[K.JR3] * P[K.PSID] * self.phid[k] * math.cos(self.phi[k])
+        H = P[S.JR3] * P[S.PSID]
+        self.mg[k] = K.gyro_roll_moment(self.phi[k], self.phid[k], H, n_gyros)
         self.k += 1
 
     def result(self) -> ShipRun:

@@ -27,10 +27,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs.physics.constants import RHO_SEAWATER, G
 from mf_envs.physics.ship.params import ShipParams
 
-RHO_SEA = 1025.0  # kg/m^3, sea water (the yacht); MSS uses 1014
-G_MSS = 9.81  # m/s^2, navalvessel.m's const.g
+RHO_SEA = RHO_SEAWATER  # kg/m^3, sea water (the yacht); MSS uses 1014
+G_MSS = G  # m/s^2, navalvessel.m's const.g (= 9.81)
 
 
 @dataclass(frozen=True)
@@ -104,7 +105,7 @@ class Hull:
         j55 = m * (0.25 * lwl) ** 2
         j66 = 1.1 * j55
         a44 = 0.2 * j44
-        c44, c55 = m * 9.81 * gm, m * 9.81 * gml
+        c44, c55 = m * G * gm, m * G * gml
         b44 = 2.0 * 0.04 * math.sqrt(c44 * (j44 + a44))
         awp = 0.75 * lwl * b
         bm = 0.75 * lwl * b**3 / (12.0 * m / RHO_SEA)
@@ -121,8 +122,8 @@ class Hull:
             pitch_stiffness=c55,
             pitch_damping=2.0 * 0.2 * math.sqrt(c55 * j55),
             yaw_damping=0.1 * b44 * j66 / j44,
-            heave_stiffness=RHO_SEA * 9.81 * awp,
-            heave_damping=2.0 * 0.2 * math.sqrt(RHO_SEA * 9.81 * awp * m),
+            heave_stiffness=RHO_SEA * G * awp,
+            heave_damping=2.0 * 0.2 * math.sqrt(RHO_SEA * G * awp * m),
             surge_sway_damping=0.05 * m,
             length=lwl,
             beam=b,

@@ -29,6 +29,7 @@ import dataclasses
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,9 +42,12 @@ from mf_envs._validate import (
     check_positive,
 )
 from mf_envs.effects import EFFECT_NAMES, resolve_effects
+from mf_envs.frames.so3 import rot_x
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DPHIMAX, DriveParams
+from mf_envs.physics.ship.kernels import gyro_roll_moment  # noqa: F401 (public name)
+from mf_envs.physics.ship.layout import KernelParams
 from mf_envs.physics.ship.params import GyroParams, ShipParams
 
 SHIP_EFFECTS: dict[str, str] = {
@@ -151,73 +155,101 @@ def pack_params(
     n = check_int("n_gyros", n_gyros, 1, 2)
     check_choice("form", form, FORMS)
     eff = resolve_effects(effects, SHIP_EFFECTS, SEED_EFFECTS)
-    P = np.zeros(K.N_PARAMS)
-    P[K.J1 : K.J3 + 1] = ship.inertia
+    gs = _gyro_slots(gyro, n, eff, form)
+    kp = {
+        **_hull_slots(ship, eff),
+        **gs,
+        **_drive_slots(drive, eff, gs["d2"]),
+        **_wave_slots(wave, eff, table_dt),
+        "gz3": ship_gz_cubic if "hydrostatic_restoring" in eff else 0.0,
+        "speed": check_nonnegative("speed", speed),
+    }
+    if coupling is not None:
+        kp.update(cplon=1.0, coupling=tuple(map(float, coupling.pack())))
+    return KernelParams(**kp).pack()
+
+
+def _hull_slots(ship: ShipParams, eff: frozenset[str]) -> dict[str, float]:
+    """Hull inertia, hydrostatics, damping and translation slots of `KernelParams`."""
+    kp = dict(zip(("j1", "j2", "j3"), map(float, ship.inertia)))
     if "added_inertia" in eff:
-        P[K.J1] += ship.added_roll_inertia
-    jg = gyro.gimbal_inertia if "gimbal_inertia" in eff else 0.0
-    P[K.D1] = jg + gyro.rotor_j1
-    P[K.D2] = jg + gyro.rotor_j1
-    P[K.D3] = jg + gyro.rotor_inertia
-    P[K.JR3] = gyro.rotor_inertia
-    P[K.JG2] = jg
-    P[K.PSID] = gyro.rotor_speed if "gyroscopic" in eff else 0.0
-    P[K.NGYRO] = n
-    P[K.FORM] = K.FORM_SEED if form == "seed" else K.FORM_EXACT
+        kp["j1"] += ship.added_roll_inertia
     if "hydrostatic_restoring" in eff:
-        P[K.K44] = ship.roll_stiffness
-        P[K.GZR] = ship.gz_bm_over_gm
-        P[K.K55] = ship.pitch_stiffness
+        kp.update(k44=ship.roll_stiffness, gzr=ship.gz_bm_over_gm, k55=ship.pitch_stiffness)
     if "roll_damping" in eff:
-        P[K.B44] = ship.roll_damping
-        P[K.B55] = ship.pitch_damping
-        P[K.B66] = ship.yaw_damping
+        kp.update(b44=ship.roll_damping, b55=ship.pitch_damping, b66=ship.yaw_damping)
     if "quadratic_roll_damping" in eff:
-        P[K.B44Q] = ship.roll_damping_quadratic
-    P[K.GMODE] = {
-        "servo": K.GIMBAL_SERVO,
-        "sinusoidal": K.GIMBAL_SINUSOIDAL,
-        "continuous": K.GIMBAL_CONTINUOUS,
-        "torque": K.GIMBAL_TORQUE,
-    }[drive.mode]
+        kp["b44q"] = ship.roll_damping_quadratic
+    if "translation" in eff:
+        kp.update(trans=1.0, mass=ship.mass, kh=ship.heave_stiffness, ch=ship.heave_damping)
+        kp.update(css=ship.surge_sway_damping)
+    return kp
+
+
+def _gyro_slots(gyro: GyroParams, n: int, eff: frozenset[str], form: str) -> dict[str, float]:
+    """Gimbal + rotor inertias, spin rate, count and equation form."""
+    jg = gyro.gimbal_inertia if "gimbal_inertia" in eff else 0.0
+    return dict(
+        d1=jg + gyro.rotor_j1,
+        d2=jg + gyro.rotor_j1,
+        d3=jg + gyro.rotor_inertia,
+        jr3=gyro.rotor_inertia,
+        jg2=jg,
+        psid=gyro.rotor_speed if "gyroscopic" in eff else 0.0,
+        ngyro=float(n),
+        form=float(K.FORM_SEED if form == "seed" else K.FORM_EXACT),
+    )
+
+
+_GMODES = {
+    "servo": K.GIMBAL_SERVO,
+    "sinusoidal": K.GIMBAL_SINUSOIDAL,
+    "continuous": K.GIMBAL_CONTINUOUS,
+    "torque": K.GIMBAL_TORQUE,
+}
+
+
+def _drive_slots(drive: GimbalDrive, eff: frozenset[str], d2: float) -> dict[str, Any]:
+    """Gimbal drive: mode, prescribed motion, servo, limits and the torque drive's block
+    (`ship.drive.DriveParams.pack` at gimbal inertia d2, kg m^2)."""
+    kp: dict[str, Any] = {}
     if drive.mode == "torque" and drive.machine is not None:
         m = drive.machine
         if m.active and "gimbal_damping" not in eff:  # bearing friction of an active drive
             m = dataclasses.replace(m, damping=0.0)
-        P[K.DRV0 : K.DRV0 + K.N_DRIVE] = m.pack(P[K.D2])
+        D = m.pack(d2)
         if "gimbal_limits" not in eff:  # no end stops: the drive's stop envelope is off too
-            P[K.DRV0 + DPHIMAX] = math.inf
-    P[K.GZ3] = ship_gz_cubic if "hydrostatic_restoring" in eff else 0.0
-    P[K.SPEED] = check_nonnegative("speed", speed)
-    if coupling is not None:
-        P[K.CPLON] = 1.0
-        P[K.CPL0 : K.CPL0 + K.N_COUPLING] = coupling.pack()
-    P[K.GAMP] = drive.amplitude
-    P[K.GFREQ] = drive.frequency
-    P[K.GPHASE] = drive.phase
-    P[K.TAU] = drive.servo_time_constant
-    P[K.RATEMAX] = drive.max_rate
-    P[K.PHIMAX] = drive.max_angle
-    P[K.TSTOP] = drive.stop_time
-    P[K.LIMITS] = 1.0 if "gimbal_limits" in eff else 0.0
+            D[DPHIMAX] = math.inf
+        kp["drive"] = tuple(map(float, D))
+    return dict(
+        kp,
+        gmode=float(_GMODES[drive.mode]),
+        gamp=drive.amplitude,
+        gfreq=drive.frequency,
+        gphase=drive.phase,
+        tau=drive.servo_time_constant,
+        ratemax=drive.max_rate,
+        phimax=drive.max_angle,
+        tstop=drive.stop_time,
+        limits=1.0 if "gimbal_limits" in eff else 0.0,
+    )
+
+
+def _wave_slots(wave: WaveLoad | None, eff: frozenset[str], table_dt: float) -> dict[str, float]:
+    """Wave moment (and heave force): none, regular, or a table sampled every table_dt s."""
     if "irregular_waves" in eff:
         if table_dt <= 0.0:
             raise ValueError("table_dt: irregular_waves needs a wave table and its step (s)")
-        P[K.WMODE] = K.WAVE_TABLE
-        P[K.TABDT] = table_dt
-    elif "wave_moment" in eff and wave is not None:
-        P[K.WMODE] = K.WAVE_REGULAR
-        P[K.WM0] = wave.moment_amplitude
-        P[K.WOMEGA] = 2.0 * math.pi / wave.period
-        P[K.WPHASE] = wave.phase
-        P[K.WF0] = wave.heave_force
-    if "translation" in eff:
-        P[K.TRANS] = 1.0
-        P[K.MASS] = ship.mass
-        P[K.KH] = ship.heave_stiffness
-        P[K.CH] = ship.heave_damping
-        P[K.CSS] = ship.surge_sway_damping
-    return P
+        return dict(wmode=float(K.WAVE_TABLE), tabdt=table_dt)
+    if "wave_moment" in eff and wave is not None:
+        return dict(
+            wmode=float(K.WAVE_REGULAR),
+            wm0=wave.moment_amplitude,
+            womega=2.0 * math.pi / wave.period,
+            wphase=wave.phase,
+            wf0=wave.heave_force,
+        )
+    return {}
 
 
 def initial_state(
@@ -231,9 +263,7 @@ def initial_state(
     y[0:3] = check_finite("omega", omega)
     y[3] = float(check_finite("gimbal_angle", gimbal_angle))
     y[4] = float(check_finite("gimbal_rate", gimbal_rate))
-    c, s = math.cos(roll), math.sin(roll)
-    R = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-    return y, R
+    return y, rot_x(roll)
 
 
 @dataclass
@@ -283,11 +313,6 @@ def pitch_angle(R: NDArray[np.float64]) -> NDArray[np.float64]:
     """Pitch p = -asin(R31) of attitude(s) R (..., 3, 3), rad."""
     R = np.asarray(R)
     return -np.arcsin(np.clip(R[..., 2, 0], -1.0, 1.0))
-
-
-def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyros: int) -> float:
-    """Gyroscopic roll moment on the hull, -n H phi' cos(phi) (N m; Eq. 123 right-hand side)."""
-    return -n_gyros * angular_momentum * phi_rate * math.cos(phi)
 
 
 def roll_inertia(

@@ -30,13 +30,8 @@ import math
 from dataclasses import dataclass
 
 from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
-
-# Seed Table 3-1 (model -> rpm, H [N m s], spool-up power [W]) and rad/s per rpm: one table,
-# shared with the GOWEC
-from mf_envs.physics.gowec import RPM, SEAKEEPER
-
-RHO_SEA = 1025.0  # kg/m^3
-G = 9.81  # m/s^2
+from mf_envs.physics.constants import RHO_SEAWATER, RPM, G
+from mf_envs.physics.gyros import SEAKEEPER  # seed Table 3-1, shared with the GOWEC
 
 
 @dataclass(frozen=True)
@@ -180,7 +175,7 @@ def small_yacht(
     zeta = 0.04
     b44 = 2.0 * zeta * math.sqrt(c44 * (j44 + a44))
     awp = 0.75 * length_wl * beam  # waterplane area, C_wp = 0.75
-    bm = 0.75 * length_wl * beam**3 / (12.0 * displacement / RHO_SEA)  # I_wp / V
+    bm = 0.75 * length_wl * beam**3 / (12.0 * displacement / RHO_SEAWATER)  # I_wp / V
     return ShipParams(
         inertia=(j44, j55, j66),
         mass=displacement,
@@ -192,8 +187,8 @@ def small_yacht(
         roll_damping_quadratic=2.5 * b44,
         pitch_damping=2.0 * 0.2 * math.sqrt(c55 * j55),
         yaw_damping=0.1 * b44 * j66 / j44,
-        heave_stiffness=RHO_SEA * G * awp,
-        heave_damping=2.0 * 0.2 * math.sqrt(RHO_SEA * G * awp * displacement),
+        heave_stiffness=RHO_SEAWATER * G * awp,
+        heave_damping=2.0 * 0.2 * math.sqrt(RHO_SEAWATER * G * awp * displacement),
         surge_sway_damping=0.05 * displacement,
     )
 

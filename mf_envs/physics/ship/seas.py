@@ -63,11 +63,8 @@ def encounter_frequency(
 
 
 def sinc(x: ArrayLike) -> NDArray[np.float64]:
-    """sin(x) / x with sinc(0) = 1 (series 1 - x^2/6 + x^4/120 below |x| = 1e-3)."""
-    x = np.asarray(x, dtype=np.float64)
-    small = np.abs(x) < 1e-3
-    xs = np.where(small, 1.0, x)
-    return np.where(small, 1.0 - x * x / 6.0 * (1.0 - x * x / 20.0), np.sin(xs) / xs)
+    """sin(x) / x with sinc(0) = 1 (numpy's normalised `np.sinc` at x / pi)."""
+    return np.sinc(np.asarray(x, dtype=np.float64) / np.pi)
 
 
 def spreading_density(theta: ArrayLike, s: float) -> NDArray[np.float64]:

@@ -27,8 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import check_finite, check_nonnegative, check_positive
-
-G = 9.81
+from mf_envs.physics.constants import G
 
 
 def wave_table(

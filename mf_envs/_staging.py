@@ -1,0 +1,107 @@
+"""Write command outputs into a temporary folder next to the target, move them in when complete.
+
+Used by every `mf-envs` command that writes files (demo, bench, render, train, evaluate), so an
+interrupted or failed run (Ctrl-C, an exception) leaves the previous outputs exactly as they were
+and never a mix of old and new files. Folder checks raise `ValueError` naming `out`.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+
+def check_out(target: Path, *, folder: bool = True) -> Path:
+    """`target` as an output folder (or file if not `folder`) that can be written: ValueError if
+    it is a file where a folder is expected (or the reverse), or its nearest existing parent is
+    not a writable folder."""
+    target = Path(target)
+    if target.exists() and folder and not target.is_dir():
+        raise ValueError(f"out: {str(target)!r} is a file, expected a folder")
+    if target.exists() and not folder and target.is_dir():
+        raise ValueError(f"out: {str(target)!r} is a folder, expected a file path")
+    parent = target.parent
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise ValueError(f"out: {str(parent)!r} is a file, so {str(target)!r} cannot be created")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise ValueError(f"out: cannot write into {str(parent)!r} (read-only)")
+    return target
+
+
+def _mkdtemp(parent: Path, name: str) -> Path:
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+        return Path(tempfile.mkdtemp(prefix=f".{name}.tmp-", dir=parent))
+    except OSError as exc:
+        raise ValueError(f"out: cannot write into {str(parent)!r} ({exc.strerror})") from exc
+
+
+@contextmanager
+def staged_dir(target: Path, *, replace: bool = False, force: bool = False) -> Iterator[Path]:
+    """Yield a temporary folder beside `target`; on success move its content into `target`.
+
+    replace=False (demo, bench): each new file replaces the file of the same name in `target`,
+    other files stay. replace=True (a run folder of train/evaluate): ValueError if `target`
+    exists and is not empty, unless `force`; then the whole folder is swapped. On any exception,
+    KeyboardInterrupt included, the temporary folder is deleted and `target` is untouched.
+    """
+    target = check_out(Path(target))
+    if replace and target.is_dir() and any(target.iterdir()) and not force:
+        raise ValueError(f"out: {str(target)!r} already exists; pass --force to replace it")
+    tmp = _mkdtemp(target.parent, target.name)
+    try:
+        yield tmp
+        if replace:
+            _swap(tmp, target)
+        else:
+            _merge(tmp, target)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _merge(src: Path, dst: Path) -> None:
+    for path in sorted(src.rglob("*")):
+        dest = dst / path.relative_to(src)
+        if path.is_dir():
+            dest.mkdir(parents=True, exist_ok=True)
+        else:
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(path, dest)
+
+
+def _swap(src: Path, dst: Path) -> None:
+    old = None
+    if dst.exists():
+        old = Path(tempfile.mkdtemp(prefix=f".{dst.name}.old-", dir=dst.parent))
+        os.replace(dst, old / dst.name)
+    os.replace(src, dst)
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+@contextmanager
+def staged_file(target: Path) -> Iterator[Path]:
+    """Yield a temporary path beside the file `target` (same suffix); moved onto it on success."""
+    target = check_out(Path(target), folder=False)
+    tmp = _mkdtemp(target.parent, target.name)
+    try:
+        path = tmp / target.name
+        yield path
+        os.replace(path, target)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def moved(paths: Iterable[Path], tmp: Path, target: Path) -> list[Path]:
+    """Paths written under `tmp`, as they are after the move into `target`."""
+    out = []
+    for p in paths:
+        p = Path(p)
+        out.append(target / p.relative_to(tmp) if p.is_relative_to(tmp) else p)
+    return out

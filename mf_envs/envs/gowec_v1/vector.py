@@ -1,0 +1,126 @@
+"""GOWEC-v1 as a native batched vector env: N floating buoys stepped in one compiled call.
+
+`gym.make_vec("GOWEC-v1", num_envs=N, vectorization_mode="vector_entry_point", **kwargs)` builds
+it; `kwargs` are those of `gym.make("GOWEC-v1", ...)` plus `autoreset_mode` (default NEXT_STEP).
+Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `GOWECV1Env`s with the
+same seeds (`tests/test_vector_envs.py`): resets go through a template single env (its state and
+sea are copied into the row), steps through `physics.gowec.hydro.batch.batch_step_rows`, which
+calls the single env's own step kernel (`step_row`) for every row; observations are built by
+`observe_rows` with the single env's expressions. See `mf_envs.envs._vector`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numba
+import numpy as np
+
+from mf_envs.envs._vector import BatchedVectorEnv
+from mf_envs.envs.gowec_v1 import spec
+from mf_envs.envs.gowec_v1.env import GOWECV1Env
+from mf_envs.physics.gowec.hydro.batch import N_VALS, batch_step_rows
+
+# info keys from step_row's value slots (buoy_rate is the pair of slots 4, 5)
+_SCALAR_SLOTS = {
+    "power": 0, "power_mechanical": 1, "buoy_pitch": 2, "buoy_roll": 3,
+    "excitation_moment": 6, "gyro_moment": 7, "gimbal_angle": 8, "gimbal_rate": 9,
+    "wave_elevation": 10,
+}  # fmt: skip
+_FAILURE_KEYS = ("power", "reward_terms", "overspeed", "out_of_range", "numerical_failure")
+
+
+@numba.njit(cache=True)
+def observe_rows(active, Y, lo, hi, obs):
+    """GOWECV1Env._get_obs for the active rows: (sin phi, cos phi, phi', body rates
+    (cos rho theta', rho', sin rho theta'), theta, rho) as float32, clipped to [lo, hi]."""
+    for i in range(active.shape[0]):
+        if not active[i]:
+            continue
+        y = Y[i]
+        v = (math.sin(y[2]), math.cos(y[2]), y[5], math.cos(y[1]) * y[3], y[4],
+             math.sin(y[1]) * y[3], y[0], y[1])  # fmt: skip
+        for j in range(8):
+            x = np.float32(v[j])
+            obs[i, j] = min(max(x, lo[j]), hi[j])
+
+
+class GOWECV1VectorEnv(BatchedVectorEnv):
+    """N independent `GOWEC-v1` envs (same kwargs, own seeds) stepped in one numba call.
+
+    Observations (N, 8) float32 (`spec.OBS`), actions (N, 1) in [-1, 1], rewards (N,) float64,
+    infos batched as Gymnasium does with the single env's keys (`spec.INFO_KEYS`).
+    """
+
+    single_env_cls = GOWECV1Env
+
+    def _alloc(self, n: int) -> None:
+        env = self.template
+        m = env.n_components if env.irregular else 1
+        self.Y = np.zeros((n, env.state.shape[0]))
+        self.sea = {key: np.zeros((n, m)) for key in ("om", "amp", "eps")}
+        self.sea.update(cp=np.zeros((n, m), complex), cr=np.zeros((n, m), complex))
+        self._steps = np.zeros(n, dtype=np.int64)
+        self._vals = np.zeros((n, N_VALS))
+        self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
+        self._ok = np.ones(n, dtype=bool)
+        self._lo = self.single_observation_space.low.astype(np.float32)
+        self._hi = self.single_observation_space.high.astype(np.float32)
+
+    def _load(self, i: int) -> None:
+        env, sea = self.template, self.sea
+        self.Y[i] = env.state
+        row = (env.model._om, env.wave.amplitudes, env.wave.phases, env.model._cp, env.model._cr)
+        for key, value in zip(("om", "amp", "eps", "cp", "cr"), row):
+            if value.shape != sea[key].shape[1:]:
+                raise RuntimeError(f"GOWEC-v1 vector env: sea of {value.shape} components")
+            sea[key][i] = value
+        self._steps[i] = 0
+
+    def state_nbytes(self) -> int:
+        """Bytes of the per-env batch state (physics, sea, counters, values, observations)."""
+        arrays = [self.Y, *self.sea.values(), self._steps, self._vals, self._fresh, self._obs]
+        return int(sum(a.nbytes for a in arrays)) + self._ok.nbytes
+
+    def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
+        env, sea, dtc = self.template, self.sea, self.template.control_dt
+        tau = actions[:, 0] * env.max_generator_torque
+        t0 = self._steps * dtc
+        self._steps[active] += 1
+        t1 = self._steps * dtc
+        ok = self._ok
+        ok[~active] = True
+        shared = env.model._args()[:9]
+        batch_step_rows(
+            active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps, shared, sea["om"],
+            sea["cp"], sea["cr"], sea["amp"], sea["eps"], dtc, env._loss(), self._vals, ok,
+        )  # fmt: skip
+        obs = self._fresh
+        observe_rows(active & ok, self.Y, self._lo, self._hi, obs)
+        v, Y = self._vals, self.Y
+        reward = v[:, 11] * env._energy_scale
+        info: dict[str, Any] = {key: v[:, j].copy() for key, j in _SCALAR_SLOTS.items()}
+        info["buoy_rate"] = v[:, 4:6].copy()
+        info["time"] = t1.copy()
+        info["reward_terms"] = {"net_electrical_energy": reward.copy()}
+        over = np.abs(Y[:, 5]) > env.max_gimbal_rate
+        out = np.maximum(np.abs(Y[:, 0]), np.abs(Y[:, 1])) > spec.MAX_BUOY_ANGLE
+        info["overspeed"], info["out_of_range"] = over, out
+        finite = ok & np.isfinite(reward)  # MFEnv._finish_step: finite obs and reward
+        info["numerical_failure"] = ~finite
+        masks = np.ones((len(spec.INFO_KEYS) + 1, self.num_envs), dtype=bool)
+        info["reward_terms"]["_net_electrical_energy"] = masks[-1]
+        for j, key in enumerate(spec.INFO_KEYS):
+            info[f"_{key}"] = masks[j]
+        term = over | out
+        bad = ~finite & active
+        if bad.any():  # last finite obs, reward 0, terminated
+            obs[bad] = self._obs[bad]
+            reward[bad], term[bad] = 0.0, True
+            gone = ~ok & active  # the physics failed: only the failure keys, zeroed
+            info["power"][gone], info["reward_terms"]["net_electrical_energy"][gone] = 0.0, 0.0
+            over[gone], out[gone] = False, False
+            for key in set(spec.INFO_KEYS) - set(_FAILURE_KEYS):
+                info[f"_{key}"][gone] = False
+        return obs, reward, term, self._steps >= env.max_steps, info

@@ -1,0 +1,287 @@
+"""The floating GOWEC: a Cummins-equation buoy two-way coupled to one gyroscope (numba fast path).
+
+Not in the seed's simplified model (ch. 3 Sec. 3.2.6 prescribes the buoy); this is its general
+model (Eqs. 48-75) with the buoy free in pitch and roll and loaded by linear hydrodynamics:
+
+        wave --> hull (1): R = rot_x(theta) rot_y(rho)   pitch theta about e1, roll rho about e2
+        +-----------------------------+                  (yaw and translation of G held by the
+        |  gimbal (2): angle phi about e2^(1), generator torque M_g (PTO)      mooring)
+        |     rotor (3): spins at psi' about e3^(2) (motor holds psi')
+        +-----------------------------+      all centres of mass at G (gyro at the buoy's G)
+
+Body angular velocities (body frames) in terms of u = (theta', rho', phi') (Eqs. 37, 45, 49):
+    w_h = (cos(rho) theta', rho', sin(rho) theta')
+    w_g = (cos(b) theta', rho' + phi', sin(b) theta'),  b = rho + phi   (roll and gimbal share e2)
+    w_r = w_g + psi' e3 (the axisymmetric rotor, written in the gimbal frame)
+and with B_k = d w_k / d u, h_k = J_k w_k, the B-matrix equations (Eqs. 73-75)
+
+    sum_k B_k^T (J_k B_k u' + J_k B_k' u + w_frame x h_k) = Q
+    Q = (M_x - C theta - mu_theta, M_y - C rho - mu_rho, -n M_g)                 (Cummins 1962)
+
+With the dual configuration (`gyro_units` = 2, the seed's Fig. 3-2) a second unit turns
+at -phi with spin -psi' (a mirrored pair sharing one generator law); its roll and yaw reactions
+cancel those of the first, and Q_phi = -2 M_g. J_h = diag(I + A_inf, I + A_inf, I_z)
+(A_inf, the infinite-frequency added inertia, rides with the hull), mu = radiation memory
+from the state-space fit x' = Ar x + Br q', mu = Cr x (one copy per axis,
+`radiation.fit_radiation`), C the hydrostatic stiffness, M_x, M_y the wave excitation moments
+(`excitation_coefficients`), and an optional linear viscous damping b_v q' on each axis.
+The PTO torque M_g = clip(tau_cmd + c phi' + k phi) (torque and power limits) is evaluated at every
+RK4 stage: a damper held over a control step is unstable once c dt / J > 2 (docs/design.md).
+`engine_model` builds the same system in the general multibody engine; a test checks the two.
+
+State y: [theta, rho, phi, theta', rho', phi', x_theta (nr), x_rho (nr), E_exc, E_rad, E_visc,
+E_pto, E_elec, E_motor] with the energies (J) integrated by the same RK4 as the motion:
+excitation work, radiated, viscous, PTO mechanical (positive harvested), PTO electrical (eta_g
+when generating, 1/eta_m when motoring), rotor-motor work.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+
+from mf_envs.frames.kernels import make_rk4, rk4_work
+
+N_MECH = 6
+N_ENERGY = 6
+
+
+@dataclass(frozen=True)
+class FloatingParams:
+    """Packed numbers of the fast path (SI). inertia = (I + A_inf, I_z) of the hull (kg m^2);
+    gyro = (Ja, Jt, Jg1, Jg2, Jg3) kg m^2; psid rad/s; stiffness C (N m/rad); viscous b_v
+    (N m s/rad); radiation (Ar (nr,nr), Br (nr,), Cr (nr,)); pto = (c N m s/rad, k N m/rad,
+    max torque N m, max power W, eta_generator, eta_motor)."""
+
+    inertia: NDArray[np.float64]
+    gyro: NDArray[np.float64]  # (Ja, Jt, Jg1, Jg2, Jg3, n_units)
+    psid: float
+    stiffness: float
+    viscous: float
+    Ar: NDArray[np.float64]
+    Br: NDArray[np.float64]
+    Cr: NDArray[np.float64]
+    pto: NDArray[np.float64]
+
+    @property
+    def n_state(self) -> int:
+        return N_MECH + 2 * self.Ar.shape[0] + N_ENERGY
+
+
+def excitation_coefficients(
+    X: NDArray[np.complex128], amplitudes: NDArray, phases: NDArray, direction: float
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """Complex moment coefficients (N m) c_i such that M(t) = sum Re(c_i e^{-i w_i t}) about e1
+    (pitch) and e2 (roll) for components eta = a_i cos(k x.n - w_i t + eps_i) travelling in
+    `direction` (rad from x1). X (n,) is the hull's pitch excitation (about y, wave along +x) at
+    w_i; by axisymmetry the moment about e2 is X cos(direction) and about e1 -X sin(direction)."""
+    c = np.asarray(X) * np.asarray(amplitudes) * np.exp(1j * np.asarray(phases))
+    return -math.sin(direction) * c, math.cos(direction) * c
+
+
+@numba.njit(cache=True)
+def excitation(t, om, cp, cr):
+    """(M_x, M_y) (N m) at time t: sum Re(c e^{-i w t}) (cp, cr complex (n,))."""
+    mx = 0.0
+    my = 0.0
+    for i in range(om.shape[0]):
+        c, s = math.cos(om[i] * t), math.sin(om[i] * t)
+        mx += cp[i].real * c + cp[i].imag * s
+        my += cr[i].real * c + cr[i].imag * s
+    return mx, my
+
+
+@numba.njit(cache=True)
+def pto_torque(phi, phid, tau, pto):
+    """M_g (N m): tau + c phi' + k phi, clipped to the torque limit and to |M_g phi'| <= P_max."""
+    m = tau + pto[0] * phid + pto[1] * phi
+    lim = pto[2]
+    if abs(phid) * lim > pto[3]:
+        lim = pto[3] / abs(phid)
+    return min(max(m, -lim), lim)
+
+
+@numba.njit(cache=True)
+def mass_and_rhs(q, u, inertia, gyro, psid):
+    """M* (3,3) and the velocity terms v (3,) = sum B^T (J B' u + w x h) of the module doc;
+    also the spin coupling S = sum_s s w_g3(s) (rad/s) and the gyro units' share of v (3,).
+    gyro = (Ja, Jt, Jg1, Jg2, Jg3, n_units); unit s = +1 has gimbal angle phi and spin psi',
+    unit s = -1 (dual configuration, ch. 3 Sec. 3.2.3) -phi and -psi'."""
+    th_d, ro_d, ph_d = u[0], u[1], u[2]
+    cr_, sr_ = math.cos(q[1]), math.sin(q[1])
+    Ih, Iz = inertia[0], inertia[1]
+    Ja, Jt, Jg1, Jg2, Jg3 = gyro[0], gyro[1], gyro[2], gyro[3], gyro[4]
+    # gimbal + rotor (principal in the gimbal frame): J1, J2, J3 (rotor spin added in h3)
+    G1, G2, G3 = Jg1 + Jt, Jg2 + Jt, Jg3 + Ja
+    M = np.zeros((3, 3))
+    M[0, 0] = Ih * cr_ * cr_ + Iz * sr_ * sr_
+    M[1, 1] = Ih
+    # hull: w = (c th', ro', s th'), B'u = (-s ro' th', 0, c ro' th')
+    w1, w2, w3 = cr_ * th_d, ro_d, sr_ * th_d
+    d1, d3 = -sr_ * ro_d * th_d, cr_ * ro_d * th_d
+    e1 = Ih * d1 + (w2 * Iz * w3 - w3 * Ih * w2)
+    e2 = w3 * Ih * w1 - w1 * Iz * w3
+    e3 = Iz * d3 + (w1 * Ih * w2 - w2 * Ih * w1)
+    v = np.zeros(3)
+    v[0] = cr_ * e1 + sr_ * e3
+    v[1] = e2
+    gy = np.zeros(3)
+    spin = 0.0
+    for k in range(int(gyro[5])):
+        sg = 1.0 - 2.0 * k
+        # w = (cb th', ro' + s ph', sb th'), b = ro + s phi, B'u = (-sb bd th', 0, cb bd th')
+        b = q[1] + sg * q[2]
+        cb, sb = math.cos(b), math.sin(b)
+        bd = ro_d + sg * ph_d
+        M[0, 0] += G1 * cb * cb + G3 * sb * sb
+        M[1, 1] += G2
+        M[1, 2] += sg * G2
+        M[2, 1] += sg * G2
+        M[2, 2] += G2
+        g1, g2, g3 = cb * th_d, bd, sb * th_d
+        h1, h2, h3 = G1 * g1, G2 * g2, G3 * g3 + sg * Ja * psid
+        f1 = G1 * (-sb * bd * th_d) + (g2 * h3 - g3 * h2)
+        f2 = g3 * h1 - g1 * h3
+        f3 = G3 * (cb * bd * th_d) + (g1 * h2 - g2 * h1)
+        gy[0] += cb * f1 + sb * f3
+        gy[1] += f2
+        gy[2] += sg * f2
+        spin += sg * g3
+    v += gy
+    return M, v, spin, gy
+
+
+@numba.njit(cache=True)
+def solve3(M, r):
+    """x (3,) with M x = r for the (3, 3) mass matrix: Gaussian elimination with partial
+    pivoting, hand-written because LAPACK's call overhead dominates a 3 x 3 solve in the RK4
+    loop; a singular or non-finite M gives a non-finite x (the env's failure path). M and r
+    are overwritten (the caller's temporaries)."""
+    A, b = M, r
+    for c in range(3):
+        p = c
+        for i in range(c + 1, 3):
+            if abs(A[i, c]) > abs(A[p, c]):
+                p = i
+        if p != c:
+            for j in range(3):
+                A[c, j], A[p, j] = A[p, j], A[c, j]
+            b[c], b[p] = b[p], b[c]
+        for i in range(c + 1, 3):
+            f = A[i, c] / A[c, c]
+            for j in range(c, 3):
+                A[i, j] -= f * A[c, j]
+            b[i] -= f * b[c]
+    x = np.empty(3)
+    for i in range(2, -1, -1):
+        s = b[i]
+        for j in range(i + 1, 3):
+            s -= A[i, j] * x[j]
+        x[i] = s / A[i, i]
+    return x
+
+
+@numba.njit(cache=True)
+def deriv(t, y, tau, args):
+    """dy/dt (module doc layout) with the PTO command tau (N m); args: `pack`."""
+    p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr = args
+    nr = Ar.shape[0]
+    q, u = y[0:3], y[3:6]
+    xt, xr = y[6 : 6 + nr], y[6 + nr : 6 + 2 * nr]
+    M, v, _, _ = mass_and_rhs(q, u, p_in, p_gy, psid)
+    mx, my = excitation(t, om, cp, cr)
+    mu_t, mu_r = 0.0, 0.0
+    for i in range(nr):
+        mu_t += Cr[i] * xt[i]
+        mu_r += Cr[i] * xr[i]
+    Mg = pto_torque(q[2], u[2], tau, pto)
+    Q = np.empty(3)
+    Q[0] = mx - C * q[0] - mu_t - bv * u[0] - v[0]
+    Q[1] = my - C * q[1] - mu_r - bv * u[1] - v[1]
+    nu = p_gy[5]
+    Q[2] = -nu * Mg - v[2]
+    ud = solve3(M, Q)
+    dy = np.empty_like(y)
+    dy[0:3] = u
+    dy[3:6] = ud
+    for i in range(nr):  # radiation states: x' = A x + B u (loops: no BLAS call per row)
+        at, ar = 0.0, 0.0
+        for j in range(nr):
+            at += Ar[i, j] * xt[j]
+            ar += Ar[i, j] * xr[j]
+        dy[6 + i] = at + Br[i] * u[0]
+        dy[6 + nr + i] = ar + Br[i] * u[1]
+    k = 6 + 2 * nr
+    P = nu * Mg * u[2]
+    dy[k] = mx * u[0] + my * u[1]
+    dy[k + 1] = mu_t * u[0] + mu_r * u[1]
+    dy[k + 2] = bv * (u[0] * u[0] + u[1] * u[1])
+    dy[k + 3] = P
+    dy[k + 4] = P * pto[4] if P >= 0.0 else P / pto[5]
+    # rotor motors hold +-psi': torque Ja d/dt(w_g3) with w_g3 = sin(b) theta', b = rho + s phi
+    pm = 0.0
+    for j in range(int(nu)):
+        sg = 1.0 - 2.0 * j
+        b = q[1] + sg * q[2]
+        pm += sg * (math.cos(b) * (u[1] + sg * u[2]) * u[0] + math.sin(b) * ud[0])
+    dy[k + 5] = p_gy[0] * pm * psid
+    return dy
+
+
+@numba.njit(cache=True)
+def _stage_rhs(t, x, inp, args, out):
+    """`deriv` in the form of the frames RK4 template; args = (tau, deriv args)."""
+    out[:] = deriv(t, x, args[0], args[1])
+
+
+@numba.njit(cache=True)
+def _no_inputs(t, args):
+    """The wave excitation is evaluated inside `deriv`: no separate inputs."""
+    return 0.0
+
+
+_rk4 = make_rk4(_stage_rhs, _no_inputs)
+
+
+@numba.njit(cache=True)
+def rk4_steps(t, y, tau, dt, n, args):
+    """n RK4 substeps of dt (s) from (t, y) with the PTO command tau held; returns y (new).
+    args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr) as `deriv` (`pack`).
+    The stage loop is the one of `mf_envs.frames.kernels.make_rk4`."""
+    work = rk4_work(y.shape[0])
+    full = (tau, args)
+    for _ in range(n):
+        dy, _ = _rk4(t, y, dt, full, work)
+        y = y + dy
+        t += dt
+    return y
+
+
+def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray) -> tuple:
+    """The argument tuple of `deriv` / `rk4_steps` for params p and excitation (om, cp, cr)."""
+    return (p.inertia, p.gyro, float(p.psid), float(p.stiffness), float(p.viscous), p.Ar, p.Br,
+            p.Cr, p.pto, om, cp, cr)  # fmt: skip
+
+
+def mechanical_energy(p: FloatingParams, y: NDArray[np.float64]) -> float:
+    """Kinetic + hydrostatic energy (J) of the mechanical state, with the rotor spin's constant
+    1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor)."""
+    M, _, spin, _ = mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
+    u = y[3:6]
+    kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * spin
+    return kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
+
+
+def gyro_moment(p: FloatingParams, y: NDArray[np.float64], accel: NDArray) -> NDArray:
+    """Moment of the gyro unit on the hull along the (theta, rho) coordinates (N m, (2,)):
+    minus the gimbal+rotor's B^T (J B u' + J B' u + w x h) rows of theta and rho, with the
+    generator torque's reaction included through the rho row (the gimbal axis is e2)."""
+    q, u = y[0:3], y[3:6]
+    Mfull, v, _, gy = mass_and_rhs(q, u, p.inertia, p.gyro, p.psid)
+    Mh, vh, _, _ = mass_and_rhs(q, u, p.inertia, np.zeros(6), 0.0)
+    Mg_part = (Mfull - Mh) @ accel + gy
+    return -Mg_part[:2]

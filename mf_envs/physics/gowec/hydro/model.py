@@ -1,0 +1,193 @@
+"""`FloatingModel`: a hull, its radiation fit, one gyroscope and a sea, ready to step.
+
+Wires `HullCoefficients` (BEM table), `radiation.fit_radiation` (state-space memory) and a wave
+field (`mf_envs.physics.waves`) into the numba fast path `floating.rk4_steps`, and builds the
+same system in the general multibody engine (`engine_model`) for the check. SI units.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from mf_envs.physics.gowec import GOWECParams
+from mf_envs.physics.gowec.hydro import HullCoefficients
+from mf_envs.physics.gowec.hydro import floating as fl
+from mf_envs.physics.gowec.hydro.radiation import RadiationFit, fit_radiation
+from mf_envs.physics.multibody import Body, Multibody, Revolute, constant_rate
+from mf_envs.physics.waves import WaveField
+
+PTO_FIELDS = ("damping", "stiffness", "max_torque", "max_power", "eta_generator", "eta_motor")
+
+
+class FloatingModel:
+    """Floating buoy + gyro (`floating` module doc). `viscous_damping` (N m s/rad) is an extra
+    linear damping per axis (0 = potential flow only); `pto` a dict of PTO_FIELDS."""
+
+    def __init__(
+        self,
+        hull: HullCoefficients,
+        gyro: GOWECParams,
+        pto: dict[str, float],
+        viscous_damping: float = 0.0,
+        gyroscopic: bool = True,
+        radiation: RadiationFit | None = None,
+        units: int = 2,
+    ) -> None:
+        self.hull = hull
+        self.gyro = gyro
+        self.fit = radiation or fit_radiation(
+            hull.omega, hull.added_mass, hull.damping, hull.added_mass_inf
+        )
+        Iz = 0.5 * hull.mass * (hull.radius if math.isfinite(hull.radius) else 1.0) ** 2
+        if units not in (1, 2):
+            raise ValueError(f"gyro_units: 1 or 2 (the seed's dual configuration), got {units!r}")
+        g = np.array(
+            [gyro.rotor_inertia, gyro.transverse, *gyro.gimbal_inertia, units], dtype=float
+        )
+        self.p = fl.FloatingParams(
+            inertia=np.array([hull.inertia + hull.added_mass_inf, Iz]),
+            gyro=g,
+            psid=float(gyro.rotor_speed) if gyroscopic else 0.0,
+            stiffness=float(hull.stiffness),
+            viscous=float(viscous_damping),
+            Ar=np.ascontiguousarray(self.fit.A, dtype=float),
+            Br=np.ascontiguousarray(self.fit.B[:, 0], dtype=float),
+            Cr=np.ascontiguousarray(self.fit.C[0], dtype=float),
+            pto=np.array([pto[k] for k in PTO_FIELDS], dtype=float),
+        )
+        self.set_sea(None)
+
+    @property
+    def inert(self) -> NDArray[np.float64]:
+        """(Ja, Jt, Jg1, Jg2, Jg3) kg m^2, as `GimbalModel.inert` (controllers read it)."""
+        return self.p.gyro[:5]
+
+    @property
+    def units(self) -> int:
+        """Number of gyro units (1, or 2 for the dual mirrored pair)."""
+        return int(self.p.gyro[5])
+
+    @property
+    def psid(self) -> float:
+        """Rotor spin psi' (rad/s; 0 with the rotor off)."""
+        return self.p.psid
+
+    def pitch_inertia(self) -> float:
+        """Rigid pitch inertia about G at phi = 0: hull + gimbal + rotor (kg m^2), no A_inf."""
+        return self.hull.inertia + self.units * (self.p.gyro[1] + self.p.gyro[2])
+
+    # ------------------------------------------------------------------ sea and PTO
+    def set_sea(self, wave: WaveField | None) -> None:
+        """Excitation from a wave field (None = calm water)."""
+        self.wave = wave
+        if wave is None:
+            self._om = np.zeros(0)
+            self._cp = self._cr = np.zeros(0, dtype=complex)
+            return
+        X = np.array([self.hull.at(float(w))[2] for w in wave.omegas])
+        self._om = np.asarray(wave.omegas, dtype=float)
+        self._cp, self._cr = fl.excitation_coefficients(
+            X, wave.amplitudes, wave.phases, wave.direction
+        )
+
+    def set_viscous(self, damping: float) -> None:
+        """Extra linear viscous damping b_v per axis (N m s/rad)."""
+        self.p = dataclasses.replace(self.p, viscous=float(damping))
+
+    def set_radiation(self, on: bool) -> None:
+        """Radiation memory on (the fit) or off (A_inf only: no wave damping)."""
+        Cr = self.fit.C[0] if on else np.zeros_like(self.fit.C[0])
+        self.p = dataclasses.replace(self.p, Cr=np.ascontiguousarray(Cr, dtype=float))
+
+    def set_pto(self, damping: float, stiffness: float) -> None:
+        """Linear PTO gains c (N m s/rad) and k (N m/rad) of the drive's inner loop."""
+        self.p.pto[0], self.p.pto[1] = float(damping), float(stiffness)
+
+    # ------------------------------------------------------------------ state
+    def initial_state(
+        self, pitch: float = 0.0, roll: float = 0.0, gimbal: float = 0.0, gimbal_rate: float = 0.0
+    ) -> NDArray[np.float64]:
+        y = np.zeros(self.p.n_state)
+        y[0], y[1], y[2], y[5] = pitch, roll, gimbal, gimbal_rate
+        return y
+
+    def step(self, t: float, y: NDArray, tau: float, dt: float, n: int) -> NDArray[np.float64]:
+        """y after n RK4 substeps of dt (s) with the PTO command tau (N m) held."""
+        return fl.rk4_steps(t, y, float(tau), dt, n, self._args())
+
+    def _args(self) -> tuple:
+        return fl.pack(self.p, self._om, self._cp, self._cr)
+
+    def excitation(self, t: float) -> tuple[float, float]:
+        """(M_x, M_y) wave excitation moments (N m) about e1 (pitch) and e2 (roll)."""
+        return fl.excitation(t, self._om, self._cp, self._cr)
+
+    def generator_torque(self, y: NDArray, tau: float) -> float:
+        """M_g (N m) the PTO applies at state y for the command tau."""
+        return float(fl.pto_torque(y[2], y[5], tau, self.p.pto))
+
+    def accelerations(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
+        """(theta'', rho'', phi'') (rad/s^2)."""
+        d = fl.deriv(t, y, float(tau), self._args())
+        return d[3:6]
+
+    def gyro_moment(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
+        """(2,) moment of the gyro unit on the hull about the pitch and roll axes (N m)."""
+        return fl.gyro_moment(self.p, y, self.accelerations(t, y, tau))
+
+    def energies(self, y: NDArray) -> dict[str, float]:
+        """Integrated energies (J) and the stored mechanical energy (`floating` module doc)."""
+        k = fl.N_MECH + 2 * self.p.Ar.shape[0]
+        names = ("excitation", "radiated", "viscous", "pto_mechanical", "pto_electrical", "motor")
+        out = {n: float(y[k + i]) for i, n in enumerate(names)}
+        out["stored"] = fl.mechanical_energy(self.p, y)
+        return out
+
+    # ------------------------------------------------------------------ engine twin
+    def engine_model(self) -> Multibody:
+        """The same bodies in the general B-matrix engine: a massless pitch frame (revolute
+        about x1), the hull (revolute about e2 = roll), the gimbal (revolute about e2) and the
+        rotor (revolute about e3, prescribed psi' t); all centres of mass at G."""
+        p = self.p
+        if self.units != 1:
+            raise ValueError("engine_model: the engine's tree holds one gyro unit (units=1)")
+        Ja, Jt, Jg1, Jg2, Jg3 = p.gyro[:5]
+        Ih, Iz = p.inertia
+        return Multibody(
+            [
+                Body("pitch", 0.0, (0.0, 0.0, 0.0), Revolute((1, 0, 0))),
+                Body("hull", 1.0, (Ih, Ih, Iz), Revolute((0, 1, 0)), parent="pitch"),
+                Body("gimbal", 1.0, (Jg1, Jg2, Jg3), Revolute((0, 1, 0)), parent="hull"),
+                Body(
+                    "rotor",
+                    1.0,
+                    (Jt, Jt, Ja),
+                    Revolute((0, 0, 1)),
+                    parent="gimbal",
+                    prescribed=constant_rate(p.psid),
+                ),
+            ]
+        )
+
+
+# ---------------------------------------------------------------------- ceilings
+def radiation_bound(hull: HullCoefficients, wave: WaveField) -> float:
+    """Radiation-limited mean absorbed power (W): sum_i |X(w_i)|^2 a_i^2 / (8 B(w_i)) over the
+    sea's components (pitch and roll together: |X|^2 (sin^2 + cos^2) of the direction), the
+    optimum of a linear oscillating body (Falnes 2002, Eq. 6.48). Components where the table
+    gives B = 0 (X = 0 there by Haskind) contribute nothing."""
+    total = 0.0
+    for a, w in zip(wave.amplitudes, wave.omegas):
+        _, B, X = hull.at(float(w))
+        if B > 0:
+            total += abs(X) ** 2 * a * a / (8.0 * B)
+    return total
+
+
+def wave_power_flux(wave: WaveField, rho: float, g: float) -> float:
+    """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest), deep water (Eqs. 15, 18)."""
+    return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * g / (2.0 * wave.omegas)))

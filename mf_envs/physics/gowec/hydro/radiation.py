@@ -1,0 +1,113 @@
+"""State-space radiation memory for the Cummins equation (Cummins 1962; Perez & Fossen 2009).
+
+The radiation moment is -A_inf theta'' - mu, mu(t) = int_0^t K(t - tau) theta'(tau) dtau, whose
+kernel has the transfer function (Ogilvie's relations)
+
+    K(i w) = B(w) + i w (A(w) - A_inf)                                   (N m s/rad)
+
+We fit K(s) ~ N(s)/D(s) with deg N = n - 1, deg D = n (K is strictly proper: K(i w) -> 0 as
+w -> inf) and N(0) = 0 (K(0) = B(0) = 0), by the Sanathanan-Koerner iteration: linear least squares
+of N(s_k) - K_k D(s_k) weighted by 1/|D_prev(s_k)| on the BEM table s_k = i w_k, frequencies
+scaled by the table's w_max for conditioning. Unstable poles are reflected into the left half
+plane and the numerator refitted with the poles fixed. The realisation (scipy.signal.tf2ss) is
+x' = Ar x + Br theta', mu = Cr x. Hand-written because neither scipy nor python-control has a
+frequency-domain rational fit (vector fitting lives in scikit-rf, a large RF package); the
+iteration is 20 lines and its error is reported (`RadiationFit.error`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import signal
+
+
+@dataclass(frozen=True)
+class RadiationFit:
+    """x' = A x + B theta', mu = C x (SI; x in N m s/rad-scaled units). `error` = max over the
+    table of |K_fit(i w) - K(i w)| / max |K| ; `error_damping` = max |Re K_fit - B| / max B."""
+
+    A: NDArray[np.float64]
+    B: NDArray[np.float64]
+    C: NDArray[np.float64]
+    order: int
+    error: float
+    error_damping: float
+
+    def response(self, w: NDArray[np.float64]) -> NDArray[np.complex128]:
+        """K_fit(i w) (n,) complex, N m s/rad."""
+        n = self.A.shape[0]
+        eye = np.eye(n)
+        return np.array(
+            [(self.C @ np.linalg.solve(1j * x * eye - self.A, self.B)).item() for x in w]
+        )
+
+
+def _ls_step(s: NDArray, K: NDArray, n: int, wt: NDArray) -> tuple[NDArray, NDArray]:
+    """One SK step: numerator coefficients (s^1..s^{n-1}) and monic denominator (s^0..s^n)."""
+    cols = [s**j for j in range(1, n)] + [-K * s**j for j in range(n)]
+    M = np.stack(cols, axis=1) * wt[:, None]
+    rhs = K * s**n * wt
+    Mr = np.concatenate([M.real, M.imag])
+    rr = np.concatenate([rhs.real, rhs.imag])
+    x = np.linalg.lstsq(Mr, rr, rcond=None)[0]
+    num = np.concatenate([[0.0], x[: n - 1]])  # ascending powers, N(0) = 0
+    den = np.concatenate([x[n - 1 :], [1.0]])
+    return num, den
+
+
+def _numerator_for_poles(s: NDArray, K: NDArray, den: NDArray, n: int) -> NDArray:
+    D = np.polyval(den[::-1], s)
+    cols = np.stack([s**j / D for j in range(1, n)], axis=1)
+    x = np.linalg.lstsq(
+        np.concatenate([cols.real, cols.imag]), np.concatenate([K.real, K.imag]), rcond=None
+    )[0]
+    return np.concatenate([[0.0], x])
+
+
+def _fit_order(w: NDArray, K: NDArray, n: int, iters: int = 30) -> tuple[NDArray, NDArray]:
+    s = 1j * w
+    wt = np.ones_like(w)
+    for _ in range(iters):
+        num, den = _ls_step(s, K, n, wt)
+        wt = 1.0 / np.maximum(np.abs(np.polyval(den[::-1], s)), 1e-12)
+    poles = np.roots(den[::-1])
+    if np.any(poles.real >= 0):
+        poles = -np.abs(poles.real) + 1j * poles.imag
+        den = np.real(np.poly(poles))[::-1]
+        num = _numerator_for_poles(s, K, den, n)
+    return num, den
+
+
+def fit_radiation(
+    omega: NDArray,
+    added_mass: NDArray,
+    damping: NDArray,
+    added_mass_inf: float,
+    tol: float = 0.04,
+    max_order: int = 10,
+) -> RadiationFit:
+    """Lowest order n in 2..max_order whose fit error is below tol (else the best one)."""
+    w = np.asarray(omega, dtype=float)
+    K = np.asarray(damping) + 1j * w * (np.asarray(added_mass) - added_mass_inf)
+    scale_w = float(w[-1])
+    scale_k = float(np.max(np.abs(K)))
+    best = None
+    for n in range(2, max_order + 1):
+        num, den = _fit_order(w / scale_w, K / scale_k, n)
+        a, b, c, d = signal.tf2ss(num[::-1] * scale_k, den[::-1])
+        fit = RadiationFit(a * scale_w, b * scale_w, c, n, 0.0, 0.0)
+        Kf = fit.response(w)
+        err = float(np.max(np.abs(Kf - K)) / scale_k)
+        errb = float(np.max(np.abs(Kf.real - K.real)) / np.max(np.abs(K.real)))
+        stable = bool(np.all(np.linalg.eigvals(fit.A).real < 0))
+        fit = RadiationFit(fit.A, fit.B, fit.C, n, err, errb)
+        if stable and (best is None or err < best.error):
+            best = fit
+        if stable and err < tol:
+            break
+    if best is None:
+        raise ValueError("hull: no stable radiation fit found (check the damping table)")
+    return best

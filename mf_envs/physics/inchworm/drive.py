@@ -1,0 +1,256 @@
+"""The inchworm driven through its actuators and feet: one control step of the robot.
+
+`DrivenInchworm` wraps an `Inchworm` (the active beam, Rios 2017 §4.10) with
+* the actuator dynamics of `actuators` (effect `actuator_dynamics`): the commanded curvature at
+  the control points reaches the beam through the rate-limited lag (A1); without it kappa#
+  moves linearly from the old to the new command over the step (the seed's prescription);
+* the friction feet of `feet` (effect `friction`): the grip command engages one foot and
+  releases the other, each holds by Coulomb friction; without it the seed's kinematic anchors
+  of Eq. 102.
+Each control step is split into substeps of equal time such that no control point's kappa#
+changes by more than the increment limit in a substep (the lag is monotone within a step, so
+the largest rate is the initial one); each substep is one quasi-static increment whose
+actuation work is the trapezoid of (A2) (`actuators.increment_work`), accumulated by an
+`EnergyMeter` (no regeneration). Quasi-static with `friction` (Coulomb friction in Newmark
+dynamics would need a regularised or event-driven contact, not built).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mf_envs.physics.beam import NewmarkState
+from mf_envs.physics.inchworm import Inchworm, InchwormParams, kappa_at_gauss
+from mf_envs.physics.inchworm.actuators import (
+    ActuatorParams,
+    EnergyMeter,
+    RateLimitedLag,
+    increment_work,
+)
+from mf_envs.physics.inchworm.feet import FootReport, FrictionFeet, FrictionParams
+
+DRIVE_EFFECTS = {
+    "actuator_dynamics": "actuator lag + rate limit on kappa# (off = kappa# as commanded)",
+    "friction": "feet holding by anisotropic Coulomb friction with grip dynamics (off = the "
+    "kinematic anchors of Eq. 102; implies the weight)",
+}
+GRIP_COMMANDS = {"head": (0.0, 1.0), "tail": (1.0, 0.0), None: (1.0, 1.0)}  # (tail, head)
+
+
+@dataclass
+class DriveReport:
+    """One control step: kappa_sharp (n,) realised at the control points [1/m]; energy [J]
+    drawn by the actuators (positive work / efficiency); net_work [J] (signed, A2); increments
+    and Newton iterations; slip (2,) [m] of tail, head (friction); feet: the friction feet's
+    report (None with kinematic anchors)."""
+
+    kappa_sharp: np.ndarray
+    energy: float = 0.0
+    net_work: float = 0.0
+    increments: int = 0
+    iterations: int = 0
+    slip: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    feet: FootReport | None = None
+
+
+class DrivenInchworm:
+    """An `Inchworm` whose kappa# and grip go through actuator and foot dynamics."""
+
+    def __init__(
+        self,
+        sim: Inchworm,
+        S_ctrl: np.ndarray,
+        actuator: ActuatorParams | None = None,
+        friction: FrictionParams | None = None,
+    ) -> None:
+        if friction is not None and ("inertia" in sim.effects or sim.terrain is not None):
+            raise ValueError("effects: 'friction' is quasi-static and excludes inertia, terrain")
+        self.sim, self.S_ctrl = sim, np.asarray(S_ctrl, float)
+        self.actuator = actuator
+        self.lag = RateLimitedLag(actuator, len(S_ctrl)) if actuator is not None else None
+        self.feet = FrictionFeet(sim.model, friction, sim.settings) if friction else None
+        self.meter = EnergyMeter(actuator.efficiency if actuator is not None else 1.0)
+        self.kappa_ctrl = np.zeros(len(S_ctrl))
+
+    def reset(self, kappa_ctrl: np.ndarray, x_tail: float = 0.0) -> None:
+        """Straight body at x_tail [m], actuated to kappa_ctrl (n,) [1/m] at rest with the head
+        anchored (the seed's start); actuators at rest; head gripping, tail released."""
+        self.sim.reset(x_tail=x_tail)
+        self.sim.actuate(self._gauss(kappa_ctrl), anchor="head")
+        self.kappa_ctrl = np.array(kappa_ctrl, float)
+        if self.lag is not None:
+            self.lag.reset(self.kappa_ctrl)
+        if self.feet is not None:
+            self.feet.reset(GRIP_COMMANDS["head"])
+        self.meter = EnergyMeter(self.meter.efficiency)
+
+    @property
+    def grip(self) -> np.ndarray:
+        """Engagement (tail, head) in [0, 1]: the feet's state with `friction`, else 1 for the
+        kinematically anchored foot."""
+        if self.feet is not None:
+            return self.feet.g.copy()
+        return np.array([self.sim.anchor == "tail", self.sim.anchor == "head"], float)
+
+    def _gauss(self, kappa_ctrl: np.ndarray) -> np.ndarray:
+        return kappa_at_gauss(self.S_ctrl, kappa_ctrl, self.sim.model.gauss_S)
+
+    def _path(self, command: np.ndarray, dt: float, min_substeps: int) -> np.ndarray:
+        """kappa# at the control points at the substep ends, (n_sub + 1, n) [1/m]."""
+        limit = self.sim.increment_factor * self.sim.params.max_dkappa
+        if self.lag is None:
+            n = int(np.ceil(np.max(np.abs(command - self.kappa_ctrl)) / limit - 1e-12))
+            n = max(n, min_substeps, 1)
+            lam = np.linspace(0.0, 1.0, n + 1)[:, None]
+            return self.kappa_ctrl + lam * (command - self.kappa_ctrl)
+        rate0 = float(np.max(np.abs(self.lag.rate(self.lag.kappa, command))))
+        n = max(1, min_substeps, int(np.ceil(rate0 * dt / limit - 1e-12)))
+        path = self.lag.trajectory(command, np.linspace(0.0, dt, n + 1))
+        path[0] = self.lag.kappa
+        return path
+
+    def step(
+        self, command: np.ndarray, anchor: str | None, dt: float, min_substeps: int = 1
+    ) -> DriveReport:
+        """Hold the commanded kappa# (n,) [1/m] and the grip (`anchor`: "head"/"tail" grips,
+        None: both with friction, Eq. 102 with kinematic anchors) for dt [s], in at least
+        min_substeps substeps (e.g. the Newmark steps of `inertia`).
+        Raises NewtonDivergence / NoQuasiStaticEquilibrium when the physics fails."""
+        command = np.asarray(command, float).reshape(self.kappa_ctrl.shape)
+        path = self._path(command, dt, min_substeps)
+        gauss = [self._gauss(k) for k in path]
+        n = len(path) - 1
+        energy0, net0 = self.meter.input_energy, self.meter.net
+        rep = DriveReport(kappa_sharp=path[-1].copy(), increments=n)
+        if self.feet is None:
+            rep.iterations = self._kinematic(gauss, anchor, dt)
+        else:
+            rep.feet = self._frictional(gauss, anchor, dt)
+            rep.iterations, rep.slip = rep.feet.iterations, rep.feet.slip.copy()
+        if self.lag is not None:
+            self.lag.advance(command, dt)
+        self.kappa_ctrl = path[-1].copy()
+        rep.energy = self.meter.input_energy - energy0
+        rep.net_work = self.meter.net - net0
+        return rep
+
+    def _kinematic(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> int:
+        sim, n, iterations = self.sim, len(gauss) - 1, 0
+        for j in range(n):
+            d_a = sim.state.d.copy()  # M3 is invariant to a re-centring of x in actuate
+            iterations += sim.actuate(gauss[j + 1], dt=dt / n, anchor=anchor).iterations
+            self.meter.add(increment_work(sim.model, d_a, sim.state.d, gauss[j], gauss[j + 1]))
+        return iterations
+
+    def _frictional(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> FootReport:
+        sim = self.sim
+        self.feet.settings = sim.settings  # one Newton budget for the whole robot
+        ds, rep = self.feet.step(sim.state.d, gauss, sim.f_ext, GRIP_COMMANDS[anchor], dt)
+        d_prev = sim.state.d
+        for j, d in enumerate(ds):
+            self.meter.add(increment_work(sim.model, d_prev, d, gauss[j], gauss[j + 1]))
+            d_prev = d
+        z = np.zeros_like(ds[-1])
+        sim.state = NewmarkState(ds[-1], z, z.copy(), sim.state.t + dt)
+        sim.kappa = gauss[-1]
+        sim.anchor = anchor or "head"
+        sim._recenter()  # noqa: SLF001 - same package: the local origin follows the tail
+        return rep
+
+
+def make_driven(
+    params: InchwormParams,
+    effects: frozenset[str],
+    n_control_points: int,
+    actuator: ActuatorParams,
+    friction: FrictionParams,
+    increment_factor: float = 1.0,
+    soil: str = "dry_sand",
+) -> DrivenInchworm:
+    """A DrivenInchworm with control points evenly spaced from tail to head; `effects` may name
+    the beam's effects and those of DRIVE_EFFECTS (which switch actuator and friction on).
+    `friction` implies the weight (Coulomb friction needs a normal load, like `terrain`)."""
+    beam_effects = frozenset(effects) - set(DRIVE_EFFECTS)
+    if "friction" in effects:
+        beam_effects |= {"gravity"}
+    sim = Inchworm(
+        params,
+        beam_effects,
+        increment_factor=increment_factor,
+        soil=soil,
+    )
+    return DrivenInchworm(
+        sim,
+        np.linspace(0.0, params.length, n_control_points),
+        actuator if "actuator_dynamics" in effects else None,
+        friction if "friction" in effects else None,
+    )
+
+
+# ---------------------------------------------------------------------- open-loop gaits
+CommandFn = Callable[[float], np.ndarray]  # t [s] -> commanded kappa# (n,) [1/m]
+
+
+def cosine_gait(amplitude: float, shape: np.ndarray, period: float) -> CommandFn:
+    """The seed's gait in seconds: kappa#(S, t) = -a s(S) (1 + cos(2 pi t / T - pi)) / 2
+    (Eqs. 101, 103 with the bookkeeping time 2 pi t / T); shape s (n,) = c1 + c2 S / L."""
+    shape = np.asarray(shape, float)
+    return lambda t: -0.5 * amplitude * shape * (1.0 + np.cos(2.0 * np.pi * t / period - np.pi))
+
+
+def square_gait(amplitude: float, shape: np.ndarray, period: float) -> CommandFn:
+    """Bang-bang command: curl fully (-a s) for the first half period, release for the second;
+    the actuator's lag and rate limit shape the realised kappa#."""
+    shape = np.asarray(shape, float)
+    return lambda t: -amplitude * shape * float((t % period) < 0.5 * period)
+
+
+def grip_for(driven: DrivenInchworm, command: np.ndarray, dt: float) -> str:
+    """Eq. 102 on the realised actuation: the head grips while kappa# decreases over the next
+    step (loading, neutral included), the tail while it increases; predicted by the lag."""
+    if driven.lag is None:
+        change = command - driven.kappa_ctrl
+    else:
+        change = driven.lag.trajectory(command, np.array([dt]))[0] - driven.lag.kappa
+    return "head" if float(np.mean(change)) <= 0.0 else "tail"
+
+
+@dataclass
+class GaitMetrics:
+    """Speed [body lengths / s], advance per cycle [body lengths], cost of transport
+    E / (m_A g L * distance) [-], energy [J] and tail distance [m] over the measured cycles."""
+
+    speed: float
+    advance_per_cycle: float
+    cost_of_transport: float
+    energy: float
+    distance: float
+
+
+def run_open_loop(
+    driven: DrivenInchworm,
+    command: CommandFn,
+    period: float,
+    dt: float,
+    n_cycles: int = 2,
+    warmup_cycles: int = 1,
+) -> GaitMetrics:
+    """Drive `driven` (already reset) with command(t) held over control steps of dt [s], the
+    grip by `grip_for`; measure the tail over n_cycles after warmup_cycles."""
+    sim = driven.sim
+    n_warm = int(round(warmup_cycles * period / dt))
+    n_meas = int(round(n_cycles * period / dt))
+    x0 = e0 = 0.0
+    for k in range(n_warm + n_meas):
+        if k == n_warm:
+            x0, e0 = sim.x_tail, driven.meter.input_energy
+        c = command((k + 1) * dt)
+        driven.step(c, grip_for(driven, c, dt), dt)
+    dist, energy = sim.x_tail - x0, driven.meter.input_energy - e0
+    p, span = sim.params, n_meas * dt
+    weight = p.mass_per_length * p.gravity * p.length
+    cot = energy / (weight * dist) if dist > 0.0 else float("inf")
+    return GaitMetrics(dist / span / p.length, dist / p.length * period / span, cot, energy, dist)

@@ -1,0 +1,253 @@
+"""RLlib (Ray) PPO for the mf_envs environments: `mf-envs train ENV_ID --backend rllib`.
+
+`register_rllib_envs()` registers every mf_envs id with `ray.tune.registry.register_env` under
+the same name as in Gymnasium. The creator returns a single env, or (when RLlib passes
+`num_envs` in the env config, i.e. with `gym_env_vectorize_mode="vector_entry_point"`) the env's
+native batched vector env (`gym.make_vec(..., vectorization_mode="vector_entry_point")`).
+
+Native vector envs: RLlib >= 2.4x's `SingleAgentEnvRunner` builds its env with
+`gym.make_vec(name, num_envs=num_envs_per_env_runner, vectorization_mode=mode)`, and the
+VECTOR_ENTRY_POINT mode hands the whole batch to our creator. Our vector envs use Gymnasium's
+NEXT_STEP autoreset, the semantics the runner expects (the step after a done one is the reset
+observation), and batched dict infos, which the runner's `DictInfoToList` unpacks. Envs without
+a native vector env (Inchworm-v0) run with RLlib's SYNC vectorisation of single envs.
+
+`PPO_CONFIGS` is the documented per-env starting point. Its keys (all optional except those
+`_BASE` supplies): `timesteps` (training budget), `num_env_runners` (Ray actors sampling in
+parallel), `num_envs_per_env_runner` (sub-envs per runner, batched in one native call),
+`train_batch_size_per_learner`, `minibatch_size`, `num_epochs`, `lr`, `gamma`, `lambda_`,
+`clip_param`, `entropy_coeff`, `vf_clip_param`, `fcnet_hiddens`, `sample_timeout_s`,
+`mean_std_filter` (observation normalisation, RLlib's `MeanStdFilter` connector, the counterpart
+of SB3's `VecNormalize`), `env_kwargs`. Discounts and GAE follow the SB3 configs
+(`train/configs/ppo.yml`), which were tuned on this machine; the RLlib budgets are NOT tuned
+(an iteration is a working default).
+`--config FILE` takes a YAML mapping env id -> any of these keys (read with `yaml.safe_load`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+
+RAY_INSTALL = 'RLlib needs Ray; pip install "mf-envs[ray]"'
+
+_BASE: dict[str, Any] = {
+    "timesteps": 200_000,
+    "num_env_runners": 2,
+    "num_envs_per_env_runner": 4,
+    "train_batch_size_per_learner": 4000,
+    "minibatch_size": 250,
+    "num_epochs": 10,
+    "lr": 3e-4,
+    "gamma": 0.99,
+    "lambda_": 0.95,
+    "clip_param": 0.2,
+    "entropy_coeff": 0.0,
+    "vf_clip_param": 1e4,  # value targets are not normalised: do not clip the value loss
+    "fcnet_hiddens": [64, 64],
+    "mean_std_filter": True,
+    "env_kwargs": {},
+    # a fresh install compiles the numba kernels in each runner on its first step (minutes)
+    "sample_timeout_s": 900.0,
+}
+PPO_CONFIGS: dict[str, dict[str, Any]] = {
+    # 600-step episodes (30 s at 0.05 s); SB3 tuning: gamma 0.98, lr 1e-3 (train/configs/ppo.yml)
+    "GyroStabilizer-v0": {"gamma": 0.98, "lr": 1e-3, "minibatch_size": 128},
+    # 6000-step episodes (20 wave periods x 300 steps): a horizon of a wave period, gamma 0.995
+    "GOWEC-v0": {"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
+    # the floating buoy: GOWEC-v0's settings as the starting point (untuned)
+    "GOWEC-v1": {"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
+    # slow steps (a Newton solve per actuation increment): small batches, one runner's worth
+    "Inchworm-v0": {"num_envs_per_env_runner": 1, "train_batch_size_per_learner": 1000},
+}
+
+
+def require_ray() -> Any:
+    """The `ray` module with RLlib, or a ValueError whose one line says what to install."""
+    try:
+        import ray
+        import ray.rllib  # noqa: F401
+    except ImportError as exc:
+        raise ValueError(RAY_INSTALL) from exc
+    return ray
+
+
+def has_native_vector_env(env_id: str) -> bool:
+    import mf_envs  # noqa: F401
+
+    return gym.spec(env_id).vector_entry_point is not None
+
+
+def make_env(env_id: str, env_config: dict[str, Any]) -> gym.Env | gym.vector.VectorEnv:
+    """RLlib's env creator: a single env, or the native vector env if `num_envs` is given."""
+    import mf_envs  # noqa: F401  (registers the ids in a fresh Ray worker)
+
+    kwargs = dict(env_config)
+    n = kwargs.pop("num_envs", None)
+    if n is None:
+        return gym.make(env_id, **kwargs)
+    mode = "vector_entry_point" if has_native_vector_env(env_id) else "sync"
+    return gym.make_vec(env_id, num_envs=int(n), vectorization_mode=mode, **kwargs)
+
+
+def register_rllib_envs() -> list[str]:
+    """Register every mf_envs id with RLlib (`register_env`, same names); the ids."""
+    require_ray()
+    from ray.tune.registry import register_env
+
+    from mf_envs.envs import available_env_ids
+
+    ids = available_env_ids()
+    for env_id in ids:
+        register_env(env_id, lambda cfg, env_id=env_id: make_env(env_id, cfg))
+    return ids
+
+
+def ppo_settings(env_id: str, overrides: dict[str, Any] | None = None) -> dict[str, Any]:
+    """`_BASE | PPO_CONFIGS[env_id] | overrides` (ValueError on an unknown key)."""
+    out = {**_BASE, **PPO_CONFIGS.get(env_id, {})}
+    bad = sorted(set(overrides or {}) - set(_BASE))
+    if bad:
+        raise ValueError(f"config: unknown RLlib PPO key(s) {bad}; known: {sorted(_BASE)}")
+    return {**out, **(overrides or {})}
+
+
+def ppo_config(env_id: str, seed: int = 0, **overrides: Any) -> Any:
+    """An RLlib `PPOConfig` (new API stack) for `env_id`; see the module docstring for keys."""
+    require_ray()
+    from ray.rllib.algorithms.ppo import PPOConfig
+    from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
+
+    register_rllib_envs()
+    s = ppo_settings(env_id, overrides)
+    native = has_native_vector_env(env_id)
+    connector = None
+    if s["mean_std_filter"]:
+        from ray.rllib.connectors.env_to_module.mean_std_filter import MeanStdFilter
+
+        connector = _mean_std_filter(MeanStdFilter)
+    return (
+        PPOConfig()
+        .environment(env_id, env_config=dict(s["env_kwargs"]))
+        .env_runners(
+            num_env_runners=s["num_env_runners"],
+            num_envs_per_env_runner=s["num_envs_per_env_runner"],
+            gym_env_vectorize_mode="vector_entry_point" if native else "sync",
+            env_to_module_connector=connector,
+            sample_timeout_s=s["sample_timeout_s"],
+        )
+        .training(
+            train_batch_size_per_learner=s["train_batch_size_per_learner"],
+            minibatch_size=s["minibatch_size"],
+            num_epochs=s["num_epochs"],
+            lr=s["lr"],
+            gamma=s["gamma"],
+            lambda_=s["lambda_"],
+            clip_param=s["clip_param"],
+            entropy_coeff=s["entropy_coeff"],
+            vf_clip_param=s["vf_clip_param"],
+        )
+        .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=list(s["fcnet_hiddens"])))
+        .debugging(seed=seed)
+    )
+
+
+def _mean_std_filter(cls: Any) -> Any:
+    def connector(env: Any, spaces: Any = None, device: Any = None) -> Any:
+        return cls()
+
+    return connector
+
+
+def init_ray(num_cpus: int = 2) -> bool:
+    """Start a small local Ray (`sweep.run.init_local_ray`) unless one is running; True if
+    this call started it."""
+    from mf_envs.sweep.run import init_local_ray
+
+    ray = require_ray()
+    if ray.is_initialized():
+        return False
+    init_local_ray(num_cpus)
+    return True
+
+
+def _metric(result: dict[str, Any], key: str) -> float:
+    for where in (result.get("env_runners", {}), result):
+        if key in where:
+            return float(where[key])
+    return float("nan")
+
+
+def train(
+    env_id: str,
+    timesteps: int | None = None,
+    seed: int = 0,
+    out: str | Path = "runs",
+    config: str | Path | None = None,
+    iterations: int | None = None,
+    **overrides: Any,
+) -> tuple[Path, list[dict[str, float]]]:
+    """Train RLlib PPO until `timesteps` env steps (or `iterations`); (run dir, history).
+
+    Writes `<out>/<env_id>_rllib_seed<seed>/checkpoint/` (`Algorithm.save_to_path`) and
+    `meta.json` (settings, Ray version, per-iteration steps and mean episode return, wall time).
+    """
+    ray = require_ray()
+    settings = ppo_settings(env_id, {**_read_overrides(env_id, config), **overrides})
+    budget = int(timesteps if timesteps is not None else settings["timesteps"])
+    started = init_ray(num_cpus=max(2, settings["num_env_runners"]))
+    history: list[dict[str, float]] = []
+    t0 = time.perf_counter()
+    algo = ppo_config(env_id, seed=seed, **{k: v for k, v in settings.items()}).build_algo()
+    try:
+        while (iterations is None and (not history or history[-1]["steps"] < budget)) or (
+            iterations is not None and len(history) < iterations
+        ):
+            r = algo.train()
+            history.append(
+                {
+                    "iteration": len(history) + 1,
+                    "steps": _metric(r, "num_env_steps_sampled_lifetime"),
+                    "episode_return_mean": _metric(r, "episode_return_mean"),
+                    "wall_s": time.perf_counter() - t0,
+                }
+            )
+        run_dir = Path(out) / f"{env_id}_rllib_seed{seed}"
+        run_dir.mkdir(parents=True, exist_ok=True)
+        algo.save_to_path(str((run_dir / "checkpoint").resolve()))
+    finally:
+        algo.stop()
+        if started:
+            ray.shutdown()
+    meta = {"env_id": env_id, "backend": "rllib", "ray": ray.__version__, "seed": seed}
+    meta |= {"settings": settings, "history": history}
+    (run_dir / "meta.json").write_text(json.dumps(meta, indent=1, default=str))
+    return run_dir, history
+
+
+def _read_overrides(env_id: str, path: str | Path | None) -> dict[str, Any]:
+    """The `env_id` entry of a YAML file mapping env ids to RLlib PPO keys ({} if absent)."""
+    from mf_envs.train.config import read_config
+
+    return {} if path is None else dict(read_config(path).get(env_id, {}))
+
+
+def train_command(args: argparse.Namespace) -> list[Path]:
+    """`mf-envs train ENV_ID --backend rllib [--timesteps N] [--seed S] [--config FILE]`."""
+    require_ray()
+    from mf_envs.train.trainer import check_env_id
+
+    check_env_id(args.env_id)
+    run_dir, hist = train(args.env_id, args.timesteps, args.seed, args.out, args.config)
+    last = hist[-1]
+    print(
+        f"{args.env_id} (RLlib PPO): {last['steps']:.0f} steps in {last['wall_s']:.0f} s, "
+        f"{len(hist)} iterations, mean episode return {last['episode_return_mean']:.4g}; "
+        f"checkpoint in {run_dir / 'checkpoint'}"
+    )
+    return [run_dir / "meta.json"]

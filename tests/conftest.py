@@ -1,0 +1,19 @@
+"""Suite-wide test settings.
+
+- hypothesis: no per-example deadline. The first example of a property test may include numba's
+  compilation of a kernel (seconds on a cold cache, e.g. a fresh venv), which is not the test's
+  subject; the properties themselves are unchanged.
+- Markers (pyproject.toml): `slow` for long soaks and convergence ladders. The default run
+  (`python -m pytest -n 2`, the README command) deselects them via `addopts`; CI's second stage
+  runs everything with `-m "slow or not slow"`.
+- Tests that need an optional extra skip with a reason naming it, e.g.
+  `pytest.importorskip("stable_baselines3",
+  reason="needs the train extra: pip install -e '.[train]'")`.
+"""
+
+from __future__ import annotations
+
+from hypothesis import settings
+
+settings.register_profile("mf_envs", deadline=None)
+settings.load_profile("mf_envs")

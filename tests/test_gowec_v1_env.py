@@ -1,0 +1,143 @@
+"""GOWEC-v1 env: contract, energy balance, matched PTO, stiff-hull limit, radiation bound."""
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import mf_envs  # noqa: F401
+from mf_envs.controllers import make_baseline
+from mf_envs.controllers.gowec_v1 import matched_pto
+from mf_envs.envs.gowec_v1 import spec
+from mf_envs.physics.gowec import analytic_max_power
+from mf_envs.physics.gowec.hydro import HullCoefficients, load_hull
+
+
+def _episode(env, kind, seed, **ctrl):
+    c = make_baseline(env, kind, **ctrl)
+    obs, _ = env.reset(seed=seed)
+    c.reset()
+    P, done = [], False
+    while not done:
+        a, _ = c.predict(obs)
+        obs, _, term, trunc, info = env.step(a)
+        P.append(info["power_mechanical"])
+        done = term or trunc
+    return np.array(P), info
+
+
+def test_api_contract():
+    env = gym.make("GOWEC-v1", episode_seconds=2.0)
+    check_env(env.unwrapped)
+    obs, info = env.reset(seed=0, options={"buoy_pitch": 0.05, "gimbal_rate": 1.0})
+    assert set(spec.INFO_KEYS) <= set(info)  # the spec's declaration (docs/api.md keys and more)
+    assert info["buoy_pitch"] == 0.05 and info["buoy_rate"].shape == (2,)
+    with pytest.raises(ValueError, match="wave_phase"):
+        env.reset(options={"wave_phase": 1.0})
+    with pytest.raises(ValueError, match="generator_efficiency"):
+        gym.make("GOWEC-v1", generator_efficiency=1.5)
+    with pytest.raises(ValueError, match="hull"):
+        gym.make("GOWEC-v1", hull="/nonexistent/hull.npz")
+    u = env.unwrapped
+    assert u.hydrostatic_stiffness() == load_hull().stiffness
+    assert u.natural_period() == pytest.approx(5.475, rel=1e-3)
+    # deep-water flux rho g^2 a^2 T / (8 pi) (Eq. 19 with Hs = 2 a... regular-wave form)
+    assert u.wave_power_flux() == pytest.approx(1025 * 9.81**2 * 6.0 / (8 * math.pi), rel=1e-12)
+    a = [env.reset(seed=3)[0] for _ in range(2)]
+    assert np.array_equal(a[0], a[1])
+
+
+def test_energy_balance_irregular_pll():
+    env = gym.make("GOWEC-v1", significant_wave_height=1.5, peak_period=6.0, episode_seconds=300)
+    _, info = _episode(env, "pll", seed=11)
+    assert not info["overspeed"] and not info["out_of_range"]
+    m = env.unwrapped.model
+    e = m.energies(env.unwrapped.state)
+    stored0 = 0.0  # buoy level and at rest, gimbal at rest: 1/2 C q^2 = 0 and kinetic 0
+    out = e["radiated"] + e["viscous"] + e["pto_mechanical"] + e["stored"] - stored0 - e["motor"]
+    assert abs(e["excitation"] - out) <= 0.01 * abs(e["excitation"])
+    assert e["excitation"] > 0 and e["radiated"] > 0
+
+
+def test_matched_linear_pto_absorbs_the_optimum():
+    """c*, k* (issue 14) on a small regular wave: mean PTO power = |M_ex|^2 / (8 R), R = B + b_v."""
+    T, a = 6.5, 0.02
+    env = gym.make(
+        "GOWEC-v1",
+        wave_amplitude=a,
+        wave_period=T,
+        episode_seconds=240.0,
+        rotor_loss=0.0,
+        max_generator_torque=1e6,
+        max_generator_power=1e9,
+    )
+    P, _ = _episode(env, "linear_pto", seed=0)
+    u = env.unwrapped
+    w = 2 * math.pi / T
+    A, B, X = u.hull.at(w)
+    R = B + u.model.p.viscous
+    target = (abs(X) * a) ** 2 / (8 * R)
+    n = int(2 * T / u.control_dt) * 10  # the last 20 periods
+    assert np.mean(P[-n:]) == pytest.approx(target, rel=0.03)
+    c, k = matched_pto(env)
+    assert c > 0 and u.model.p.pto[0] == c and u.model.p.pto[1] == k
+
+
+def _stiff_hull(C=1e10):
+    h = load_hull()
+    w = h.omega
+    k = w**2 / h.g
+    B = 1e-6 * w**7  # negligible radiation
+    return HullCoefficients(
+        omega=w,
+        added_mass=np.full_like(w, 1e5),
+        damping=B,
+        excitation=-1j * k * C,
+        added_mass_inf=1e5,
+        added_mass_zero=1e5,
+        stiffness=C,
+        inertia=1e7,
+        mass=1e7,
+        name="stiff",
+    )
+
+
+def test_stiff_heavy_hull_returns_gowec_v0():
+    """X = -i k C (the wave slope times C), C >> w^2 (I + A): the buoy follows the wave slope
+    (Eqs. 77-78) and the PLL's locked gimbal returns Eq. 95 (GOWEC-v0's number) per unit."""
+    T, a, theta = 6.0, 1.0, 1.2
+    env = gym.make(
+        "GOWEC-v1",
+        hull=_stiff_hull(),
+        wave_amplitude=a,
+        wave_period=T,
+        wave_direction=theta,
+        episode_seconds=90.0,
+        effects=("gyroscopic", "viscous_damping"),
+        rotor_loss=0.0,
+    )
+    P, _ = _episode(env, "pll", seed=0)
+    u = env.unwrapped
+    # Eq. 95 is per gyroscope; the default is the seed's pair (twice the power, Sec. 3.2.3)
+    eq95 = u.model.units * analytic_max_power(u.model.p.gyro[0], u.model.psid, a, T, theta)
+    n = int(10 * T / u.control_dt)
+    assert np.mean(P[-n:]) == pytest.approx(eq95, rel=0.02)
+
+
+@pytest.mark.parametrize("sea", [{}, {"significant_wave_height": 2.0}])
+def test_no_controller_beats_the_radiation_bound(sea):
+    for kind in ("pll", "bang_bang", "linear_pto"):
+        for seed in range(100, 105):
+            env = gym.make("GOWEC-v1", episode_seconds=30.0, **sea)
+            P, _ = _episode(env, kind, seed)
+            assert np.mean(P) < env.unwrapped.power_bound()
+
+
+def test_render_rgb_array():
+    env = gym.make("GOWEC-v1", render_mode="rgb_array", episode_seconds=1.0)
+    env.reset(seed=0)
+    env.step(np.zeros(1, np.float32))
+    img = env.render()
+    assert img.shape == (360, 480, 3) and img.dtype == np.uint8 and img.std() > 5

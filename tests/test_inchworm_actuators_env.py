@@ -1,0 +1,103 @@
+"""Inchworm-v0 with actuator dynamics and friction feet (issue 16): limits through the actions,
+the kwargs, info keys, the reward's effort = actuation energy, the seed's scene, the baselines."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import mf_envs  # noqa: F401  (registers the ids)
+from mf_envs.controllers import make_baseline
+from mf_envs.envs.inchworm import SEED_SCENE_EFFECTS
+
+L = 0.3
+
+
+def test_bang_bang_actions_respect_the_actuator_and_grip_limits():
+    """Bang-bang actions (every control point and the grip flipping at random every step):
+    the realised kappa# (info['kappa_sharp']) never changes faster than the rate limit, and the
+    feet's engagement never faster than 1 / grip_time_constant."""
+    env = gym.make("Inchworm-v0", actuator_rate_limit=10.0, grip_time_constant=0.15)
+    base = env.unwrapped
+    assert base.actuator_rate_limit == 10.0
+    _, info = env.reset(seed=0)
+    rng, dt = np.random.default_rng(2), base.control_dt
+    worst_k = worst_g = 0.0
+    for _ in range(60):
+        a = np.where(rng.random(env.action_space.shape) < 0.5, -1.0, 1.0).astype(np.float32)
+        k0, g0 = info["kappa_sharp"], info["grip"]
+        _, _, term, _, info = env.step(a)
+        assert not term
+        assert info["kappa_sharp"].shape == (base.n_ctrl,)
+        worst_k = max(worst_k, float(np.max(np.abs(info["kappa_sharp"] - k0))) / dt)
+        worst_g = max(worst_g, float(np.max(np.abs(info["grip"] - g0))) / dt * 0.15)
+    assert worst_k <= 10.0 * (1 + 1e-9) and worst_k > 9.0
+    assert worst_g <= 1.0 + 1e-12 and worst_g > 0.3
+
+
+def test_effort_is_the_actuation_energy():
+    env = gym.make("Inchworm-v0", effort_weight=2.0)
+    env.reset(seed=0)
+    energy = 0.0
+    for _ in range(10):
+        _, r, _, _, info = env.step(np.ones(env.action_space.shape, np.float32))  # curl
+        assert info["reward_terms"]["effort"] == pytest.approx(-2.0 * info["actuation_energy"])
+        assert info["actuation_energy"] >= 0.0
+        energy += info["actuation_energy"]
+        dt = env.unwrapped.control_dt
+        assert info["actuation_power"] * dt <= info["actuation_energy"] + 1e-15
+    assert energy > 0.0  # curling against gravity and the feet costs work
+
+
+def test_episode_seconds_sets_the_length():
+    env = gym.make("Inchworm-v0", episode_seconds=1.0)
+    env.reset(seed=0)
+    for k in range(10):
+        *_, trunc, _ = env.step(np.zeros(env.action_space.shape, np.float32))
+        assert trunc == (k == 9)
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"actuator_time_constant": 0.0}, "actuator_time_constant"),
+        ({"actuator_rate_limit": -1.0}, "actuator_rate_limit"),
+        ({"grip_time_constant": float("nan")}, "grip_time_constant"),
+        ({"friction_coefficients": {"grip_forward": -0.1}}, "friction_coefficients"),
+        ({"friction_coefficients": {"sticky": 1.0}}, "friction_coefficients"),
+        ({"episode_seconds": 0.0}, "episode_seconds"),
+        ({"effects": ("gravity", "inertia", "friction")}, "effects"),
+    ],
+)
+def test_bad_kwargs_name_the_parameter(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        gym.make("Inchworm-v0", **kwargs)
+
+
+def test_seed_scene_still_crawls_the_seed_gait():
+    """The seed's scene (kinematic anchors, kappa# as commanded, quasi-static): seed_uniform at
+    40 steps per cycle advances 0.5235 L per cycle, as before issue 16."""
+    env = gym.make("Inchworm-v0", effects=SEED_SCENE_EFFECTS)
+    ctrl = make_baseline(env, "seed_uniform")
+    obs, info = env.reset(seed=0, options={"kappa": np.zeros(3)})
+    ctrl.reset()
+    assert ctrl.steps_per_cycle == 40
+    x0 = info["x_tail"]
+    for _ in range(40):
+        obs, *_, info = env.step(ctrl.predict(obs)[0])
+    assert (info["x_tail"] - x0) / L == pytest.approx(0.5235, rel=2e-3)
+
+
+def test_seed_gait_runs_at_the_fastest_cycle_the_actuator_allows():
+    env = gym.make("Inchworm-v0")
+    ctrl = make_baseline(env, "seed_uniform")
+    act = env.unwrapped.actuator
+    assert ctrl.period == pytest.approx(np.ceil(act.fastest_cycle(13.0) / 0.1 - 1e-9) * 0.1)
+    obs, info = env.reset(seed=0)
+    ctrl.reset()
+    x0 = info["x_tail"]
+    for _ in range(2 * ctrl.steps_per_cycle):
+        obs, *_, info = env.step(ctrl.predict(obs)[0])
+        assert not info["numerical_failure"]
+    assert info["x_tail"] - x0 > 0.3 * L
