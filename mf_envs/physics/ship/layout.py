@@ -3,8 +3,11 @@
 `KernelParams` declares every slot (field order = slot order, SI units); `Slot` (an IntEnum the
 kernels index with, `P[Slot.J1]`; numba folds it to a constant), `N_PARAMS` and `pack` are all
 derived from it, so adding a hull parameter is one field here plus its use in the kernels and in
-`mf_envs.physics.ship.model.pack_params`. (numba's cache watches only a kernel's own file: after
-editing this one, touch `kernels.py`.)
+`mf_envs.physics.ship.model.pack_params`. A tuple field is a block (`BLOCKS`: the torque drive's
+`ship.drive.DriveParams.pack`, the `ship.coupling` coefficients) filling slots NAME_0 ..
+NAME_{len-1}; the kernels slice it at the generated offset (`DRV0 = Slot.DRIVE_0`, `CPL0`), so
+the sub-indices are the block's own (`ship.drive.DPHIMAX` ...). (numba's cache watches only a
+kernel's own file: after editing this one, touch `kernels.py` and `batch.py`.)
 """
 
 from __future__ import annotations
