@@ -31,6 +31,7 @@ from mf_envs.physics.ship import (
     small_yacht,
     wave_table,
 )
+from mf_envs.physics.ship.drive import DriveParams
 
 # parameters nobody tuned anything on (the seed used 1e6/1e9/1e10, 50 kg m^2, 8050 rpm)
 HULL = ShipParams(inertia=(3.7e5, 2.2e6, 2.9e6))
@@ -252,7 +253,7 @@ def test_free_gimbal_torque_drive_matches_engine(n_gyros):
 def test_gimbal_damping_dissipates_kinetic_energy():
     """Passive gimbal with damping c_g: dK/dt = -n c_g phi'^2 (power balance, no other loads)."""
     ship = ShipParams(inertia=(2.0e5, 6.0e5, 7.0e5))
-    drive = GimbalDrive("torque", damping=400.0)
+    drive = GimbalDrive("torque", machine=DriveParams("damper", damping=400.0))
     P = pack_params(ship, GYRO, 2, SEED_EFFECTS + ("gimbal_damping",), drive)
     dt = 0.002
     run = simulate(P, 6.0, dt, *initial_state(0.0, (0.02, 0.0, 0.0)))
@@ -277,7 +278,7 @@ def test_mss_naval_vessel_roll_decay_matches_mss_model():
     from mf_envs.physics.ship import mss_naval_vessel
 
     ship = mss_naval_vessel()
-    eff = ("added_inertia", "hydrostatic_restoring", "roll_damping")
+    eff = ("added_inertia", "hydrostatic_restoring", "roll_damping", "quadratic_roll_damping")
     run = simulate(pack_params(ship, GYRO, 1, eff, GimbalDrive()), 20.0, 0.01, *initial_state(0.05))
     m = 357.0 * 1014.0
 

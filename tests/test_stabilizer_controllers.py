@@ -80,7 +80,7 @@ def test_pid_and_lqr_cut_rms_roll_75_percent_at_resonance(scene):
 def test_lqr_gain_and_poles():
     env = gym.make(ENV_ID)
     ctrl = make_baseline(env, "lqr")
-    assert ctrl.gain.shape == (1, 4)
+    assert ctrl.gain.shape == (1, 5)  # roll, roll rate, phi, phi', drive-loop integral
     np.testing.assert_allclose(
         np.sort_complex(np.linalg.eigvals(ctrl.A - ctrl.B @ ctrl.gain)),
         np.sort_complex(ctrl.poles),
@@ -98,7 +98,7 @@ def test_lqr_gain_and_poles():
 
 
 def test_kinds_registered():
-    assert baseline_kinds(ENV_ID) == ["pid", "continuous", "lqr", "sinusoidal"]
+    assert baseline_kinds(ENV_ID) == ["pid", "continuous", "lqr", "rate", "sinusoidal"]
     with pytest.raises(ValueError, match="period"):
         make_baseline(gym.make(ENV_ID), "sinusoidal", period=-1.0)
 

@@ -1,4 +1,5 @@
-"""Baselines for GyroStabilizer-v0: PID, LQR (python-control), the seed's Eqs. 118-119.
+"""Baselines for GyroStabilizer-v0: PID, LQR (python-control), the classic rate law phi' = k w1,
+the seed's Eqs. 118-119.
 
 All read only the observation [roll, roll rate, pitch rate, yaw rate, gimbal angle, gimbal rate]
 and return the precession-rate command in [-1, 1] (times `max_precession_rate` inside the env).
@@ -17,8 +18,11 @@ PID tuning procedure (model-based, then checked on the env; python-control has n
    in {0.1, 0.15, 0.3} on the default scene (yacht at resonance, rotor on, seeds 0-2, RMS roll
    after 10 s) and keep the best RMS roll among the gains whose gimbal stays >= 5 % inside the
    end stops: zeta_g = 1, ki_ratio = 0.1, centering_ratio = 0.3 (RMS roll reduction 0.908;
-   zeta_g >= 1.5 reduces more, 0.94, but rides the end stops). The gains then scale with the
-   ship (steps 2-3); `benchmarks/controllers/stabilizer.py` reports other scenes.
+   zeta_g >= 1.5 reduces more, 0.94, but rides the end stops). Re-scanned on the torque-limited
+   electric drive (issue 15; same grid, ki_ratio {0, 0.1, 0.25}, centering {0.1, 0.3}): the
+   same gains win (RR 0.907, gimbal peak 0.90 rad; zeta_g 1.5-2 give 0.94-0.95 on the stops).
+   The gains then scale with the ship (steps 2-3); `benchmarks/controllers/stabilizer.py`
+   reports other scenes.
 Anti-windup: the integrator is frozen while the output saturates in the same direction
 (conditional integration) and is clamped to what the rate limit can use.
 Limits: the output is clipped to +-max_precession_rate and, near the end stops, to the rate
@@ -46,7 +50,9 @@ ENV_ID = "GyroStabilizer-v0"
 @dataclass(frozen=True)
 class RollModel:
     """Roll-gimbal model of the env's defaults: J_eff (kg m^2), C (N m/rad), B (N m s/rad),
-    n H (N m s), servo tau (s), rate and angle limits (rad/s, rad), control dt (s), wave period (s).
+    n H (N m s), servo tau (s), rate and angle limits (rad/s, rad), control dt (s), wave period (s),
+    the torque drive (`ship.drive.DriveParams`, None: kinematic servo), the gimbal inertia
+    J_g = J2^(2) + J1^(3) (kg m^2) and the number of gyros.
     """
 
     j_eff: float
@@ -58,6 +64,9 @@ class RollModel:
     max_angle: float
     dt: float
     wave_period: float
+    drive: Any = None
+    jg: float = 0.0
+    n_gyros: int = 1
 
     @property
     def omega_n(self) -> float:
@@ -86,6 +95,9 @@ def roll_model(env: Any) -> RollModel:
         u.max_gimbal_angle,
         u.control_dt,
         u.wave_period,
+        u.drive.machine,
+        u.gyro.gimbal_inertia + u.gyro.rotor_j1,
+        u.n_gyros,
     )
 
 
@@ -167,11 +179,47 @@ def roll_gimbal_nlsys(m: RollModel) -> Any:
     )
 
 
+def roll_drive_nlsys(m: RollModel) -> Any:
+    """python-control `nlsys` of roll + gimbal + the torque drive's rate loop (`ship.drive`):
+    x = [r, r', phi, phi', z], u = phi' command (rad/s).
+
+    J_eff r'' = -C r - B r' - n H phi' cos(phi);  J_g phi'' = H r' cos(phi) + tau(x, u),
+    z' = loop integral, tau and z' from `ship.drive.drive_torque` (limits included; the
+    linearisation at rest sees the unsaturated loop).
+    """
+    import control as ct
+
+    from mf_envs.physics.ship.drive import drive_torque
+
+    D = m.drive.pack(m.jg)
+    h = m.nh / m.n_gyros  # one rotor's H; the pair's gimbal equation is per gimbal
+
+    def update(t: float, x: np.ndarray, u: np.ndarray, params: dict) -> np.ndarray:
+        r, rd, phi, phid, z = x
+        g = h * rd * math.cos(phi)
+        tau, dz = drive_torque(phi, phid, z, float(u[0]), g, 0.0, 1.0, 1, D)
+        rdd = (-m.c * r - m.b * rd - m.nh * phid * math.cos(phi)) / m.j_eff
+        return np.array([rd, rdd, phid, (g + tau) / m.jg, dz])
+
+    return ct.nlsys(
+        update,
+        None,
+        inputs=["u"],
+        states=["roll", "roll_rate", "phi", "phi_rate", "z"],
+        outputs=["roll", "roll_rate", "phi", "phi_rate", "z"],
+        name="roll_gimbal_drive",
+    )
+
+
 class LQRStabilizer:
     """LQR on the linearised roll-gimbal model (ct.nlsys -> ct.linearize -> ct.lqr).
 
-    Q = diag(1/roll_scale^2, 0, 1/gimbal_scale^2, 0), R = 1/max_rate^2 (Bryson's rule); defaults
-    roll_scale = 0.01 rad, gimbal_scale = max_gimbal_angle / 2. `gain` (1, 4) and `poles` (4,)
+    With a torque drive (the default electric machine) the model includes the drive's rate loop
+    (`roll_drive_nlsys`, 5 states); its loop integral z is not measured, so the controller
+    integrates its own copy z' = u - phi' (exact while the drive is not saturated). With the
+    kinematic servo it is the 4-state `roll_gimbal_nlsys`.
+    Q = diag(1/roll_scale^2, 0, 1/gimbal_scale^2, 0[, 0]), R = 1/max_rate^2 (Bryson's rule);
+    defaults roll_scale = 0.01 rad, gimbal_scale = max_gimbal_angle / 2. `gain` and `poles`
     (closed-loop eigenvalues of A - B K) are kept for reporting.
     """
 
@@ -187,25 +235,56 @@ class LQRStabilizer:
         self.m = roll_model(env)
         if self.m.nh <= 0.0:
             raise ValueError("env: the LQR needs a spinning rotor (effect 'gyroscopic')")
-        sys = roll_gimbal_nlsys(self.m)
-        lin = ct.linearize(sys, np.zeros(4), np.zeros(1))
+        active = self.m.drive is not None and self.m.drive.active
+        if self.m.drive is not None and not active:
+            raise ValueError("env: a passive gimbal drive ignores the action; no LQR for it")
+        sys = roll_drive_nlsys(self.m) if active else roll_gimbal_nlsys(self.m)
+        nx = 5 if active else 4
+        lin = ct.linearize(sys, np.zeros(nx), np.zeros(1))
         gs = self.m.max_angle / 2.0 if gimbal_scale is None else gimbal_scale
         rs = self.m.max_rate if rate_scale is None else rate_scale
-        Q = np.diag([1.0 / roll_scale**2, 0.0, 1.0 / gs**2, 0.0])
+        Q = np.diag([1.0 / roll_scale**2, 0.0, 1.0 / gs**2, 0.0, 0.0][:nx])
         R = np.array([[1.0 / rs**2]])
         K, _, poles = ct.lqr(lin.A, lin.B, Q, R)
         self.A, self.B = np.asarray(lin.A), np.asarray(lin.B)
         self.gain = np.asarray(K)
         self.poles = np.asarray(poles)
+        self.reset()
+
+    def reset(self) -> None:
+        self.z = 0.0
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        m = self.m
+        x = np.array([obs[_ROLL], obs[_ROLL_RATE], obs[_PHI], obs[_PHI_RATE], self.z])
+        x = x[: self.gain.shape[1]].astype(np.float64)
+        cmd = -float(self.gain[0] @ x)
+        cmd = _stop_envelope(min(max(cmd, -m.max_rate), m.max_rate), float(obs[_PHI]), m)
+        if self.gain.shape[1] == 5:
+            self.z += (cmd - float(obs[_PHI_RATE])) * m.dt
+        return np.array([cmd / m.max_rate], dtype=np.float32), None
+
+
+class RollRateLaw:
+    """The classic active law: precession rate proportional to roll rate, phi' = k w1 (the gyro
+    then adds the roll damping n H k, Eq. 123), clipped to the rate limit and the end-stop
+    envelope. k (rad/s per rad/s) from a target gyro damping ratio zeta_g:
+    k = 2 zeta_g sqrt(C J_eff) / (n H), as step 2 of the PID procedure (module doc)."""
+
+    def __init__(self, env: Any, zeta_g: float = 1.0, k: float | None = None) -> None:
+        self.m = roll_model(env)
+        if self.m.nh <= 0.0:
+            raise ValueError("env: the rate law needs a spinning rotor (effect 'gyroscopic')")
+        stiff = math.sqrt(self.m.c * self.m.j_eff) if self.m.c > 0 else self.m.j_eff
+        self.k = 2.0 * zeta_g * stiff / self.m.nh if k is None else float(k)
 
     def reset(self) -> None:
         pass
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         m = self.m
-        x = np.array([obs[_ROLL], obs[_ROLL_RATE], obs[_PHI], obs[_PHI_RATE]], dtype=np.float64)
-        cmd = -float(self.gain[0] @ x)
-        cmd = _stop_envelope(min(max(cmd, -m.max_rate), m.max_rate), float(obs[_PHI]), m)
+        cmd = min(max(self.k * float(obs[_ROLL_RATE]), -m.max_rate), m.max_rate)
+        cmd = _stop_envelope(cmd, float(obs[_PHI]), m)
         return np.array([cmd / m.max_rate], dtype=np.float32), None
 
 
@@ -253,5 +332,6 @@ class SeedExcitation:
 
 register(ENV_ID, "pid", PIDStabilizer, default=True)
 register(ENV_ID, "lqr", LQRStabilizer)
+register(ENV_ID, "rate", RollRateLaw)
 register(ENV_ID, "sinusoidal", lambda env, **p: SeedExcitation(env, "sinusoidal", **p))
 register(ENV_ID, "continuous", lambda env, **p: SeedExcitation(env, "continuous", **p))

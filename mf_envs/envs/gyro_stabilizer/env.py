@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterable
 from typing import Any
@@ -10,17 +9,20 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_choice, check_int, check_range, check_shape
+from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gyro_stabilizer import spec, wiring
 from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.coupling import SwayRollYaw
+from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.model import (
     SHIP_EFFECTS,
+    GimbalDrive,
     initial_state,
     roll_angle,
 )
-from mf_envs.physics.ship.params import GyroParams, capacity_ratio, seakeeper_gyro, small_yacht
+from mf_envs.physics.ship.params import GyroParams, seakeeper_gyro
 
 DEFAULT_EFFECTS = (
     "gyroscopic",
@@ -28,11 +30,11 @@ DEFAULT_EFFECTS = (
     "added_inertia",
     "hydrostatic_restoring",
     "roll_damping",
+    "quadratic_roll_damping",
     "wave_moment",
     "gimbal_limits",
 )
 _SK9 = seakeeper_gyro("9")
-TORQUE_PHYSICS_DT = 0.025  # s, default physics step of the torque drive (end-stop stiffness)
 OBS_HIGH = spec.OBS.high()
 _ROLL = spec.OBS.index("roll")
 
@@ -46,23 +48,21 @@ class GyroStabilizerEnv(MFEnv):
     rate psi' inside a gimbal that precesses about the ship's athwartships axis e_2. Precessing
     at phi' gives the roll moment -n H phi' cos(phi), H = J3 psi' (Eq. 123). The physics is the
     numba fast path of `mf_envs.physics.ship.kernels` (agrees with the multibody engine to
-    round-off). Defaults: an 18 t, 12-13 m motor yacht (`physics.ship.small_yacht`, natural roll
+    round-off). Defaults: an 18 t, 12-13 m motor yacht (`physics.ship.hulls.Hull.yacht`, roll
     period 3.70 s) with one Seakeeper 9 (Table 3-1: H = 9 000 N m s), beam seas at the roll
-    resonance, wave roll moment 8 000 N m: capacity ratio M0 / (H w sin(phi_max)) = 0.60.
-    With the rotor off the yacht rolls about +-15 degrees (RMS 11.2 deg); the `pid` and `lqr`
-    baselines cut the RMS roll by 91 % and 96 % (`benchmarks/controllers/stabilizer.py`).
-    The seed's model is `effects=("gyroscopic",)` (no hydrostatics, damping or waves; add
-    "gimbal_inertia" for J2^(2) and "wave_moment" for M_e = M0 cos(2 pi t / T), Figs. 3-10/11).
+    resonance, M0 = 8 000 N m: capacity M0 / (H w sin(phi_max)) = 0.60. Rotor off: RMS roll
+    11.2 deg; on the default torque-limited electric drive `pid`, `rate` and `lqr` cut it by
+    91 %, 91 % and 96 % (`benchmarks/controllers/stabilizer.py`). The gimbal drive is a
+    machine (`physics.ship.drive`); seas (`physics.ship.seas`) are met at `heading` and
+    `ship_speed` (encounter frequency); the hull is one `physics.ship.hulls.Hull`.
+    The seed's model: `effects=("gyroscopic",)` (+ "gimbal_inertia", "wave_moment": Figs. 3-10/11).
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: precession-rate command / max_precession_rate (rad/s scaled).
-    The command is for gyro 1 (gyro 2 mirrors it), scaled by `max_precession_rate` (rad/s). A
-    servo with time constant `servo_time_constant` follows it; with `gimbal_limits` it also
-    enforces the rate limit and the end stops +-max_gimbal_angle. With `gimbal_drive="torque"`
-    the gimbal is a degree of freedom and a velocity loop of gain `gimbal_loop_gain` (limited to
-    `max_gimbal_torque`) must fight the gyroscopic torque H omega on the gimbal axis (a stiff
-    loop needs a small `physics_dt`); with gain 0 and `gimbal_damping` it is a passive (braked)
-    stabilizer that ignores the action.
+    For gyro 1 (gyro 2 mirrors it). The electric drive follows it with a PI rate loop inside
+    each RK stage, torque <= max_gimbal_torque (0.1 H), motoring power <= max_drive_power,
+    speed <= 1.1 max_precession_rate, inelastic end stops; "brake" only dissipates; "damper",
+    "pendulous" (Schlick 1906), "spring" are passive (action ignored); "kinematic" is v0's servo.
 
     ## Observation Space
     `Box(float32, (6,))`, what a real controller measures, laid out by
@@ -79,61 +79,57 @@ class GyroStabilizerEnv(MFEnv):
 
     ## Rewards
     `reward = roll + effort`, the terms in `info["reward_terms"]`: roll = -(roll / roll_scale)^2,
-    effort = -effort_weight * action^2 (defaults roll_scale = 0.1745 rad = 10 deg,
-    effort_weight = 0.01). Info keys (`spec.INFO_KEYS`, SI): the state (`gimbal_angle`
-    unwrapped), `gyro_moment` = -n H phi' cos(phi), `wave_moment`, `time` = steps x control_dt.
+    effort = -effort_weight * E, E = int n |tau phi'| dt the step's drive energy (J). Info keys:
+    `spec.INFO_KEYS` (SI; `drive_torque` N m, `drive_power` W, `drive_energy` J).
 
     ## Starting State
     Roll uniform in +-0.05 rad, roll rate in +-0.02 rad/s, pitch/yaw rates 0, gimbal at 0 and
     at rest, wave phase uniform in [0, 2 pi) (a new irregular sea each reset with
-    `irregular_waves`). `reset(options=...)` overrides `roll` (|.| <= pi/2 rad), `roll_rate`
-    (|.| <= 10 rad/s), `gimbal_angle` (|.| <= max_gimbal_angle with `gimbal_limits`, else pi),
-    `wave_phase` (|.| <= 4 pi rad); any other key or value raises ValueError naming it (and
-    draws nothing from the generator).
+    `irregular_waves`). `reset(options=...)` overrides `roll` (|.| <= pi/2), `roll_rate` (<= 10),
+    `gimbal_angle` (<= max_gimbal_angle), `wave_phase` (<= 4 pi); others: ValueError.
 
     ## Episode End
-    Truncation after `episode_seconds` (default 30 s = 600 steps of 0.05 s; `max_episode_steps`
-    = ceil(episode_seconds / control_dt)). Termination only on a numerical failure
-    (`info["numerical_failure"]`).
+    Truncation after `episode_seconds` (`max_episode_steps` = ceil(episode_seconds / control_dt));
+    termination only on a numerical failure (`info["numerical_failure"]`).
 
     ## Arguments
     | Argument | default | meaning |
     |---|---|---|
-    | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 |
+    | hull, coupling | None | the hull and its sway-roll-yaw coupling: `wiring` module doc |
+    | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 (overrides hull) |
     | n_gyros | 1 | 1 or 2 (counter-rotating pair) |
     | rotor_inertia | 9.549 | rotor polar J3^(3), kg m^2 (Seakeeper 9) |
     | gimbal_inertia | 9.549 | gimbal J2^(2), kg m^2 (assumed) |
     | rotor_speed | 942.5 | psi', rad/s (9 000 rpm) |
     | wave_moment_amplitude | 8 000 | M0, N m |
     | wave_period | None | s; None = natural roll period (resonance), 10 s without restoring |
-    | roll_stiffness | 158 922 | C44 = rho g V GM, N m/rad |
-    | roll_damping | 7 481 | linear B44, N m s/rad (quadratic term from the preset) |
+    | roll_stiffness | 158 922 | C44 = rho g V GM, N m/rad (the GZ shape follows it) |
+    | roll_damping | 7 481 | linear B44, N m s/rad (quadratic B44q: hull field) |
     | max_precession_rate | 2.0 | rad/s |
     | max_gimbal_angle | pi/3 | rad (end stops) |
     | episode_seconds | 30 | s |
     | effects | see DEFAULT_EFFECTS | tuple of names from `SHIP_EFFECTS` |
     | control_dt | 0.05 | s |
-    | physics_dt | None | s; None: min(0.05, servo_time_constant) servo, 0.025 torque drive |
+    | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |
     | form | "exact" | "seed": Eqs. 123-128 as printed |
     | servo_time_constant | 0.05 | s |
-    | gimbal_drive | "servo" | "servo" (kinematic rate servo) or "torque" (gimbal DOF) |
-    | gimbal_loop_gain | None | torque drive K_v, N m s/rad (None: (J_g + J_r1)/servo tau) |
-    | max_gimbal_torque | 0 | torque drive limit, N m (0 = none) |
-    | gimbal_damping | 0 | c_g, N m s/rad (effect `gimbal_damping`, torque drive) |
+    | gimbal_drive | "electric" | and the drive arguments: `wiring` module doc |
+    | heading, ship_speed, wave_spreading | pi/2, 0, None | seas: `wiring` module doc |
     | significant_wave_height | 0.6 | m (irregular_waves, JONSWAP, peak period = wave_period) |
-    | effective_slope | 0.7 | r_eff of the wave roll moment (`physics.ship_waves`) |
-    | roll_scale, effort_weight | 0.1745, 0.01 | reward terms |
+    | effective_slope | None | r_eff of the wave roll moment (hull field; yacht 0.7) |
+    | roll_scale, effort_weight | 0.1745, 1e-3 | reward terms (effort per J) |
 
-    Ranges (ValueError naming the argument outside them): inertias, stiffness and damping >= 0
-    and finite; |rotor_speed| <= 1e4 rad/s; wave_period in [0.5, 60] s; servo_time_constant in
-    [1e-3, 10] s; max_gimbal_angle in (0, pi]; control_dt <= 60 s and at most 1e4 physics
-    substeps per control step. Accuracy of the default physics_dt: `spec.PHYSICS_DT_NOTE`.
+    Ranges (ValueError naming the argument): inertias, stiffness, damping >= 0; |rotor_speed|
+    <= 1e4 rad/s; wave_period in [0.5, 60] s; servo_time_constant in [1e-3, 10] s;
+    max_gimbal_angle in (0, pi]; control_dt <= 60 s, <= 1e4 physics substeps per step.
 
     ## Version History
-    - v0: initial release.
+    - v0: initial release; issue 15 made the torque-limited electric drive the default, added
+      heading, speed, short-crested seas, the Hull dataclass and the energy effort term.
     """
 
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 20}
+    DEFAULT_EFFECTS = DEFAULT_EFFECTS
 
     def __init__(
         self,
@@ -154,36 +150,34 @@ class GyroStabilizerEnv(MFEnv):
         physics_dt: float | None = None,
         form: str = "exact",
         servo_time_constant: float = 0.05,
-        gimbal_drive: str = "servo",
+        gimbal_drive: str = "electric",
         gimbal_loop_gain: float | None = None,
-        max_gimbal_torque: float = 0.0,
-        gimbal_damping: float = 0.0,
+        max_gimbal_torque: float | None = None,
+        max_drive_power: float = 1000.0,
+        drive_bandwidth: float = 20.0,
+        gimbal_damping: float | None = None,
+        gimbal_stiffness: float | None = None,
+        hull: Hull | str | dict | None = None,
+        coupling: SwayRollYaw | bool | None = None,
+        heading: float = math.pi / 2,
+        ship_speed: float = 0.0,
+        wave_spreading: float | None = None,
         significant_wave_height: float = 0.6,
-        effective_slope: float = 0.7,
+        effective_slope: float | None = None,
         roll_scale: float = 0.1745,
-        effort_weight: float = 0.01,
+        effort_weight: float = 1.0e-3,
         render_mode: str | None = None,
     ) -> None:
-        check_choice("gimbal_drive", gimbal_drive, ("servo", "torque"))
+        kind = check_choice("gimbal_drive", gimbal_drive, wiring.GIMBAL_DRIVES)
+        self.gimbal_drive = wiring.DRIVE_ALIASES.get(kind, kind)
         tau_s = check_range("servo_time_constant", servo_time_constant, 1e-3, 10.0)
-        if physics_dt is None:  # see spec.PHYSICS_DT_NOTE for the accuracy of these defaults
-            physics_dt = TORQUE_PHYSICS_DT if gimbal_drive == "torque" else min(0.05, tau_s)
-        super().__init__(
-            effects=effects,
-            available_effects=SHIP_EFFECTS,
-            default_effects=DEFAULT_EFFECTS,
-            control_dt=control_dt,
-            physics_dt=physics_dt,
-            render_mode=render_mode,
+        self.hull = wiring.build_hull(
+            hull, ship_inertia, roll_stiffness, roll_damping, effective_slope
         )
-        over: dict[str, Any] = {}
-        if ship_inertia is not None:
-            inertia = check_shape("ship_inertia", ship_inertia, (3,))
-            over["inertia"] = tuple(check_range("ship_inertia", v, 1e-6, 1e12) for v in inertia)
-        for name, value in (("roll_stiffness", roll_stiffness), ("roll_damping", roll_damping)):
-            if value is not None:
-                over[name] = check_range(name, value, 0.0, 1e12)
-        self.ship = dataclasses.replace(small_yacht(), **over)
+        self.coupling = wiring.build_coupling(coupling, hull)
+        self.heading = check_range("heading", heading, -4.0 * math.pi, 4.0 * math.pi)
+        self.ship_speed = check_range("ship_speed", ship_speed, 0.0, 50.0)
+        self.ship = wiring.build_ship_params(self.hull, self.ship_speed)
         self.gyro = GyroParams(
             check_range("rotor_inertia", rotor_inertia, 1e-6, 1e6),
             check_range("gimbal_inertia", gimbal_inertia, 1e-6, 1e6),
@@ -192,7 +186,32 @@ class GyroStabilizerEnv(MFEnv):
         self.n_gyros = check_int("n_gyros", n_gyros, 1, 2)
         self.max_precession_rate = check_range("max_precession_rate", max_precession_rate, 1e-9)
         self.max_gimbal_angle = check_range("max_gimbal_angle", max_gimbal_angle, 1e-6, math.pi)
-        self.max_steps = self._episode_steps(episode_seconds)
+        machine = wiring.build_machine(
+            self.gimbal_drive, self, gimbal_loop_gain, max_gimbal_torque, max_drive_power,
+            drive_bandwidth, gimbal_damping, gimbal_stiffness,
+        )  # fmt: skip
+        self.drive = GimbalDrive(
+            "servo" if machine is None else "torque",
+            servo_time_constant=tau_s,
+            max_rate=self.max_precession_rate,
+            max_angle=self.max_gimbal_angle,
+            machine=machine,
+        )
+        dt_max = wiring.stable_step(self, effects)
+        if physics_dt is None:  # see spec.PHYSICS_DT_NOTE for the accuracy of these defaults
+            physics_dt = wiring.default_physics_dt(machine, tau_s, control_dt, dt_max)
+        super().__init__(
+            effects=effects,
+            available_effects=SHIP_EFFECTS,
+            default_effects=DEFAULT_EFFECTS,
+            control_dt=control_dt,
+            physics_dt=physics_dt,
+            render_mode=render_mode,
+        )
+        wiring.check_step(self.physics_dt, dt_max)
+        self.max_steps = self._episode_steps(
+            check_range("episode_seconds", episode_seconds, 0, 1e9)
+        )
         self.episode_seconds = float(episode_seconds)
         self.form = check_choice("form", form, ("exact", "seed"))
         self.wave_moment_amplitude = check_range(
@@ -211,18 +230,19 @@ class GyroStabilizerEnv(MFEnv):
         self.significant_wave_height = check_range(
             "significant_wave_height", significant_wave_height, 1e-6, 30.0
         )
-        self.effective_slope = check_range("effective_slope", effective_slope, 1e-6, 10.0)
+        self.wave_spreading = wave_spreading
+        if wave_spreading is not None:
+            self.wave_spreading = check_range("wave_spreading", wave_spreading, 1e-3, 1e3)
+        self.effective_slope = self.hull.effective_slope
         self.roll_scale = check_range("roll_scale", roll_scale, 1e-6, 10.0)
         self.effort_weight = check_range("effort_weight", effort_weight, -1e6, 1e6)
-        self.drive = wiring.gimbal_drive(
-            self, gimbal_drive, tau_s, gimbal_loop_gain, max_gimbal_torque, gimbal_damping
-        )
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
         self.table_dt = min(0.5 * self.physics_dt, 0.01)
         self._P = wiring.pack(self, 0.0)
         self._tab = np.zeros((1, 2))
-        self._out = np.zeros(2)
+        self._out = np.zeros(4)
+        self._energy = 0.0
         self._obs = np.zeros(spec.OBS.size, dtype=np.float32)
         self._y, self._R = initial_state()
         self._t, self._steps = 0.0, 0
@@ -232,7 +252,6 @@ class GyroStabilizerEnv(MFEnv):
         """Control steps per episode, ceil(episode_seconds / control_dt)."""
         return self.max_steps
 
-    # ------------------------------------------------------------------ physics wiring
     @property
     def angular_momentum(self) -> float:
         """H = J3^(3) psi' of one rotor (N m s); 0 when `gyroscopic` is off."""
@@ -240,18 +259,13 @@ class GyroStabilizerEnv(MFEnv):
 
     def capacity(self) -> float:
         """M0 / (n H w sin(max_gimbal_angle)) for the regular wave (docs/design.md bound)."""
-        return capacity_ratio(
-            self.wave_moment_amplitude,
-            self.gyro.angular_momentum,
-            2.0 * math.pi / self.wave_period,
-            self.n_gyros,
-            self.max_gimbal_angle,
-        )
+        return wiring.capacity(self)
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         a0 = self._scalar_action(action)
         u = a0 * self.max_precession_rate
         y, R = self._y, self._R
+        e0 = y[K.E_STATE]
         self._t = K.advance(
             self._t, y, R, u, self.physics_dt, self.n_substeps, self._P, self._tab, self._out
         )
@@ -259,9 +273,14 @@ class GyroStabilizerEnv(MFEnv):
         roll = float(roll_angle(R))
         ok = spec.observe(roll, y, R, self._obs)
         obs = self._obs.copy()  # clipped to the observation bounds
-        terms = spec.reward_terms(float(obs[_ROLL]), a0, self.roll_scale, self.effort_weight)
+        self._energy = float(y[K.E_STATE] - e0)
+        terms = spec.reward_terms(
+            float(obs[_ROLL]), self._energy, self.roll_scale, self.effort_weight
+        )
         reward = terms["roll"] + terms["effort"]
-        info = spec.step_info(roll, y, self._out, self._steps * self.control_dt, terms)
+        info = spec.step_info(
+            roll, y, self._out, self._steps * self.control_dt, terms, self._energy
+        )
         truncated = self._steps >= self.max_steps
         if not (ok and math.isfinite(reward)):
             return self._finish_step(obs, reward, False, truncated, info, False)
@@ -291,12 +310,13 @@ class GyroStabilizerEnv(MFEnv):
             wiring.irregular_table(self) if "irregular_waves" in self.effects else np.zeros((1, 2))
         )
         self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
-        self._t, self._steps = 0.0, 0
+        self._t, self._steps, self._energy = 0.0, 0, 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
-        self._out[:] = (0.0, mw)
+        self._out[:] = (0.0, mw, *K.drive_output(0.0, self._y, self._R, 0.0, self._P))
         roll0 = float(roll_angle(self._R))
         spec.observe(roll0, self._y, self._R, self._obs)
-        info = spec.step_info(roll0, self._y, self._out, 0.0, {"roll": 0.0, "effort": 0.0})
+        terms0 = {"roll": 0.0, "effort": 0.0}
+        info = spec.step_info(roll0, self._y, self._out, 0.0, terms0, 0.0)
         self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
         return self._finish_reset(self._obs.copy()), info
 
@@ -306,7 +326,6 @@ class GyroStabilizerEnv(MFEnv):
         return {"t": self._t, "y": self._y, "R": self._R, "P": self._P, "tab": self._tab,
                 "out": self._out}  # fmt: skip
 
-    # ------------------------------------------------------------------ rendering
     def _draw_frame(self) -> np.ndarray:
         from mf_envs.render import draw_ship
 

@@ -10,6 +10,7 @@ import math
 from typing import Any
 
 import numba
+import numpy as np
 
 from mf_envs.envs._spec import Field, ObsLayout
 
@@ -33,20 +34,25 @@ INFO_KEYS = (
     "gimbal_rate",  # rad/s
     "gyro_moment",  # N m, -n H phi' cos(phi) (Eq. 123)
     "wave_moment",  # N m, wave roll moment
+    "drive_torque",  # N m, the drive's torque on gyro 1's gimbal
+    "drive_power",  # W, n tau phi' (negative: braking)
+    "drive_energy",  # J, int n |tau phi'| dt over the step
     "time",  # s, steps x control_dt
-    "reward_terms",  # {"roll", "effort"}, sums to the reward
+    "reward_terms",  # {"roll", "effort"}, sums to the reward (effort: drive energy, J)
     "numerical_failure",  # the failure contract (docs/api.md), terminates
 )
 PHYSICS_DT_NOTE = """
-The default physics step is one RK4-Munthe-Kaas step per 0.05 s control step for the servo
-(physics_dt = 0.025 s, two steps, before the kernel was sped up; pass it to get that back):
-against a reference at 0.05/32 s over a 30 s episode of the default scene (seeds 0-2) the
-roll differs by 4.6e-6 rad RMS (7.3e-6 max; 0.03 % of the 1.8e-2 rad RMS roll) under the
-`pid` baseline and 3.4e-7...7.5e-7 rad RMS under `lqr` (returns within 5e-4 of about -7 and
--2), and by 6.8e-5 rad RMS (0.04 % of the 0.18 rad RMS roll) with uniform random actions
-that drive the gimbal into its end stops; physics_dt = 0.025 cuts these 20-25 fold (4th
-order). The torque drive keeps 0.025 s: its end-stop spring (k_stop = 1e5 N m/rad on the
-14.3 kg m^2 gimbal, 84 rad/s) is beyond RK4's stability limit at 0.05 s.
+The kinematic servo (gimbal_drive="kinematic") runs one RK4-Munthe-Kaas step per 0.05 s control
+step (physics_dt = min(0.05, servo_time_constant)): against a reference at 0.05/32 s over a 30 s
+episode of the default scene (seeds 0-2) the roll differs by 4.6e-6 rad RMS (0.03 % of the
+1.8e-2 rad RMS roll) under `pid`, 3.4e-7...7.5e-7 under `lqr` and 6.8e-5 rad RMS (0.04 %) with
+uniform random actions. The torque drives run two steps per control step by default
+(physics_dt = min(control_dt, RK4 limit) / 2, the limit from `physics.ship.drive.
+stable_physics_dt`, 0.139 s for the electric drive on the default yacht): against 0.05/32 s
+(seeds 0-2, 30 s) the roll differs by 6.0e-7 rad RMS under `pid` (0.003 % of its RMS roll),
+3.1e-5 under `lqr` (0.35 %) and 3.1e-4 with uniform random actions (0.7 %; 1.9e-3 at one 0.05 s
+step): saturations and the inelastic end stops are not smooth, so RK4 loses its order there.
+A physics_dt beyond the RK4 limit is refused (ValueError naming physics_dt).
 """
 _HIGH = tuple(float(v) for v in OBS.high())
 
@@ -78,21 +84,25 @@ def observe_rows(active, roll, y, R, out, ok):
             ok[i] = observe(roll[i], y[i], R[i], out[i])
 
 
-def reward_terms(roll_obs, action, roll_scale: float, effort_weight: float) -> dict[str, Any]:
-    """roll = -(roll / roll_scale)^2 on the observed (float32) roll, effort = -w action^2;
-    scalars or (N,) arrays. q * q, not q ** 2: libm pow, which numpy would not match."""
+def reward_terms(roll_obs, energy, roll_scale: float, effort_weight: float) -> dict[str, Any]:
+    """roll = -(roll / roll_scale)^2 on the observed (float32) roll, effort = -w E with E the
+    drive energy of the step (J); scalars or (N,) arrays. q * q, not q ** 2: libm pow, which
+    numpy would not match."""
     q = roll_obs / roll_scale
-    return {"roll": -(q * q), "effort": -effort_weight * action * action}
+    return {"roll": -(q * q), "effort": -effort_weight * energy}
 
 
-def step_info(roll, y, out, time, terms) -> dict[str, Any]:
-    """The info of a state: y (N_STATE,) ship state and out (2,) (gyro, wave moment N m), or
-    batched (N, N_STATE), (N, 2) with roll (N,), time (N,) (columns copied)."""
+def step_info(roll, y, out, time, terms, energy) -> dict[str, Any]:
+    """The info of a state: y (N_STATE,) ship state, out (4,) (gyro, wave moment N m, drive
+    torque N m, drive power W) and the step's drive energy (J), or batched (N, N_STATE), (N, 4)
+    with roll (N,), time (N,), energy (N,) (columns copied)."""
     if y.ndim == 1:
-        cols = [float(y[j]) for j in range(5)] + [float(out[0]), float(out[1])]
+        cols = [float(y[j]) for j in range(5)] + [float(out[j]) for j in range(4)]
+        cols.append(float(energy))
     else:
-        cols = [y[:, j].copy() for j in range(5)] + [out[:, 0].copy(), out[:, 1].copy()]
-    info = {"roll": roll, **dict(zip(INFO_KEYS[1:8], cols))}
+        cols = [y[:, j].copy() for j in range(5)] + [out[:, j].copy() for j in range(4)]
+        cols.append(np.asarray(energy, dtype=np.float64).copy())
+    info = {"roll": roll, **dict(zip(INFO_KEYS[1:11], cols))}
     info["time"] = time
     info["reward_terms"] = terms
     return info

@@ -58,6 +58,7 @@ class GyroStabilizerVectorEnv(BatchedVectorEnv):
         b, env = self.b, self.template
         a0 = actions[:, 0]
         obs, ok = self._fresh, self._ok
+        e0 = b["y"][:, K.E_STATE].copy()
         batch_advance(
             active, b["t"], b["y"], b["R"], a0 * env.max_precession_rate, env.physics_dt,
             env.n_substeps, b["P"], b["tab"], b["out"],
@@ -69,10 +70,11 @@ class GyroStabilizerVectorEnv(BatchedVectorEnv):
         if not ok.all():  # as the single env: the last finite observation stays (and is scored)
             obs[~ok] = self._obs[~ok]
         roll_obs = obs[:, spec.OBS.index("roll")].astype(np.float64)
-        terms = spec.reward_terms(roll_obs, a0, env.roll_scale, env.effort_weight)
+        energy = b["y"][:, K.E_STATE] - e0
+        terms = spec.reward_terms(roll_obs, energy, env.roll_scale, env.effort_weight)
         reward = terms["roll"] + terms["effort"]
         time = self._steps * env.control_dt
-        info = spec.step_info(self._roll.copy(), b["y"], b["out"], time, terms)
+        info = spec.step_info(self._roll.copy(), b["y"], b["out"], time, terms, energy)
         masks = np.ones((len(spec.INFO_KEYS) + 2, self.num_envs), dtype=bool)  # one per key
         terms["_roll"], terms["_effort"] = masks[-2], masks[-1]
         fail = active & ~(ok & np.isfinite(reward))

@@ -1,53 +1,223 @@
-"""GyroStabilizer-v0's wiring to the ship physics: the gimbal drive from the public arguments,
-the packed parameter vector and the irregular-sea wave tables (`mf_envs.physics.ship`)."""
+"""GyroStabilizer-v0's wiring to the ship physics (`mf_envs.physics.ship`): the hull, the gimbal
+drive and its physics-step bound from the public arguments, the packed parameter vector and the
+irregular-sea tables. Every hull field reaches the physics (`ship.hulls.Hull`); the drive is a
+`ship.drive.DriveParams` machine (or the v0 kinematic servo); seas are met at the env's heading
+and speed (`ship.seas`).
+
+Arguments of `GyroStabilizerEnv` handled here (SI units):
+
+| Argument | default | meaning |
+|---|---|---|
+| hull | None | `Hull`, "yacht" (default), "mss_naval_vessel" or a dict of Hull fields |
+| coupling | None | `ship.coupling.SwayRollYaw`; None/True: MSS's navalvessel.m coefficients
+with hull "mss_naval_vessel", off for other hulls; False: off |
+| gimbal_drive | "electric" | electric, brake, damper, pendulous, spring, kinematic ("servo" =
+kinematic, "torque" = electric: the v0 names) |
+| gimbal_loop_gain | None | K_p of the rate loop, N m s/rad (sets drive_bandwidth) |
+| max_gimbal_torque | None | drive torque limit, N m (None: 0.1 H) |
+| max_drive_power | 1000 | motoring power limit, W |
+| drive_bandwidth | 20 | rate-loop bandwidth, rad/s |
+| gimbal_damping | None | brake c, N m s/rad (passive default n H^2 / sqrt(C44 J)) |
+| gimbal_stiffness | None | m g l (pendulous) or spring k, N m/rad (default J_g w_n^2) |
+| heading | pi/2 | wave heading beta, rad (0 following, pi/2 beam, pi head) |
+| ship_speed | 0 | U, m/s (encounter frequency; MSS's speed roll damping) |
+| wave_spreading | None | cos-2s spreading s of the irregular sea (None: long-crested) |
+"""
 
 from __future__ import annotations
 
+import dataclasses
+import math
+from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
 
-from mf_envs._validate import check_range
-from mf_envs.physics.ship.model import GimbalDrive, WaveLoad, pack_params
-from mf_envs.physics.ship.waves import regular_heave_force, wave_table
+from mf_envs._validate import check_nonnegative, check_positive, check_range, check_shape
+from mf_envs.effects import resolve_effects
+from mf_envs.physics.ship.coupling import SwayRollYaw
+from mf_envs.physics.ship.drive import DriveParams, RollGimbal, electric_drive, stable_physics_dt
+from mf_envs.physics.ship.hulls import Hull
+from mf_envs.physics.ship.model import SHIP_EFFECTS, WaveLoad, pack_params
+from mf_envs.physics.ship.params import ShipParams, capacity_ratio
+from mf_envs.physics.ship.seas import G, excitation_table, jonswap_sea, regular_roll_moment, sinc
+from mf_envs.physics.ship.waves import regular_heave_force
+
+GIMBAL_DRIVES = (
+    "electric", "brake", "damper", "pendulous", "spring", "kinematic", "servo", "torque",
+)  # fmt: skip
+DRIVE_ALIASES = {"servo": "kinematic", "torque": "electric"}  # v0 names
+HULL_PRESETS = {"yacht": Hull.yacht, "mss_naval_vessel": Hull.mss_naval_vessel}
 
 
-def gimbal_drive(env: Any, mode, tau_s, loop_gain, max_torque, damping) -> GimbalDrive:
-    """The gimbal drive from the public arguments (errors name them)."""
-    d2 = env.gyro.gimbal_inertia + env.gyro.rotor_j1
-    if loop_gain is None:
-        loop_gain = d2 / tau_s if mode == "torque" else 0.0
-    loop_gain = check_range("gimbal_loop_gain", loop_gain, 0.0, 1e12)
-    if mode == "torque" and loop_gain * env.physics_dt / d2 > 1.5:
+def build_hull(
+    hull: Hull | str | dict | None,
+    ship_inertia: Iterable[float] | None,
+    roll_stiffness: float | None,
+    roll_damping: float | None,
+    effective_slope: float | None,
+) -> Hull:
+    """The `Hull`: a `Hull`, a preset name, or a dict of field overrides on the yacht; the v0
+    kwargs ship_inertia, roll_stiffness, roll_damping, effective_slope override it last."""
+    if hull is None:
+        base = Hull.yacht()
+    elif isinstance(hull, Hull):
+        base = hull
+    elif isinstance(hull, str):
+        if hull not in HULL_PRESETS:
+            raise ValueError(f"hull: must be one of {sorted(HULL_PRESETS)}, got {hull!r}")
+        base = HULL_PRESETS[hull]()
+    elif isinstance(hull, dict):
+        bad = sorted(set(hull) - {f.name for f in dataclasses.fields(Hull)})
+        if bad:
+            raise ValueError(f"hull: unknown fields {bad}")
+        base = dataclasses.replace(Hull.yacht(), **hull)
+    else:
+        raise ValueError(f"hull: expected a Hull, a preset name or a dict, got {hull!r}")
+    over: dict[str, Any] = {}
+    if ship_inertia is not None:
+        inertia = check_shape("ship_inertia", ship_inertia, (3,))
+        over["inertia"] = tuple(check_range("ship_inertia", v, 1e-6, 1e12) for v in inertia)
+    for name, value, lo, hi in (
+        ("roll_stiffness", roll_stiffness, 0.0, 1e12),
+        ("roll_damping", roll_damping, 0.0, 1e12),
+        ("effective_slope", effective_slope, 1e-6, 10.0),
+    ):
+        if value is not None:
+            over[name] = check_range(name, value, lo, hi)
+    return dataclasses.replace(base, **over) if over else base
+
+
+def build_ship_params(hull: Hull, speed: float) -> ShipParams:
+    """The kernels' `ShipParams` of the hull at ship speed U (m/s): B44 + K_|u|p |U|."""
+    sp = hull.ship_params()
+    if hull.roll_damping_speed > 0.0 and speed > 0.0:
+        sp = dataclasses.replace(sp, roll_damping=sp.roll_damping + hull.roll_damping_speed * speed)
+    return sp
+
+
+def build_machine(
+    kind: str,
+    env: Any,
+    loop_gain: float | None,
+    max_torque: float | None,
+    max_power: float,
+    bandwidth: float,
+    damping: float | None,
+    stiffness: float | None,
+) -> DriveParams | None:
+    """The `DriveParams` of `gimbal_drive` (None for the kinematic servo), env doc defaults."""
+    if kind == "kinematic":
+        return None
+    gyro, hull, n = env.gyro, env.hull, env.n_gyros
+    jg = gyro.gimbal_inertia + gyro.rotor_j1
+    j = hull.inertia[0] + hull.added_roll_inertia + n * jg
+    wn = math.sqrt(hull.roll_stiffness / j) if hull.roll_stiffness > 0 else 2 * math.pi / 10.0
+    if loop_gain is not None:  # v0 name: the proportional gain K_p = 2 w_b J_g (zeta = 1)
+        bandwidth = float(check_positive("gimbal_loop_gain", loop_gain)) / (2.0 * jg)
+    kw: dict[str, Any] = {
+        "max_rate": env.max_precession_rate,
+        "max_angle": env.max_gimbal_angle,
+        "max_power": float(check_positive("max_drive_power", max_power)),
+        "bandwidth": float(check_positive("drive_bandwidth", bandwidth)),
+    }
+    if max_torque is not None:
+        kw["max_torque"] = float(check_positive("max_gimbal_torque", max_torque))
+    elif gyro.angular_momentum == 0.0:  # rotor stopped: enough to reach max_rate in 1/w_b
+        kw["max_torque"] = jg * kw["bandwidth"] * kw["max_rate"]
+    if kind in ("electric", "brake"):
+        kw["damping"] = float(check_nonnegative("gimbal_damping", damping or 0.0))
+        return dataclasses.replace(electric_drive(abs(gyro.angular_momentum), **kw), kind=kind)
+    h = abs(gyro.angular_momentum)
+    stiff = math.sqrt(max(hull.roll_stiffness, 1.0) * j)
+    c = n * h * h / stiff if damping is None else damping  # gyro roll damping ratio 0.5
+    k = jg * wn * wn if stiffness is None else stiffness  # gimbal pendulum tuned to the roll
+    kw["damping"] = float(check_nonnegative("gimbal_damping", c))
+    kw["stiffness"] = float(check_nonnegative("gimbal_stiffness", k if kind != "damper" else 0.0))
+    return DriveParams(kind, **kw)
+
+
+def stable_step(env: Any, effects: Any) -> float:
+    """Largest stable RK4 physics step (s) of the env's drive on its roll-gimbal linearisation
+    (`ship.drive.stable_physics_dt`); the kinematic servo: 2.78 tau (RK4 on -1/tau)."""
+    eff = resolve_effects(effects, SHIP_EFFECTS, env.DEFAULT_EFFECTS)
+    if env.drive.machine is None:
+        return 2.785 * env.drive.servo_time_constant
+    jg = env.gyro.gimbal_inertia + env.gyro.rotor_j1
+    hull = env.hull
+    j = hull.inertia[0] + (hull.added_roll_inertia if "added_inertia" in eff else 0.0)
+    h = abs(env.gyro.angular_momentum) if "gyroscopic" in eff else 0.0
+    c44 = hull.roll_stiffness if "hydrostatic_restoring" in eff else 0.0
+    b44 = env.ship.roll_damping if "roll_damping" in eff else 0.0
+    D = env.drive.machine.pack(jg)
+    return stable_physics_dt(D, RollGimbal(jg, j + env.n_gyros * jg, h, env.n_gyros, c44, b44))
+
+
+def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: float) -> float:
+    """Kinematic servo: min(0.05, tau); torque drives: min(control_dt, RK4 limit) / 2. A drive so
+    stiff against its gimbal that the limit is below 1e-6 s is refused naming its arguments."""
+    cdt = check_range("control_dt", control_dt, 1e-9, 60.0)
+    if machine is None:
+        return min(0.05, tau_s)
+    if dt_max < 2e-6:
         raise ValueError(
-            f"physics_dt: the torque drive's loop gain {loop_gain:g} N m s/rad needs "
-            f"physics_dt <= {1.5 * d2 / loop_gain:.3g} s (RK4 stability)"
+            f"gimbal_damping, gimbal_stiffness, gimbal_loop_gain, drive_bandwidth, ship_inertia, "
+            f"gimbal_inertia: this drive needs physics steps below {dt_max:.3g} s (RK4 limit, "
+            "`ship.drive.stable_physics_dt`); soften the drive or enlarge the inertias"
         )
-    return GimbalDrive(
-        mode,
-        servo_time_constant=tau_s,
-        max_rate=env.max_precession_rate,
-        max_angle=env.max_gimbal_angle,
-        loop_gain=loop_gain,
-        max_torque=check_range("max_gimbal_torque", max_torque, 0.0, 1e12),
-        damping=check_range("gimbal_damping", damping, 0.0, 1e12),
-    )
+    return 0.5 * min(cdt, dt_max)
+
+
+def check_step(physics_dt: float, dt_max: float) -> None:
+    """ValueError naming physics_dt for a step beyond the drive's RK4 stability limit (the
+    substep count is bounded by `MFEnv`, naming control_dt/physics_dt)."""
+    if physics_dt > dt_max:
+        raise ValueError(
+            f"physics_dt: {physics_dt:.4g} s is beyond the RK4 stability limit {dt_max:.4g} s "
+            "of this gimbal drive (`ship.drive.stable_physics_dt`); pass physics_dt <= that, or "
+            "a control_dt it divides"
+        )
+
+
+def build_coupling(coupling: Any, hull: Any) -> SwayRollYaw | None:
+    """The sway-roll-yaw coefficients: None/True give MSS's with hull "mss_naval_vessel" (off
+    for other hulls, which have no published coupling data), False off, or a `SwayRollYaw`."""
+    if coupling is None or coupling is True:
+        return SwayRollYaw.mss_naval_vessel() if hull == "mss_naval_vessel" else None
+    if coupling is False:
+        return None
+    if not isinstance(coupling, SwayRollYaw):
+        raise ValueError(f"coupling: expected a SwayRollYaw, True/False or None, got {coupling!r}")
+    return coupling
 
 
 def pack(env: Any, phase: float) -> np.ndarray:
-    """The packed physics parameters of `env` with the regular wave at `phase` (rad)."""
-    wave = WaveLoad(
-        env.wave_moment_amplitude,
-        env.wave_period,
-        phase,
-        regular_heave_force(
+    """The packed physics parameters of `env`, its regular wave at `phase` (rad) met at the
+    env's heading and speed (`physics.ship.seas.regular_roll_moment`)."""
+    hull = env.hull
+    m0, we = regular_roll_moment(
+        env.wave_moment_amplitude, env.wave_period, env.heading, env.ship_speed, hull.length
+    )
+    period = 2.0 * math.pi / max(abs(we), 1e-12)
+    phase = phase if we >= 0.0 else -phase  # cos(-w t + p) = cos(w t - p)
+    k = (2.0 * math.pi / env.wave_period) ** 2 / G
+    gain = float(sinc(0.5 * k * hull.length * math.cos(env.heading)))  # heave: length mean
+    try:
+        heave = regular_heave_force(
             env.wave_moment_amplitude,
             env.wave_period,
-            env.ship.roll_stiffness,
-            env.ship.heave_stiffness,
+            hull.roll_stiffness,
+            hull.heave_stiffness,
             env.effective_slope,
-        ),
-    )
+        )
+    except ZeroDivisionError:
+        heave = math.inf
+    if not math.isfinite(heave * gain):
+        raise ValueError(
+            "roll_stiffness, wave_period: the wave of this roll moment would have an infinite "
+            f"heave force (C44 = {hull.roll_stiffness:g} N m/rad is too small)"
+        )
+    wave = WaveLoad(m0, period, phase, heave * gain)
     return pack_params(
         env.ship,
         env.gyro,
@@ -57,24 +227,43 @@ def pack(env: Any, phase: float) -> np.ndarray:
         wave,
         env.form,
         env.table_dt,
+        hull.gz_cubic,
+        env.coupling,
+        env.ship_speed,
     )
 
 
 def irregular_table(env: Any) -> np.ndarray:
-    """A new JONSWAP wave-moment/heave table for one episode, drawn from env.np_random."""
-    from mf_envs.physics.waves import IrregularSea, jonswap_spectrum
-
-    sea = IrregularSea(
-        jonswap_spectrum, env.significant_wave_height, env.wave_period, 64, env.np_random
+    """A new JONSWAP sea (long- or short-crested, `physics.ship.seas`) met at the env's heading
+    and speed, drawn from env.np_random: the (N, 2) roll-moment / heave-force table."""
+    hull = env.hull
+    sea = jonswap_sea(
+        env.significant_wave_height,
+        env.wave_period,
+        env.heading,
+        env.np_random,
+        64,
+        env.wave_spreading,
     )
-    a, w, eps = sea.components
-    return wave_table(
-        a,
-        w,
-        eps,
-        env.ship.roll_stiffness,
-        env.ship.heave_stiffness,
+    return excitation_table(
+        sea,
+        env.ship_speed,
+        hull.roll_stiffness,
+        hull.heave_stiffness,
+        hull.length,
+        hull.beam,
         env.episode_seconds + 1.0,
         env.table_dt,
         env.effective_slope,
+    )
+
+
+def capacity(env: Any) -> float:
+    """M0 / (n H w sin(max_gimbal_angle)) of the env's regular wave (docs/design.md bound)."""
+    return capacity_ratio(
+        env.wave_moment_amplitude,
+        env.gyro.angular_momentum,
+        2.0 * math.pi / env.wave_period,
+        env.n_gyros,
+        env.max_gimbal_angle,
     )

@@ -28,8 +28,9 @@ def batch_advance(active, t, y, R, u, dt, n_sub, P, tab, out):
     Shapes: active (N,) bool; t (N,) s, time, updated; y (N, N_STATE) state vectors (see
     `ship.kernels`), R (N, 3, 3) attitudes (inertial <- ship), updated; u (N,) rad/s precession
     command held over the step; dt (s) substep, n_sub substeps; P (N, N_PARAMS) packed
-    parameters; tab (N, L, 2) wave tables; out (N, 2) N m (gyro roll moment, wave moment).
-    Observations are the env's business (`mf_envs.envs.gyro_stabilizer.spec`).
+    parameters; tab (N, L, 2) wave tables; out (N, 4) (gyro roll moment, wave moment N m, drive
+    torque N m, drive power W). Observations are the env's business
+    (`mf_envs.envs.gyro_stabilizer.spec`).
     """
     for i in range(active.shape[0]):
         if active[i]:
@@ -52,5 +53,5 @@ def alloc_batch(n_envs: int, n_state: int, n_params: int, table_shape: tuple[int
         "R": np.tile(np.eye(3), (n_envs, 1, 1)),
         "P": np.zeros((n_envs, n_params)),
         "tab": np.zeros((n_envs, *table_shape)),
-        "out": np.zeros((n_envs, 2)),
+        "out": np.zeros((n_envs, 4)),
     }

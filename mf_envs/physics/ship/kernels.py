@@ -26,8 +26,10 @@ Gimbal drives: prescribed phi(t) (Eqs. 118-119), a rate servo (phi'' = (u - phi'
 kinematic actuator: the gyroscopic torque on the gimbal is absorbed by it), or a torque drive in
 which phi is a degree of freedom (the phi-row of Eq. 74, see `ship_accel`).
 
-State y (float64): [w1, w2, w3, phi, phi', x1, x2, x3, v1, v2, v3] (body rates in rad/s, gimbal
-angle/rate of gyro 1 in rad, rad/s; hull CM position/velocity in the inertial frame, m, m/s).
+State y (float64): [w1, w2, w3, phi, phi', x1, x2, x3, v1, v2, v3, z, E, v] (body rates in rad/s,
+gimbal angle/rate of gyro 1 in rad, rad/s; hull CM position/velocity in the inertial frame, m,
+m/s; the torque drive's loop integral z in rad, its energy E = int n |tau phi'| dt in J, the sway
+velocity v of `ship.coupling` in m/s).
 The attitude R (3x3, inertial <- ship) is rebuilt each step with Rodrigues' formula (ch. 2 Eq. 29)
 inside a Runge-Kutta-Munthe-Kaas step (4th order also in R; the seed's midpoint-Rodrigues update
 is 2nd order, which limits the hydrostatic moment's accuracy, see docs/design.md ch. 2 notes).
@@ -41,7 +43,11 @@ import numba
 import numpy as np
 
 from mf_envs.frames.kernels import make_rkmk4, rk4_work, rkmk4_rwork
+from mf_envs.physics.ship.coupling import N_COUPLING, solve_sway_roll_yaw
+from mf_envs.physics.ship.drive import end_stop
 from mf_envs.physics.ship.layout import (  # noqa: F401 (re-exported)
+    CPL0,
+    DRV0,
     FORM_EXACT,
     FORM_SEED,
     GIMBAL_CONTINUOUS,
@@ -56,19 +62,21 @@ from mf_envs.physics.ship.layout import (  # noqa: F401 (re-exported)
 from mf_envs.physics.ship.layout import Slot as S
 from mf_envs.physics.ship.loads import (  # noqa: F401 (re-exported: the kernels' public face)
     external_moment,
+    gimbal_drive,
     gimbal_motion,
-    gimbal_torque,
+    gyro_gimbal_torque,
     hull_moment,
     table_value,
     wave_loads,
 )
 
 # P: the packed parameter vector of `layout.KernelParams`, indexed P[S.NAME]
-N_STATE = 11
+N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt (J), sway v (m/s)
+Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
 
 @numba.njit(cache=True)
-def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
+def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=0.0, roll=0.0):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
     at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame).
 
@@ -77,7 +85,9 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
     one gyro:  d2 (w2' + phi'') = tau + H w_g1 - (d1 - d3) w_g1 w_g3,
                w_g = (c w1 - s w3, w2, s w1 + c w3) the gimbal's body rates;
     the pair:  d2 phi'' = tau + H c w1 - (d1 - d3) s c (w1^2 - w3^2).
-    Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'').
+    With the coupling on (P[S.CPLON]) the roll and yaw rows are solved together with the sway
+    equation of `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad).
+    Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'', v' in m/s^2).
     """
     n = int(P[S.NGYRO])
     c = math.cos(phi)
@@ -116,9 +126,14 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
             jg = P[S.JG2]  # Eqs. 126 and 128 as printed
             r1 += jg * phid * w3
             r3 -= (jg - 0.25 * P[S.JR3] * c2) * phid * w1
-    det = jxx * jzz - jxz * jxz
-    a1 = (jzz * r1 - jxz * r3) / det
-    a3 = (jxx * r3 - jxz * r1) / det
+    dv = 0.0
+    if P[S.CPLON] > 0.5:
+        C = P[CPL0 : CPL0 + N_COUPLING]
+        dv, a1, a3 = solve_sway_roll_yaw(jxx, jzz, jxz, r1, r3, P[S.SPEED], v, w1, w3, roll, C)
+    else:
+        det = jxx * jzz - jxz * jxz
+        a1 = (jzz * r1 - jxz * r3) / det
+        a3 = (jxx * r3 - jxz * r1) / det
     if free_gimbal:
         if n == 1:
             wg1 = c * w1 - s * w3
@@ -130,12 +145,14 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau):
             a2 = r2 / jyy
     else:
         a2 = (r2 - d2 * phidd) / jyy if n == 1 else r2 / jyy
-    return a1, a2, a3, -n * H * phid * c, phidd
+    return a1, a2, a3, -n * H * phid * c, phidd, dv
 
 
 @numba.njit(cache=True)
-def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
-    """(w1', w2', w3', phi', phi'') of the rotational state at attitude third row (r20, r21, r22).
+def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P):
+    """(w1', w2', w3', phi', phi'', z', drive power n |tau phi'|, v') of the rotational state, the
+    drive-loop integral z and the sway velocity v (`ship.coupling`) at attitude third row
+    (r20, r21, r22).
 
     mw: wave roll moment (N m) at the stage time; pg: (phi, phi', phi'') of a prescribed gimbal
     at that time (`gimbal_motion`, ignored for the servo and torque drives).
@@ -143,16 +160,21 @@ def ang_rates(w1, w2, w3, phi, phid, r20, r21, r22, u, mw, pg, P):
     mode = int(P[S.GMODE])
     free = mode == GIMBAL_TORQUE
     tau = 0.0
+    dz = 0.0
     phidd = 0.0
     if free:
-        tau = gimbal_torque(phi, phid, u, P)
+        tau, dz = gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P)
     elif mode == GIMBAL_SERVO:
         phi, phid, phidd = gimbal_motion(0.0, phi, phid, u, P)
+        tau = P[S.D2] * phidd - gyro_gimbal_torque(w1, w3, phi, P)  # what the servo applies
     else:
         phi, phid, phidd = pg
     m1, m2, m3 = hull_moment(w1, w2, w3, r20, r21, r22, P)
-    a1, a2, a3, _, phidd = ship_accel(w1, w2, w3, phi, phid, phidd, m1 + mw, m2, m3, P, free, tau)
-    return a1, a2, a3, phid, phidd
+    roll = math.atan2(r21, r22) if P[S.CPLON] > 0.5 else 0.0
+    a1, a2, a3, _, phidd, dv = ship_accel(
+        w1, w2, w3, phi, phid, phidd, m1 + mw, m2, m3, P, free, tau, v, roll
+    )
+    return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
 
 @numba.njit(cache=True)
@@ -179,13 +201,17 @@ def stage_rhs(t, y, R, inp, args, dy):
     u, P, tab = args
     mw, fw, pg = inp
     mode = int(P[S.GMODE])
-    if mode != GIMBAL_SINUSOIDAL and mode != GIMBAL_CONTINUOUS:
+    pres = mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS
+    if not pres:
         pg = gimbal_motion(t, y[3], y[4], u, P)
-    a = ang_rates(y[0], y[1], y[2], y[3], y[4], R[2, 0], R[2, 1], R[2, 2], u, mw, pg, P)
+    r20, r21, r22 = R[2, 0], R[2, 1], R[2, 2]
+    a = ang_rates(y[0], y[1], y[2], y[3], y[4], y[Z_STATE], y[V_STATE], r20, r21, r22, u, mw, pg, P)
     for i in range(5):
         dy[i] = a[i]
     for i in range(5, y.shape[0]):
         dy[i] = 0.0
+    if not pres:  # a prescribed gimbal has no drive loop, no drive energy and keeps v fixed
+        dy[Z_STATE], dy[E_STATE], dy[V_STATE] = a[5], a[6], a[7]
     if P[S.TRANS] > 0.5:
         # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
         v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
@@ -200,9 +226,10 @@ _rkmk4 = make_rkmk4(stage_rhs, stage_inputs)
 def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     """One Runge-Kutta-Munthe-Kaas step (`mf_envs.frames.kernels`, RK4 tableau, the attitude in
     the Lie algebra: 4th order in R and w, R orthogonal to round-off) of y and R in place.
-    A prescribed gimbal is set to its value at t + dt. work (5, n), Rwork (2, 3, 3): the
-    stepper's scratch (`frames.kernels.rk4_work`, `rkmk4_rwork`). Returns the wave moment (N m)
-    at t + dt."""
+    A prescribed gimbal is set to its value at t + dt; a torque-driven gimbal with
+    `gimbal_limits` then meets its inelastic end stops (`_stop_gimbal`). work (5, n),
+    Rwork (2, 3, 3): the stepper's scratch (`frames.kernels.rk4_work`, `rkmk4_rwork`).
+    Returns the wave moment (N m) at t + dt."""
     dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab), work, Rwork)
     for i in range(y.shape[0]):
         y[i] += dy[i]
@@ -210,7 +237,19 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     mode = int(P[S.GMODE])
     if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
         y[3], y[4] = inp[2][0], inp[2][1]
+    elif mode == GIMBAL_TORQUE and P[S.LIMITS] > 0.5:
+        _stop_gimbal(y, P)
     return inp[0]
+
+
+@numba.njit(cache=True)
+def _stop_gimbal(y, P):
+    """Inelastic end stop of the free gimbal (`ship.drive.end_stop`) at +-phi_max; one gyro's
+    hull takes the reaction that keeps L_2 = J_yy w2 + J_g phi' (the pair's cancels)."""
+    phi, phid, jump = end_stop(y[3], y[4], P[S.PHIMAX])
+    y[3], y[4] = phi, phid
+    if jump != 0.0 and int(P[S.NGYRO]) == 1:
+        y[1] -= P[S.D2] * jump / (P[S.J2] + P[S.D2])
 
 
 @numba.njit(cache=True)
@@ -229,7 +268,8 @@ def gyro_moment(y, P):
 @numba.njit(cache=True)
 def advance(t, y, R, u, dt, n_sub, P, tab, out):
     """n_sub RK4 steps of size dt with the command u held; returns the new time.
-    out[0], out[1] <- gyro roll moment and wave moment (N m) at the end."""
+    out[0], out[1] <- gyro roll moment and wave moment (N m) at the end; out[2], out[3] <- gyro
+    1's drive torque (N m) and the drive power n tau phi' (W) at the end (`drive_output`)."""
     mw = wave_loads(t, P, tab)[0]
     work, Rwork = rk4_work(y.shape[0]), rkmk4_rwork()
     for _ in range(n_sub):
@@ -237,7 +277,25 @@ def advance(t, y, R, u, dt, n_sub, P, tab, out):
         t += dt
     out[0] = gyro_moment(y, P)
     out[1] = mw
+    out[2], out[3] = drive_output(t, y, R, u, P)
     return t
+
+
+@numba.njit(cache=True)
+def drive_output(t, y, R, u, P):
+    """(torque on gyro 1's gimbal in N m, power n tau phi' in W) of the drive at state y.
+
+    Torque drives: the machine's torque (`gimbal_drive`). The kinematic servo (and prescribed
+    gimbals) report the torque they impose, J_g phi'' - H w_g1 (the gimbal's own equation with
+    the hull's pitch acceleration neglected), without any limit.
+    """
+    phi, phid = y[3], y[4]
+    if int(P[S.GMODE]) == GIMBAL_TORQUE:
+        tau = gimbal_drive(y[0], y[2], phi, phid, y[Z_STATE], u, R[2, 0], R[2, 2], P)[0]
+    else:
+        phidd = gimbal_motion(t, phi, phid, u, P)[2]
+        tau = P[S.D2] * phidd - gyro_gimbal_torque(y[0], y[2], phi, P)
+    return tau, P[S.NGYRO] * tau * phid
 
 
 @numba.njit(cache=True)

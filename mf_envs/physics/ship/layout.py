@@ -3,8 +3,11 @@
 `KernelParams` declares every slot (field order = slot order, SI units); `Slot` (an IntEnum the
 kernels index with, `P[Slot.J1]`; numba folds it to a constant), `N_PARAMS` and `pack` are all
 derived from it, so adding a hull parameter is one field here plus its use in the kernels and in
-`mf_envs.physics.ship.model.pack_params`. (numba's cache watches only a kernel's own file: after
-editing this one, touch `kernels.py`.)
+`mf_envs.physics.ship.model.pack_params`. A tuple field is a block (`BLOCKS`: the torque drive's
+`ship.drive.DriveParams.pack`, the `ship.coupling` coefficients) filling slots NAME_0 ..
+NAME_{len-1}; the kernels slice it at the generated offset (`DRV0 = Slot.DRIVE_0`, `CPL0`), so
+the sub-indices are the block's own (`ship.drive.DPHIMAX` ...). (numba's cache watches only a
+kernel's own file: after editing this one, touch `kernels.py` and `batch.py`.)
 """
 
 from __future__ import annotations
@@ -16,6 +19,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs._validate import check_finite
+from mf_envs.physics.ship.coupling import N_COUPLING
+from mf_envs.physics.ship.drive import N_DRIVE
+
+BLOCKS: dict[str, int] = {"drive": N_DRIVE, "coupling": N_COUPLING}  # tuple fields, lengths
 
 
 @dataclasses.dataclass(frozen=True)
@@ -61,23 +68,46 @@ class KernelParams:
     kh: float = 0.0  # heave stiffness, N/m
     ch: float = 0.0  # heave damping, N s/m
     css: float = 0.0  # surge/sway damping, N s/m
-    kv: float = 0.0  # torque drive loop gain, N m s/rad
-    taumax: float = 0.0  # torque limit, N m (0: none)
-    cg: float = 0.0  # gimbal damping / brake, N m s/rad
-    kstop: float = 0.0  # end-stop stiffness, N m/rad
+    gz3: float = 0.0  # cubic GZ term over GM, 1/rad^2 (`ship.hulls.Hull.gz_cubic`)
+    speed: float = 0.0  # ship speed U, m/s (sway-roll-yaw coupling)
+    cplon: float = 0.0  # 1: sway-roll-yaw coupling on (`ship.coupling`)
+    # blocks (a tuple field fills len slots NAME_0 .. NAME_{len-1}; BLOCKS gives the lengths)
+    drive: tuple[float, ...] = (0.0,) * N_DRIVE  # `ship.drive.DriveParams.pack` (may hold inf)
+    coupling: tuple[float, ...] = (0.0,) * N_COUPLING  # `ship.coupling.SwayRollYaw.pack`
 
     def __post_init__(self) -> None:
         for f in dataclasses.fields(self):
-            check_finite(f.name, getattr(self, f.name))
+            v = getattr(self, f.name)
+            if f.name in BLOCKS:
+                if len(v) != BLOCKS[f.name] or np.isnan(np.asarray(v, dtype=float)).any():
+                    raise ValueError(f"{f.name}: needs {BLOCKS[f.name]} numbers, none NaN")
+            else:
+                check_finite(f.name, v)
 
     def pack(self) -> NDArray[np.float64]:
-        """P (N_PARAMS,) float64 in slot order."""
-        return np.array(dataclasses.astuple(self), dtype=np.float64)
+        """P (N_PARAMS,) float64 in slot order (blocks flattened in place)."""
+        vals: list[float] = []
+        for f in dataclasses.fields(self):
+            v = getattr(self, f.name)
+            vals.extend(v) if f.name in BLOCKS else vals.append(v)
+        return np.array(vals, dtype=np.float64)
 
 
 FORM_EXACT, FORM_SEED = 0, 1  # `form` codes
 GIMBAL_SERVO, GIMBAL_SINUSOIDAL, GIMBAL_CONTINUOUS, GIMBAL_TORQUE = 0, 1, 2, 3  # `gmode` codes
 WAVE_NONE, WAVE_REGULAR, WAVE_TABLE = 0, 1, 2  # `wmode` codes
 
-Slot = enum.IntEnum("Slot", [f.name.upper() for f in dataclasses.fields(KernelParams)], start=0)
+
+def _slot_names() -> list[str]:
+    """Slot names in order: a scalar field NAME, a block field NAME_0 .. NAME_{len-1}."""
+    names: list[str] = []
+    for f in dataclasses.fields(KernelParams):
+        n = f.name.upper()
+        names += [f"{n}_{i}" for i in range(BLOCKS[f.name])] if f.name in BLOCKS else [n]
+    return names
+
+
+Slot = enum.IntEnum("Slot", _slot_names(), start=0)
 N_PARAMS = len(Slot)
+DRV0 = int(Slot.DRIVE_0)  # first slot of the drive block: P[DRV0 : DRV0 + N_DRIVE]
+CPL0 = int(Slot.COUPLING_0)  # first slot of the coupling block: P[CPL0 : CPL0 + N_COUPLING]

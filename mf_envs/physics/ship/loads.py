@@ -1,6 +1,7 @@
 """Numba kernels of the ship's loads and gimbal drives (Rios 2017 ch. 3 Eqs. 118-119, 123):
-prescribed / servo / torque gimbal motion, hydrostatic and damping moments, wave moment and heave
-force (regular or a table). Units SI; P is the packed vector of `layout.KernelParams`."""
+prescribed / servo gimbal motion, the torque drive (`ship.drive`), hydrostatic and damping
+moments, wave moment and heave force (regular or a table). Units SI; P is the packed vector of
+`layout.KernelParams`."""
 
 from __future__ import annotations
 
@@ -9,7 +10,9 @@ import math
 import numba
 import numpy as np
 
+from mf_envs.physics.ship.drive import N_DRIVE, drive_torque
 from mf_envs.physics.ship.layout import (
+    DRV0,
     GIMBAL_CONTINUOUS,
     GIMBAL_SINUSOIDAL,
     WAVE_REGULAR,
@@ -46,26 +49,20 @@ def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
 
 
 @numba.njit(cache=True)
-def gimbal_torque(phi: float, phid: float, u: float, P: np.ndarray) -> float:
-    """Torque (N m) on gyro 1's gimbal axis in the torque drive (gyro 2 gets the mirror torque).
+def gyro_gimbal_torque(w1, w3, phi, P):
+    """H w_g1 (N m): the gyroscopic torque on gyro 1's gimbal, H (cos phi w1 - sin phi w3) for
+    one gyro, H cos(phi) w1 on the common coordinate of the mirrored pair."""
+    c = math.cos(phi)
+    h = P[S.JR3] * P[S.PSID]
+    return h * (c * w1 - math.sin(phi) * w3) if int(P[S.NGYRO]) == 1 else h * c * w1
 
-    Velocity loop K_v (u - phi') limited to +-tau_max (u clipped to the rate limit with
-    `gimbal_limits`), minus the gimbal damping / brake c_g phi' (effect `gimbal_damping`), plus
-    a spring-damper end stop beyond +-phi_max (`gimbal_limits`).
-    """
-    tau = 0.0
-    if P[S.KV] > 0.0:
-        ue = u
-        if P[S.LIMITS] > 0.5:
-            ue = min(max(ue, -P[S.RATEMAX]), P[S.RATEMAX])
-        tau = P[S.KV] * (ue - phid)
-        if P[S.TAUMAX] > 0.0:
-            tau = min(max(tau, -P[S.TAUMAX]), P[S.TAUMAX])
-    tau -= P[S.CG] * phid
-    if P[S.LIMITS] > 0.5 and abs(phi) > P[S.PHIMAX]:
-        over = phi - math.copysign(P[S.PHIMAX], phi)
-        tau -= P[S.KSTOP] * over + 2.0 * math.sqrt(P[S.KSTOP] * P[S.D2]) * phid
-    return tau
+
+@numba.njit(cache=True)
+def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P):
+    """(tau in N m, z' in rad/s) of the torque drive (`ship.drive.drive_torque`) on gyro 1's
+    gimbal; the gyroscopic torque it feeds forward is H w_g1 (one gyro) or H cos(phi) w1 (pair)."""
+    g = gyro_gimbal_torque(w1, w3, phi, P)
+    return drive_torque(phi, phid, z, u, g, r20, r22, int(P[S.NGYRO]), P[DRV0 : DRV0 + N_DRIVE])
 
 
 _TAN14_SQ = math.tan(1.4) ** 2  # the wall-sided GZ's tan(r) is clipped to |r| <= 1.4 rad
@@ -104,6 +101,9 @@ def hull_moment(w1, w2, w3, r20, r21, r22, P):
             m1 -= P[S.K44] * sr * (1.0 + 0.5 * P[S.GZR] * t2)
         else:
             m1 -= P[S.K44] * math.atan2(r21, r22)
+        if P[S.GZ3] > 0.0:  # cubic GZ (MSS's K_phiphiphi phi^3)
+            r = math.atan2(r21, r22)
+            m1 -= P[S.K44] * P[S.GZ3] * r * r * r
     if P[S.K55] > 0.0:
         m2 -= P[S.K55] * _asin(max(min(-r20, 1.0), -1.0))
     m1 -= P[S.B44] * w1 + P[S.B44Q] * abs(w1) * w1

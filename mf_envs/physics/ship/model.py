@@ -13,19 +13,23 @@ Effects (names from `mf_envs.effects`; all off costs nothing: a zero coefficient
 | gimbal_inertia         | gimbal frame inertia J^(2) (off: J^(2) = 0)                      |
 | added_inertia          | A44 added to the roll inertia                                    |
 | hydrostatic_restoring  | -C44 r (or wall-sided GZ if BM/GM > 0), -C55 pitch               |
-| roll_damping           | -B44 w1 - B44q abs(w1) w1, -B55 w2, -B66 w3                           |
+| roll_damping           | -B44 w1, -B55 w2, -B66 w3 (linear)                               |
+| quadratic_roll_damping | -B44q abs(w1) w1 (MSS's K_abs(p)p; Ikeda's eddy/viscous part)    |
 | wave_moment            | regular M0 cos(2 pi t / T + phase)                               |
 | irregular_waves        | roll moment from an irregular sea (`ship_waves`), replaces regular |
 | gimbal_limits          | precession-rate limit and end stops on the servo                 |
-| gimbal_damping         | damping / brake c_g phi' on the gimbal axis (torque drive only)  |
+| gimbal_damping         | bearing friction c phi' of an active torque drive (passive drives |
+|                        | always brake with their own c)                                   |
 | translation            | hull surge/sway/heave (heave restoring, damping, wave heave force)|
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,12 +44,15 @@ from mf_envs._validate import (
 from mf_envs.effects import EFFECT_NAMES, resolve_effects
 from mf_envs.frames.so3 import rot_x
 from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.coupling import SwayRollYaw
+from mf_envs.physics.ship.drive import DPHIMAX, DriveParams
 from mf_envs.physics.ship.kernels import gyro_roll_moment  # noqa: F401 (public name)
 from mf_envs.physics.ship.layout import KernelParams
 from mf_envs.physics.ship.params import GyroParams, ShipParams
 
 SHIP_EFFECTS: dict[str, str] = {
-    "gimbal_damping": "viscous damping / brake on the gimbal axis (torque drive)",
+    "gimbal_damping": "bearing friction c phi' of an active gimbal drive (torque drive)",
+    "quadratic_roll_damping": "quadratic roll damping -B44q |p| p (MSS K_|p|p)",
 }
 SHIP_EFFECTS.update(
     {
@@ -74,16 +81,15 @@ class GimbalDrive:
     mode: "servo" (rate servo following a precession-rate command u, rad/s),
           "sinusoidal" (Eq. 119: phi = a sin(2 pi f t - phase)),
           "continuous" (Eq. 118: phi = 4 a f t),
-          "torque" (the gimbal is a degree of freedom: torque K_v (u - phi') limited to
-          max_torque, damping/brake c_g phi' with `gimbal_damping`; K_v = 0 and c_g > 0 is a
-          passive stabilizer; the gyroscopic torque H w_g1 on the gimbal is resisted only by
-          these, so a stiff loop needs a small dt: K_v dt / (J_g2 + J_r1) < ~2).
+          "torque" (the gimbal is a degree of freedom driven by the machine `machine`, a
+          `ship.drive.DriveParams`: electric/brake rate loop, passive damper, pendulous or
+          spring gimbal; None: a free gimbal, no torque; inelastic end stops at max_angle with
+          `gimbal_limits`).
     amplitude a (rad), frequency f (Hz), phase (rad): Eqs. 118-119.
     servo_time_constant: first-order lag of the servo, s.
     max_rate: precession-rate limit, rad/s; max_angle: end stops, rad; stop_time: s, the end-stop
     envelope |phi'| <= (max_angle - |phi|) / stop_time (both only with `gimbal_limits`).
-    Torque drive: loop_gain K_v (N m s/rad), max_torque (N m, 0 = unlimited), damping c_g
-    (N m s/rad), stop_stiffness (N m/rad, spring end stop beyond max_angle, critically damped).
+    machine: the torque drive (its own max_angle/stop_time/max_rate are used by it).
     """
 
     mode: str = "servo"
@@ -94,15 +100,10 @@ class GimbalDrive:
     max_rate: float = 2.0
     max_angle: float = math.pi / 3
     stop_time: float = 0.1
-    loop_gain: float = 0.0
-    max_torque: float = 0.0
-    damping: float = 0.0
-    stop_stiffness: float = 1.0e5
+    machine: DriveParams | None = None
 
     def __post_init__(self) -> None:
         check_choice("mode", self.mode, ("servo", "sinusoidal", "continuous", "torque"))
-        for name in ("loop_gain", "max_torque", "damping", "stop_stiffness"):
-            check_nonnegative(name, getattr(self, name))
         check_finite("amplitude", self.amplitude)
         check_finite("frequency", self.frequency)
         check_finite("phase", self.phase)
@@ -138,21 +139,33 @@ def pack_params(
     wave: WaveLoad | None = None,
     form: str = "exact",
     table_dt: float = 0.0,
+    ship_gz_cubic: float = 0.0,
+    coupling: SwayRollYaw | None = None,
+    speed: float = 0.0,
 ) -> NDArray[np.float64]:
     """The packed float64 parameter vector P of `ship_kernels` for this scene.
 
     `irregular_waves` needs a moment table (see `ship_waves.wave_table`) passed to the kernels
-    with its sampling step `table_dt` (s).
+    with its sampling step `table_dt` (s). ship_gz_cubic: the cubic GZ term over GM (1/rad^2,
+    `ship.hulls.Hull.gz_cubic`). coupling: sway-roll-yaw coefficients (`ship.coupling`): with
+    them the sway equation and the coupling terms are on, at ship speed `speed` (m/s); they
+    exist only for hulls with published coupling data, so this is a switch on the hull's data,
+    not a named effect every hull could turn on.
     """
     n = check_int("n_gyros", n_gyros, 1, 2)
     check_choice("form", form, FORMS)
     eff = resolve_effects(effects, SHIP_EFFECTS, SEED_EFFECTS)
+    gs = _gyro_slots(gyro, n, eff, form)
     kp = {
         **_hull_slots(ship, eff),
-        **_gyro_slots(gyro, n, eff, form),
-        **_drive_slots(drive, eff),
+        **gs,
+        **_drive_slots(drive, eff, gs["d2"]),
         **_wave_slots(wave, eff, table_dt),
+        "gz3": ship_gz_cubic if "hydrostatic_restoring" in eff else 0.0,
+        "speed": check_nonnegative("speed", speed),
     }
+    if coupling is not None:
+        kp.update(cplon=1.0, coupling=tuple(map(float, coupling.pack())))
     return KernelParams(**kp).pack()
 
 
@@ -164,8 +177,9 @@ def _hull_slots(ship: ShipParams, eff: frozenset[str]) -> dict[str, float]:
     if "hydrostatic_restoring" in eff:
         kp.update(k44=ship.roll_stiffness, gzr=ship.gz_bm_over_gm, k55=ship.pitch_stiffness)
     if "roll_damping" in eff:
-        kp.update(b44=ship.roll_damping, b44q=ship.roll_damping_quadratic)
-        kp.update(b55=ship.pitch_damping, b66=ship.yaw_damping)
+        kp.update(b44=ship.roll_damping, b55=ship.pitch_damping, b66=ship.yaw_damping)
+    if "quadratic_roll_damping" in eff:
+        kp["b44q"] = ship.roll_damping_quadratic
     if "translation" in eff:
         kp.update(trans=1.0, mass=ship.mass, kh=ship.heave_stiffness, ch=ship.heave_damping)
         kp.update(css=ship.surge_sway_damping)
@@ -195,14 +209,21 @@ _GMODES = {
 }
 
 
-def _drive_slots(drive: GimbalDrive, eff: frozenset[str]) -> dict[str, float]:
-    """Gimbal drive: mode, prescribed motion, servo, limits and torque loop."""
+def _drive_slots(drive: GimbalDrive, eff: frozenset[str], d2: float) -> dict[str, Any]:
+    """Gimbal drive: mode, prescribed motion, servo, limits and the torque drive's block
+    (`ship.drive.DriveParams.pack` at gimbal inertia d2, kg m^2)."""
+    kp: dict[str, Any] = {}
+    if drive.mode == "torque" and drive.machine is not None:
+        m = drive.machine
+        if m.active and "gimbal_damping" not in eff:  # bearing friction of an active drive
+            m = dataclasses.replace(m, damping=0.0)
+        D = m.pack(d2)
+        if "gimbal_limits" not in eff:  # no end stops: the drive's stop envelope is off too
+            D[DPHIMAX] = math.inf
+        kp["drive"] = tuple(map(float, D))
     return dict(
+        kp,
         gmode=float(_GMODES[drive.mode]),
-        kv=drive.loop_gain,
-        taumax=drive.max_torque,
-        cg=drive.damping if "gimbal_damping" in eff else 0.0,
-        kstop=drive.stop_stiffness,
         gamp=drive.amplitude,
         gfreq=drive.frequency,
         gphase=drive.phase,

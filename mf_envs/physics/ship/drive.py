@@ -1,0 +1,291 @@
+"""The gimbal (precession) drive of a gyro roll stabilizer as a machine (issue 15, item 1).
+
+The gimbal of each gyro turns about the ship's e_2 under the torque of its drive, the gyroscopic
+torque H w_g1 of the spinning rotor and, for a pendulous gimbal, gravity (the phi-row of ch. 3
+Eq. 74, solved in `kernels.ship_accel`). This module gives that drive torque (N m, on gyro 1's
+gimbal axis; gyro 2 of a pair gets the mirror torque) for five drives:
+
+| kind        | machine                                                                      |
+|-------------|------------------------------------------------------------------------------|
+| electric    | servo motor + gearbox, four-quadrant (the default active drive)              |
+| brake       | controlled hydraulic brake: the same loop, torques restricted to tau phi' <= 0 |
+| damper      | passive braked gimbal: tau = -c phi' (a constant brake valve setting)         |
+| pendulous   | Schlick (1904/1906): gimbal CG a distance l below the axis + brake: gravity   |
+|             | torque m g l (cos phi R31 - sin phi R33) - c phi' (see `pendulum_torque`)     |
+| spring      | spring-restored gimbal: tau = -k phi - c phi'                                |
+
+Which machine, and where the numbers come from. Seakeeper, the gyro of the default yacht,
+controls precession with a hydraulic *brake*: "The hydraulic brake circuit is a 'closed' circuit
+with no pump or reservoir" (Seakeeper Model 7000 Gyro Operation Manual, doc. 90021 rev. 4,
+2009, §4.2); it can only dissipate (`brake`). Active yacht gyros (VEEM) drive precession with a
+powered actuator; the seed excites the gimbal "by either a hydraulic system, or servo" (ch. 3
+§3.3.2). The default here is an active electric servo drive, because a precession-rate action
+needs a drive that can also supply power. Seakeeper publishes no gimbal-drive rating, so its
+limits are sized, not quoted (`electric_drive`): the rate limit 2.0 rad/s (the seed
+env's precession-rate limit; H x 2 rad/s = 18 kN m of roll moment for the Seakeeper 9); the
+torque limit 0.1 H holds the precession against the gyroscopic torque H w1 up to a roll rate of
+0.1 rad/s (the yacht rolling 3.4 deg at its 3.7 s period; larger rolls overpower the drive
+and the gimbal runs to its stops, as on a real gyro); the motoring power limit 1 kW. Braking is
+limited by the torque only (a brake resistor or relief valve takes the heat). A damping law
+phi' = k w1 needs braking, not motoring: the roll drives the gimbal and the drive holds it back
+(the power tau phi' = -H k w1^2 < 0), which is why a brake suffices for Seakeeper.
+
+Inner rate loop (active drives): the action stays a precession-rate command u (rad/s). The
+command is clipped to +-max_rate and to the end-stop envelope |phi'| <= (phi_max - |phi|) / t_stop,
+then a PI loop with feedforward of the gyroscopic torque gives
+
+    tau_c = K_p (u - phi') + K_i z - f H w_g1,    z' = (u - phi') + (tau - tau_c) / (K_i T_t),
+
+saturated to the machine envelope: |tau| <= tau_max; motoring (tau phi' > 0) also
+|tau phi'| <= P_max and fading to zero between max_rate and 1.1 max_rate (the no-load speed);
+`brake`: tau phi' <= 0. z is integrated with the ship (one state), the loop is evaluated at
+every Runge-Kutta stage (so it is a continuous-time machine, not a zero-order hold on the
+physics step), and back-calculation (tracking time T_t = K_p / K_i) keeps z bounded while
+saturated. K_p = 2 zeta w_b J_g, K_i = w_b^2 J_g put the loop poles at -w_b (zeta = 1) for
+the gimbal inertia J_g = J2^(2) + J1^(3).
+
+End stops (all drives): an inelastic hard stop at +-phi_max (`end_stop`): a gimbal reaching it
+is put on the stop with its outward rate removed, and the hull takes the reaction so that the
+total angular momentum is kept (`end_stop` returns the rate jump). There is no stop spring, so
+the stops add no stiffness to the step-size limit.
+
+Step size: `stable_physics_dt` returns the largest RK4 step for which every eigenvalue of the
+linearised roll-gimbal-loop system (loop closed, and loop saturated) lies in RK4's stability
+region |1 + z + z^2/2 + z^3/6 + z^4/24| <= 1; envs refuse a larger physics_dt.
+Hand-written (numba, no library): these run inside the ship kernel's RK stages.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+
+from mf_envs._validate import check_choice, check_nonnegative, check_positive
+
+DRIVE_KINDS = ("electric", "brake", "damper", "pendulous", "spring")
+KIND_ELECTRIC, KIND_BRAKE, KIND_DAMPER, KIND_PENDULOUS, KIND_SPRING = 1, 2, 3, 4, 5
+# packed drive vector D
+DKIND, DTMAX, DRMAX, DPMAX, DKP, DKI, DFF, DC, DK, DPHIMAX, DTSTOP = range(11)
+N_DRIVE = 11
+RATE_FADE = 0.1  # motoring torque fades to 0 between max_rate and (1 + RATE_FADE) max_rate
+
+
+@dataclass(frozen=True)
+class DriveParams:
+    """A gimbal drive (module doc). SI units.
+
+    kind: one of DRIVE_KINDS.
+    max_torque: tau_max, N m (active drives); max_rate: rate-command limit and rated speed,
+    rad/s; max_power: motoring power limit P_max, W (active drives).
+    bandwidth: w_b of the PI rate loop, rad/s; damping_ratio: zeta of the loop;
+    feedforward: 1 cancels the gyroscopic torque H w_g1 in the command (within the limits), 0 off.
+    damping: c, N m s/rad (brake valve of `damper`/`pendulous`/`spring`; bearing friction of the
+    active drives); stiffness: k = m g l (pendulous) or the spring rate (spring), N m/rad.
+    max_angle: end stops +-phi_max, rad; stop_time: t_stop of the active drives' stop
+    envelope, s.
+    """
+
+    kind: str = "electric"
+    max_torque: float = 900.0
+    max_rate: float = 2.0
+    max_power: float = 1000.0
+    bandwidth: float = 20.0
+    damping_ratio: float = 1.0
+    feedforward: float = 1.0
+    damping: float = 0.0
+    stiffness: float = 0.0
+    max_angle: float = math.pi / 3
+    stop_time: float = 0.1
+
+    def __post_init__(self) -> None:
+        check_choice("kind", self.kind, DRIVE_KINDS)
+        for name in ("max_torque", "max_rate", "max_power", "bandwidth", "damping_ratio"):
+            check_positive(name, getattr(self, name))
+        for name in ("feedforward", "damping", "stiffness"):
+            check_nonnegative(name, getattr(self, name))
+        check_positive("max_angle", self.max_angle)
+        check_positive("stop_time", self.stop_time)
+        if self.feedforward > 1.0:
+            raise ValueError(f"feedforward: must be in [0, 1], got {self.feedforward!r}")
+
+    @property
+    def active(self) -> bool:
+        """True for drives that follow the rate command (electric, brake)."""
+        return self.kind in ("electric", "brake")
+
+    def gains(self, gimbal_inertia: float) -> tuple[float, float]:
+        """(K_p in N m s/rad, K_i in N m/rad) of the PI loop for J_g = gimbal_inertia (kg m^2)."""
+        if not self.active:
+            return 0.0, 0.0
+        jg = float(check_positive("gimbal_inertia", gimbal_inertia))
+        return 2.0 * self.damping_ratio * self.bandwidth * jg, self.bandwidth**2 * jg
+
+    def pack(self, gimbal_inertia: float) -> NDArray[np.float64]:
+        """The packed float64 vector D (N_DRIVE,) read by the numba functions below."""
+        D = np.zeros(N_DRIVE)
+        D[DKIND] = DRIVE_KINDS.index(self.kind) + 1
+        D[DTMAX], D[DRMAX], D[DPMAX] = self.max_torque, self.max_rate, self.max_power
+        D[DKP], D[DKI] = self.gains(gimbal_inertia)
+        D[DFF] = self.feedforward if self.active else 0.0
+        D[DC], D[DK] = self.damping, self.stiffness
+        D[DPHIMAX], D[DTSTOP] = self.max_angle, self.stop_time
+        return D
+
+
+def electric_drive(angular_momentum: float, **over: float) -> DriveParams:
+    """The default electric drive sized for a rotor of angular momentum H (N m s), module doc:
+    tau_max = 0.1 H (holds the precession up to a roll rate of 0.1 rad/s), 2 rad/s, 1 kW."""
+    h = float(check_nonnegative("angular_momentum", angular_momentum))
+    kw = {"max_torque": 0.1 * h, "max_rate": 2.0, "max_power": 1000.0}
+    kw.update(over)
+    return DriveParams("electric", **kw)
+
+
+@numba.njit(cache=True)
+def _clip(x: float, lo: float, hi: float) -> float:
+    return min(max(x, lo), hi)
+
+
+@numba.njit(cache=True)
+def rate_command(u: float, phi: float, D: np.ndarray) -> float:
+    """The command u (rad/s) clipped to +-max_rate and the end-stop envelope (module doc)."""
+    ue = _clip(u, -D[DRMAX], D[DRMAX])
+    return _clip(ue, (-D[DPHIMAX] - phi) / D[DTSTOP], (D[DPHIMAX] - phi) / D[DTSTOP])
+
+
+@numba.njit(cache=True)
+def machine_limit(tau: float, phid: float, D: np.ndarray) -> float:
+    """tau (N m) saturated to the machine envelope at gimbal rate phid (rad/s), module doc."""
+    t = _clip(tau, -D[DTMAX], D[DTMAX])
+    if t * phid > 0.0:  # motoring
+        if int(D[DKIND]) == KIND_BRAKE:
+            return 0.0
+        a = abs(phid)
+        lim = min(D[DTMAX], D[DPMAX] / a)
+        lim *= _clip((1.0 + RATE_FADE - a / D[DRMAX]) / RATE_FADE, 0.0, 1.0)
+        t = _clip(t, -lim, lim)
+    return t
+
+
+@numba.njit(cache=True)
+def pendulum_torque(phi: float, r20: float, r22: float, mgl: float, n_gyros: int) -> float:
+    """Gravity torque (N m) on a gimbal whose CG lies l below its axis, mgl = m g l (N m).
+
+    Ship attitude third row (R31, R33) = (r20, r22) gives gravity in the ship frame; the CG at
+    R_2(phi) (0, 0, -l) feels m g l (cos phi R31 - sin phi R33) about e_2 (level ship:
+    -m g l sin phi, Schlick's restoring pendulum). For the mirrored pair (gyro 2 at -phi) the
+    torque on the common coordinate is the half difference, -m g l sin(phi) R33.
+    """
+    if n_gyros == 2:
+        return -mgl * math.sin(phi) * r22
+    return mgl * (math.cos(phi) * r20 - math.sin(phi) * r22)
+
+
+@numba.njit(cache=True)
+def drive_torque(phi, phid, z, u, gyro_torque, r20, r22, n_gyros, D):
+    """(tau in N m, z' in rad/s) of the drive on gyro 1's gimbal (module doc).
+
+    phi, phid: gimbal angle (rad) and rate (rad/s); z: rate-loop integral (rad); u: rate command
+    (rad/s); gyro_torque: H w_g1 (N m), the gyroscopic torque on the gimbal the feedforward
+    cancels; r20, r22: R31, R33 of the ship attitude (pendulous gimbal).
+    """
+    kind = int(D[DKIND])
+    tau = -D[DC] * phid
+    if kind == KIND_PENDULOUS:
+        tau += pendulum_torque(phi, r20, r22, D[DK], n_gyros)
+    elif kind == KIND_SPRING:
+        tau -= D[DK] * phi
+    if kind != KIND_ELECTRIC and kind != KIND_BRAKE:
+        return tau, 0.0
+    e = rate_command(u, phi, D) - phid
+    tau_c = D[DKP] * e + D[DKI] * z - D[DFF] * gyro_torque
+    tau_m = machine_limit(tau_c, phid, D)
+    dz = e + (tau_m - tau_c) / D[DKP] if D[DKI] > 0.0 else 0.0
+    return tau + tau_m, dz
+
+
+@numba.njit(cache=True)
+def end_stop(phi: float, phid: float, phi_max: float):
+    """Inelastic hard stop: (phi, phi', rate jump dphi' in rad/s) after clamping phi to
+    +-phi_max and removing an outward rate (the hull takes -J_g dphi' of momentum)."""
+    if phi > phi_max:
+        return phi_max, min(phid, 0.0), min(phid, 0.0) - phid
+    if phi < -phi_max:
+        return -phi_max, max(phid, 0.0), max(phid, 0.0) - phid
+    return phi, phid, 0.0
+
+
+# ---------------------------------------------------------------------- step-size bound
+def rk4_amplification(z: complex | NDArray) -> NDArray[np.float64]:
+    """|R(z)| = |1 + z + z^2/2 + z^3/6 + z^4/24| of classical RK4 at z = h lambda."""
+    z = np.asarray(z, dtype=complex)
+    return np.abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))))
+
+
+def _rk4_max_step(lam: complex) -> float:
+    """Largest h with |R(h lambda)| <= 1 for a decaying or oscillating mode (bisection on the
+    ray h lambda; RK4's region is star-shaped along it near the origin). inf for growth."""
+    if lam.real > 1e-12 * abs(lam) or abs(lam) == 0.0:
+        return math.inf  # a physically growing (or static) mode: no step makes it decay
+    lo, hi = 0.0, 4.0 / abs(lam)  # RK4's region lies inside |z| < 3
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if rk4_amplification(mid * lam) <= 1.0 + 1e-12:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@dataclass(frozen=True)
+class RollGimbal:
+    """The linear roll + gimbal plant a drive is checked on (SI units): gimbal inertia J_g and
+    roll inertia J (kg m^2, J incl. added inertia and gyros), one rotor's H (N m s), number of
+    gyros, roll stiffness C (N m/rad) and linear roll damping B (N m s/rad)."""
+
+    gimbal_inertia: float
+    roll_inertia: float
+    angular_momentum: float
+    n_gyros: int = 1
+    roll_stiffness: float = 0.0
+    roll_damping: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_positive("gimbal_inertia", self.gimbal_inertia)
+        check_positive("roll_inertia", self.roll_inertia)
+        check_nonnegative("angular_momentum", self.angular_momentum)
+
+
+def roll_gimbal_matrix(D: NDArray[np.float64], plant: RollGimbal, saturated: bool) -> NDArray:
+    """A (5, 5) of x = [roll, roll rate, phi, phi', z] linearised about rest (SI units).
+
+    J r'' = -C r - B r' - n H phi';  J_g phi'' = H r' + tau;  tau from `drive_torque` with the
+    loop closed (saturated=False) or its output frozen (saturated=True: the passive parts only,
+    z' = -(K_i / K_p) z from the back-calculation).
+    """
+    J, Jg = plant.roll_inertia, plant.gimbal_inertia
+    H, n = plant.angular_momentum, plant.n_gyros
+    kp, ki, ff = (0.0, 0.0, 0.0) if saturated else (D[DKP], D[DKI], D[DFF])
+    k = D[DK] if int(D[DKIND]) in (KIND_PENDULOUS, KIND_SPRING) else 0.0
+    A = np.zeros((5, 5))
+    A[0, 1] = A[2, 3] = 1.0
+    A[1] = [-plant.roll_stiffness / J, -plant.roll_damping / J, 0.0, -n * H / J, 0.0]
+    A[3] = [0.0, H * (1.0 - ff) / Jg, -k / Jg, -(kp + D[DC]) / Jg, ki / Jg]
+    A[4, 3] = -1.0 if ki > 0.0 else 0.0
+    if saturated and D[DKI] > 0.0:
+        A[4, 4] = -D[DKI] / D[DKP]
+    return A
+
+
+def stable_physics_dt(D: NDArray[np.float64], plant: RollGimbal) -> float:
+    """Largest RK4 physics step (s) for which the linearised roll-gimbal-drive system is stable
+    with the loop closed and with it saturated (module doc)."""
+    h = math.inf
+    for sat in (False, True):
+        for lam in np.linalg.eigvals(roll_gimbal_matrix(D, plant, sat)):
+            h = min(h, _rk4_max_step(complex(lam)))
+    return h
