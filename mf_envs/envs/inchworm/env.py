@@ -279,16 +279,19 @@ class InchwormEnv(MFEnv):
                 raise ValueError("kappa: must be finite and within +-max_curvature")
         super().reset(seed=seed)
         noise = self.np_random.uniform(0.0, self.reset_noise_scale, self.n_ctrl)
-        kappa = -self.max_curvature * noise if kappa is None else kappa
-        try:
+        drawn, kappa = kappa is None, -self.max_curvature * noise if kappa is None else kappa
+        for _ in range(8 if drawn else 1):  # a drawn start without equilibrium is halved
+            try:
+                self.driven.reset(kappa, x_tail=x_tail)
+                break
+            except SOLVER_ERRORS:
+                kappa = 0.5 * kappa
+        else:
+            if not drawn:
+                raise ValueError("kappa: no equilibrium for this initial actuation")
+            kappa = np.zeros(self.n_ctrl)  # the flat body is always an equilibrium
             self.driven.reset(kappa, x_tail=x_tail)
-        except SOLVER_ERRORS:
-            raise ValueError(
-                "kappa, reset_noise_scale, max_curvature: no equilibrium for this initial "
-                "actuation; use a smaller one"
-            ) from None
-        self._kappa_ctrl = kappa
-        self._steps = 0
+        self._kappa_ctrl, self._steps = kappa, 0
         info = self._get_info({"progress": 0.0, "effort": 0.0}, None)
         self._frame_state = None
         self._remember_frame(info)
