@@ -17,6 +17,7 @@ from mf_envs._validate import (
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MAX_EPISODE_STEPS, MIN_DT, MFEnv
 from mf_envs.envs.gowec import spec
+from mf_envs.envs.gowec.render import wave_frame
 from mf_envs.physics import gowec as gw
 from mf_envs.physics import waves
 
@@ -319,23 +320,11 @@ class GOWECEnv(MFEnv):
         }  # fmt: skip
 
     def _draw_frame(self) -> np.ndarray:
-        from mf_envs.render import draw_gowec
-
-        lam = waves.wavelength(self.wave_period)
-        x = np.linspace(-lam, lam, 121)
-        c, s = math.cos(self.wave_direction), math.sin(self.wave_direction)
-        z = self.wave.elevation(self._t, x * c, x * s)
         R = self.wave.buoy_motion(self._t)[0] if "buoy_rocking" in self.effects else np.eye(3)
-        psi = math.fmod(self.model.psid * self._t, 2 * math.pi)
-        P = self._last_power
-        phi_wrapped = math.remainder(float(self.state[0]), 2 * math.pi)
-        return draw_gowec(
-            buoy_R=R,
-            gimbal_angle=float(self.state[0]),
-            rotor_angle=psi,
-            wave_x=x,
-            wave_z=z,
-            wave_direction=self.wave_direction,
-            buoy_radius=self.buoy_radius if self.buoy_radius > 0 else None,
-            text=f"t = {self._t:5.1f} s   phi = {phi_wrapped:+.2f} rad   P = {P / 1e3:.2f} kW",
-        )
+        phi, P = float(self.state[0]), self._last_power
+        text = f"t = {self._t:5.1f} s   phi = {math.remainder(phi, 2 * math.pi):+.2f} rad"
+        text += f"   P = {P / 1e3:.2f} kW"
+        return wave_frame(
+            self.wave, self._t, self.wave_period, self.wave_direction, R, phi,
+            self.model.psid, self.buoy_radius, text,
+        )  # fmt: skip
