@@ -23,6 +23,22 @@ def timed(fn: Any, *args: Any, repeat: int = 1, **kwargs: Any) -> tuple[Any, flo
     return out, best
 
 
+def accuracy_row(
+    scene: str, method: str, h: float, err: float, sec: float, param: str, **extra: Any
+) -> dict[str, Any]:
+    """One `accuracy.csv` row: scene, method, dt (the step or element length h), error, seconds,
+    param (what h is), plus any extra columns."""
+    return {
+        "scene": scene,
+        "method": method,
+        "dt": h,
+        "error": err,
+        "seconds": sec,
+        "param": param,
+        **extra,
+    }
+
+
 def write_csv(path: Path, rows: Sequence[dict[str, Any]], first: Sequence[str]) -> Path:
     """Write dict rows with the `first` columns in order, then any other keys alphabetically."""
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mf_envs.benchmarks._io import timed
+from mf_envs.benchmarks._io import accuracy_row, timed
 from mf_envs.physics.beam import (
     BeamModel,
     BeamParams,
@@ -70,18 +70,6 @@ from mf_envs.physics.inchworm import (
 ORDER = 40
 
 
-def _row(scene, method, h, err, sec, param, **extra):
-    return {
-        "scene": scene,
-        "method": method,
-        "dt": h,
-        "error": err,
-        "seconds": sec,
-        "param": param,
-        **extra,
-    }
-
-
 def _timoshenko(quick: bool) -> list[dict]:
     ea, gas, ei = seed_rigidities()
     c = SEED_CANTILEVER
@@ -106,7 +94,9 @@ def _timoshenko(quick: bool) -> list[dict]:
             )
             err = abs(sol.tip_position[1] - v_ref) / abs(v_p)
             rows.append(
-                _row("beam_timoshenko", f"alpha={alpha:g}", c["L"] / n, err, sec, "h", elements=n)
+                accuracy_row(
+                    "beam_timoshenko", f"alpha={alpha:g}", c["L"] / n, err, sec, "h", elements=n
+                )
             )
     return rows
 
@@ -122,7 +112,9 @@ def _rollup(quick: bool) -> list[dict]:
             ("tip angle [rad]", abs(sol.tip_angle - 2 * np.pi)),
         ):
             rows.append(
-                _row("beam_rollup", "sri element", 1.0 / n, err, sec, "h", quantity=q, elements=n)
+                accuracy_row(
+                    "beam_rollup", "sri element", 1.0 / n, err, sec, "h", quantity=q, elements=n
+                )
             )
     return rows
 
@@ -138,7 +130,9 @@ def _elastica(quick: bool) -> list[dict]:
             )
             err = float(np.linalg.norm(sol.tip_position - [x, y]))
             rows.append(
-                _row("beam_elastica", f"alpha={alpha:g}", 1.0 / n, err, sec, "h", elements=n)
+                accuracy_row(
+                    "beam_elastica", f"alpha={alpha:g}", 1.0 / n, err, sec, "h", elements=n
+                )
             )
     return rows
 
@@ -173,7 +167,7 @@ def _newmark(quick: bool) -> list[dict]:
                 z, sec = timed(lambda dt=dt, gamma=gamma: _vibration(dt, t_end, gamma), repeat=1)
             except NewtonDivergence:  # the energy instability of the trapezoidal rule
                 rows.append(
-                    _row(
+                    accuracy_row(
                         "beam_newmark",
                         name,
                         float(dt),
@@ -186,7 +180,9 @@ def _newmark(quick: bool) -> list[dict]:
                 continue
             k = int(round(dt / (dts[-1] / 16)))
             err = np.max(np.abs(z - ref[k - 1 :: k][: len(z)])) / 0.1
-            rows.append(_row("beam_newmark", name, float(dt), float(err), sec, "dt", failed=False))
+            rows.append(
+                accuracy_row("beam_newmark", name, float(dt), float(err), sec, "dt", failed=False)
+            )
     return rows
 
 
@@ -201,7 +197,7 @@ def _newton_tol(quick: bool) -> list[dict]:
     for tol in (1e-2, 1e-4, 1e-6) if quick else (1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10):
         sol, sec = timed(lambda tol=tol: solve(tol), repeat=2)
         err = float(np.linalg.norm(sol.tip_position - ref))
-        rows.append(_row("beam_newton_tol", "Newton eps1 = eps2", tol, err, sec, "tol"))
+        rows.append(accuracy_row("beam_newton_tol", "Newton eps1 = eps2", tol, err, sec, "tol"))
     return rows
 
 
@@ -219,7 +215,7 @@ def _locking(quick: bool) -> list[dict]:
                     repeat=3,
                 )
                 err = max(np.linalg.norm(sol.tip_position), abs(sol.tip_angle - 2 * np.pi))
-                rows.append(_row("beam_locking_rollup", name, 1 / n, float(err), sec, "h"))
+                rows.append(accuracy_row("beam_locking_rollup", name, 1 / n, float(err), sec, "h"))
                 sol, sec = timed(
                     lambda n=n, e=element, s_=s_: solve_cantilever(
                         1.0, s_, s_, 1.0, n, (0.0, -3.0), element=e
@@ -227,7 +223,7 @@ def _locking(quick: bool) -> list[dict]:
                     repeat=3,
                 )
                 err = float(np.linalg.norm(sol.tip_position - ref))
-                rows.append(_row("beam_locking_tipload", name, 1 / n, err, sec, "h"))
+                rows.append(accuracy_row("beam_locking_tipload", name, 1 / n, err, sec, "h"))
     return rows
 
 
@@ -267,7 +263,9 @@ def _period(quick: bool) -> list[dict]:
             tc = t[i] - z[i] * (t[i + 1] - t[i]) / (z[i + 1] - z[i])
             err = abs(float(np.mean(np.diff(tc))) / t1 - 1)
             name = f"{scheme} rho_inf={rho:g}"
-            rows.append(_row("beam_period", name, t1 / spp, err, sec, "dt", steps_per_period=spp))
+            rows.append(
+                accuracy_row("beam_period", name, t1 / spp, err, sec, "dt", steps_per_period=spp)
+            )
     return rows
 
 
@@ -294,12 +292,14 @@ def _energy(quick: bool) -> list[dict]:
                 )
             except NewtonDivergence as exc:
                 extra.update(failed=True, note=str(exc)[:120])
-                rows.append(_row("beam_energy", name, t1 / spp, np.nan, np.nan, "dt", **extra))
+                rows.append(
+                    accuracy_row("beam_energy", name, t1 / spp, np.nan, np.nan, "dt", **extra)
+                )
                 continue
             e = hist.total_energy
             err = float(np.max(np.abs(e / e[0] - 1)))
             extra["final_energy_ratio"] = float(e[-1] / e[0])
-            rows.append(_row("beam_energy", name, t1 / spp, err, sec, "dt", **extra))
+            rows.append(accuracy_row("beam_energy", name, t1 / spp, err, sec, "dt", **extra))
     return rows
 
 
@@ -328,7 +328,9 @@ def _inchworm(quick: bool) -> list[dict]:
                 repeat=1,
             )
             err = abs(hist.x_tail[-1] - hist.x_tail[0] - exact) / p.length
-            rows.append(_row("inchworm_gait", name, p.length / n, err, sec, "h", elements=n))
+            rows.append(
+                accuracy_row("inchworm_gait", name, p.length / n, err, sec, "h", elements=n)
+            )
     return rows
 
 

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 from scipy.linalg import eigh
 
-from mf_envs.benchmarks._io import observed_order, timed
+from mf_envs.benchmarks._io import accuracy_row, observed_order, timed
 from mf_envs.physics import multilink as ml
 from mf_envs.physics.multilink.elastica import elastica_cantilever
 from mf_envs.physics.multilink.solve import simulate, solve_static
@@ -44,18 +44,6 @@ STATIC_CASES = {
     "tip load alpha=5 vs elastica": {"tip_force": (0.0, -5.0)},
     "uniform load qL^3/EI=3 vs elastica": {"distributed_load": (0.0, -3.0)},
 }
-
-
-def _row(scene: str, method: str, h: float, err: float, sec: float, param: str, **extra) -> dict:
-    return {
-        "scene": scene,
-        "method": method,
-        "dt": h,
-        "error": err,
-        "seconds": sec,
-        "param": param,
-        **extra,
-    }
 
 
 def _links(quick: bool, top: int) -> list[int]:
@@ -86,7 +74,7 @@ def _static_rows(quick: bool) -> list[dict]:
             st, sec = timed(lambda p=p, kw2=kw2: solve_static(p, **kw2), repeat=3)
             err = float(np.linalg.norm(st.tip_position - ref)) / L
             rows.append(
-                _row(
+                accuracy_row(
                     "multilink_statics",
                     name,
                     n,
@@ -126,7 +114,7 @@ def _mode_rows(quick: bool) -> list[dict]:
         for i in range(3):
             err = abs(np.sqrt(w2[i]) / exact[i] - 1.0)
             rows.append(
-                _row(
+                accuracy_row(
                     "multilink_modes",
                     f"mode {i + 1}",
                     n,
@@ -166,7 +154,7 @@ def _dynamic_rows(quick: bool) -> list[dict]:
                 )
                 err = float(np.max(np.linalg.norm(tips(tr) - ref, axis=1))) / L
                 rows.append(
-                    _row(
+                    accuracy_row(
                         "multilink_dynamics",
                         method,
                         rtol,
