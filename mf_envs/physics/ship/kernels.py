@@ -210,8 +210,9 @@ def stage_rhs(t, y, R, inp, args, dy):
         dy[i] = a[i]
     for i in range(5, y.shape[0]):
         dy[i] = 0.0
-    if not pres:  # a prescribed gimbal has no drive loop, no drive energy and keeps v fixed
-        dy[Z_STATE], dy[E_STATE], dy[V_STATE] = a[5], a[6], a[7]
+    # the sway v evolves with the coupling whatever drives the gimbal; a prescribed gimbal has
+    # no drive loop and no drive energy (ang_rates gives z' = 0 and n |tau phi'| = 0 for it)
+    dy[Z_STATE], dy[E_STATE], dy[V_STATE] = a[5], a[6], a[7]
     if P[S.TRANS] > 0.5:
         # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
         v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
