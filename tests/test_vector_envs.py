@@ -384,3 +384,22 @@ def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict)
         done = out_v[2] | out_v[3]
         resets += int(np.sum(done))
     assert resets > 2 * buffer  # the buffer of a row runs out and is refilled
+
+
+def test_stabilizer_threads_do_not_change_results() -> None:
+    """Rows stepped on numba's thread pool (the default from PARALLEL_MIN_ENVS envs on) ==
+    one thread, bit for bit, through autoresets; num_threads is checked."""
+    n = 300
+    kw = {"episode_seconds": 0.3}
+    one = make_vec(ENV_STAB, n, num_threads=1, **kw)
+    many = make_vec(ENV_STAB, n, num_threads=3, **kw)  # 3 row blocks on the pool
+    assert (one.unwrapped.num_threads, many.unwrapped.num_threads) == (1, 3)
+    out_a, out_b = one.reset(seed=1), many.reset(seed=1)
+    for t, a in enumerate(actions(one, 20)):
+        out_a, out_b = one.step(a), many.step(a)
+        for x, y in zip(out_a[:4], out_b[:4]):
+            np.testing.assert_array_equal(x, y, err_msg=f"step {t}")
+        assert_infos_equal(out_a[4], out_b[4], f"step {t}: ")
+    for bad in (0, 1.5, "2"):
+        with pytest.raises(ValueError, match="num_threads"):
+            make_vec(ENV_STAB, 2, num_threads=bad)

@@ -27,6 +27,7 @@ from typing import Any
 import numba
 import numpy as np
 
+from mf_envs._validate import check_int
 from mf_envs.envs._predraw import PredrawnResets
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gyro_stabilizer import spec, wiring
@@ -56,17 +57,38 @@ def _info_row(c, roll, y, out, energy):
 
 
 @numba.njit(cache=True)
-def step_rows(active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-              reward, roll_scale, effort_weight, control_dt):  # fmt: skip
+def step_rows(n_chunks, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
+              ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
     """One control step of every active row (GyroStabilizerEnv.step without Python).
 
     t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.batch_advance`;
     u (N,) rad/s; steps (N,) int64; last (N, 6) float32 the last returned observations; writes
     obs (N, 6) float32, cols (N, N_COLS) (info columns, reward terms, time), ok_out (N,) False
     on a numerical failure (the step then scores 0 and keeps the last observation), reward (N,).
+    n_chunks: ignored here (the signature of `step_rows_parallel`).
     """
+    _step_range(0, y.shape[0], active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs,
+                cols, ok_out, reward, roll_scale, effort_weight, control_dt)  # fmt: skip
+
+
+@numba.njit(cache=True, parallel=True)
+def step_rows_parallel(n_chunks, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs,
+                       cols, ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
+    """`step_rows` on numba's thread pool: the rows in n_chunks contiguous blocks, one per task
+    (rows are independent, so the result is bit-identical to `step_rows`)."""
+    n = y.shape[0]
+    for c in numba.prange(n_chunks):
+        _step_range(c * n // n_chunks, (c + 1) * n // n_chunks, active, t, y, R, u, dt, n_sub,
+                    P, tab, out, steps, last, obs, cols, ok_out, reward, roll_scale,
+                    effort_weight, control_dt)  # fmt: skip
+
+
+@numba.njit(cache=True)
+def _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
+                ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
+    """`step_rows` for the rows lo <= i < hi (own stepper scratch)."""
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
-    for i in range(y.shape[0]):
+    for i in range(lo, hi):
         if not active[i]:
             continue
         e0 = y[i, K.E_STATE]
@@ -134,6 +156,20 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GyroStabilizerEnv
     DRAWS_PER_RESET = 3
+    PARALLEL_MIN_ENVS = 256  # below this, one thread (the pool's start-up costs more)
+
+    def __init__(self, num_envs: int = 1, *, num_threads: int | None = None, **kwargs: Any):
+        """num_threads: rows are stepped in this many blocks on numba's thread pool (None:
+        numba's thread count from num_envs >= PARALLEL_MIN_ENVS on, else 1; 1: no pool);
+        results do not depend on it. Threads
+        use numba's threading layer (GNU OpenMP here): do not fork a process after stepping a
+        threaded vector env in it (use num_threads=1 there, or a spawn/forkserver start)."""
+        super().__init__(num_envs, **kwargs)
+        if num_threads is None:
+            many = self.num_envs >= self.PARALLEL_MIN_ENVS
+            num_threads = numba.get_num_threads() if many else 1
+        self.num_threads = check_int("num_threads", num_threads, 1)  # = row blocks (prange)
+        self._stepper = step_rows_parallel if self.num_threads > 1 else step_rows
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -185,10 +221,10 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         b, env = self.b, self.template
         u = actions[:, 0] * env.max_precession_rate
-        step_rows(
-            active, b["t"], b["y"], b["R"], u, env.physics_dt, env.n_substeps, b["P"],
-            b["tab"], b["out"], self._steps, self._obs, self._fresh, self._cols, self._ok,
-            self._reward, env.roll_scale, env.effort_weight, env.control_dt,
+        self._stepper(
+            self.num_threads, active, b["t"], b["y"], b["R"], u, env.physics_dt,
+            env.n_substeps, b["P"], b["tab"], b["out"], self._steps, self._obs, self._fresh,
+            self._cols, self._ok, self._reward, env.roll_scale, env.effort_weight, env.control_dt,
         )  # fmt: skip
         cols = self._cols.T.copy()  # (N_COLS, N): one fresh array, its rows the info values
         info: dict[str, Any] = dict(zip(COLS, cols))

@@ -233,7 +233,8 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab), work, Rwork)
     for i in range(y.shape[0]):
         y[i] += dy[i]
-    R[:, :] = R1
+    for i in range(3):
+        R[i, 0], R[i, 1], R[i, 2] = R1[i, 0], R1[i, 1], R1[i, 2]
     mode = int(P[S.GMODE])
     if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
         y[3], y[4] = inp[2][0], inp[2][1]
