@@ -10,7 +10,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.ship.drive import N_DRIVE, drive_torque
+from mf_envs.physics.ship.drive import drive_torque
 from mf_envs.physics.ship.layout import (
     DRV0,
     GIMBAL_CONTINUOUS,
@@ -65,7 +65,7 @@ def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c=math.nan, s=math.nan):
     gimbal; the gyroscopic torque it feeds forward is H w_g1 (one gyro) or H cos(phi) w1 (pair).
     c, s: cos(phi), sin(phi) if the caller has them (`gyro_gimbal_torque`)."""
     g = gyro_gimbal_torque(w1, w3, phi, P, c, s)
-    return drive_torque(phi, phid, z, u, g, r20, r22, int(P[S.NGYRO]), P[DRV0 : DRV0 + N_DRIVE])
+    return drive_torque(phi, phid, z, u, g, r20, r22, int(P[S.NGYRO]), P, DRV0)
 
 
 _TAN14_SQ = math.tan(1.4) ** 2  # the wall-sided GZ's tan(r) is clipped to |r| <= 1.4 rad
