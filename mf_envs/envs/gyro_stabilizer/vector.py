@@ -88,28 +88,65 @@ def _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last,
                 ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
     """`step_rows` for the rows lo <= i < hi (own stepper scratch)."""
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
+    # the row is stepped in this task's own buffers: views of the shared batch arrays would
+    # touch their (shared) reference counts at every row, which threads contend for
+    yl, Rl, ol, Pl = np.empty(y.shape[1]), np.empty((3, 3)), np.empty(4), np.empty(P.shape[1])
+    ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
     for i in range(lo, hi):
         if not active[i]:
             continue
-        e0 = y[i, K.E_STATE]
-        t[i] = K.advance_with(t[i], y[i], R[i], u[i], dt, n_sub, P[i], tab[i], out[i], work, Rwork)
+        _gather(i, y, R, P, out, yl, Rl, Pl, ol)
+        e0 = yl[K.E_STATE]
+        t[i] = K.advance_with(t[i], yl, Rl, u[i], dt, n_sub, Pl, tab[i], ol, work, Rwork)
         steps[i] += 1
-        roll = math.atan2(R[i, 2, 1], R[i, 2, 2])
-        ok = spec.observe(roll, y[i], R[i], obs[i])
+        roll = math.atan2(Rl[2, 1], Rl[2, 2])
+        ok = spec.observe(roll, yl, Rl, ob)
         if not ok:  # the last finite observation stays (and is scored)
-            obs[i, :] = last[i, :]
-        energy = y[i, K.E_STATE] - e0
-        q = np.float64(obs[i, _ROLL]) / roll_scale
-        c = cols[i]
+            for k in range(ob.shape[0]):
+                ob[k] = last[i, k]
+        energy = yl[K.E_STATE] - e0
+        q = np.float64(ob[_ROLL]) / roll_scale
         c[C_RROLL], c[C_REFFORT] = -(q * q), -effort_weight * energy
         rew = c[C_RROLL] + c[C_REFFORT]
-        _info_row(c, roll, y[i], out[i], energy)
+        _info_row(c, roll, yl, ol, energy)
         c[C_TIME] = steps[i] * control_dt
         ok_out[i] = ok and math.isfinite(rew)
         if not ok_out[i]:  # MFEnv._finish_step: last finite obs, reward 0, terminated
-            obs[i, :] = last[i, :]
+            for k in range(ob.shape[0]):
+                ob[k] = last[i, k]
             rew = 0.0
         reward[i] = rew
+        _scatter(i, yl, Rl, ol, ob, c, y, R, out, obs, cols)
+
+
+@numba.njit(cache=True, inline="always")
+def _gather(i, y, R, P, out, yl, Rl, Pl, ol):
+    """Row i of the batch arrays into the task's buffers (element by element: no views)."""
+    for k in range(y.shape[1]):
+        yl[k] = y[i, k]
+    for a in range(3):
+        for k in range(3):
+            Rl[a, k] = R[i, a, k]
+    for k in range(P.shape[1]):
+        Pl[k] = P[i, k]
+    for k in range(4):
+        ol[k] = out[i, k]
+
+
+@numba.njit(cache=True, inline="always")
+def _scatter(i, yl, Rl, ol, ob, c, y, R, out, obs, cols):
+    """The task's buffers back into row i of the batch arrays (`_gather`'s inverse)."""
+    for k in range(y.shape[1]):
+        y[i, k] = yl[k]
+    for a in range(3):
+        for k in range(3):
+            R[i, a, k] = Rl[a, k]
+    for k in range(4):
+        out[i, k] = ol[k]
+    for k in range(ob.shape[0]):
+        obs[i, k] = ob[k]
+    for k in range(c.shape[0]):
+        cols[i, k] = c[k]
 
 
 @numba.njit(cache=True)
