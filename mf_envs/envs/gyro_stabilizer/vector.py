@@ -63,7 +63,7 @@ def step_rows(n_chunks, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last,
 
     t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.batch_advance`;
     u (N,) rad/s; steps (N,) int64; last (N, 6) float32 the last returned observations; writes
-    obs (N, 6) float32, cols (N, N_COLS) (info columns, reward terms, time), ok_out (N,) False
+    obs (N, 6) float32, cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False
     on a numerical failure (the step then scores 0 and keeps the last observation), reward (N,).
     n_chunks: ignored here (the signature of `step_rows_parallel`).
     """
@@ -146,7 +146,7 @@ def _scatter(i, yl, Rl, ol, ob, c, y, R, out, obs, cols):
     for k in range(ob.shape[0]):
         obs[i, k] = ob[k]
     for k in range(c.shape[0]):
-        cols[i, k] = c[k]
+        cols[k, i] = c[k]
 
 
 @numba.njit(cache=True)
@@ -258,12 +258,13 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         b, env = self.b, self.template
         u = actions[:, 0] * env.max_precession_rate
+        # fresh info columns (N_COLS, N), written by the kernel (rows not stepped: reset infos)
+        cols = np.empty((N_COLS, self.num_envs))
         self._stepper(
             self.num_threads, active, b["t"], b["y"], b["R"], u, env.physics_dt,
             env.n_substeps, b["P"], b["tab"], b["out"], self._steps, self._obs, self._fresh,
-            self._cols, self._ok, self._reward, env.roll_scale, env.effort_weight, env.control_dt,
+            cols, self._ok, self._reward, env.roll_scale, env.effort_weight, env.control_dt,
         )  # fmt: skip
-        cols = self._cols.T.copy()  # (N_COLS, N): one fresh array, its rows the info values
         info: dict[str, Any] = dict(zip(COLS, cols))
         info["time"] = cols[C_TIME]
         info["reward_terms"] = {"roll": cols[C_RROLL], "effort": cols[C_REFFORT]}
