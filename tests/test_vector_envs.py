@@ -316,54 +316,14 @@ def test_same_step_final_info_holds_no_other_rows() -> None:
         assert seen >= 2
 
 
-@pytest.mark.parametrize("mode", list(AutoresetMode))
-def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
-    """GOWEC-v0's compiled resets (pre-drawn from each row's generator) past the end of the
-    draw buffer, mixed with template resets (options, seeds) that rewind the pre-draw: bit for
-    bit SyncVectorEnv, in every autoreset mode."""
-    from mf_envs.envs.gowec.vector import DRAW_BUFFER
-
-    kw = {"n_periods": 1, "steps_per_period": 4}  # an episode every 4 steps
+def _compiled_resets_match_sync(env_id, kw, mode, option, buffer) -> None:
+    """4 envs through compiled resets past the end of the draw buffer (`buffer` resets per row),
+    mixed with template resets with `option` (one draw less) that rewind the pre-draw: bit for
+    bit SyncVectorEnv (steps, resets, infos)."""
     n = 4
-    sync = gym.make_vec("GOWEC-v0", n, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
-    vec = make_vec("GOWEC-v0", n, autoreset_mode=mode, **kw)
+    sync = gym.make_vec(env_id, n, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
+    vec = make_vec(env_id, n, autoreset_mode=mode, **kw)
     out_s, out_v = sync.reset(seed=5), vec.reset(seed=5)
-    acts = actions(vec, 6 * DRAW_BUFFER, seed=2)
-    resets, done = 0, np.zeros(n, dtype=bool)
-    for t in range(len(acts)):
-        disabled = mode == AutoresetMode.DISABLED
-        if disabled and (done.any() or t % 8 == 0) or t in (13, 40):
-            mask = done | (np.array([True, False, True, False]) if t % 3 else True)
-            opts: dict[str, Any] = {"reset_mask": mask}
-            if t in (13, 40):  # a template reset with an option draws one double less
-                opts["gimbal_angle"] = 0.05
-            out_s = sync.reset(options={**opts, "reset_mask": mask.copy()})
-            out_v = vec.reset(options=opts)
-            np.testing.assert_array_equal(out_s[0], out_v[0])
-            assert_infos_equal(out_s[1], out_v[1], f"reset {t}: ")
-        out_s, out_v = sync.step(acts[t]), vec.step(acts[t])
-        for a, b in zip(out_s[:4], out_v[:4]):
-            np.testing.assert_array_equal(a, b, err_msg=f"step {t}")
-        assert_infos_equal(out_s[4], out_v[4], f"step {t}: ")
-        done = out_v[2] | out_v[3]
-        resets += int(np.sum(done))
-    assert resets > 2 * DRAW_BUFFER  # the buffer of a row runs out and is refilled
-
-
-@pytest.mark.parametrize("scene", [{}, {"heading": 0.3, "ship_speed": 10.0}])
-@pytest.mark.parametrize("mode", list(AutoresetMode))
-def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict) -> None:
-    """GyroStabilizer-v0's compiled resets (`reset_rows`, three pre-drawn doubles per reset)
-    past the end of the draw buffer, mixed with template resets (an option draws one double
-    less) that rewind the pre-draw: bit for bit SyncVectorEnv in every autoreset mode, also in
-    a following sea met at a negative encounter frequency (the phase's sign flips)."""
-    kw = {"episode_seconds": 0.2, **scene}  # an episode every 4 steps
-    n = 4
-    sync = gym.make_vec(ENV_STAB, n, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
-    vec = make_vec(ENV_STAB, n, autoreset_mode=mode, **kw)
-    assert vec.unwrapped._fast
-    out_s, out_v = sync.reset(seed=5), vec.reset(seed=5)
-    buffer = vec.unwrapped.DRAW_BUFFER
     acts = actions(vec, 6 * buffer, seed=2)
     resets, done = 0, np.zeros(n, dtype=bool)
     for t in range(len(acts)):
@@ -372,7 +332,7 @@ def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict)
             mask = done | (np.array([True, False, True, False]) if t % 3 else True)
             opts: dict[str, Any] = {"reset_mask": mask}
             if t in (13, 40):  # a template reset with an option draws one double less
-                opts["roll_rate"] = 0.01
+                opts.update(option)
             out_s = sync.reset(options={**opts, "reset_mask": mask.copy()})
             out_v = vec.reset(options=opts)
             np.testing.assert_array_equal(out_s[0], out_v[0])
@@ -384,6 +344,30 @@ def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict)
         done = out_v[2] | out_v[3]
         resets += int(np.sum(done))
     assert resets > 2 * buffer  # the buffer of a row runs out and is refilled
+
+
+@pytest.mark.parametrize("mode", list(AutoresetMode))
+def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
+    """GOWEC-v0's compiled resets (pre-drawn from each row's generator) past the end of the
+    draw buffer, mixed with template resets (options, seeds) that rewind the pre-draw: bit for
+    bit SyncVectorEnv, in every autoreset mode."""
+    from mf_envs.envs.gowec.vector import DRAW_BUFFER
+
+    kw = {"n_periods": 1, "steps_per_period": 4}  # an episode every 4 steps
+    _compiled_resets_match_sync("GOWEC-v0", kw, mode, {"gimbal_angle": 0.05}, DRAW_BUFFER)
+
+
+@pytest.mark.parametrize("scene", [{}, {"heading": 0.3, "ship_speed": 10.0}])
+@pytest.mark.parametrize("mode", list(AutoresetMode))
+def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict) -> None:
+    """GyroStabilizer-v0's compiled resets (`reset_rows`, three pre-drawn doubles per reset)
+    as GOWEC-v0's above (an option draws one double less), also in a following sea met at a
+    negative encounter frequency (the wave phase's sign flips)."""
+    from mf_envs.envs.gyro_stabilizer.vector import GyroStabilizerVectorEnv as V
+
+    kw = {"episode_seconds": 0.2, **scene}  # an episode every 4 steps
+    assert make_vec(ENV_STAB, 2, **kw).unwrapped._fast  # the compiled path is taken
+    _compiled_resets_match_sync(ENV_STAB, kw, mode, {"roll_rate": 0.01}, V.DRAW_BUFFER)
 
 
 def test_stabilizer_threads_do_not_change_results() -> None:
