@@ -387,3 +387,26 @@ def test_stabilizer_threads_do_not_change_results() -> None:
     for bad in (0, 1.5, "2"):
         with pytest.raises(ValueError, match="num_threads"):
             make_vec(ENV_STAB, 2, num_threads=bad)
+
+
+def test_stabilizer_threaded_env_survives_fork() -> None:
+    """A process forked after the thread pool started (GNU OpenMP would abort it on the pool)
+    steps its threaded vector env on one thread, with the parent's results."""
+    import os
+
+    kw = {"episode_seconds": 0.3, "num_threads": 2}
+    parent = make_vec(ENV_STAB, 300, **kw)
+    parent.reset(seed=4)
+    acts = actions(parent, 10)
+    ref = [parent.step(a)[0] for a in acts]
+    pid = os.fork()
+    if pid == 0:  # the child: exit code 0 only if it ran and matched
+        ok = False
+        try:
+            child = make_vec(ENV_STAB, 300, **kw)
+            child.reset(seed=4)
+            ok = all(np.array_equal(child.step(a)[0], r) for a, r in zip(acts, ref))
+        finally:
+            os._exit(0 if ok else 3)
+    _, status = os.waitpid(pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0

@@ -22,6 +22,7 @@ Irregular seas (a new sea of many draws per reset) keep the template path. See
 from __future__ import annotations
 
 import math
+import os
 from typing import Any
 
 import numba
@@ -42,6 +43,10 @@ _ROLL = spec.OBS.index("roll")
 COLS = spec.INFO_KEYS[:11]
 C_ENERGY, C_RROLL, C_REFFORT, C_TIME, N_COLS = 10, 11, 12, 13, 14
 ROLL0, RATE0, PHASE0 = (-0.05, 0.05), (-0.02, 0.02), (0.0, 2.0 * math.pi)  # reset's U(lo, hi)
+# GNU OpenMP (numba's threading layer here) aborts a forked child that uses the thread pool its
+# parent started: such a child steps on one thread instead (same results)
+_POOL = {"started": False, "forked": False}
+os.register_at_fork(after_in_child=lambda: _POOL.update(forked=_POOL["started"]))
 
 
 @numba.njit(cache=True, inline="always")
@@ -198,9 +203,8 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
     def __init__(self, num_envs: int = 1, *, num_threads: int | None = None, **kwargs: Any):
         """num_threads: rows are stepped in this many blocks on numba's thread pool (None:
         numba's thread count from num_envs >= PARALLEL_MIN_ENVS on, else 1; 1: no pool);
-        results do not depend on it. Threads
-        use numba's threading layer (GNU OpenMP here): do not fork a process after stepping a
-        threaded vector env in it (use num_threads=1 there, or a spawn/forkserver start)."""
+        results do not depend on it. A process forked after the pool started
+        steps on one thread (GNU OpenMP, numba's threading layer here, would abort it)."""
         super().__init__(num_envs, **kwargs)
         if num_threads is None:
             many = self.num_envs >= self.PARALLEL_MIN_ENVS
@@ -260,7 +264,11 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         u = actions[:, 0] * env.max_precession_rate
         # fresh info columns (N_COLS, N), written by the kernel (rows not stepped: reset infos)
         cols = np.empty((N_COLS, self.num_envs))
-        self._stepper(
+        stepper = self._stepper
+        if stepper is step_rows_parallel:
+            stepper = step_rows if _POOL["forked"] else stepper
+            _POOL["started"] = True
+        stepper(
             self.num_threads, active, b["t"], b["y"], b["R"], u, env.physics_dt,
             env.n_substeps, b["P"], b["tab"], b["out"], self._steps, self._obs, self._fresh,
             cols, self._ok, self._reward, env.roll_scale, env.effort_weight, env.control_dt,
