@@ -17,6 +17,12 @@ frequency). Autoresets and seedless resets without options therefore run in one 
 (`reset_rows`) from doubles pre-drawn from each row's generator (`mf_envs.envs._predraw`).
 Irregular seas (a new sea of many draws per reset) keep the template path. See
 `mf_envs.envs._vector`.
+
+Threads: from PARALLEL_MIN_ENVS envs on, the rows are stepped in blocks on numba's thread pool
+(`step_rows_parallel`, kwarg `num_threads`); rows are independent, so results are bit-identical
+to one thread (`tests/test_vector_envs.py`). Measured (2 cores, N = 1024, random actions,
+autoresets): one thread 1.3x, two threads 2.2x the env-steps/s of the per-row Python resets and
+separate post-processing this module had before (issue 17).
 """
 
 from __future__ import annotations
