@@ -357,12 +357,21 @@ def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
     _compiled_resets_match_sync("GOWEC-v0", kw, mode, {"gimbal_angle": 0.05}, DRAW_BUFFER)
 
 
-@pytest.mark.parametrize("scene", [{}, {"heading": 0.3, "ship_speed": 10.0}])
+STAB_SCENES = [
+    {},
+    {"heading": 0.3, "ship_speed": 10.0},
+    {"effects": ("gyroscopic", "hydrostatic_restoring", "translation")},
+    {"hull": "mss_naval_vessel", "ship_speed": 6.0, "n_gyros": 2, "gimbal_drive": "kinematic"},
+]
+
+
+@pytest.mark.parametrize("scene", STAB_SCENES)
 @pytest.mark.parametrize("mode", list(AutoresetMode))
 def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict) -> None:
     """GyroStabilizer-v0's compiled resets (`reset_rows`, three pre-drawn doubles per reset)
     as GOWEC-v0's above (an option draws one double less), also in a following sea met at a
-    negative encounter frequency (the wave phase's sign flips)."""
+    negative encounter frequency (the wave phase's sign flips), without a wave (the phase
+    unused), and on the MSS vessel with its sway-roll-yaw coupling and a kinematic pair."""
     from mf_envs.envs.gyro_stabilizer.vector import GyroStabilizerVectorEnv as V
 
     kw = {"episode_seconds": 0.2, **scene}  # an episode every 4 steps
