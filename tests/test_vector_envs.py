@@ -380,11 +380,11 @@ def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict)
 
 
 def test_stabilizer_threads_do_not_change_results() -> None:
-    """Rows stepped on numba's thread pool (the default from PARALLEL_MIN_ENVS envs on) ==
-    one thread, bit for bit, through autoresets; num_threads is checked."""
+    """Rows stepped on numba's thread pool (num_threads > 1) == one thread (the default), bit
+    for bit, through autoresets; num_threads is checked."""
     n = 300
     kw = {"episode_seconds": 0.3}
-    one = make_vec(ENV_STAB, n, num_threads=1, **kw)
+    one = make_vec(ENV_STAB, n, **kw)
     many = make_vec(ENV_STAB, n, num_threads=3, **kw)  # 3 row blocks on the pool
     assert (one.unwrapped.num_threads, many.unwrapped.num_threads) == (1, 3)
     out_a, out_b = one.reset(seed=1), many.reset(seed=1)

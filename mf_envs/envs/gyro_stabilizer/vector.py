@@ -18,11 +18,14 @@ frequency). Autoresets and seedless resets without options therefore run in one 
 Irregular seas (a new sea of many draws per reset) keep the template path. See
 `mf_envs.envs._vector`.
 
-Threads: from PARALLEL_MIN_ENVS envs on, the rows are stepped in blocks on numba's thread pool
-(`step_rows_parallel`, kwarg `num_threads`); rows are independent, so results are bit-identical
-to one thread (`tests/test_vector_envs.py`). Measured (2 cores, N = 1024, random actions,
-autoresets): one thread 1.3x, two threads 2.2x the env-steps/s of the per-row Python resets and
-separate post-processing this module had before (issue 17).
+Threads (opt-in, kwarg `num_threads`): the rows are stepped in blocks on numba's thread pool
+(`step_rows_parallel`); rows are independent, so results are bit-identical to one thread
+(`tests/test_vector_envs.py`). Measured on 2 quiet cores (N = 1024, random actions, autoresets):
+one thread 1.3x, num_threads=2 2.2x the env-steps/s this module had before its compiled step
+and resets (issue 17). Not the default: with another process busy on a core, GNU OpenMP's
+spinning threads (numba's threading layer here) ran 2.7x (N = 1024) to 10x (N = 256) SLOWER
+than one thread; `NUMBA_THREADING_LAYER=workqueue` does not spin (1.25x faster than one thread
+in that test).
 """
 
 from __future__ import annotations
@@ -204,17 +207,15 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GyroStabilizerEnv
     DRAWS_PER_RESET = 3
-    PARALLEL_MIN_ENVS = 256  # below this, one thread (the pool's start-up costs more)
 
-    def __init__(self, num_envs: int = 1, *, num_threads: int | None = None, **kwargs: Any):
-        """num_threads: rows are stepped in this many blocks on numba's thread pool (None:
-        numba's thread count from num_envs >= PARALLEL_MIN_ENVS on, else 1; 1: no pool);
-        results do not depend on it. A process forked after the pool started
+    def __init__(self, num_envs: int = 1, *, num_threads: int | None = 1, **kwargs: Any):
+        """num_threads: rows are stepped in this many blocks on numba's thread pool (1: no pool,
+        the default; None: numba's thread count; module doc on contention); results do not
+        depend on it. A process forked after the pool started
         steps on one thread (GNU OpenMP, numba's threading layer here, would abort it)."""
         super().__init__(num_envs, **kwargs)
         if num_threads is None:
-            many = self.num_envs >= self.PARALLEL_MIN_ENVS
-            num_threads = numba.get_num_threads() if many else 1
+            num_threads = numba.get_num_threads()
         self.num_threads = check_int("num_threads", num_threads, 1)  # = row blocks (prange)
         self._stepper = step_rows_parallel if self.num_threads > 1 else step_rows
 
