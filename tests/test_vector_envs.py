@@ -380,12 +380,12 @@ def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict)
 
 
 def test_stabilizer_threads_do_not_change_results() -> None:
-    """Rows stepped on numba's thread pool (num_threads > 1) == one thread (the default), bit
-    for bit, through autoresets; num_threads is checked."""
+    """Rows stepped in blocks on worker threads (num_threads > 1) == one thread (the default),
+    bit for bit, through autoresets; num_threads is checked."""
     n = 300
     kw = {"episode_seconds": 0.3}
     one = make_vec(ENV_STAB, n, **kw)
-    many = make_vec(ENV_STAB, n, num_threads=3, **kw)  # 3 row blocks on the pool
+    many = make_vec(ENV_STAB, n, num_threads=3, **kw)  # 3 row blocks at once
     assert (one.unwrapped.num_threads, many.unwrapped.num_threads) == (1, 3)
     out_a, out_b = one.reset(seed=1), many.reset(seed=1)
     for t, a in enumerate(actions(one, 20)):
@@ -399,8 +399,8 @@ def test_stabilizer_threads_do_not_change_results() -> None:
 
 
 def test_stabilizer_threaded_env_survives_fork() -> None:
-    """A process forked after the thread pool started (GNU OpenMP would abort it on the pool)
-    steps its threaded vector env on one thread, with the parent's results."""
+    """A process forked after the worker threads started (it has none of them) steps its
+    threaded vector env on its own workers, with the parent's results."""
     import os
 
     kw = {"episode_seconds": 0.3, "num_threads": 2}

@@ -18,20 +18,22 @@ frequency). Autoresets and seedless resets without options therefore run in one 
 Irregular seas (a new sea of many draws per reset) keep the template path. See
 `mf_envs.envs._vector`.
 
-Threads (opt-in, kwarg `num_threads`): the rows are stepped in blocks on numba's thread pool
-(`step_rows_parallel`); rows are independent, so results are bit-identical to one thread
-(`tests/test_vector_envs.py`). Measured on 2 quiet cores (N = 1024, random actions, autoresets):
-one thread 1.3x, num_threads=2 2.2x the env-steps/s this module had before its compiled step
-and resets (issue 17). Not the default: with another process busy on a core, GNU OpenMP's
-spinning threads (numba's threading layer here) ran 2.7x (N = 1024) to 10x (N = 256) SLOWER
-than one thread; `NUMBA_THREADING_LAYER=workqueue` does not spin (1.25x faster than one thread
-in that test).
+Threads (opt-in, kwarg `num_threads`): the rows are stepped in num_threads blocks at once,
+block 0 in the calling thread and the others on a shared pool of Python worker threads
+(`step_rows` releases the GIL); rows are independent, so results are bit-identical to one thread
+(`tests/test_vector_envs.py`). Not numba's `parallel=True`: its GNU OpenMP threads spin, and with
+another process busy on one of the 2 cores they ran 2.7x (N = 1024) to 10x (N = 256) slower than
+one thread; these threads wait without spinning (within 10 % of one thread in that test) and a
+forked child makes its own. Measured (N = 1024, random actions, autoresets): one thread 1.3x the
+env-steps/s this module had before its compiled step and resets (issue 17); two threads gained
+1.37x over one on a lightly loaded machine and nothing with both cores busy, hence off by default.
 """
 
 from __future__ import annotations
 
 import math
 import os
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import numba
@@ -52,10 +54,15 @@ _ROLL = spec.OBS.index("roll")
 COLS = spec.INFO_KEYS[:11]
 C_ENERGY, C_RROLL, C_REFFORT, C_TIME, N_COLS = 10, 11, 12, 13, 14
 ROLL0, RATE0, PHASE0 = (-0.05, 0.05), (-0.02, 0.02), (0.0, 2.0 * math.pi)  # reset's U(lo, hi)
-# GNU OpenMP (numba's threading layer here) aborts a forked child that uses the thread pool its
-# parent started: such a child steps on one thread instead (same results)
-_POOL = {"started": False, "forked": False}
-os.register_at_fork(after_in_child=lambda: _POOL.update(forked=_POOL["started"]))
+_POOL: dict[str, Any] = {"pid": None, "pool": None, "size": 0}  # worker threads (`_workers`)
+
+
+def _workers(n: int) -> ThreadPoolExecutor:
+    """A shared pool of at least n worker threads of this process (a forked child, which has
+    none of its parent's threads, makes its own)."""
+    if _POOL["pid"] != os.getpid() or _POOL["size"] < n:
+        _POOL.update(pid=os.getpid(), pool=ThreadPoolExecutor(n, "mf_envs-stab"), size=n)
+    return _POOL["pool"]
 
 
 @numba.njit(cache=True, inline="always")
@@ -70,31 +77,19 @@ def _info_row(c, roll, y, out, energy):
     c[C_ENERGY] = energy
 
 
-@numba.njit(cache=True)
-def step_rows(n_chunks, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
+@numba.njit(cache=True, nogil=True)
+def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
               ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
-    """One control step of every active row (GyroStabilizerEnv.step without Python).
+    """One control step of the active rows lo <= i < hi (GyroStabilizerEnv.step without Python;
+    the GIL is released, so threads can step disjoint blocks of rows at once).
 
     t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.batch_advance`;
     u (N,) rad/s; steps (N,) int64; last (N, 6) float32 the last returned observations; writes
     obs (N, 6) float32, cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False
     on a numerical failure (the step then scores 0 and keeps the last observation), reward (N,).
-    n_chunks: ignored here (the signature of `step_rows_parallel`).
     """
-    _step_range(0, y.shape[0], active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs,
-                cols, ok_out, reward, roll_scale, effort_weight, control_dt)  # fmt: skip
-
-
-@numba.njit(cache=True, parallel=True)
-def step_rows_parallel(n_chunks, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs,
-                       cols, ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
-    """`step_rows` on numba's thread pool: the rows in n_chunks contiguous blocks, one per task
-    (rows are independent, so the result is bit-identical to `step_rows`)."""
-    n = y.shape[0]
-    for c in numba.prange(n_chunks):
-        _step_range(c * n // n_chunks, (c + 1) * n // n_chunks, active, t, y, R, u, dt, n_sub,
-                    P, tab, out, steps, last, obs, cols, ok_out, reward, roll_scale,
-                    effort_weight, control_dt)  # fmt: skip
+    _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
+                ok_out, reward, roll_scale, effort_weight, control_dt)  # fmt: skip
 
 
 @numba.njit(cache=True)
@@ -209,15 +204,13 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
     DRAWS_PER_RESET = 3
 
     def __init__(self, num_envs: int = 1, *, num_threads: int | None = 1, **kwargs: Any):
-        """num_threads: rows are stepped in this many blocks on numba's thread pool (1: no pool,
-        the default; None: numba's thread count; module doc on contention); results do not
-        depend on it. A process forked after the pool started
-        steps on one thread (GNU OpenMP, numba's threading layer here, would abort it)."""
+        """num_threads: rows are stepped in this many blocks at once (1, the default: in the
+        calling thread only; None: one block per CPU of numba's count; module doc on when it
+        pays); results do not depend on it."""
         super().__init__(num_envs, **kwargs)
         if num_threads is None:
             num_threads = numba.get_num_threads()
-        self.num_threads = check_int("num_threads", num_threads, 1)  # = row blocks (prange)
-        self._stepper = step_rows_parallel if self.num_threads > 1 else step_rows
+        self.num_threads = check_int("num_threads", num_threads, 1)  # = row blocks
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -271,15 +264,22 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         u = actions[:, 0] * env.max_precession_rate
         # fresh info columns (N_COLS, N), written by the kernel (rows not stepped: reset infos)
         cols = np.empty((N_COLS, self.num_envs))
-        stepper = self._stepper
-        if stepper is step_rows_parallel:
-            stepper = step_rows if _POOL["forked"] else stepper
-            _POOL["started"] = True
-        stepper(
-            self.num_threads, active, b["t"], b["y"], b["R"], u, env.physics_dt,
-            env.n_substeps, b["P"], b["tab"], b["out"], self._steps, self._obs, self._fresh,
-            cols, self._ok, self._reward, env.roll_scale, env.effort_weight, env.control_dt,
+        args = (
+            active, b["t"], b["y"], b["R"], u, env.physics_dt, env.n_substeps, b["P"], b["tab"],
+            b["out"], self._steps, self._obs, self._fresh, cols, self._ok, self._reward,
+            env.roll_scale, env.effort_weight, env.control_dt,
         )  # fmt: skip
+        n, k = self.num_envs, self.num_threads
+        if k == 1:
+            step_rows(0, n, *args)
+        else:  # blocks 1..k-1 on worker threads, block 0 here (GIL released in step_rows)
+            pool = _workers(k - 1)
+            jobs = [
+                pool.submit(step_rows, j * n // k, (j + 1) * n // k, *args) for j in range(1, k)
+            ]
+            step_rows(0, n // k, *args)
+            for job in jobs:
+                job.result()
         info: dict[str, Any] = dict(zip(COLS, cols))
         info["time"] = cols[C_TIME]
         info["reward_terms"] = {"roll": cols[C_RROLL], "effort": cols[C_REFFORT]}
