@@ -417,5 +417,16 @@ def test_stabilizer_threaded_env_survives_fork() -> None:
             ok = all(np.array_equal(child.step(a)[0], r) for a, r in zip(acts, ref))
         finally:
             os._exit(0 if ok else 3)
-    _, status = os.waitpid(pid, 0)
+    import signal
+    import time
+
+    for _ in range(600):  # a child stuck on its parent's (absent) worker threads: fail, not hang
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        time.sleep(0.1)
+    else:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        pytest.fail("the forked child did not finish in 60 s")
     assert os.waitstatus_to_exitcode(status) == 0
