@@ -133,29 +133,11 @@ def test_short_crested_sea_excites_less_roll():
     assert 0.3 * var[None] < var[2.0] < 0.95 * var[None]
 
 
-def test_sway_yaw_coupling_matches_navalvessel_equations():
-    """Kernel (3-D rotation + sway, rotor stopped) vs navalvessel.m's sway-roll-yaw equations in
-    MSS axes (x fwd, y stbd, z down) by DOP853, at U = 8 m/s from v = 0.5 m/s, r = 0.02 rad/s,
-    roll 0.1 rad: roll, yaw rate and sway velocity (ours: v = -v_MSS, r = -r_MSS)."""
+def _navalvessel_reference(c, U, ts, x0, roll_moment=lambda t: 0.0):
+    """navalvessel.m's sway-roll-yaw equations in MSS axes (x fwd, y stbd, z down), surge held
+    at U, integrated by scipy's DOP853 from x0 = (v, p, r, phi) at the times ts; roll_moment(t)
+    (N m) is an extra roll moment (a prescribed gyro's). Returns the (4, len(ts)) solution."""
     from scipy.integrate import solve_ivp
-
-    from mf_envs.physics.ship import kernels as K
-    from mf_envs.physics.ship.coupling import SwayRollYaw
-    from mf_envs.physics.ship.hulls import Hull
-
-    U = 8.0
-    hull = Hull.mss_naval_vessel()
-    ship = hull.ship_params()
-    ship = ship.__class__(**{**ship.__dict__, "roll_damping": 5.0e5 + 1.55e4 * U})
-    c = SwayRollYaw.mss_naval_vessel()
-    eff = ("added_inertia", "hydrostatic_restoring", "roll_damping", "quadratic_roll_damping")
-    tiny = GyroParams(rotor_inertia=1e-12, gimbal_inertia=0.0)
-    P = pack_params(ship, tiny, 1, eff, GimbalDrive(), None, "exact", 0.0, hull.gz_cubic, c, U)
-    y, R = initial_state(0.1, (0.0, 0.0, -0.02))
-    y[K.V_STATE] = -0.5
-    t_end, dt = 20.0, 0.005
-    ts, ys, Rs, _ = K.simulate_kernel(y, R, t_end, dt, P, np.zeros((1, 2)))
-    roll = np.arctan2(Rs[:, 2, 1], Rs[:, 2, 2])
 
     m, xg, zg, g, rho = c.mass, c.x_g, c.z_g, 9.81, 1014.0
     M = np.array([
@@ -173,17 +155,81 @@ def test_sway_yaw_coupling_matches_navalvessel_equations():
         Kx = (c.k_auv * au * v + c.k_ur * U * r + c.k_vav * v * av + c.k_var * v * ar
               + c.k_rav * r * av + c.k_bauv * b * abs(U * v) + c.k_baur * b * abs(U * r)
               + c.k_buu * b * U**2 - 15500.0 * au * p - 416000.0 * p * ap - 500000.0 * p
-              - 0.325 * m * g * b**3 - rho * g * 1.1 * 357.0 * b + m * zg * U * r)  # fmt: skip
+              - 0.325 * m * g * b**3 - rho * g * 1.1 * 357.0 * b + m * zg * U * r
+              + roll_moment(t))  # fmt: skip
         N = (c.n_auv * au * v + c.n_aur * au * r + c.n_rar * r * ar + c.n_rav * r * av
              + c.n_bauv * b * abs(U * b) + c.n_buar * b * U * ar + c.n_buau * b * U * au
              - m * xg * U * r)  # fmt: skip
         acc = np.linalg.solve(M, [Y, Kx, N])
         return [acc[0], acc[1], acc[2], p]
 
-    ref = solve_ivp(rhs, (0, t_end), [0.5, 0.0, 0.02, 0.1], "DOP853", ts, rtol=1e-11, atol=1e-13)
+    t_end = float(ts[-1])
+    return solve_ivp(rhs, (0, t_end), x0, "DOP853", ts, rtol=1e-11, atol=1e-13).y
+
+
+def _mss_coupled_params(gyro, n_gyros, drive, extra_effects=()):
+    """Packed parameters of the MSS naval vessel at U = 8 m/s with the coupling on (the hull's
+    MSS roll damping 5e5 + 1.55e4 U), and U."""
+    from mf_envs.physics.ship.coupling import SwayRollYaw
+
+    U = 8.0
+    hull = Hull.mss_naval_vessel()
+    ship = hull.ship_params()
+    ship = ship.__class__(**{**ship.__dict__, "roll_damping": 5.0e5 + 1.55e4 * U})
+    c = SwayRollYaw.mss_naval_vessel()
+    eff = ("added_inertia", "hydrostatic_restoring", "roll_damping", "quadratic_roll_damping")
+    eff += tuple(extra_effects)
+    P = pack_params(ship, gyro, n_gyros, eff, drive, None, "exact", 0.0, hull.gz_cubic, c, U)
+    return P, c, U
+
+
+def test_sway_yaw_coupling_matches_navalvessel_equations():
+    """Kernel (3-D rotation + sway, rotor stopped) vs navalvessel.m's sway-roll-yaw equations in
+    MSS axes (x fwd, y stbd, z down) by DOP853, at U = 8 m/s from v = 0.5 m/s, r = 0.02 rad/s,
+    roll 0.1 rad: roll, yaw rate and sway velocity (ours: v = -v_MSS, r = -r_MSS)."""
+    from mf_envs.physics.ship import kernels as K
+
+    tiny = GyroParams(rotor_inertia=1e-12, gimbal_inertia=0.0)
+    P, c, U = _mss_coupled_params(tiny, 1, GimbalDrive())
+    y, R = initial_state(0.1, (0.0, 0.0, -0.02))
+    y[K.V_STATE] = -0.5
+    t_end, dt = 20.0, 0.005
+    ts, ys, Rs, _ = K.simulate_kernel(y, R, t_end, dt, P, np.zeros((1, 2)))
+    roll = np.arctan2(Rs[:, 2, 1], Rs[:, 2, 2])
+    ref = _navalvessel_reference(c, U, ts, [0.5, 0.0, 0.02, 0.1])
     assert np.abs(ys[:, K.V_STATE]).max() > 0.1 and np.abs(roll).max() == pytest.approx(0.1)
-    np.testing.assert_allclose(-ys[:, K.V_STATE], ref.y[0], atol=2e-3 * 0.5)
-    np.testing.assert_allclose(roll, ref.y[3], atol=2e-3 * 0.1)
+    np.testing.assert_allclose(-ys[:, K.V_STATE], ref[0], atol=2e-3 * 0.5)
+    np.testing.assert_allclose(roll, ref[3], atol=2e-3 * 0.1)
     # yaw: the kernel's 3-D rigid body (pitch, Euler products w1 w2) is absent from the planar
     # navalvessel.m; they differ by 0.2 % of the initial yaw rate
-    np.testing.assert_allclose(-ys[:, 2], ref.y[2], atol=5e-3 * 0.02)
+    np.testing.assert_allclose(-ys[:, 2], ref[2], atol=5e-3 * 0.02)
+
+
+def test_prescribed_gimbal_keeps_sway_yaw_coupling():
+    """A prescribed gimbal (Eq. 119, phi = a sin(2 pi f t), a counter-rotating pair) on the
+    coupled MSS vessel: the sway still evolves (it was held at its initial value) and roll,
+    sway and yaw follow navalvessel.m's equations with the pair's roll moment -2 H phi' cos phi
+    (Eq. 123) added, by DOP853 (gyro inertia 1e-6 of the hull's: the 3-D terms are small)."""
+    from mf_envs.physics.ship import kernels as K
+
+    gyro = GyroParams(rotor_inertia=1.0, gimbal_inertia=0.0, rotor_speed=1.0e5)  # H = 1e5 N m s
+    a, f = 0.5, 0.2
+    drive = GimbalDrive("sinusoidal", amplitude=a, frequency=f)
+    P, c, U = _mss_coupled_params(gyro, 2, drive, ("gyroscopic",))
+    y, R = initial_state(0.05, (0.0, 0.0, -0.02))
+    y[K.V_STATE] = -0.5
+    t_end, dt = 20.0, 0.005
+    ts, ys, Rs, _ = K.simulate_kernel(y, R, t_end, dt, P, np.zeros((1, 2)))
+    roll = np.arctan2(Rs[:, 2, 1], Rs[:, 2, 2])
+    w = 2.0 * math.pi * f
+    h = gyro.angular_momentum
+
+    def gyro_moment(t):  # Eq. 123 for the pair
+        return -2.0 * h * a * w * math.cos(w * t) * math.cos(a * math.sin(w * t))
+
+    ref = _navalvessel_reference(c, U, ts, [0.5, 0.0, 0.02, 0.05], gyro_moment)
+    np.testing.assert_allclose(ys[:, 3], a * np.sin(w * ts), atol=1e-12)  # the prescription
+    assert np.ptp(ys[:, K.V_STATE]) > 0.1 and np.abs(roll).max() > 0.05
+    np.testing.assert_allclose(-ys[:, K.V_STATE], ref[0], atol=2e-3 * 0.5)
+    np.testing.assert_allclose(roll, ref[3], atol=2e-3 * np.abs(ref[3]).max())
+    np.testing.assert_allclose(-ys[:, 2], ref[2], atol=5e-3 * 0.02)

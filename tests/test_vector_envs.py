@@ -61,6 +61,7 @@ BLOWUP: dict[str, dict[str, Any]] = {
     "GOWEC-v1": {"max_generator_torque": 1e300, "max_generator_power": 1e300},
 }
 SEEDS = [11, 3, 7]
+ENV_STAB = "GyroStabilizer-v0"
 
 
 def make_vec(env_id: str, n: int = 3, **kw: Any) -> gym.vector.VectorEnv:
@@ -315,19 +316,15 @@ def test_same_step_final_info_holds_no_other_rows() -> None:
         assert seen >= 2
 
 
-@pytest.mark.parametrize("mode", list(AutoresetMode))
-def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
-    """GOWEC-v0's compiled resets (pre-drawn from each row's generator) past the end of the
-    draw buffer, mixed with template resets (options, seeds) that rewind the pre-draw: bit for
-    bit SyncVectorEnv, in every autoreset mode."""
-    from mf_envs.envs.gowec.vector import DRAW_BUFFER
-
-    kw = {"n_periods": 1, "steps_per_period": 4}  # an episode every 4 steps
+def _compiled_resets_match_sync(env_id, kw, mode, option, buffer) -> None:
+    """4 envs through compiled resets past the end of the draw buffer (`buffer` resets per row),
+    mixed with template resets with `option` (one draw less) that rewind the pre-draw: bit for
+    bit SyncVectorEnv (steps, resets, infos)."""
     n = 4
-    sync = gym.make_vec("GOWEC-v0", n, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
-    vec = make_vec("GOWEC-v0", n, autoreset_mode=mode, **kw)
+    sync = gym.make_vec(env_id, n, "sync", vector_kwargs={"autoreset_mode": mode}, **kw)
+    vec = make_vec(env_id, n, autoreset_mode=mode, **kw)
     out_s, out_v = sync.reset(seed=5), vec.reset(seed=5)
-    acts = actions(vec, 6 * DRAW_BUFFER, seed=2)
+    acts = actions(vec, 6 * buffer, seed=2)
     resets, done = 0, np.zeros(n, dtype=bool)
     for t in range(len(acts)):
         disabled = mode == AutoresetMode.DISABLED
@@ -335,7 +332,7 @@ def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
             mask = done | (np.array([True, False, True, False]) if t % 3 else True)
             opts: dict[str, Any] = {"reset_mask": mask}
             if t in (13, 40):  # a template reset with an option draws one double less
-                opts["gimbal_angle"] = 0.05
+                opts.update(option)
             out_s = sync.reset(options={**opts, "reset_mask": mask.copy()})
             out_v = vec.reset(options=opts)
             np.testing.assert_array_equal(out_s[0], out_v[0])
@@ -346,4 +343,90 @@ def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
         assert_infos_equal(out_s[4], out_v[4], f"step {t}: ")
         done = out_v[2] | out_v[3]
         resets += int(np.sum(done))
-    assert resets > 2 * DRAW_BUFFER  # the buffer of a row runs out and is refilled
+    assert resets > 2 * buffer  # the buffer of a row runs out and is refilled
+
+
+@pytest.mark.parametrize("mode", list(AutoresetMode))
+def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
+    """GOWEC-v0's compiled resets (pre-drawn from each row's generator) past the end of the
+    draw buffer, mixed with template resets (options, seeds) that rewind the pre-draw: bit for
+    bit SyncVectorEnv, in every autoreset mode."""
+    from mf_envs.envs.gowec.vector import DRAW_BUFFER
+
+    kw = {"n_periods": 1, "steps_per_period": 4}  # an episode every 4 steps
+    _compiled_resets_match_sync("GOWEC-v0", kw, mode, {"gimbal_angle": 0.05}, DRAW_BUFFER)
+
+
+STAB_SCENES = [
+    {},
+    {"heading": 0.3, "ship_speed": 10.0},
+    {"effects": ("gyroscopic", "hydrostatic_restoring", "translation")},
+    {"hull": "mss_naval_vessel", "ship_speed": 6.0, "n_gyros": 2, "gimbal_drive": "kinematic"},
+]
+
+
+@pytest.mark.parametrize("scene", STAB_SCENES)
+@pytest.mark.parametrize("mode", list(AutoresetMode))
+def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict) -> None:
+    """GyroStabilizer-v0's compiled resets (`reset_rows`, three pre-drawn doubles per reset)
+    as GOWEC-v0's above (an option draws one double less), also in a following sea met at a
+    negative encounter frequency (the wave phase's sign flips), without a wave (the phase
+    unused), and on the MSS vessel with its sway-roll-yaw coupling and a kinematic pair."""
+    from mf_envs.envs.gyro_stabilizer.vector import GyroStabilizerVectorEnv as V
+
+    kw = {"episode_seconds": 0.2, **scene}  # an episode every 4 steps
+    assert make_vec(ENV_STAB, 2, **kw).unwrapped._fast  # the compiled path is taken
+    _compiled_resets_match_sync(ENV_STAB, kw, mode, {"roll_rate": 0.01}, V.DRAW_BUFFER)
+
+
+def test_stabilizer_threads_do_not_change_results() -> None:
+    """Rows stepped in blocks on worker threads (num_threads > 1) == one thread (the default),
+    bit for bit, through autoresets; num_threads is checked."""
+    n = 300
+    kw = {"episode_seconds": 0.3}
+    one = make_vec(ENV_STAB, n, **kw)
+    many = make_vec(ENV_STAB, n, num_threads=3, **kw)  # 3 row blocks at once
+    assert (one.unwrapped.num_threads, many.unwrapped.num_threads) == (1, 3)
+    out_a, out_b = one.reset(seed=1), many.reset(seed=1)
+    for t, a in enumerate(actions(one, 20)):
+        out_a, out_b = one.step(a), many.step(a)
+        for x, y in zip(out_a[:4], out_b[:4]):
+            np.testing.assert_array_equal(x, y, err_msg=f"step {t}")
+        assert_infos_equal(out_a[4], out_b[4], f"step {t}: ")
+    for bad in (0, 1.5, "2"):
+        with pytest.raises(ValueError, match="num_threads"):
+            make_vec(ENV_STAB, 2, num_threads=bad)
+
+
+def test_stabilizer_threaded_env_survives_fork() -> None:
+    """A process forked after the worker threads started (it has none of them) steps its
+    threaded vector env on its own workers, with the parent's results."""
+    import os
+
+    kw = {"episode_seconds": 0.3, "num_threads": 2}
+    parent = make_vec(ENV_STAB, 300, **kw)
+    parent.reset(seed=4)
+    acts = actions(parent, 10)
+    ref = [parent.step(a)[0] for a in acts]
+    pid = os.fork()
+    if pid == 0:  # the child: exit code 0 only if it ran and matched
+        ok = False
+        try:
+            child = make_vec(ENV_STAB, 300, **kw)
+            child.reset(seed=4)
+            ok = all(np.array_equal(child.step(a)[0], r) for a, r in zip(acts, ref))
+        finally:
+            os._exit(0 if ok else 3)
+    import signal
+    import time
+
+    for _ in range(600):  # a child stuck on its parent's (absent) worker threads: fail, not hang
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        time.sleep(0.1)
+    else:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        pytest.fail("the forked child did not finish in 60 s")
+    assert os.waitstatus_to_exitcode(status) == 0

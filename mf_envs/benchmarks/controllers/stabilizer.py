@@ -20,7 +20,10 @@ sin(phi) has a fundamental 4/pi larger; the docs/design.md GOWEC bound). Quadrat
 makes both approximate. Controllers: `pid`, `lqr`, the classic `rate` law phi' = k w1, and the
 seed's open-loop excitations (Eqs. 118-119, amplitude asin(min(1, capacity)) for `sinusoidal`)
 both phase-locked to the wave moment (`_locked`, wave_phase = 0, their best case) and at the
-env's random wave phase (`_random`); in irregular seas the two are the same runs.
+env's random wave phase (`_random`); in irregular seas the two are the same runs; and
+`ppo_shipped`, the shipped PPO policy (`train/policies/GyroStabilizer-v0`, if the train extra is
+installed) on the same seeds with the same metrics (drive energy included; `ppo.py`'s `ppo` rows
+score it on seeds 2000-2004 without the drive metrics).
 """
 
 from __future__ import annotations
@@ -43,6 +46,7 @@ CONTROLLERS = (
     ("continuous_locked", "continuous", "locked"),
     ("continuous_random", "continuous", "random"),
 )
+PPO = ("ppo_shipped", "ppo", None)  # appended to CONTROLLERS when a policy is shipped
 METRICS = ("rms_roll", "peak_roll", "energy_per_hour", "peak_torque", "peak_power", "gimbal_peak")
 
 
@@ -82,7 +86,12 @@ def _episode(kwargs: dict, kind: str | None, seed: int, phase: str | None = None
     params = {}
     if kind == "sinusoidal":
         params = {"amplitude": math.asin(min(1.0, _capacity(env.unwrapped)))}
-    ctrl = make_baseline(env, kind, **params) if kind else None
+    if kind == "ppo":
+        from mf_envs.train.policy import load_policy
+
+        ctrl = load_policy(ENV_ID)
+    else:
+        ctrl = make_baseline(env, kind, **params) if kind else None
     roll, gim, tau, pw = [], [], [], []
     energy = 0.0
     done = False
@@ -127,6 +136,17 @@ def _rotor_off(kwargs: dict) -> dict:
     return {**kwargs, "effects": tuple(e for e in eff if e != "gyroscopic")}
 
 
+def _controllers() -> tuple[tuple[str, str, str | None], ...]:
+    """CONTROLLERS, plus PPO if a policy is shipped and the train extra is installed."""
+    import importlib.util
+
+    from mf_envs.train.policy import POLICY_FILE, policy_dir
+
+    extra = all(importlib.util.find_spec(m) for m in ("stable_baselines3", "torch", "safetensors"))
+    shipped = (policy_dir(ENV_ID) / POLICY_FILE).is_file()
+    return CONTROLLERS + ((PPO,) if extra and shipped else ())
+
+
 def _row(base: dict, controller: str, metric: str, v: np.ndarray | float) -> dict:
     v = np.atleast_1d(np.asarray(v, dtype=float))
     return {**base, "controller": controller, "metric": metric, "mean": float(v.mean()),
@@ -148,7 +168,7 @@ def rows(quick: bool) -> list[dict]:
         out.append(_row(base, "-", "rr_bound_any", min(1.0, 4.0 / (math.pi * cap))))
         off = np.array([_episode(_rotor_off(kwargs), None, s)["rms_roll"] for s in seeds])
         out.append(_row(base, "rotor_off", "rms_roll", off))
-        for name, kind, phase in CONTROLLERS:
+        for name, kind, phase in _controllers():
             res = [_episode(kwargs, kind, s, phase) for s in seeds]
             out.append(_row(base, name, "rr", [1.0 - r["rms_roll"] / o for r, o in zip(res, off)]))
             for m in METRICS:
@@ -164,8 +184,9 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
 
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     fig, ax = plt.subplots(figsize=(10, 4))
-    width = 0.8 / len(CONTROLLERS)
-    for i, (kind, _, _) in enumerate(CONTROLLERS):
+    names = list(dict.fromkeys(r["controller"] for r in rows if r["metric"] == "rr"))
+    width = 0.8 / max(len(names), 1)
+    for i, kind in enumerate(names):
         vals = [
             next(
                 (

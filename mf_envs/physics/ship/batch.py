@@ -2,8 +2,9 @@
 
 One compiled call advances N independent ships (own state, attitude, packed parameters and wave
 table each) by n RK4-Munthe-Kaas substeps. No physics is written here: every row calls
-`mf_envs.physics.ship.kernels.advance` (Rios 2017 ch. 3 Eqs. 98-128), so a row is
-bit-identical to a scalar step with the same inputs. Used by `mf_envs.envs.gyro_stabilizer.vector`.
+`mf_envs.physics.ship.kernels.advance` (as `advance_with`, one stepper scratch for all rows;
+Rios 2017 ch. 3 Eqs. 98-128), so a row is bit-identical to a scalar step with the same inputs.
+(`mf_envs.envs.gyro_stabilizer.vector.step_rows` does the same inside its one-call env step.)
 
 Note on numba's on-disk cache: a cached function is invalidated only when ITS source file
 changes, not when a kernel it calls does; after editing `ship_kernels`, touch this module too
@@ -18,7 +19,8 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.ship.kernels import advance
+from mf_envs.frames.kernels import rk4_work, rkmk4_rwork
+from mf_envs.physics.ship.kernels import N_STATE, advance_with
 
 
 @numba.njit(cache=True)
@@ -32,9 +34,12 @@ def batch_advance(active, t, y, R, u, dt, n_sub, P, tab, out):
     torque N m, drive power W). Observations are the env's business
     (`mf_envs.envs.gyro_stabilizer.spec`).
     """
+    work, Rwork = rk4_work(N_STATE), rkmk4_rwork()
     for i in range(active.shape[0]):
         if active[i]:
-            t[i] = advance(t[i], y[i], R[i], u[i], dt, n_sub, P[i], tab[i], out[i])
+            t[i] = advance_with(
+                t[i], y[i], R[i], u[i], dt, n_sub, P[i], tab[i], out[i], work, Rwork
+            )
 
 
 @numba.njit(cache=True)

@@ -151,22 +151,25 @@ def _clip(x: float, lo: float, hi: float) -> float:
 
 
 @numba.njit(cache=True)
-def rate_command(u: float, phi: float, D: np.ndarray) -> float:
-    """The command u (rad/s) clipped to +-max_rate and the end-stop envelope (module doc)."""
-    ue = _clip(u, -D[DRMAX], D[DRMAX])
-    return _clip(ue, (-D[DPHIMAX] - phi) / D[DTSTOP], (D[DPHIMAX] - phi) / D[DTSTOP])
+def rate_command(u: float, phi: float, D: np.ndarray, o: int = 0) -> float:
+    """The command u (rad/s) clipped to +-max_rate and the end-stop envelope (module doc).
+    D[o:] is the packed drive vector (o > 0: read in place from a longer vector, no slice)."""
+    ue = _clip(u, -D[o + DRMAX], D[o + DRMAX])
+    lo = (-D[o + DPHIMAX] - phi) / D[o + DTSTOP]
+    return _clip(ue, lo, (D[o + DPHIMAX] - phi) / D[o + DTSTOP])
 
 
 @numba.njit(cache=True)
-def machine_limit(tau: float, phid: float, D: np.ndarray) -> float:
-    """tau (N m) saturated to the machine envelope at gimbal rate phid (rad/s), module doc."""
-    t = _clip(tau, -D[DTMAX], D[DTMAX])
+def machine_limit(tau: float, phid: float, D: np.ndarray, o: int = 0) -> float:
+    """tau (N m) saturated to the machine envelope at gimbal rate phid (rad/s), module doc;
+    D[o:] the packed drive vector."""
+    t = _clip(tau, -D[o + DTMAX], D[o + DTMAX])
     if t * phid > 0.0:  # motoring
-        if int(D[DKIND]) == KIND_BRAKE:
+        if int(D[o + DKIND]) == KIND_BRAKE:
             return 0.0
         a = abs(phid)
-        lim = min(D[DTMAX], D[DPMAX] / a)
-        lim *= _clip((1.0 + RATE_FADE - a / D[DRMAX]) / RATE_FADE, 0.0, 1.0)
+        lim = min(D[o + DTMAX], D[o + DPMAX] / a)
+        lim *= _clip((1.0 + RATE_FADE - a / D[o + DRMAX]) / RATE_FADE, 0.0, 1.0)
         t = _clip(t, -lim, lim)
     return t
 
@@ -186,25 +189,26 @@ def pendulum_torque(phi: float, r20: float, r22: float, mgl: float, n_gyros: int
 
 
 @numba.njit(cache=True)
-def drive_torque(phi, phid, z, u, gyro_torque, r20, r22, n_gyros, D):
+def drive_torque(phi, phid, z, u, gyro_torque, r20, r22, n_gyros, D, o=0):
     """(tau in N m, z' in rad/s) of the drive on gyro 1's gimbal (module doc).
 
     phi, phid: gimbal angle (rad) and rate (rad/s); z: rate-loop integral (rad); u: rate command
     (rad/s); gyro_torque: H w_g1 (N m), the gyroscopic torque on the gimbal the feedforward
-    cancels; r20, r22: R31, R33 of the ship attitude (pendulous gimbal).
+    cancels; r20, r22: R31, R33 of the ship attitude (pendulous gimbal); D[o:] the packed drive
+    vector (the kernels read it in place from their parameter vector: no slice per stage).
     """
-    kind = int(D[DKIND])
-    tau = -D[DC] * phid
+    kind = int(D[o + DKIND])
+    tau = -D[o + DC] * phid
     if kind == KIND_PENDULOUS:
-        tau += pendulum_torque(phi, r20, r22, D[DK], n_gyros)
+        tau += pendulum_torque(phi, r20, r22, D[o + DK], n_gyros)
     elif kind == KIND_SPRING:
-        tau -= D[DK] * phi
+        tau -= D[o + DK] * phi
     if kind != KIND_ELECTRIC and kind != KIND_BRAKE:
         return tau, 0.0
-    e = rate_command(u, phi, D) - phid
-    tau_c = D[DKP] * e + D[DKI] * z - D[DFF] * gyro_torque
-    tau_m = machine_limit(tau_c, phid, D)
-    dz = e + (tau_m - tau_c) / D[DKP] if D[DKI] > 0.0 else 0.0
+    e = rate_command(u, phi, D, o) - phid
+    tau_c = D[o + DKP] * e + D[o + DKI] * z - D[o + DFF] * gyro_torque
+    tau_m = machine_limit(tau_c, phid, D, o)
+    dz = e + (tau_m - tau_c) / D[o + DKP] if D[o + DKI] > 0.0 else 0.0
     return tau + tau_m, dz
 
 

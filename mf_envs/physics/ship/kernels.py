@@ -76,9 +76,10 @@ Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
 
 @numba.njit(cache=True)
-def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=0.0, roll=0.0):
+def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=0.0, roll=0.0):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
-    at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame).
+    at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame), gimbal
+    angle phi given by c = cos(phi), s = sin(phi) (computed once per stage by the caller).
 
     With `free_gimbal` the gimbal is a degree of freedom driven by the torque tau (N m, per
     gimbal) and phi'' is solved with the hull (the phi-equation of Eq. 74):
@@ -90,8 +91,6 @@ def ship_accel(w1, w2, w3, phi, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=
     Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'', v' in m/s^2).
     """
     n = int(P[S.NGYRO])
-    c = math.cos(phi)
-    s = math.sin(phi)
     s2 = 2.0 * s * c
     c2 = c * c - s * s
     d1, d2, d3 = P[S.D1], P[S.D2], P[S.D3]
@@ -162,17 +161,18 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P):
     tau = 0.0
     dz = 0.0
     phidd = 0.0
-    if free:
-        tau, dz = gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P)
-    elif mode == GIMBAL_SERVO:
-        phi, phid, phidd = gimbal_motion(0.0, phi, phid, u, P)
-        tau = P[S.D2] * phidd - gyro_gimbal_torque(w1, w3, phi, P)  # what the servo applies
-    else:
+    if not free and mode != GIMBAL_SERVO:
         phi, phid, phidd = pg
+    c, s = math.cos(phi), math.sin(phi)  # once per stage (the drive and the balance share them)
+    if free:
+        tau, dz = gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c, s)
+    elif mode == GIMBAL_SERVO:
+        phidd = gimbal_motion(0.0, phi, phid, u, P)[2]  # the servo keeps phi, phi'
+        tau = P[S.D2] * phidd - gyro_gimbal_torque(w1, w3, phi, P, c, s)  # what it applies
     m1, m2, m3 = hull_moment(w1, w2, w3, r20, r21, r22, P)
     roll = math.atan2(r21, r22) if P[S.CPLON] > 0.5 else 0.0
     a1, a2, a3, _, phidd, dv = ship_accel(
-        w1, w2, w3, phi, phid, phidd, m1 + mw, m2, m3, P, free, tau, v, roll
+        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tau, v, roll
     )
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
@@ -190,7 +190,10 @@ def stage_inputs(t, args):
     (phi, phi', phi'') of gyro 1; unused by the servo and torque drives)."""
     u, P, tab = args
     mw, fw = wave_loads(t, P, tab)
-    return mw, fw, gimbal_motion(t, 0.0, 0.0, u, P)
+    mode = int(P[S.GMODE])
+    if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
+        return mw, fw, gimbal_motion(t, 0.0, 0.0, u, P)
+    return mw, fw, (0.0, 0.0, 0.0)
 
 
 @numba.njit(cache=True, inline="always")
@@ -200,18 +203,15 @@ def stage_rhs(t, y, R, inp, args, dy):
     the sinusoidal/continuous modes."""
     u, P, tab = args
     mw, fw, pg = inp
-    mode = int(P[S.GMODE])
-    pres = mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS
-    if not pres:
-        pg = gimbal_motion(t, y[3], y[4], u, P)
     r20, r21, r22 = R[2, 0], R[2, 1], R[2, 2]
     a = ang_rates(y[0], y[1], y[2], y[3], y[4], y[Z_STATE], y[V_STATE], r20, r21, r22, u, mw, pg, P)
     for i in range(5):
         dy[i] = a[i]
     for i in range(5, y.shape[0]):
         dy[i] = 0.0
-    if not pres:  # a prescribed gimbal has no drive loop, no drive energy and keeps v fixed
-        dy[Z_STATE], dy[E_STATE], dy[V_STATE] = a[5], a[6], a[7]
+    # the sway v evolves with the coupling whatever drives the gimbal; a prescribed gimbal has
+    # no drive loop and no drive energy (ang_rates gives z' = 0 and n |tau phi'| = 0 for it)
+    dy[Z_STATE], dy[E_STATE], dy[V_STATE] = a[5], a[6], a[7]
     if P[S.TRANS] > 0.5:
         # hull CM (= system CM: gyro CMs are fixed in the hull) in the inertial frame
         v1, v2, v3 = _trans_rates(y[7], y[8], y[9], y[10], fw, P)
@@ -233,7 +233,8 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab), work, Rwork)
     for i in range(y.shape[0]):
         y[i] += dy[i]
-    R[:, :] = R1
+    for i in range(3):
+        R[i, 0], R[i, 1], R[i, 2] = R1[i, 0], R1[i, 1], R1[i, 2]
     mode = int(P[S.GMODE])
     if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
         y[3], y[4] = inp[2][0], inp[2][1]
@@ -270,8 +271,14 @@ def advance(t, y, R, u, dt, n_sub, P, tab, out):
     """n_sub RK4 steps of size dt with the command u held; returns the new time.
     out[0], out[1] <- gyro roll moment and wave moment (N m) at the end; out[2], out[3] <- gyro
     1's drive torque (N m) and the drive power n tau phi' (W) at the end (`drive_output`)."""
-    mw = wave_loads(t, P, tab)[0]
-    work, Rwork = rk4_work(y.shape[0]), rkmk4_rwork()
+    return advance_with(t, y, R, u, dt, n_sub, P, tab, out, rk4_work(y.shape[0]), rkmk4_rwork())
+
+
+@numba.njit(cache=True)
+def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
+    """`advance` with the caller's stepper scratch work (5, N_STATE), Rwork (2, 3, 3) (the batch
+    reuses one pair for every row)."""
+    mw = wave_loads(t, P, tab)[0] if n_sub == 0 else 0.0
     for _ in range(n_sub):
         mw = rk4_step(t, y, R, u, dt, P, tab, work, Rwork)
         t += dt

@@ -10,7 +10,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.ship.drive import N_DRIVE, drive_torque
+from mf_envs.physics.ship.drive import drive_torque
 from mf_envs.physics.ship.layout import (
     DRV0,
     GIMBAL_CONTINUOUS,
@@ -49,20 +49,23 @@ def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
 
 
 @numba.njit(cache=True)
-def gyro_gimbal_torque(w1, w3, phi, P):
+def gyro_gimbal_torque(w1, w3, phi, P, c=math.nan, s=math.nan):
     """H w_g1 (N m): the gyroscopic torque on gyro 1's gimbal, H (cos phi w1 - sin phi w3) for
-    one gyro, H cos(phi) w1 on the common coordinate of the mirrored pair."""
-    c = math.cos(phi)
+    one gyro, H cos(phi) w1 on the common coordinate of the mirrored pair. c, s: cos(phi),
+    sin(phi) if the caller has them (NaN: computed here)."""
+    if c != c:  # NaN: not given
+        c, s = math.cos(phi), math.sin(phi)
     h = P[S.JR3] * P[S.PSID]
-    return h * (c * w1 - math.sin(phi) * w3) if int(P[S.NGYRO]) == 1 else h * c * w1
+    return h * (c * w1 - s * w3) if int(P[S.NGYRO]) == 1 else h * c * w1
 
 
 @numba.njit(cache=True)
-def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P):
+def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c=math.nan, s=math.nan):
     """(tau in N m, z' in rad/s) of the torque drive (`ship.drive.drive_torque`) on gyro 1's
-    gimbal; the gyroscopic torque it feeds forward is H w_g1 (one gyro) or H cos(phi) w1 (pair)."""
-    g = gyro_gimbal_torque(w1, w3, phi, P)
-    return drive_torque(phi, phid, z, u, g, r20, r22, int(P[S.NGYRO]), P[DRV0 : DRV0 + N_DRIVE])
+    gimbal; the gyroscopic torque it feeds forward is H w_g1 (one gyro) or H cos(phi) w1 (pair).
+    c, s: cos(phi), sin(phi) if the caller has them (`gyro_gimbal_torque`)."""
+    g = gyro_gimbal_torque(w1, w3, phi, P, c, s)
+    return drive_torque(phi, phid, z, u, g, r20, r22, int(P[S.NGYRO]), P, DRV0)
 
 
 _TAN14_SQ = math.tan(1.4) ** 2  # the wall-sided GZ's tan(r) is clipped to |r| <= 1.4 rad
