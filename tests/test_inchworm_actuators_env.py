@@ -101,3 +101,27 @@ def test_seed_gait_runs_at_the_fastest_cycle_the_actuator_allows():
         obs, *_, info = env.step(ctrl.predict(obs)[0])
         assert not info["numerical_failure"]
     assert info["x_tail"] - x0 > 0.3 * L
+
+
+@pytest.mark.slow
+def test_tuned_gait_is_at_least_the_seed_gait_and_keeps_the_limits():
+    """The tuned two-level square wave (period, amplitude, curl bias by scipy) crawls at least
+    as fast as the seed's gait at its fastest cycle on the default scene, and its realised kappa#
+    never moves faster than the actuator's rate limit."""
+    from mf_envs.benchmarks.controllers import inchworm as b
+
+    tuned, seed = b._episode("tuned", 1000, {}, 2), b._episode("seed_uniform", 1000, {}, 2)
+    assert tuned["speed_L_per_s"] > seed["speed_L_per_s"]
+    env = gym.make("Inchworm-v0")
+    gait = make_baseline(env, "tuned")
+    assert gait.amplitude + gait.bias <= env.unwrapped.max_curvature + 1e-9
+    obs, info = env.reset(seed=1)
+    gait.reset()
+    k0, r = info["kappa_sharp"], env.unwrapped.actuator_rate_limit
+    for _ in range(30):
+        obs, _, _, _, info = env.step(gait.predict(obs)[0])
+        rate = np.abs(info["kappa_sharp"] - k0) / env.unwrapped.control_dt
+        assert np.all(rate <= r * (1 + 1e-9))
+        k0 = info["kappa_sharp"]
+    with pytest.raises(ValueError, match="bias"):
+        make_baseline(env, "tuned", period=0.5, amplitude=5.0, bias=-1.0)

@@ -385,6 +385,30 @@ def test_domain_randomization_redraws_params_deterministically():
         DomainRandomization(gym.make("Pendulum-v1"), ranges={"zz": (1, 2)})
 
 
+def test_domain_randomization_choices_mix_regular_and_irregular_seas():
+    """GOWEC-v1's default choices: the env really runs the drawn sea (regular when
+    significant_wave_height is None, JONSWAP of that Hs otherwise), reproducibly."""
+    from mf_envs.train.randomize import DomainRandomization
+
+    def draws(seed):
+        env = DomainRandomization(gym.make("GOWEC-v1", episode_seconds=1.0))
+        out = [env.reset(seed=seed)[1]["randomized"]]
+        out += [env.reset()[1]["randomized"] for _ in range(7)]
+        seas = [(env.unwrapped.irregular, env.unwrapped.wave_period)]
+        return out, seas
+
+    a, sa = draws(3)
+    assert draws(3)[0] == a
+    hs = [d["significant_wave_height"] for d in a]
+    assert None in hs and any(h is not None for h in hs)
+    last = a[-1]
+    irregular, period = sa[-1]
+    assert irregular == (last["significant_wave_height"] is not None)
+    assert period == (last["peak_period"] if irregular else last["wave_period"])
+    with pytest.raises(ValueError, match="choices"):
+        DomainRandomization(gym.make("GOWEC-v1"), choices={"no_such_kwarg": (1, 2)})
+
+
 def test_shift_scenes_only_use_real_kwargs():
     from mf_envs.train.randomize import nominal_kwargs, shift_scenes, shifted_kwargs
 
@@ -494,9 +518,12 @@ def test_domain_randomization_on_mf_envs(env_id):
         obs, info = env.reset(seed=seed)
         assert env.observation_space.contains(obs)
         for k, v in info["randomized"].items():
+            if k in env.choices:  # discrete draws (GOWEC-v1's sea): checked in their own test
+                assert v in env.choices[k]
+                continue
             lo, hi = ranges[k]
             assert lo * nominal[k] <= v <= hi * nominal[k]
-            if isinstance(getattr(env.unwrapped, k, None), float):
+            if not env.choices and isinstance(getattr(env.unwrapped, k, None), float):
                 assert getattr(env.unwrapped, k) == pytest.approx(v)  # really simulated
         drawn.append(info["randomized"])
         env.step(env.action_space.sample())

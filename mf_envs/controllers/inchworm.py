@@ -4,9 +4,11 @@
   Eq. 101, bookkeeping time 2 pi t / T);
 * `seed_linear`: kappa#(S, t) = -kappa0 (c1 + c2 S / L)(1 + cos(2 pi t / T - pi)) / 2, c1 = 0.2,
   c2 = 0.8 (Eq. 103);
-* `tuned`: a bang-bang (square-wave) command of amplitude a and period T, both optimised for
-  speed with scipy.optimize (Nelder-Mead, bounded) on the env's own physics; the actuator's lag
-  and rate limit shape the realised kappa#.
+* `tuned`: a bang-bang (square-wave) command between the curl levels -b and -(b + a) with period
+  T, all three optimised for speed with scipy.optimize (brute grid, then Nelder-Mead, bounded)
+  on the env's own physics; the actuator's lag and rate limit shape the realised kappa#. The
+  bias b (an arched body) was added after PPO found that a small fast oscillation of an arched
+  body outruns the square wave from straight (docs/inchworm.md).
 
 Cycle period: with the env's actuator dynamics (`actuator_dynamics`), the seed gaits run at the
 fastest cycle the actuator allows (`ActuatorParams.fastest_cycle`: peak commanded rate
@@ -38,6 +40,7 @@ from mf_envs.physics.inchworm.drive import (
 )
 
 SEED_STEPS_PER_CYCLE = 40  # the seed's scene (no actuator dynamics)
+WARMUP_SECONDS = 1.5  # the tuning's warm-up: the actuator's full range takes 1 s (rate limit)
 
 
 class OpenLoopGait:
@@ -121,55 +124,74 @@ def seed_linear(env: Any, c1: float = 0.2, c2: float = 0.8, **params: Any) -> Se
 
 
 @lru_cache(maxsize=8)
-def _tune(config: tuple, max_evals: int) -> tuple[float, float, float]:
-    """(period [s], amplitude [1/m], speed [L/s]) of the fastest square-wave gait of the env
+def _tune(config: tuple, max_evals: int) -> tuple[float, float, float, float]:
+    """(period [s], amplitude [1/m], bias [1/m], speed [L/s]) of the fastest two-level
+    square-wave gait (`square_gait`: -(b + a) for half a period, -b for the other) of the env
     configured by `config` (its `drive_config()`: make_driven's arguments + control_dt,
-    max_curvature), from a straight body at rest, speed over one cycle after one warm-up
-    cycle: a grid (scipy.optimize.brute: 8 log-spaced periods from 2 control steps to twice the
-    seed gait's period, 3 amplitudes) then a bounded Nelder-Mead polish (<= max_evals runs)."""
+    max_curvature), from a straight body at rest, speed over one cycle after a warm-up of at
+    least one cycle and `WARMUP_SECONDS` (time to reach the arched posture): a grid
+    (scipy.optimize.brute: 8 log-spaced periods from 2 control steps to twice the seed gait's
+    period, 4 amplitudes, 3 biases; a + b > max_curvature scores 0) then a bounded Nelder-Mead
+    polish (<= max_evals runs)."""
     cfg = dict(config)
     dt, max_k = cfg.pop("control_dt"), cfg.pop("max_curvature")
     shape = np.ones(cfg["n_control_points"])
 
-    def neg_speed(x: np.ndarray) -> float:  # x = (log period [log s], amplitude [1/m])
-        period, amp = float(np.exp(x[0])), float(x[1])
+    def neg_speed(x: np.ndarray) -> float:  # x = (log period [log s], amplitude, bias [1/m])
+        period, amp, bias = float(np.exp(x[0])), float(x[1]), float(x[2])
+        if amp + bias > max_k * (1 + 1e-12) or amp <= 0.0 or bias < 0.0:
+            return 0.0  # outside the actuation range: no gait
         driven = make_driven(**cfg)
         driven.reset(np.zeros(len(shape)))
-        m = run_open_loop(driven, square_gait(amp, shape, period), period, dt, 1, 1)
+        warm = max(1, int(np.ceil(WARMUP_SECONDS / period)))
+        m = run_open_loop(driven, square_gait(amp, shape, period, bias), period, dt, 1, warm)
         return -m.speed
 
     act = cfg["actuator"] if "actuator_dynamics" in cfg["effects"] else None
     start = act.fastest_cycle(max_k) if act is not None else SEED_STEPS_PER_CYCLE * dt
     lo, hi = np.log(2 * dt), np.log(2.0 * start)
-    grid = (slice(lo, hi + 1e-9, (hi - lo) / 7), slice(0.5 * max_k, 1.0001 * max_k, 0.25 * max_k))
+    grid = (
+        slice(lo, hi + 1e-9, (hi - lo) / 7),
+        slice(0.25 * max_k, 1.0001 * max_k, 0.25 * max_k),
+        slice(0.0, 0.51 * max_k, 0.25 * max_k),
+    )
     x0 = brute(neg_speed, grid, finish=None)
     res = minimize(
         neg_speed,
         x0=x0,
         method="Nelder-Mead",
-        bounds=[(lo, hi), (0.25 * max_k, max_k)],
+        bounds=[(lo, hi), (0.05 * max_k, max_k), (0.0, 0.95 * max_k)],
         options={"xatol": 0.02, "fatol": 1e-4, "maxfev": max_evals},
     )
-    return float(np.exp(res.x[0])), float(res.x[1]), float(-res.fun)
+    return float(np.exp(res.x[0])), float(res.x[1]), float(res.x[2]), float(-res.fun)
 
 
 def tuned(
-    env: Any, period: float | None = None, amplitude: float | None = None, max_evals: int = 30
+    env: Any,
+    period: float | None = None,
+    amplitude: float | None = None,
+    bias: float | None = None,
+    max_evals: int = 30,
 ) -> OpenLoopGait:
-    """Square-wave gait with period [s] and amplitude [1/m] optimised for speed on the env's
-    physics (`_tune`, cached per configuration; ~1 min on the defaults) unless given."""
+    """Two-level square-wave gait (`square_gait`) with period [s], amplitude [1/m] and curl
+    bias [1/m] optimised for speed on the env's physics (`_tune`, cached per configuration;
+    a few minutes on the defaults) unless all three are given."""
     base = env.unwrapped
-    if period is None or amplitude is None:
-        t_opt, a_opt, _ = _tune(base.drive_config(), max_evals)
+    if period is None or amplitude is None or bias is None:
+        t_opt, a_opt, b_opt, _ = _tune(base.drive_config(), max_evals)
         period = t_opt if period is None else period
         amplitude = a_opt if amplitude is None else amplitude
+        bias = b_opt if bias is None else bias
     check_positive("period", period)
     check_positive("amplitude", amplitude)
-    if amplitude > base.max_curvature * (1 + 1e-12):
-        raise ValueError("amplitude: exceeds the env's max_curvature")
+    if bias < 0.0:
+        raise ValueError(f"bias: must be >= 0 (a curl level, 1/m), got {bias}")
+    if amplitude + bias > base.max_curvature * (1 + 1e-12):
+        raise ValueError("amplitude: amplitude + bias exceeds the env's max_curvature")
     shape = np.ones(base.n_ctrl)
-    gait = OpenLoopGait(env, square_gait(float(amplitude), shape, float(period)), float(period))
-    gait.amplitude = float(amplitude)
+    command = square_gait(float(amplitude), shape, float(period), float(bias))
+    gait = OpenLoopGait(env, command, float(period))
+    gait.amplitude, gait.bias = float(amplitude), float(bias)
     return gait
 
 

@@ -19,6 +19,12 @@ Default ranges (factors of the nominal value), per the issue's robustness item:
 | GyroStabilizer-v0 | `rotor_speed` | 0.9 - 1.1 | rotor speed |
 | Inchworm-v0 | soil kwargs the env has (see `SOIL_KWARGS`) | 0.5 - 1.5 | soil |
 | Inchworm-v0 | `youngs_modulus`, `mass_per_length` | 0.8 - 1.2 | material, payload |
+| GOWEC-v1 | `wave_period`, `peak_period` | 0.75 - 1.25 | sea period around the 6 s default |
+| GOWEC-v1 | `wave_amplitude` | 0.25 - 1.0 | regular sea height (nominal 1 m, down to 0.25 m) |
+
+Discrete choices (`DEFAULT_CHOICES`, one value drawn uniformly per reset, after the ranges):
+GOWEC-v1's `significant_wave_height` from (None, 1.0, 2.0, 3.0) m, so half the episodes are
+regular waves (None) and half JONSWAP seas of Hs 1-3 m at the randomised `peak_period`.
 
 The inchworm's grip is the seed's kinematic anchor switching (Eq. 102), which has no soil
 parameter; soil randomisation applies only if the env grows friction kwargs (`SOIL_KWARGS`).
@@ -38,6 +44,7 @@ import numpy as np
 from gymnasium.utils import seeding
 
 Ranges = dict[str, tuple[float, float]]
+Choices = dict[str, tuple[Any, ...]]
 
 SOIL_KWARGS = (
     "friction_coefficient",
@@ -67,6 +74,14 @@ DEFAULT_RANGES: dict[str, Ranges] = {
         "youngs_modulus": (0.8, 1.2),
         "mass_per_length": (0.8, 1.2),
     },
+    "GOWEC-v1": {
+        "wave_period": (0.75, 1.25),
+        "peak_period": (0.75, 1.25),
+        "wave_amplitude": (0.25, 1.0),
+    },
+}
+DEFAULT_CHOICES: dict[str, Choices] = {
+    "GOWEC-v1": {"significant_wave_height": (None, 1.0, 2.0, 3.0)},
 }
 # robustness scenes: name -> factors applied to the nominal kwargs (those the env has)
 SHIFTS: dict[str, dict[str, dict[str, float]]] = {
@@ -96,8 +111,7 @@ def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dic
     attribute of the same name on a freshly made env, if it has one.
     """
     spec = gym.spec(env_id)
-    cls = spec.entry_point if callable(spec.entry_point) else _load(spec.entry_point)
-    params = inspect.signature(cls.__init__).parameters
+    params = _constructor_params(env_id)
     given = {**spec.kwargs, **(env_kwargs or {})}
     out: dict[str, float] = {}
     unresolved = []
@@ -115,6 +129,13 @@ def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dic
                 out[name] = float(value)
         env.close()
     return out
+
+
+def _constructor_params(env_id: str) -> dict[str, inspect.Parameter]:
+    """The env class's constructor parameters (name -> inspect.Parameter)."""
+    spec = gym.spec(env_id)
+    cls = spec.entry_point if callable(spec.entry_point) else _load(spec.entry_point)
+    return dict(inspect.signature(cls.__init__).parameters)
 
 
 def _is_real(value: Any) -> bool:
@@ -150,11 +171,16 @@ class DomainRandomization(gym.Wrapper):
         env: an env made with `gym.make(env_id, **kwargs)` (its spec names the id and kwargs).
         ranges: kwarg -> (lo, hi) factors of the nominal value; default `DEFAULT_RANGES[env_id]`.
             Names the env does not take are ignored; ValueError if none is left.
+        choices: kwarg -> candidate values, one drawn uniformly at every reset (None allowed,
+            e.g. regular vs irregular sea); default `DEFAULT_CHOICES.get(env_id, {})`; names the
+            env does not take -> ValueError naming `choices`.
 
     `info["randomized"]` at reset holds the drawn kwargs (SI units); `self.current` too.
     """
 
-    def __init__(self, env: gym.Env, ranges: Ranges | None = None) -> None:
+    def __init__(
+        self, env: gym.Env, ranges: Ranges | None = None, choices: Choices | None = None
+    ) -> None:
         super().__init__(env)
         if env.spec is None:
             raise ValueError("env: must be made with gymnasium.make (it has no spec)")
@@ -171,16 +197,24 @@ class DomainRandomization(gym.Wrapper):
             for k, v in nominal_kwargs(self.env_id, self.base_kwargs).items()
             if k in self.ranges
         }
-        self.current: dict[str, float] = dict(self.nominal)
+        self.choices = dict(DEFAULT_CHOICES.get(self.env_id, {}) if choices is None else choices)
+        unknown = sorted(set(self.choices) - set(_constructor_params(self.env_id)))
+        if unknown:
+            raise ValueError(f"choices: {unknown} are not kwargs of {self.env_id}")
+        self.current: dict[str, Any] = dict(self.nominal)
         self._rng: np.random.Generator | None = None
 
-    def sample(self) -> dict[str, float]:
-        """Draw one set of kwargs (uniform factors x nominal) from the wrapper's generator."""
+    def sample(self) -> dict[str, Any]:
+        """Draw one set of kwargs (uniform factors x nominal, then the discrete choices) from the
+        wrapper's generator."""
         assert self._rng is not None
-        return {
+        out: dict[str, Any] = {
             k: float(self._rng.uniform(lo, hi)) * self.nominal[k]
             for k, (lo, hi) in self.ranges.items()
         }
+        for k, values in self.choices.items():
+            out[k] = values[int(self._rng.integers(len(values)))]
+        return out
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         if seed is not None or self._rng is None:

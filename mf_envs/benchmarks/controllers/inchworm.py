@@ -3,48 +3,81 @@
 Scenes: `seed_section` = the Inchworm-v0 defaults (L = 0.3 m, kappa0# = max_curvature = 13 1/m,
 gravity, shear deformation, anchor switching, SMA-class actuator dynamics, friction feet);
 `seed_scene` = the seed's kinematic anchors without actuator dynamics (Eq. 102, kappa# as
-commanded, quasi-static). Each episode: one warm-up cycle, then 3 measured cycles of the gait's
-period; seeds 1000-1004 (unseen: the tuned gait is optimised from a straight body at rest, not
-on any seed; seeds differ by the small random initial actuation). Metrics: speed (body lengths
-per second), cost of transport = actuation energy / (m_A g L x tail distance), advance per cycle
-(body lengths), the gait period (s); and, as before, tail/head advance per cycle, tail advance
-per step, numerical failures.
+commanded, quasi-static). Each episode: a warm-up of one cycle and at least `WARMUP_SECONDS` (the
+tuned gait first arches the body), then 3 measured cycles of the gait's period; the shipped PPO
+policy (default scene only) is measured over `PPO_SECONDS`, its cycles counted as head -> tail grip
+switches; seeds 1000-1004 (unseen: the tuned gait is optimised from a straight body at rest, not on
+any seed; seeds differ by the small random initial actuation). Metrics: speed (body lengths per
+second), cost of transport = actuation energy / (m_A g L x tail distance), advance per cycle (body
+lengths), the gait period (s); and, as before, tail/head advance per cycle, tail advance per step,
+numerical failures.
 """
 
 from __future__ import annotations
+
+from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
 from mf_envs.controllers import make_baseline
+from mf_envs.controllers.inchworm import WARMUP_SECONDS
 from mf_envs.envs.inchworm import SEED_SCENE_EFFECTS
 
 ENV_ID = "Inchworm-v0"
 SCENES = {"seed_section": {}, "seed_scene": {"effects": SEED_SCENE_EFFECTS}}
 KINDS = ("seed_uniform", "seed_linear", "tuned")
 SEEDS = tuple(range(1000, 1005))
+PPO_SECONDS = 6.0  # PPO's measured span (s) after the warm-up
+
+
+def controllers() -> tuple[str, ...]:
+    """The gaits, plus "ppo" when the shipped policy and the train extra are there."""
+    import importlib.util
+
+    from mf_envs.train.policy import POLICY_FILE, policy_dir
+
+    have = all(importlib.util.find_spec(m) for m in ("stable_baselines3", "torch", "safetensors"))
+    shipped = (policy_dir(ENV_ID) / POLICY_FILE).is_file()
+    return KINDS + (("ppo",) if have and shipped else ())
+
+
+def _controller(env: gym.Env, kind: str):
+    if kind == "ppo":
+        from mf_envs.train.policy import load_policy
+
+        return load_policy(ENV_ID)
+    return make_baseline(env, kind)
 
 
 def _episode(kind: str, seed: int, kwargs: dict, n_cycles: int = 3) -> dict[str, float]:
+    """One episode: warm-up of max(one period, WARMUP_SECONDS), then n_cycles periods (PPO,
+    which has no period: PPO_SECONDS, its cycles counted as head -> tail grip switches)."""
     env = gym.make(ENV_ID, **kwargs)
     base = env.unwrapped
-    ctrl = make_baseline(env, kind)
+    ctrl = _controller(env, kind)
     obs, info = env.reset(seed=seed)
     ctrl.reset()
     dt, L = base.control_dt, base.params.length
-    n_warm = int(round(ctrl.period / dt))
-    n_meas = int(round(n_cycles * ctrl.period / dt))
-    fails, energy = 0, 0.0
+    period = getattr(ctrl, "period", None)
+    n_warm = int(round(max(period or 0.0, WARMUP_SECONDS) / dt))
+    n_meas = int(round((n_cycles * period if period else PPO_SECONDS) / dt))
+    fails, energy, switches = 0, 0.0, 0
     x0t = x0h = 0.0
     for k in range(n_warm + n_meas):
         if k == n_warm:
             x0t, x0h, energy = info["x_tail"], info["x_head"], 0.0
+        before = info.get("anchor")
         obs, _, term, trunc, info = env.step(ctrl.predict(obs)[0])
+        switches += int(k >= n_warm and before == "head" and info.get("anchor") == "tail")
         energy += info.get("actuation_energy", 0.0)
         fails += int(info["numerical_failure"])
         if term:
             break
+    if not period:  # PPO: cycles = head -> tail switches in the measured span
+        n_cycles = max(switches, 1)
+        period = n_meas * dt / n_cycles
     dist = info["x_tail"] - x0t
     span = n_meas * dt
     weight = base.params.mass_per_length * base.params.gravity * L
@@ -53,7 +86,7 @@ def _episode(kind: str, seed: int, kwargs: dict, n_cycles: int = 3) -> dict[str,
         "speed_L_per_s": dist / L / span,
         "cost_of_transport": energy / (weight * dist) if dist > 0 else float("inf"),
         "advance_per_cycle_L": dist / L / n_cycles,
-        "period_s": ctrl.period,
+        "period_s": period,
         "tail_advance_per_cycle_L": dist / L / n_cycles,
         "head_advance_per_cycle_L": (info["x_head"] - x0h) / L / n_cycles,
         "tail_advance_per_step_m": dist / n_meas,
@@ -66,7 +99,7 @@ def rows(quick: bool) -> list[dict]:
     n_cycles = 1 if quick else 3
     out = []
     for scene, kwargs in SCENES.items():
-        for kind in KINDS:
+        for kind in controllers() if scene == "seed_section" else KINDS:
             runs = [_episode(kind, s, kwargs, n_cycles) for s in seeds]
             for metric in runs[0]:
                 vals = np.array([r[metric] for r in runs])
@@ -82,3 +115,58 @@ def rows(quick: bool) -> list[dict]:
                     }
                 )
     return out
+
+
+def _trace(kind: str, seed: int, seconds: float) -> dict[str, np.ndarray]:
+    """Time series on the default scene after the warm-up: t (s), kappa# at the control points
+    (1/m, (n, 3)), grip engagement (tail, head) (n, 2), x_tail, x_head (m)."""
+    env = gym.make(ENV_ID)
+    ctrl = _controller(env, kind)
+    obs, info = env.reset(seed=seed)
+    ctrl.reset()
+    dt = env.unwrapped.control_dt
+    n_warm = int(round(max(getattr(ctrl, "period", 0.0), WARMUP_SECONDS) / dt))
+    out: dict[str, list] = {k: [] for k in ("t", "kappa", "grip", "x_tail", "x_head")}
+    for k in range(n_warm + int(round(seconds / dt))):
+        obs, _, _, _, info = env.step(ctrl.predict(obs)[0])
+        if k >= n_warm:
+            out["t"].append((k + 1 - n_warm) * dt)
+            out["kappa"].append(info["kappa_sharp"])
+            out["grip"].append(info["grip"])
+            out["x_tail"].append(info["x_tail"])
+            out["x_head"].append(info["x_head"])
+    env.close()
+    return {k: np.array(v) for k, v in out.items()}
+
+
+def plot(out, rows: list[dict]) -> list:
+    """`inchworm_gaits.png`: realised kappa#, grips and tail/head positions of the tuned gait and
+    PPO (when shipped) over 3 s on the default scene, after the warm-up (seed 1000)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    kinds = [k for k in ("tuned", "ppo") if k in controllers()]
+    fig, axes = plt.subplots(3, len(kinds), figsize=(5.5 * len(kinds), 7), squeeze=False)
+    for j, kind in enumerate(kinds):
+        tr = _trace(kind, SEEDS[0], 3.0)
+        x0 = tr["x_tail"][0]
+        axes[0, j].plot(tr["t"], tr["kappa"], drawstyle="steps-post")
+        axes[0, j].set_ylabel("realised kappa# (1/m)")
+        axes[0, j].set_title(f"{kind}: control points S = 0, L/2, L")
+        axes[1, j].plot(tr["t"], tr["grip"][:, 0], label="tail grip")
+        axes[1, j].plot(tr["t"], tr["grip"][:, 1], label="head grip")
+        axes[1, j].set_ylabel("grip engagement (-)")
+        axes[1, j].legend(loc="upper right")
+        axes[2, j].plot(tr["t"], tr["x_tail"] - x0, label="tail")
+        axes[2, j].plot(tr["t"], tr["x_head"] - x0, label="head")
+        axes[2, j].set_ylabel("x - x_tail(0) (m)")
+        axes[2, j].set_xlabel("time after warm-up (s)")
+        axes[2, j].legend(loc="upper left")
+    fig.tight_layout()
+    path = Path(out) / "inchworm_gaits.png"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return [path]

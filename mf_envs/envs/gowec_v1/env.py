@@ -12,6 +12,7 @@ from mf_envs._validate import check_int, check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import spec
+from mf_envs.envs.gowec_v1.observe import observe_one
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import batch as hb
@@ -232,21 +233,20 @@ class GOWECV1Env(MFEnv):
             self.wave.amplitudes, self.wave.phases, self.control_dt, self._loss(), self._vals,
         )  # fmt: skip
         if not ok:
-            info = {
-                "power": 0.0,
-                "reward_terms": {"net_electrical_energy": 0.0},
-                "overspeed": False,
-                "out_of_range": False,
-            }
+            info = dict(power=0.0, overspeed=False, out_of_range=False)
+            info["reward_terms"] = {"net_electrical_energy": 0.0}
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
-        self.state = y
+        self.state, obs = y, np.empty(8, np.float32)
+        finite = observe_one(y, self.observation_space.low, self.observation_space.high, obs)
         reward, terms = self._get_rew(self._vals[11])
         info = self._info_from(self._vals)
         info["reward_terms"] = terms
-        over = abs(y[5]) > self.max_gimbal_rate
-        out = max(abs(y[0]), abs(y[1])) > spec.MAX_BUOY_ANGLE
-        info["overspeed"], info["out_of_range"] = bool(over), bool(out)
-        return self._finish_step(self._get_obs(), reward, over or out, truncated, info, True)
+        over = info["overspeed"] = bool(abs(y[5]) > self.max_gimbal_rate)
+        out = info["out_of_range"] = bool(max(abs(y[0]), abs(y[1])) > spec.MAX_BUOY_ANGLE)
+        if finite and math.isfinite(reward):  # _finish_step's checks, done in the kernel
+            self._last_obs = obs
+            return obs, reward, over or out, truncated, info
+        return self._finish_step(obs, reward, over or out, truncated, info, True)
 
     def _loss(self) -> float:
         """Rotor loss (W) while the rotor spins, else 0."""
@@ -331,11 +331,9 @@ class GOWECV1Env(MFEnv):
         }
 
     def _get_obs(self) -> np.ndarray:
-        y = self.state
-        th, ro, thd, rod = y[0], y[1], y[3], y[4]
-        w = (math.cos(ro) * thd, rod, math.sin(ro) * thd)  # hull body rates (module doc)
-        obs = np.array([math.sin(y[2]), math.cos(y[2]), y[5], *w, th, ro], dtype=np.float32)
-        return np.clip(obs, self.observation_space.low, self.observation_space.high)
+        obs = np.empty(8, np.float32)  # observe.py: the hull body rates of the module doc
+        observe_one(self.state, self.observation_space.low, self.observation_space.high, obs)
+        return obs
 
     def _get_rew(self, energy: float) -> tuple[float, dict[str, float]]:
         r = float(energy * self._energy_scale)

@@ -11,15 +11,14 @@ calls the single env's own step kernel (`step_row`) for every row; observations 
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
-import numba
 import numpy as np
 
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
+from mf_envs.envs.gowec_v1.observe import observe_rows
 from mf_envs.physics.gowec.hydro.batch import N_VALS, batch_step_rows
 
 # info keys from step_row's value slots (buoy_rate is the pair of slots 4, 5)
@@ -29,21 +28,6 @@ _SCALAR_SLOTS = {
     "wave_elevation": 10,
 }  # fmt: skip
 _FAILURE_KEYS = ("power", "reward_terms", "overspeed", "out_of_range", "numerical_failure")
-
-
-@numba.njit(cache=True)
-def observe_rows(active, Y, lo, hi, obs):
-    """GOWECV1Env._get_obs for the active rows: (sin phi, cos phi, phi', body rates
-    (cos rho theta', rho', sin rho theta'), theta, rho) as float32, clipped to [lo, hi]."""
-    for i in range(active.shape[0]):
-        if not active[i]:
-            continue
-        y = Y[i]
-        v = (math.sin(y[2]), math.cos(y[2]), y[5], math.cos(y[1]) * y[3], y[4],
-             math.sin(y[1]) * y[3], y[0], y[1])  # fmt: skip
-        for j in range(8):
-            x = np.float32(v[j])
-            obs[i, j] = min(max(x, lo[j]), hi[j])
 
 
 class GOWECV1VectorEnv(BatchedVectorEnv):

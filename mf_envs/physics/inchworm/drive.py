@@ -201,11 +201,19 @@ def cosine_gait(amplitude: float, shape: np.ndarray, period: float) -> CommandFn
     return lambda t: -0.5 * amplitude * shape * (1.0 + np.cos(2.0 * np.pi * t / period - np.pi))
 
 
-def square_gait(amplitude: float, shape: np.ndarray, period: float) -> CommandFn:
-    """Bang-bang command: curl fully (-a s) for the first half period, release for the second;
-    the actuator's lag and rate limit shape the realised kappa#."""
+def square_gait(amplitude: float, shape: np.ndarray, period: float, bias: float = 0.0) -> CommandFn:
+    """Bang-bang command between two curl levels: -(b + a) s for the first half period, -b s
+    for the second (b = bias >= 0, 0: release fully); the actuator's lag and rate limit shape
+    the realised kappa#. A bias keeps the body arched, where the head-tail distance changes to
+    first order with kappa# (near straight only to second order)."""
     shape = np.asarray(shape, float)
-    return lambda t: -amplitude * shape * float((t % period) < 0.5 * period)
+
+    def command(t: float) -> np.ndarray:
+        phase = (t / period) % 1.0  # t = k dt: snap round-off at the switching instants
+        phase = 0.0 if phase > 1.0 - 1e-9 else phase
+        return -(bias + amplitude * float(phase < 0.5 - 1e-9)) * shape
+
+    return command
 
 
 def grip_for(driven: DrivenInchworm, command: np.ndarray, dt: float) -> str:

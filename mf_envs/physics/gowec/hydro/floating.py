@@ -111,13 +111,23 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
     also the spin coupling S = sum_s s w_g3(s) (rad/s) and the gyro units' share of v (3,).
     gyro = (Ja, Jt, Jg1, Jg2, Jg3, n_units); unit s = +1 has gimbal angle phi and spin psi',
     unit s = -1 (dual configuration, ch. 3 Sec. 3.2.3) -phi and -psi'."""
+    M, v, gy = np.empty((3, 3)), np.empty(3), np.empty(3)
+    spin = mass_rhs_into(q, u, inertia, gyro, psid, M, v, gy, np.empty((2, 2)))
+    return M, v, spin, gy
+
+
+@numba.njit(cache=True)
+def mass_rhs_into(q, u, inertia, gyro, psid, M, v, gy, cs):
+    """`mass_and_rhs` into caller-owned M (3, 3), v (3,), gy (3,) (no allocation: the RK4
+    stages call it 4 times per substep), and (cos b, sin b) of each unit into cs (2, 2);
+    returns the spin coupling S (rad/s)."""
     th_d, ro_d, ph_d = u[0], u[1], u[2]
     cr_, sr_ = math.cos(q[1]), math.sin(q[1])
     Ih, Iz = inertia[0], inertia[1]
     Ja, Jt, Jg1, Jg2, Jg3 = gyro[0], gyro[1], gyro[2], gyro[3], gyro[4]
     # gimbal + rotor (principal in the gimbal frame): J1, J2, J3 (rotor spin added in h3)
     G1, G2, G3 = Jg1 + Jt, Jg2 + Jt, Jg3 + Ja
-    M = np.zeros((3, 3))
+    M[:, :] = 0.0
     M[0, 0] = Ih * cr_ * cr_ + Iz * sr_ * sr_
     M[1, 1] = Ih
     # hull: w = (c th', ro', s th'), B'u = (-s ro' th', 0, c ro' th')
@@ -126,16 +136,17 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
     e1 = Ih * d1 + (w2 * Iz * w3 - w3 * Ih * w2)
     e2 = w3 * Ih * w1 - w1 * Iz * w3
     e3 = Iz * d3 + (w1 * Ih * w2 - w2 * Ih * w1)
-    v = np.zeros(3)
     v[0] = cr_ * e1 + sr_ * e3
     v[1] = e2
-    gy = np.zeros(3)
+    v[2] = 0.0
+    gy[:] = 0.0
     spin = 0.0
     for k in range(int(gyro[5])):
         sg = 1.0 - 2.0 * k
         # w = (cb th', ro' + s ph', sb th'), b = ro + s phi, B'u = (-sb bd th', 0, cb bd th')
         b = q[1] + sg * q[2]
         cb, sb = math.cos(b), math.sin(b)
+        cs[k, 0], cs[k, 1] = cb, sb
         bd = ro_d + sg * ph_d
         M[0, 0] += G1 * cb * cb + G3 * sb * sb
         M[1, 1] += G2
@@ -151,16 +162,25 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
         gy[1] += f2
         gy[2] += sg * f2
         spin += sg * g3
-    v += gy
-    return M, v, spin, gy
+    for i in range(3):
+        v[i] += gy[i]
+    return spin
 
 
 @numba.njit(cache=True)
 def solve3(M, r):
+    """x (3,) with M x = r (`solve3_into`; M and r are overwritten)."""
+    x = np.empty(3)
+    solve3_into(M, r, x)
+    return x
+
+
+@numba.njit(cache=True)
+def solve3_into(M, r, x):
     """x (3,) with M x = r for the (3, 3) mass matrix: Gaussian elimination with partial
     pivoting, hand-written because LAPACK's call overhead dominates a 3 x 3 solve in the RK4
     loop; a singular or non-finite M gives a non-finite x (the env's failure path). M and r
-    are overwritten (the caller's temporaries)."""
+    are overwritten (the caller's temporaries); the solution goes into x (3,)."""
     A, b = M, r
     for c in range(3):
         p = c
@@ -176,38 +196,51 @@ def solve3(M, r):
             for j in range(c, 3):
                 A[i, j] -= f * A[c, j]
             b[i] -= f * b[c]
-    x = np.empty(3)
     for i in range(2, -1, -1):
         s = b[i]
         for j in range(i + 1, 3):
             s -= A[i, j] * x[j]
         x[i] = s / A[i, i]
-    return x
+
+
+@numba.njit(cache=True)
+def scratch():
+    """Caller-owned temporaries of `deriv_into`: (M (3, 3), v, gy, Q, u' (3,) each, (cos b,
+    sin b) of each gyro unit (2, 2))."""
+    return np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3), np.empty(3), np.empty((2, 2))
 
 
 @numba.njit(cache=True)
 def deriv(t, y, tau, args):
     """dy/dt (module doc layout) with the PTO command tau (N m); args: `pack`."""
+    dy = np.empty_like(y)
+    deriv_into(t, y, tau, args, dy, scratch())
+    return dy
+
+
+@numba.njit(cache=True)
+def deriv_into(t, y, tau, args, dy, work):
+    """`deriv` into dy (n_state,) with the temporaries `work` = `scratch()` (no allocation)."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr = args
+    M, v, gy, Q, ud, cs = work
     nr = Ar.shape[0]
     q, u = y[0:3], y[3:6]
     xt, xr = y[6 : 6 + nr], y[6 + nr : 6 + 2 * nr]
-    M, v, _, _ = mass_and_rhs(q, u, p_in, p_gy, psid)
+    mass_rhs_into(q, u, p_in, p_gy, psid, M, v, gy, cs)
     mx, my = excitation(t, om, cp, cr)
     mu_t, mu_r = 0.0, 0.0
     for i in range(nr):
         mu_t += Cr[i] * xt[i]
         mu_r += Cr[i] * xr[i]
     Mg = pto_torque(q[2], u[2], tau, pto)
-    Q = np.empty(3)
     Q[0] = mx - C * q[0] - mu_t - bv * u[0] - v[0]
     Q[1] = my - C * q[1] - mu_r - bv * u[1] - v[1]
     nu = p_gy[5]
     Q[2] = -nu * Mg - v[2]
-    ud = solve3(M, Q)
-    dy = np.empty_like(y)
-    dy[0:3] = u
-    dy[3:6] = ud
+    solve3_into(M, Q, ud)
+    for i in range(3):
+        dy[i] = u[i]
+        dy[3 + i] = ud[i]
     for i in range(nr):  # radiation states: x' = A x + B u (loops: no BLAS call per row)
         at, ar = 0.0, 0.0
         for j in range(nr):
@@ -226,16 +259,14 @@ def deriv(t, y, tau, args):
     pm = 0.0
     for j in range(int(nu)):
         sg = 1.0 - 2.0 * j
-        b = q[1] + sg * q[2]
-        pm += sg * (math.cos(b) * (u[1] + sg * u[2]) * u[0] + math.sin(b) * ud[0])
+        pm += sg * (cs[j, 0] * (u[1] + sg * u[2]) * u[0] + cs[j, 1] * ud[0])
     dy[k + 5] = p_gy[0] * pm * psid
-    return dy
 
 
 @numba.njit(cache=True)
 def _stage_rhs(t, x, inp, args, out):
-    """`deriv` in the form of the frames RK4 template; args = (tau, deriv args)."""
-    out[:] = deriv(t, x, args[0], args[1])
+    """`deriv_into` in the RK4 template's form; args = (tau, deriv args, `scratch()`)."""
+    deriv_into(t, x, args[0], args[1], out, args[2])
 
 
 @numba.njit(cache=True)
@@ -253,10 +284,12 @@ def rk4_steps(t, y, tau, dt, n, args):
     args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr) as `deriv` (`pack`).
     The stage loop is the one of `mf_envs.frames.kernels.make_rk4`."""
     work = rk4_work(y.shape[0])
-    full = (tau, args)
+    full = (tau, args, scratch())
+    y = y.copy()
     for _ in range(n):
         dy, _ = _rk4(t, y, dt, full, work)
-        y = y + dy
+        for i in range(y.shape[0]):
+            y[i] += dy[i]
         t += dt
     return y
 

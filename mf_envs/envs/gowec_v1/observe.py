@@ -1,0 +1,31 @@
+"""GOWEC-v1's observation (`spec.OBS`) from the state, compiled: one definition for the single
+env's step and the native vector env's rows (bit-identical float32 values)."""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+
+@numba.njit(cache=True)
+def observe_one(y, lo, hi, obs):
+    """(sin phi, cos phi, phi', hull body rates (cos rho theta', rho', sin rho theta'), theta,
+    rho) of the state y as float32 into obs (8,), clipped to [lo, hi]; True if all finite."""
+    v = (math.sin(y[2]), math.cos(y[2]), y[5], math.cos(y[1]) * y[3], y[4],
+         math.sin(y[1]) * y[3], y[0], y[1])  # fmt: skip
+    finite = True
+    for j in range(8):
+        x = min(max(np.float32(v[j]), lo[j]), hi[j])
+        obs[j] = x
+        finite = finite and math.isfinite(x)
+    return finite
+
+
+@numba.njit(cache=True)
+def observe_rows(active, Y, lo, hi, obs):
+    """`observe_one` for the active rows of Y (N, n_state) into obs (N, 8)."""
+    for i in range(active.shape[0]):
+        if active[i]:
+            observe_one(Y[i], lo, hi, obs[i])
