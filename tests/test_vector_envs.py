@@ -351,10 +351,11 @@ def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
     """GOWEC-v0's compiled resets (pre-drawn from each row's generator) past the end of the
     draw buffer, mixed with template resets (options, seeds) that rewind the pre-draw: bit for
     bit SyncVectorEnv, in every autoreset mode."""
-    from mf_envs.envs.gowec.vector import DRAW_BUFFER
+    from mf_envs.envs.gowec.vector import GOWECVectorEnv
 
     kw = {"n_periods": 1, "steps_per_period": 4}  # an episode every 4 steps
-    _compiled_resets_match_sync("GOWEC-v0", kw, mode, {"gimbal_angle": 0.05}, DRAW_BUFFER)
+    buffer = GOWECVectorEnv.DRAW_BUFFER
+    _compiled_resets_match_sync("GOWEC-v0", kw, mode, {"gimbal_angle": 0.05}, buffer)
 
 
 STAB_SCENES = [

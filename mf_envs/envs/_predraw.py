@@ -8,8 +8,7 @@ template reset (the same stream in the same order as the single env's calls), so
 can reset many rows in one call. Before any template reset without a seed (options, or a
 fallback) the row's generator is rewound to where the single env's would be (state snapshot +
 the doubles consumed), so any mix of compiled and template resets stays bit-identical to
-`SyncVectorEnv`. Used by `gyro_stabilizer.vector` (GOWEC-v0's vector env has its own copy of the
-same scheme).
+`SyncVectorEnv`. Used by `gowec.vector` and `gyro_stabilizer.vector`.
 """
 
 from __future__ import annotations

@@ -21,7 +21,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
-from mf_envs.controllers import make_baseline
+from mf_envs.benchmarks.controllers.ppo import make_controller, with_ppo
 from mf_envs.controllers.inchworm import WARMUP_SECONDS
 from mf_envs.envs.inchworm import SEED_SCENE_EFFECTS
 
@@ -33,22 +33,12 @@ PPO_SECONDS = 6.0  # PPO's measured span (s) after the warm-up
 
 
 def controllers() -> tuple[str, ...]:
-    """The gaits, plus "ppo" when the shipped policy and the train extra are there."""
-    import importlib.util
-
-    from mf_envs.train.policy import POLICY_FILE, policy_dir
-
-    have = all(importlib.util.find_spec(m) for m in ("stable_baselines3", "torch", "safetensors"))
-    shipped = (policy_dir(ENV_ID) / POLICY_FILE).is_file()
-    return KINDS + (("ppo",) if have and shipped else ())
+    """The baselines, plus "ppo" when the shipped policy and the train extra are there."""
+    return with_ppo(ENV_ID, KINDS)
 
 
 def _controller(env: gym.Env, kind: str):
-    if kind == "ppo":
-        from mf_envs.train.policy import load_policy
-
-        return load_policy(ENV_ID)
-    return make_baseline(env, kind)
+    return make_controller(env, ENV_ID, kind)
 
 
 def _episode(kind: str, seed: int, kwargs: dict, n_cycles: int = 3) -> dict[str, float]:

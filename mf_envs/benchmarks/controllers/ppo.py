@@ -41,15 +41,35 @@ ALIASES = {
 
 
 def shipped_env_ids() -> list[str]:
-    """Env ids that are registered and have a shipped policy."""
+    """Env ids with a shipped policy scored here (the others' own modules score theirs)."""
+    own = ("GOWEC-v1", "Inchworm-v0")  # scored beside their baselines by their own modules
+    return [e for e in _shipped_all() if e not in own]
+
+
+def with_ppo(env_id: str, kinds: tuple[str, ...]) -> tuple[str, ...]:
+    """`kinds` plus "ppo" when env_id has a shipped policy and the train extra is installed (for
+    the env modules that score PPO beside their own baselines)."""
+    have = all(_has(m) for m in ("stable_baselines3", "torch", "safetensors"))
+    return kinds + (("ppo",) if have and env_id in _shipped_all() else ())
+
+
+def make_controller(env: Any, env_id: str, kind: str) -> Any:
+    """The shipped PPO policy for kind "ppo", else the named classical baseline of env."""
+    if kind == "ppo":
+        from mf_envs.train.policy import load_policy
+
+        return load_policy(env_id)
+    from mf_envs.controllers import make_baseline
+
+    return make_baseline(env, kind)
+
+
+def _shipped_all() -> list[str]:
     import mf_envs  # noqa: F401
     from mf_envs.envs import available_env_ids
     from mf_envs.train.policy import POLICY_FILE, policy_dir
 
-    own = ("GOWEC-v1", "Inchworm-v0")  # scored beside their baselines by their own modules
-    return [
-        e for e in available_env_ids() if e not in own and (policy_dir(e) / POLICY_FILE).is_file()
-    ]
+    return [e for e in available_env_ids() if (policy_dir(e) / POLICY_FILE).is_file()]
 
 
 def env_scenes(env_id: str) -> dict[str, dict[str, Any]]:

@@ -12,11 +12,10 @@ scalar kernel for every row, and the observation, reward, info and failure contr
 Compiled resets (regular waves): autoresets and seedless resets without options run in one
 numba call (`reset_rows`). `GOWECEnv.reset()` draws exactly two doubles from its generator,
 phi = U(-0.1, 0.1) then the wave phase U(0, 2 pi) (numpy: low + (high - low) * next_double),
-so each row pre-draws `DRAW_BUFFER` future resets' doubles in one `rng.random(2 K)` right after
-each template reset (same stream, same order as the single env's calls) and the kernel consumes
-them; before a template reset without a seed the row's generator is rewound to where the single
-env's would be (state snapshot + the doubles consumed), so any mix of resets stays bit-identical
-to `SyncVectorEnv`. Irregular seas (many draws per reset) keep the template path.
+so each row pre-draws future resets' doubles (`mf_envs.envs._predraw.PredrawnResets`: same
+stream, same order as the single env's calls, the generator rewound before any template reset)
+and the kernel consumes them, so any mix of resets stays bit-identical to `SyncVectorEnv`.
+Irregular seas (many draws per reset) keep the template path.
 """
 
 from __future__ import annotations
@@ -27,13 +26,13 @@ from typing import Any
 import numba
 import numpy as np
 
+from mf_envs.envs._predraw import PredrawnResets
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec import spec
 from mf_envs.envs.gowec.env import GOWECEnv
 from mf_envs.physics.gowec import buoy_rates_into
 from mf_envs.physics.gowec.batch import alloc_batch, batch_fast_step
 
-DRAW_BUFFER = 16  # resets pre-drawn per row (2 doubles each)
 PHI0, PHASE0 = (-0.1, 0.1), (0.0, 2.0 * math.pi)  # GOWECEnv.reset's U(low, high) draws
 
 
@@ -62,7 +61,7 @@ def reset_rows(idx, draws, ptr, phi, phid, t, steps, amp, om, eps, k, cth, sth, 
         spec.observe(phi[i], 0.0, 0.0, wv[0], wv[1], wv[2], max_rate, obs[i])
 
 
-class GOWECVectorEnv(BatchedVectorEnv):
+class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
     """N independent `GOWEC-v0` envs (same kwargs, own seeds) stepped in one numba call.
 
     Observations (N, 6) float32 (`spec.OBS`), actions (N, 1) in [-1, 1], rewards (N,) float64,
@@ -71,6 +70,7 @@ class GOWECVectorEnv(BatchedVectorEnv):
     """
 
     single_env_cls = GOWECEnv
+    DRAWS_PER_RESET = 2  # wave phase and gimbal angle
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -80,33 +80,11 @@ class GOWECVectorEnv(BatchedVectorEnv):
         self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
         self._ok = np.ones(n, dtype=bool)
         self._overspeed = np.zeros(n, dtype=bool)
-        self._fast = "irregular_waves" not in env.effects
-        self._draws = np.zeros((n, 2 * DRAW_BUFFER))
-        self._ptr = np.zeros(n, dtype=np.int64)
-        self._snap: list[dict[str, Any] | None] = [None] * n
-
-    def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
-        rng, snap = self._rngs[i], self._snap[i]
-        if seed is None and rng is not None and snap is not None:  # rewind the pre-draw
-            rng.bit_generator.state = snap
-            rng.random(int(self._ptr[i]))
-        info = super()._reset_one(i, seed, options)
-        if self._fast:
-            self._refill(i)
-        return info
-
-    def _refill(self, i: int) -> None:
-        """Pre-draw row i's next DRAW_BUFFER resets from its generator (its state kept)."""
-        rng = self._rngs[i]
-        self._snap[i] = rng.bit_generator.state
-        self._draws[i] = rng.random(2 * DRAW_BUFFER)
-        self._ptr[i] = 0
+        self._predraw_alloc(n, "irregular_waves" not in env.effects)
 
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
-        if not self._fast or any(self._snap[i] is None for i in idx):
+        if not self._predrawn(idx):
             return None
-        for i in idx[self._ptr[idx] >= 2 * DRAW_BUFFER]:
-            self._refill(int(i))
         b, kn, env = self.b, self._kernel, self.template
         reset_rows(
             idx, self._draws, self._ptr, b["phi"], b["phid"], b["t"], self._steps, b["amp"],
