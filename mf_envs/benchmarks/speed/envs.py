@@ -13,7 +13,8 @@ Cases (columns `case, variant, steps_per_s, reference, reference_steps_per_s, ra
   `bytes_per_env` = tracemalloc peak of make + reset. Gymnasium's own two are rows too.
 - `vector_env`: `gym.make_vec(id, N, "vector_entry_point")` env-steps/s at N = 1, 64, 1024,
   8192 vs Pendulum-v1 through gym.make (a SyncVectorEnv of it runs at about its single-env rate);
-  `bytes_per_env` = batch state bytes / N; `target` 1e6 env-steps/s at N = 1024 (issue 6).
+  `bytes_per_env` = batch state bytes / N; `target`, `meets_target`: issue 17's goal of each id
+  (`VECTOR_TARGETS`; single env: `SINGLE_TARGETS`).
 - `effects`: the native vector env at N = 1024 (256 with --quick; single env for ids without
   one) with no effect, each effect alone, the default and every effect, each timed alternating
   with the no-effect env (the reference): `ratio` < 1 is the cost of the effect; an effect
@@ -48,8 +49,18 @@ PENDULUM, ACROBOT = "Pendulum-v1", "Acrobot-v1"
 # CPU seconds of the stepping thread: on a machine shared with other jobs, wall time measures the
 # scheduler; the thread's CPU time measures the env (numba kernels run in the calling thread)
 CLOCK = time.thread_time
-TARGET_VECTOR = 1.0e6  # env-steps/s at N = 1024 (issue 6)
-N_LADDER = (1, 64, 1024, 8192)
+TARGET_VECTOR = 1.0e6  # env-steps/s at N = 1024 (issue 6), the default target
+# issue 17's goals: native vector env-steps/s at N (random actions, autoreset included), and
+# single-env steps/s as a multiple of Pendulum-v1 in the same run (Inchworm-v0: absolute, 1000/s)
+VECTOR_TARGETS = {
+    "GOWEC-v0": (1024, 1.0e6),
+    "GyroStabilizer-v0": (1024, 1.5e6),
+    "GOWEC-v1": (1024, 5.0e5),
+    "Inchworm-v0": (64, 5.0e3),
+}
+SINGLE_TARGETS = {"GOWEC-v1": ("ratio", 1.0), "Inchworm-v0": ("steps_per_s", 1000.0)}
+N_LADDER = (1, 8, 64, 256, 1024, 4096, 8192)
+N_LADDER_QUICK = (1, 64, 1024, 8192)
 
 
 def _vector_ids() -> list[str]:
@@ -160,9 +171,13 @@ def single_rows(quick: bool) -> list[dict[str, Any]]:
         env = gym.make(env_id)
         s = sec * (4 if env_id == "Inchworm-v0" else 1)
         rate, (rp, ra) = side_by_side(partial(single_rate, env, s), refs, rounds)
-        out.append(_row("single_env", f"{env_id} gym.make", rate, PENDULUM, rp,
-                        ratio_acrobot=rate / ra, acrobot_steps_per_s=ra, n_envs=1,
-                        bytes_per_env=make_bytes(env_id), load=os.getloadavg()[0]))  # fmt: skip
+        row = _row("single_env", f"{env_id} gym.make", rate, PENDULUM, rp,
+                   ratio_acrobot=rate / ra, acrobot_steps_per_s=ra, n_envs=1,
+                   bytes_per_env=make_bytes(env_id), load=os.getloadavg()[0])  # fmt: skip
+        if env_id in SINGLE_TARGETS:
+            key, goal = SINGLE_TARGETS[env_id]
+            row.update(target=f"{key} >= {goal:g}", meets_target=bool(row[key] >= goal))
+        out.append(row)
         env.close()
     return out
 
@@ -172,14 +187,15 @@ def vector_rows(quick: bool) -> list[dict[str, Any]]:
     pend = gym.make(PENDULUM)
     ref = [lambda: single_rate(pend, sec)]
     out = []
-    for n in N_LADDER:
+    for n in N_LADDER_QUICK if quick else N_LADDER:
         for env_id in _vector_ids():
             venv = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point")
             rate, (rp,) = side_by_side(partial(vector_rate, venv, sec), ref, rounds)
             nbytes = venv.unwrapped.state_nbytes() / n
             extra: dict[str, Any] = {"n_envs": n, "bytes_per_env": nbytes}
-            if n == 1024:
-                extra.update(target=TARGET_VECTOR, meets_target=bool(rate >= TARGET_VECTOR))
+            at, goal = VECTOR_TARGETS.get(env_id, (1024, TARGET_VECTOR))
+            if n == at:
+                extra.update(target=goal, meets_target=bool(rate >= goal))
             out.append(_row("vector_env", f"{env_id} native N={n}", rate,
                             f"{PENDULUM} gym.make (1 env)", rp, load=os.getloadavg()[0],
                             **extra))  # fmt: skip
@@ -277,7 +293,9 @@ def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
         rr = [r for r in vec if r["variant"].startswith(vec[0]["variant"].split()[0])]
         ax[0].loglog([r["n_envs"] for r in rr], [r["reference_steps_per_s"] for r in rr],
                      "s--", color="0.5", label=f"{PENDULUM} gym.make")  # fmt: skip
-    ax[0].axhline(TARGET_VECTOR, color="r", lw=0.8, ls=":", label="target 1e6")
+    for k, (env_id, (at, goal)) in enumerate(VECTOR_TARGETS.items()):
+        ax[0].plot([at], [goal], marker="*", ms=11, ls="none", color=f"C{k}", mec="r",
+                   label=f"{env_id} goal ({goal:.0e} at N = {at})")  # fmt: skip
     ax[0].set(xlabel="N envs", ylabel="env-steps/s", title="native vector envs")
     ax[0].set_ylim(top=3 * TARGET_VECTOR)
     ax[0].legend(fontsize=7)
@@ -305,9 +323,11 @@ def summary(rows: list[dict[str, Any]]) -> list[str]:
     """Acceptance lines of issue 6 from one run's rows."""
     lines = []
     for r in rows:
-        if r["case"] == "single_env" or (r["case"] == "vector_env" and r.get("n_envs") == 1024):
+        if r["case"] == "single_env" or (r["case"] == "vector_env" and "target" in r):
+            goal = f"; goal {r['target']}: {'met' if r['meets_target'] else 'NOT met'}"
             lines.append(f"{r['variant']}: {r['steps_per_s']:.4g} steps/s = "
-                         f"{r['ratio']:.3g} x {r['reference']}")  # fmt: skip
+                         f"{r['ratio']:.3g} x {r['reference']}"
+                         + (goal if "target" in r else ""))  # fmt: skip
     return lines
 
 
