@@ -295,7 +295,7 @@ def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
                      "s--", color="0.5", label=f"{PENDULUM} gym.make")  # fmt: skip
     for k, (env_id, (at, goal)) in enumerate(VECTOR_TARGETS.items()):
         ax[0].plot([at], [goal], marker="*", ms=11, ls="none", color=f"C{k}", mec="r",
-                   label=f"{env_id} goal ({goal:.0e} at N = {at})")  # fmt: skip
+                   label=f"{env_id} goal ({goal:.2g} at N = {at})")  # fmt: skip
     ax[0].set(xlabel="N envs", ylabel="env-steps/s", title="native vector envs")
     ax[0].set_ylim(top=3 * TARGET_VECTOR)
     ax[0].legend(fontsize=7)
