@@ -8,7 +8,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import make_rk4, rk4_work
+from mf_envs.frames.kernels import make_rk4
 
 
 @numba.njit(cache=True)
@@ -28,6 +28,13 @@ def buoy_rates(t, amp, om, eps, k, cth, sth, two_d):
 @numba.njit(cache=True)
 def buoy_rates_into(t, amp, om, eps, k, cth, sth, two_d, w, wd):
     """`buoy_rates` writing into the caller's w (3,) and w' (3,) (no allocation in the RK4 loop)."""
+    w[0], w[1], w[2], wd[0], wd[1], wd[2] = buoy_rates_scalars(t, amp, om, eps, k, cth, sth, two_d)
+
+
+@numba.njit(cache=True, inline="always")
+def buoy_rates_scalars(t, amp, om, eps, k, cth, sth, two_d):
+    """`buoy_rates` as six floats (w1, w2, w3, w1', w2', w3'): no array at all (the RK4 stage
+    inputs of every row of the batch)."""
     g0 = 0.0
     g1 = 0.0
     g2 = 0.0
@@ -42,20 +49,20 @@ def buoy_rates_into(t, amp, om, eps, k, cth, sth, two_d, w, wd):
         g3 -= ak * om[i] ** 3 * ca
     b1d, b1dd = sth * g1, sth * g2
     if not two_d:
-        w[0], w[1], w[2] = b1d, 0.0, 0.0
-        wd[0], wd[1], wd[2] = b1dd, 0.0, 0.0
-        return
+        return b1d, 0.0, 0.0, b1dd, 0.0, 0.0
     b2, b2d, b2dd = -cth * g0, -cth * g1, -cth * g2
     c2, s2 = math.cos(b2), math.sin(b2)
-    w[0] = b1d * c2
-    w[1] = b2d
-    w[2] = b1d * s2
-    wd[0] = b1dd * c2 - b1d * s2 * b2d
-    wd[1] = b2dd
-    wd[2] = b1dd * s2 + b1d * c2 * b2d
+    return (
+        b1d * c2,
+        b2d,
+        b1d * s2,
+        b1dd * c2 - b1d * s2 * b2d,
+        b2dd,
+        b1dd * s2 + b1d * c2 * b2d,
+    )
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def gimbal_accel(phi, phid, w, wd, Mg, Ja, Jt, Jg1, Jg2, Jg3, psid):
     """phi'' (rad/s^2) from the general gimbal equation (module doc; Eq. 81 as special case)."""
     c, s = math.cos(phi), math.sin(phi)
@@ -65,17 +72,15 @@ def gimbal_accel(phi, phid, w, wd, Mg, Ja, Jt, Jg1, Jg2, Jg3, psid):
     return (drive - Mg) / (Jg2 + Jt) - wd[1]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _stage_inputs(t, args):
     """Buoy rates (w, w') at time t (the wave drives the gimbal; state-free)."""
     amp, om, eps, k, cth, sth, two_d = args[3:]
-    w = np.empty(3)
-    wd = np.empty(3)
-    buoy_rates_into(t, amp, om, eps, k, cth, sth, two_d, w, wd)
-    return w, wd
+    w1, w2, w3, d1, d2, d3 = buoy_rates_scalars(t, amp, om, eps, k, cth, sth, two_d)
+    return (w1, w2, w3), (d1, d2, d3)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _stage_rhs(t, x, inp, args, out):
     """(phi', phi'') of x = (phi, phi') under the buoy rates inp and the held torque args[0]."""
     Mg, inert, psid = args[0], args[1], args[2]
@@ -94,19 +99,27 @@ def fast_step(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, t
     inert = (Ja, Jt, Jg1, Jg2, Jg3). Returns (phi, phi', harvested energy int M_g phi' dt (J),
     buoy rates w1, w2, w3 (rad/s) and the wave elevation at the origin (m) at the end).
     """
+    work = np.empty((6, 2))
+    return fast_step_into(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth,
+                          two_d, work)  # fmt: skip
+
+
+@numba.njit(cache=True)
+def fast_step_into(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, two_d, work):
+    """`fast_step` with the caller's scratch work (6, 2) (rows 0-4: the RK4 stages, row 5: the
+    state): no allocation, so a batch can reuse one scratch for all its rows."""
     energy = 0.0
     args = (Mg, inert, psid, amp, om, eps, k, cth, sth, two_d)
-    x = np.empty(2)
+    x = work[5]
     x[0], x[1] = phi, phid
-    work = rk4_work(2)
     for _ in range(n):
         dx, _ = _rk4(t, x, dt, args, work)
         energy += Mg * dx[0]  # = M_g (change of phi), exact for the held torque
         x[0] += dx[0]
         x[1] += dx[1]
         t += dt
-    w, _ = buoy_rates(t, amp, om, eps, k, cth, sth, two_d)
+    w1, w2, w3, _, _, _ = buoy_rates_scalars(t, amp, om, eps, k, cth, sth, two_d)
     eta = 0.0
     for i in range(amp.shape[0]):
         eta += amp[i] * math.cos(-om[i] * t + eps[i])
-    return x[0], x[1], energy, w[0], w[1], w[2], eta
+    return x[0], x[1], energy, w1, w2, w3, eta

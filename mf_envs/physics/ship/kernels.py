@@ -75,7 +75,7 @@ N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt 
 Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=0.0, roll=0.0):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
     at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame), gimbal
@@ -147,7 +147,7 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
     return a1, a2, a3, -n * H * phid * c, phidd, dv
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P):
     """(w1', w2', w3', phi', phi'', z', drive power n |tau phi'|, v') of the rotational state, the
     drive-loop integral z and the sway velocity v (`ship.coupling`) at attitude third row
@@ -177,7 +177,7 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P):
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _trans_rates(x3, v1, v2, v3, fw, P):
     """Hull CM acceleration (m/s^2, inertial): surge/sway damping, heave spring-damper + force."""
     m = P[S.MASS]

@@ -83,7 +83,7 @@ def excitation_coefficients(
     return -math.sin(direction) * c, math.cos(direction) * c
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def excitation(t, om, cp, cr):
     """(M_x, M_y) (N m) at time t: sum Re(c e^{-i w t}) (cp, cr complex (n,))."""
     mx = 0.0
@@ -95,7 +95,7 @@ def excitation(t, om, cp, cr):
     return mx, my
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def pto_torque(phi, phid, tau, pto):
     """M_g (N m): tau + c phi' + k phi, clipped to the torque limit and to |M_g phi'| <= P_max."""
     m = tau + pto[0] * phid + pto[1] * phi
@@ -116,7 +116,7 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
     return M, v, spin, gy
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def mass_rhs_into(q, u, inertia, gyro, psid, M, v, gy, cs):
     """`mass_and_rhs` into caller-owned M (3, 3), v (3,), gy (3,) (no allocation: the RK4
     stages call it 4 times per substep), and (cos b, sin b) of each unit into cs (2, 2);
@@ -175,7 +175,7 @@ def solve3(M, r):
     return x
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def solve3_into(M, r, x):
     """x (3,) with M x = r for the (3, 3) mass matrix: Gaussian elimination with partial
     pivoting, hand-written because LAPACK's call overhead dominates a 3 x 3 solve in the RK4
@@ -218,7 +218,7 @@ def deriv(t, y, tau, args):
     return dy
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def deriv_into(t, y, tau, args, dy, work):
     """`deriv` into dy (n_state,) with the temporaries `work` = `scratch()` (no allocation)."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr = args
@@ -263,7 +263,7 @@ def deriv_into(t, y, tau, args, dy, work):
     dy[k + 5] = p_gy[0] * pm * psid
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _stage_rhs(t, x, inp, args, out):
     """`deriv_into` in the RK4 template's form; args = (tau, deriv args, `scratch()`)."""
     deriv_into(t, x, args[0], args[1], out, args[2])
