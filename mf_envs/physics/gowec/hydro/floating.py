@@ -167,14 +167,6 @@ def mass_rhs_into(q, u, inertia, gyro, psid, M, v, gy, cs):
     return spin
 
 
-@numba.njit(cache=True)
-def solve3(M, r):
-    """x (3,) with M x = r (`solve3_into`; M and r are overwritten)."""
-    x = np.empty(3)
-    solve3_into(M, r, x)
-    return x
-
-
 @numba.njit(cache=True, inline="always")
 def solve3_into(M, r, x):
     """x (3,) with M x = r for the (3, 3) mass matrix: Gaussian elimination with partial
