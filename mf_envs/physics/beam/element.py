@@ -119,6 +119,13 @@ def _shape(xi: float, le: float):
     dnz = np.empty(4)
     npsi = np.empty(3)
     dnpsi = np.empty(3)
+    _shape_into(xi, le, nz, dnz, npsi, dnpsi)
+    return nz, dnz, npsi, dnpsi
+
+
+@numba.njit(cache=True, inline="always")
+def _shape_into(xi, le, nz, dnz, npsi, dnpsi):
+    """`_shape` into caller arrays (no allocation in the assembly loops)."""
     nz[0] = 1.0 - 3.0 * xi**2 + 2.0 * xi**3
     nz[1] = le * xi * (xi - 1.0) ** 2
     nz[2] = xi**2 * (3.0 - 2.0 * xi)
@@ -133,7 +140,6 @@ def _shape(xi: float, le: float):
     dnpsi[0] = (4.0 * xi - 3.0) / le
     dnpsi[1] = (4.0 * xi - 1.0) / le
     dnpsi[2] = (4.0 - 8.0 * xi) / le
-    return nz, dnz, npsi, dnpsi
 
 
 def shape_functions(xi: float, le: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -141,10 +147,10 @@ def shape_functions(xi: float, le: float) -> tuple[np.ndarray, np.ndarray, np.nd
     return _shape(float(xi), float(le))
 
 
-@numba.njit(cache=True)
-def _gp_kinematics(de, le, xi):
-    """Strains and helpers at one Gauss point from the 11 element dofs."""
-    nz, dnz, npsi, dnpsi = _shape(xi, le)
+@numba.njit(cache=True, inline="always")
+def _point_strains(de, dnz, npsi, dnpsi):
+    """psi, kappa, cos psi, sin psi, gamma_1, gamma_2 at a point from the 11 element dofs and
+    the shape functions there (Eqs. 74, 75)."""
     dz1 = dnz[0] * de[0] + dnz[1] * de[1] + dnz[2] * de[2] + dnz[3] * de[3]
     dz2 = dnz[0] * de[4] + dnz[1] * de[5] + dnz[2] * de[6] + dnz[3] * de[7]
     psi = npsi[0] * de[8] + npsi[1] * de[9] + npsi[2] * de[10]
@@ -153,6 +159,14 @@ def _gp_kinematics(de, le, xi):
     s = np.sin(psi)
     g1 = c * dz1 + s * dz2
     g2 = -s * dz1 + c * dz2
+    return psi, kap, c, s, g1, g2
+
+
+@numba.njit(cache=True)
+def _gp_kinematics(de, le, xi):
+    """Strains and helpers at one Gauss point from the 11 element dofs."""
+    nz, dnz, npsi, dnpsi = _shape(xi, le)
+    psi, kap, c, s, g1, g2 = _point_strains(de, dnz, npsi, dnpsi)
     return nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2
 
 
@@ -168,19 +182,74 @@ def assemble_internal(d, le, kappa_sharp, qxi, qw, stiff, with_tangent):
     Returns (P, ab, energy): P in N (z dofs) / N m (z', psi dofs), ab = dP/dd banded,
     energy = stored elastic energy [J].
     """
-    ne = le.shape[0]
     nd = d.shape[0]
-    p = np.zeros(nd)
-    ab = np.zeros((N_BAND, nd))
+    p = np.empty(nd)
+    ab = np.empty((N_BAND, nd))
+    energy = assemble_into(d, le, kappa_sharp, qxi, qw, stiff, with_tangent, p, ab)
+    return p, ab, energy
+
+
+@numba.njit(cache=True, inline="always")
+def _element_point(de, le, xi, w, ea, gas, ei, ksh, fe, ke, with_tangent, sc):
+    """Add one quadrature point's force and tangent to the element's fe (11,), ke (11, 11)
+    (upper triangle), exploiting the structure of B_T: with u = (c Nz', s Nz') and
+    v = (-s Nz', c Nz') on the 8 z dofs and Np, Np' on the 3 psi dofs,
+        B_T rows = (u, g2 Np), (v, -g1 Np), (0, Np'),  a = (v, 0),  b = (u, 0),  p = (0, Np),
+    so K = ea B1 B1^T + gas B2 B2^T + ei B3 B3^T + K_geo reduces to the blocks
+        zz: ea u u^T + gas v v^T,
+        z-psi: (alpha u + beta v) Np^T,  alpha = ea g2 - N2,  beta = N1 - gas g1,
+        psi-psi: (ea g2^2 + gas g1^2 - N1 g1 - N2 g2) Np Np^T + ei Np' Np'^T.
+    sc: scratch (4, 8) for the shape functions and u, v. Returns the point's stored energy [J]."""
+    nz, dnz, npsi, dnpsi = sc[0, :4], sc[0, 4:], sc[1, :3], sc[1, 4:7]
+    u, v = sc[2], sc[3]
+    _shape_into(xi, le, nz, dnz, npsi, dnpsi)
+    psi, kap, c, s, g1, g2 = _point_strains(de, dnz, npsi, dnpsi)
+    n1 = ea * (g1 - 1.0)
+    n2 = gas * g2
+    m3 = ei * (kap - ksh)
+    for k in range(4):
+        u[k] = c * dnz[k]
+        u[4 + k] = s * dnz[k]
+        v[k] = -s * dnz[k]
+        v[4 + k] = c * dnz[k]
+    for i in range(8):
+        fe[i] += w * (u[i] * n1 + v[i] * n2)
+    for k in range(3):
+        fe[8 + k] += w * (npsi[k] * (g2 * n1 - g1 * n2) + dnpsi[k] * m3)
+    if with_tangent:
+        wea, wgas = w * ea, w * gas
+        for i in range(8):
+            for j in range(i, 8):
+                ke[i, j] += wea * u[i] * u[j] + wgas * v[i] * v[j]
+        alpha = w * (ea * g2 - n2)
+        beta = w * (n1 - gas * g1)
+        for i in range(8):
+            zi = alpha * u[i] + beta * v[i]
+            for k in range(3):
+                ke[i, 8 + k] += zi * npsi[k]
+        gpp = w * (ea * g2 * g2 + gas * g1 * g1 - n1 * g1 - n2 * g2)
+        wei = w * ei
+        for i in range(3):
+            for j in range(i, 3):
+                ke[8 + i, 8 + j] += gpp * npsi[i] * npsi[j] + wei * dnpsi[i] * dnpsi[j]
+    return 0.5 * w * (n1 * (g1 - 1.0) + n2 * g2 + m3 * (kap - ksh))
+
+
+@numba.njit(cache=True)
+def assemble_into(d, le, kappa_sharp, qxi, qw, stiff, with_tangent, p, ab):
+    """`assemble_internal` into caller arrays p (n_dof,) and ab (21, n_dof) (overwritten; ab
+    untouched without the tangent); returns the stored energy [J]. Allocation-light: the
+    Newton loops of the quasi-static solver call it every iteration."""
+    ne = le.shape[0]
+    p[:] = 0.0
+    if with_tangent:
+        ab[:, :] = 0.0
     energy = 0.0
     loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
     de = np.empty(11)
-    bt = np.empty((3, 11))
-    a = np.empty(11)
-    b = np.empty(11)
-    pp = np.empty(11)
     ke = np.empty((11, 11))
     fe = np.empty(11)
+    sc = np.empty((4, 8))
     for e in range(ne):
         base = 6 * e
         for k in range(11):
@@ -188,50 +257,32 @@ def assemble_internal(d, le, kappa_sharp, qxi, qw, stiff, with_tangent):
         fe[:] = 0.0
         ke[:, :] = 0.0
         for g in range(qxi.shape[0]):
-            nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2 = _gp_kinematics(de, le[e], qxi[g])
-            w = qw[g] * le[e]
-            ea, gas, ei = stiff[g, 0], stiff[g, 1], stiff[g, 2]
             ksh = kappa_sharp[e, g] if g < N_GAUSS else 0.0
-            n1 = ea * (g1 - 1.0)
-            n2 = gas * g2
-            m3 = ei * (kap - ksh)
-            energy += 0.5 * w * (n1 * (g1 - 1.0) + n2 * g2 + m3 * (kap - ksh))
-            bt[:, :] = 0.0
-            a[:] = 0.0
-            b[:] = 0.0
-            pp[:] = 0.0
-            for k in range(4):
-                bt[0, k] = c * dnz[k]
-                bt[0, 4 + k] = s * dnz[k]
-                bt[1, k] = -s * dnz[k]
-                bt[1, 4 + k] = c * dnz[k]
-                a[k] = -s * dnz[k]
-                a[4 + k] = c * dnz[k]
-                b[k] = c * dnz[k]
-                b[4 + k] = s * dnz[k]
-            for k in range(3):
-                bt[0, 8 + k] = g2 * npsi[k]
-                bt[1, 8 + k] = -g1 * npsi[k]
-                bt[2, 8 + k] = dnpsi[k]
-                pp[8 + k] = npsi[k]
-            for i in range(11):
-                fe[i] += w * (bt[0, i] * n1 + bt[1, i] * n2 + bt[2, i] * m3)
-            if with_tangent:
-                for i in range(11):
-                    for j in range(11):
-                        kij = ea * bt[0, i] * bt[0, j] + gas * bt[1, i] * bt[1, j]
-                        kij += ei * bt[2, i] * bt[2, j]
-                        kij += n1 * (a[i] * pp[j] + pp[i] * a[j] - g1 * pp[i] * pp[j])
-                        kij -= n2 * (b[i] * pp[j] + pp[i] * b[j] + g2 * pp[i] * pp[j])
-                        ke[i, j] += w * kij
+            w = qw[g] * le[e]
+            energy += _element_point(
+                de,
+                le[e],
+                qxi[g],
+                w,
+                stiff[g, 0],
+                stiff[g, 1],
+                stiff[g, 2],
+                ksh,
+                fe,
+                ke,
+                with_tangent,
+                sc,
+            )
         for i in range(11):
             gi = base + loc[i]
             p[gi] += fe[i]
             if with_tangent:
-                for j in range(11):
+                for j in range(i, 11):
                     gj = base + loc[j]
                     ab[HALF_BW + gi - gj, gj] += ke[i, j]
-    return p, ab, energy
+                    if j != i:
+                        ab[HALF_BW + gj - gi, gi] += ke[i, j]
+    return energy
 
 
 @numba.njit(cache=True)
@@ -372,3 +423,69 @@ def assemble_line_stiffness(le, dn_gp):
                             gj = base + loc[4 * cj + j]
                             ab[HALF_BW + gi - gj, gj] += c * nz[i] * nz[j]
     return ab
+
+
+@numba.njit(cache=True)
+def band_solve_into(ab, r, work, piv, x):
+    """Solve K x = r for banded K (21, n) (storage above) by LU with partial pivoting (the
+    algorithm of LAPACK dgbtf2/dgbtrs: row interchanges within the band, fill-in of U up to
+    2 HALF_BW superdiagonals). work (n, 3 HALF_BW + 1) float (column j of the band in row j,
+    contiguous) and piv (n,) int are scratch; x (n,) receives the solution. Returns 0, or k + 1
+    if the pivot of column k is exactly zero (K singular). Hand-written: scipy's banded LAPACK
+    solver cannot be called from cached numba code, and this one runs inside the compiled
+    Newton loops of `mf_envs.physics.beam.static`."""
+    n = r.shape[0]
+    kl = HALF_BW
+    kv = 2 * HALF_BW  # position of the diagonal in a row of work
+    for j in range(n):
+        for k in range(kl):
+            work[j, k] = 0.0
+        for k in range(N_BAND):
+            work[j, kl + k] = ab[k, j]
+    ju = 0
+    for j in range(n):
+        km = min(kl, n - 1 - j)
+        col = work[j]
+        jp = 0
+        big = abs(col[kv])
+        for t in range(1, km + 1):
+            if abs(col[kv + t]) > big:
+                big = abs(col[kv + t])
+                jp = t
+        piv[j] = j + jp
+        if col[kv + jp] == 0.0:
+            return j + 1
+        ju = max(ju, min(j + HALF_BW + jp, n - 1))
+        if jp != 0:
+            for c in range(j, ju + 1):
+                tmp = work[c, kv + j - c]
+                work[c, kv + j - c] = work[c, kv + j + jp - c]
+                work[c, kv + j + jp - c] = tmp
+        inv = 1.0 / col[kv]
+        for t in range(1, km + 1):
+            col[kv + t] *= inv
+        for c in range(j + 1, ju + 1):
+            row = work[c]
+            o = kv + j - c
+            ujc = row[o]
+            if ujc != 0.0:
+                for t in range(1, km + 1):
+                    row[o + t] -= col[kv + t] * ujc
+    for i in range(n):
+        x[i] = r[i]
+    for j in range(n - 1):
+        km = min(kl, n - 1 - j)
+        jp = piv[j]
+        if jp != j:
+            tmp = x[j]
+            x[j] = x[jp]
+            x[jp] = tmp
+        xj = x[j]
+        for t in range(1, km + 1):
+            x[j + t] -= work[j, kv + t] * xj
+    for j in range(n - 1, -1, -1):
+        x[j] /= work[j, kv]
+        xj = x[j]
+        for i in range(max(0, j - kv), j):
+            x[i] -= work[j, kv + i - j] * xj
+    return 0

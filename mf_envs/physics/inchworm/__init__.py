@@ -53,6 +53,8 @@ from mf_envs.physics.beam import (
     support_dofs,
     time_step,
 )
+from mf_envs.physics.beam.static import scratch as static_scratch
+from mf_envs.physics.beam.static import solve_linear_path
 
 INCHWORM_EFFECTS = {
     "gravity": "self weight m_A g (Eq. 99)",
@@ -159,6 +161,7 @@ class Inchworm:
         self.time_scheme = TimeScheme(self.scheme, self.rho_inf, self.newmark_gamma)
         beam = self.params.beam("shear_deformation" in self.effects)
         self.model = BeamModel(replace(beam, element=self.element))
+        self._scratch = static_scratch(self.model.n_elements)
         p = self.params
         self.f_ext = np.zeros(self.model.n_dof)
         if "gravity" in self.effects or "terrain" in self.effects:  # no contact without weight
@@ -194,15 +197,7 @@ class Inchworm:
 
     def _settle(self) -> None:
         """Static equilibrium under the current loads (gravity sag) with the current anchor."""
-        fixed = self.fixed_mask()
-        d = solve_static_path(
-            self.model,
-            self.state.d,
-            lambda lam: (self.kappa, self.f_ext),
-            fixed,
-            self.settings,
-            extra=self._extra(),
-        )
+        d = self._path(self.state.d, self.kappa, self.kappa, self.fixed_mask(), PathStats())
         if self.terrain is not None:
             self.terrain.commit(d)
         self.state = NewmarkState(d, np.zeros_like(d), np.zeros_like(d), self.state.t)
@@ -256,15 +251,7 @@ class Inchworm:
             stats, d = PathStats(), self.state.d
             for i in range(n_inc):  # slip history committed after every increment
                 ka = k0 + dk * (i / n_inc)
-                d = solve_static_path(
-                    self.model,
-                    d,
-                    lambda lam, ka=ka: (ka + lam * dk / n_inc, self.f_ext),
-                    fixed,
-                    self.settings,
-                    stats=stats,
-                    extra=self._extra(),
-                )
+                d = self._path(d, ka, ka + dk / n_inc, fixed, stats)
                 if self.terrain is not None:
                     self.terrain.commit(d)
             self.state = NewmarkState(d, np.zeros_like(d), np.zeros_like(d), self.state.t + dt)
@@ -313,6 +300,27 @@ class Inchworm:
                 self.terrain.commit(st.d)
         self.state = st
         report.iterations = n_sub
+
+    def _path(self, d, ka, kb, fixed, stats: PathStats) -> np.ndarray:
+        """Quasi-static path kappa# ka -> kb from d: the compiled linear path
+        (`beam.static`), or with `terrain` the general one with the soil's loads."""
+        if self.terrain is None:
+            d, its, halvings = solve_linear_path(
+                self.model, d, ka, kb, self.f_ext, fixed, self.settings, self._scratch
+            )
+            stats.iterations += its
+            stats.halvings += halvings
+            return d
+        dk = kb - ka
+        return solve_static_path(
+            self.model,
+            d,
+            lambda lam: (ka + lam * dk, self.f_ext),
+            fixed,
+            self.settings,
+            stats=stats,
+            extra=self._extra(),
+        )
 
     def _extra(self):
         return None if self.terrain is None else self.terrain.loads

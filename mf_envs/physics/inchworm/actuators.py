@@ -182,6 +182,11 @@ class EnergyMeter:
         self.net += work
         self.positive += max(work, 0.0)
 
+    def add_totals(self, positive: float, net: float) -> None:
+        """Add a step's summed positive and net work [J] (the compiled step sums them)."""
+        self.net += float(net)
+        self.positive += float(positive)
+
     @property
     def input_energy(self) -> float:
         return self.positive / self.efficiency

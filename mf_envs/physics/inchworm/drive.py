@@ -22,15 +22,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mf_envs.physics.beam import NewmarkState
+from mf_envs.physics.beam import NewmarkState, static
 from mf_envs.physics.inchworm import Inchworm, InchwormParams, kappa_at_gauss
+from mf_envs.physics.inchworm import quasistatic as qs
 from mf_envs.physics.inchworm.actuators import (
     ActuatorParams,
     EnergyMeter,
     RateLimitedLag,
     increment_work,
 )
-from mf_envs.physics.inchworm.feet import FootReport, FrictionFeet, FrictionParams
+from mf_envs.physics.inchworm.feet import (
+    FootReport,
+    FrictionFeet,
+    FrictionParams,
+    foot_report,
+    raise_status,
+)
 
 DRIVE_EFFECTS = {
     "actuator_dynamics": "actuator lag + rate limit on kappa# (off = kappa# as commanded)",
@@ -120,16 +127,14 @@ class DrivenInchworm:
         min_substeps substeps (e.g. the Newmark steps of `inertia`).
         Raises NewtonDivergence / NoQuasiStaticEquilibrium when the physics fails."""
         command = np.asarray(command, float).reshape(self.kappa_ctrl.shape)
+        if self.feet is not None:
+            return self._frictional(command, anchor, dt, min_substeps)
         path = self._path(command, dt, min_substeps)
         gauss = [self._gauss(k) for k in path]
         n = len(path) - 1
         energy0, net0 = self.meter.input_energy, self.meter.net
         rep = DriveReport(kappa_sharp=path[-1].copy(), increments=n)
-        if self.feet is None:
-            rep.iterations = self._kinematic(gauss, anchor, dt)
-        else:
-            rep.feet = self._frictional(gauss, anchor, dt)
-            rep.iterations, rep.slip = rep.feet.iterations, rep.feet.slip.copy()
+        rep.iterations = self._kinematic(gauss, anchor, dt)
         if self.lag is not None:
             self.lag.advance(command, dt)
         self.kappa_ctrl = path[-1].copy()
@@ -145,20 +150,44 @@ class DrivenInchworm:
             self.meter.add(increment_work(sim.model, d_a, sim.state.d, gauss[j], gauss[j + 1]))
         return iterations
 
-    def _frictional(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> FootReport:
-        sim = self.sim
-        self.feet.settings = sim.settings  # one Newton budget for the whole robot
-        ds, rep = self.feet.step(sim.state.d, gauss, sim.f_ext, GRIP_COMMANDS[anchor], dt)
-        d_prev = sim.state.d
-        for j, d in enumerate(ds):
-            self.meter.add(increment_work(sim.model, d_prev, d, gauss[j], gauss[j + 1]))
-            d_prev = d
-        z = np.zeros_like(ds[-1])
-        sim.state = NewmarkState(ds[-1], z, z.copy(), sim.state.t + dt)
-        sim.kappa = gauss[-1]
+    def kernel_args(self, min_substeps: int = 1) -> tuple:
+        """(act, feet, S_ctrl, gauss_S, f_ext, beam constants) of `quasistatic.drive_step`."""
+        sim, lag = self.sim, self.lag
+        tau, rate = (lag.params.time_constant, lag.params.rate_limit) if lag else (1.0, 1.0)
+        limit = sim.increment_factor * sim.params.max_dkappa
+        act = (lag is not None, tau, rate, limit, sim.model.params.EI)
+        bc = static.constants(sim.model, sim.settings)
+        return act, self.feet.kernel_args(), self.S_ctrl, sim.model.gauss_S, sim.f_ext, bc
+
+    def _frictional(
+        self, command: np.ndarray, anchor: str | None, dt: float, min_substeps: int
+    ) -> DriveReport:
+        """One step on friction feet in the compiled `quasistatic.drive_step`."""
+        sim, feet = self.sim, self.feet
+        feet.settings = sim.settings  # one Newton budget for the whole robot
+        d = sim.state.d.copy()
+        lag_k = self.lag.kappa if self.lag is not None else self.kappa_ctrl.copy()
+        state = (d, lag_k, self.kappa_ctrl, feet.g, feet.slipping)
+        grip = np.array(GRIP_COMMANDS[anchor])
+        rep = np.zeros(qs.N_REPORT)
+        status = qs.drive_step(
+            state, command, grip, dt, min_substeps, *self.kernel_args(), feet.scratch, rep
+        )
+        raise_status(status)
+        if self.lag is not None:
+            self.lag.command = command.copy()
+        self.meter.add_totals(rep[qs.REP_POS], rep[qs.REP_NET])
+        out = DriveReport(kappa_sharp=self.kappa_ctrl.copy(), increments=int(rep[qs.REP_INC]))
+        out.feet = foot_report(rep)
+        out.iterations, out.slip = out.feet.iterations, out.feet.slip.copy()
+        out.energy = rep[qs.REP_POS] / self.meter.efficiency
+        out.net_work = float(rep[qs.REP_NET])
+        z = np.zeros_like(d)
+        sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
+        sim.kappa = self._gauss(self.kappa_ctrl)
         sim.anchor = anchor or "head"
         sim._recenter()  # noqa: SLF001 - same package: the local origin follows the tail
-        return rep
+        return out
 
 
 def make_driven(

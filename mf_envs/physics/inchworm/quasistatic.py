@@ -1,0 +1,377 @@
+"""Compiled quasi-static step of the inchworm on friction feet (the hot loop of Inchworm-v0).
+
+One control step of `drive.DrivenInchworm` with the `friction` effect, in one compiled call:
+the actuator lag (A1) gives kappa# at the control points at the substep ends, linear
+interpolation carries it to the Gauss points, the feet's engagement follows its exact
+first-order response, and every substep is one actuation increment of `feet` (stick; else the
+slip onset by regula falsi on the stuck path, then the slipping foot under its friction load,
+the normal load refreshed once; the tie rule). The algorithm and its physics are documented in
+`feet` and `actuators`; this module is their compiled form (no Python objects, failures as
+status codes), used by `FrictionFeet.step`, `DrivenInchworm.step` and the batched vector env
+(`mf_envs.envs.inchworm.vector`, one worm per row).
+
+Status codes: OK, NEWTON_FAILED (halving could not rescue Newton), NO_EQUILIBRIUM (both feet
+over their limits beyond the tie tolerance).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam import static
+
+OK, NEWTON_FAILED, NO_EQUILIBRIUM = 0, 1, 2
+FORWARD, BACKWARD = 1, -1
+TIE_TOLERANCE = 1e-2  # accepted relative excess of the other foot in a near tie
+# Scratch.vec rows of this module (after static's own)
+_R0 = static.N_ROWS_OWN
+ROW_TRIAL, ROW_DLO, ROW_DL, ROW_BEST = _R0, _R0 + 1, _R0 + 2, _R0 + 3
+ROW_STAR, ROW_D1 = _R0 + 4, _R0 + 6  # two rows each: one per candidate foot
+ROW_FA, ROW_FB, ROW_FEXT, ROW_ZERO, ROW_DA = _R0 + 8, _R0 + 10, _R0 + 12, _R0 + 13, _R0 + 14
+EXTRA_ROWS = 15
+# report slots: slip (2) [m], friction work [J], ground x (2) [N], normal (2) [N],
+# slipping (2) direction, iterations, onsets, positive work [J], net work [J], increments
+REP_SLIP, REP_FWORK, REP_GX, REP_N, REP_SLIPPING, REP_ITER, REP_ONSETS = 0, 2, 3, 5, 7, 9, 10
+REP_POS, REP_NET, REP_INC = 11, 12, 13
+N_REPORT = 14
+
+
+def scratch(n_elements: int) -> static.Scratch:
+    """Work arrays for one worm of n_elements."""
+    return static.scratch(n_elements, EXTRA_ROWS)
+
+
+@numba.njit(cache=True)
+def friction_coefficient(mu4, g, direction):
+    """Friction coefficient of a foot with engagement g slipping towards direction (+1/-1);
+    mu4 = (grip_forward, grip_backward, slide_forward, slide_backward)."""
+    if direction == FORWARD:
+        return mu4[2] + g * (mu4[0] - mu4[2])
+    return mu4[3] + g * (mu4[1] - mu4[3])
+
+
+@numba.njit(cache=True)
+def holding_limit(mu4, g, direction, normal):
+    """Holding limit F_hold = mu max(N, 0) [N]."""
+    return friction_coefficient(mu4, g, direction) * max(normal, 0.0)
+
+
+@numba.njit(cache=True)
+def _ground(d, kap, f_ext, xd, zd, bc, sc, rx, nz):
+    """Ground forces on the feet: rx, nz (2,) [N] = (P(d) - F_ext) at the x and z dofs."""
+    p = sc[0][static.ROW_P]
+    el.assemble_into(d, bc[0], kap, bc[1], bc[2], bc[3], False, p, sc[1])
+    for i in range(2):
+        rx[i] = p[xd[i]] - f_ext[xd[i]]
+        nz[i] = p[zd[i]] - f_ext[zd[i]]
+
+
+@numba.njit(cache=True, inline="always")
+def _excess(mu4, rx, nz, g, i):
+    """|R_x| - F_hold of foot i for the direction it is pulled in [N]."""
+    s = BACKWARD if rx[i] > 0.0 else FORWARD
+    return abs(rx[i]) - holding_limit(mu4, g[i], s, nz[i])
+
+
+@numba.njit(cache=True)
+def _onset(d, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, bc, sc):
+    """lambda* in [0, 1] where foot i, pulled towards s, reaches its holding limit on the stuck
+    path (regula falsi, the algorithm of `feet`). The configuration there goes to the
+    ROW_STAR + i row. Returns (lambda*, ok, iterations)."""
+    vec, kap = sc[0], sc[4][1]
+    zero, d_lo, dl, best_d = vec[ROW_ZERO], vec[ROW_DLO], vec[ROW_DL], vec[ROW_BEST]
+    rx, nz = np.empty(2), np.empty(2)
+    _ground(d, k0, f_ext, xd, zd, bc, sc, rx, nz)
+    lo, hi, e_hi = 0.0, 1.0, e1
+    e_lo = -s * rx[i] - holding_limit(mu4, g0[i], s, nz[i])
+    if slipping_i == s or e_lo >= 0.0:
+        vec[ROW_STAR + i][:] = d
+        return 0.0, True, 0
+    d_lo[:] = d
+    best_e, best_lam = abs(e_lo), 0.0
+    best_d[:] = d
+    iterations = 0
+    for _ in range(30):
+        lam = lo + (hi - lo) * e_lo / (e_lo - e_hi)
+        lam = min(max(lam, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
+        ok, it, _h = static.linear_path(d_lo, k0, k1, lo, lam, f_ext, zero, zero, fixed, bc, sc, dl)
+        iterations += it
+        if not ok:
+            return 0.0, False, iterations
+        kap[:, :] = k0 + lam * (k1 - k0)
+        _ground(dl, kap, f_ext, xd, zd, bc, sc, rx, nz)
+        e = -s * rx[i] - holding_limit(mu4, g0[i] + lam * (g1[i] - g0[i]), s, nz[i])
+        if abs(e) < best_e:
+            best_e, best_lam = abs(e), lam
+            best_d[:] = dl
+        if e <= 0.0:
+            lo, e_lo = lam, e
+            d_lo[:] = dl
+        else:
+            hi, e_hi = lam, e
+        if abs(e) < 1e-9 * max(abs(nz[i]), 1e-12) or hi - lo < 1e-12:
+            break
+    vec[ROW_STAR + i][:] = best_d
+    return best_lam, True, iterations
+
+
+@numba.njit(cache=True)
+def _slip(i, s, lam, k0, k1, f_ext, g0, g1, n_trial, xd, zd, mu4, bc, sc, rx1, n1):
+    """Foot i slips towards s from lambda to 1 from the ROW_STAR + i configuration, the other
+    stuck (the algorithm of `feet`): d1 into ROW_D1 + i, friction loads into ROW_FA + i and
+    ROW_FB + i, ground forces into rx1, n1. Returns (violation of the other foot's limit [N],
+    ok, iterations)."""
+    vec, kap = sc[0], sc[4][1]
+    d_star, d1 = vec[ROW_STAR + i], vec[ROW_D1 + i]
+    fa, fb, fext = vec[ROW_FA + i], vec[ROW_FB + i], vec[ROW_FEXT]
+    nd = d1.shape[0]
+    fixed = np.zeros(nd, np.bool_)
+    fixed[zd[0]] = True
+    fixed[zd[1]] = True
+    fixed[xd[1 - i]] = True
+    kap[:, :] = k0 + lam * (k1 - k0)
+    rx, n0 = np.empty(2), np.empty(2)
+    _ground(d_star, kap, f_ext, xd, zd, bc, sc, rx, n0)
+    fa[:] = 0.0
+    fb[:] = 0.0
+    fa[xd[i]] = -s * holding_limit(mu4, g0[i] + lam * (g1[i] - g0[i]), s, n0[i])
+    fb[xd[i]] = -s * holding_limit(mu4, g1[i], s, n_trial)
+    ok, iterations, _h = static.linear_path(
+        d_star, k0, k1, lam, 1.0, f_ext, fa, fb, fixed, bc, sc, d1
+    )
+    if not ok:
+        return 0.0, False, iterations
+    fext[:] = f_ext + fb
+    _ground(d1, k1, fext, xd, zd, bc, sc, rx1, n1)
+    if abs(n1[i] - n_trial) > 1e-9 * max(abs(n_trial), 1e-12):  # refresh N at the end once
+        fb[xd[i]] = -s * holding_limit(mu4, g1[i], s, n1[i])
+        ok, it, _h = static.linear_path(d_star, k0, k1, lam, 1.0, f_ext, fa, fb, fixed, bc, sc, d1)
+        iterations += it
+        if not ok:
+            return 0.0, False, iterations
+        fext[:] = f_ext + fb
+        _ground(d1, k1, fext, xd, zd, bc, sc, rx1, n1)
+    rx1[i] = fb[xd[i]]  # the ground force on the slipping foot is the friction
+    j = 1 - i
+    s_j = BACKWARD if rx1[j] > 0.0 else FORWARD
+    return abs(rx1[j]) - holding_limit(mu4, g1[j], s_j, n1[j]), True, iterations
+
+
+@numba.njit(cache=True)
+def increment(d, k0, k1, f_ext, g0, g1, slipping, xd, zd, mu4, bc, sc, rep, out):
+    """One actuation increment kappa# k0 -> k1 (n_el, 4) [1/m], engagements g0 -> g1 (2,), d
+    converged at k0 (the algorithm of `feet`): the configuration at k1 into out, slipping (2,)
+    int updated, rep (>= N_REPORT,) accumulated (the lambda* of each slip onset after the
+    N_REPORT slots while rep has room). Returns a status code."""
+    vec = sc[0]
+    nd = d.shape[0]
+    zero, trial = vec[ROW_ZERO], vec[ROW_TRIAL]
+    zero[:] = 0.0
+    both = np.zeros(nd, np.bool_)
+    for i in range(2):
+        both[zd[i]] = True
+        both[xd[i]] = True
+    ok, it, _h = static.linear_path(d, k0, k1, 0.0, 1.0, f_ext, zero, zero, both, bc, sc, trial)
+    rep[REP_ITER] += it
+    if not ok:
+        return NEWTON_FAILED
+    rx, n = np.empty(2), np.empty(2)
+    _ground(trial, k1, f_ext, xd, zd, bc, sc, rx, n)
+    e = np.array([_excess(mu4, rx, n, g1, 0), _excess(mu4, rx, n, g1, 1)])
+    if e[0] <= 0.0 and e[1] <= 0.0:
+        slipping[:] = 0
+        out[:] = trial
+        _finish(rep, rx, n, slipping)
+        return OK
+    pulls = np.array([BACKWARD if rx[0] > 0.0 else FORWARD, BACKWARD if rx[1] > 0.0 else FORWARD])
+    lams = np.full(2, np.inf)
+    for i in range(2):
+        if e[i] > 0.0:
+            lam, ok, it = _onset(
+                d, k0, k1, f_ext, g0, g1, i, pulls[i], e[i], slipping[i], both, xd, zd, mu4, bc, sc
+            )
+            rep[REP_ITER] += it
+            if not ok:
+                return NEWTON_FAILED
+            lams[i] = lam
+    order = (0, 1) if lams[0] <= lams[1] else (1, 0)  # a stable sort of the candidates
+    best_rel, best_i = np.inf, -1
+    rx1, n1 = np.empty(2), np.empty(2)
+    best_rx, best_n = np.empty(2), np.empty(2)
+    for i in order:
+        if not np.isfinite(lams[i]):
+            continue
+        viol, ok, it = _slip(
+            i, pulls[i], lams[i], k0, k1, f_ext, g0, g1, n[i], xd, zd, mu4, bc, sc, rx1, n1
+        )
+        rep[REP_ITER] += it
+        if not ok:
+            return NEWTON_FAILED
+        limit = abs(rx1[1 - i]) - viol
+        rel = viol / max(limit, 1e-300)
+        if best_i < 0 or rel < best_rel:
+            best_rel, best_i = rel, i
+            best_rx[:] = rx1
+            best_n[:] = n1
+        if viol <= 1e-9 * max(abs(n1[1 - i]), 1e-12):
+            break
+    i = best_i
+    if best_rel > TIE_TOLERANCE:
+        return NO_EQUILIBRIUM
+    if slipping[i] != pulls[i]:  # lambda* kept after the report slots while there is room
+        k = N_REPORT + int(rep[REP_ONSETS])
+        if k < rep.shape[0]:
+            rep[k] = lams[i]
+        rep[REP_ONSETS] += 1
+    d1, d_star = vec[ROW_D1 + i], vec[ROW_STAR + i]
+    dx = d1[xd[i]] - d_star[xd[i]]
+    rep[REP_SLIP + i] += dx
+    rep[REP_FWORK] += 0.5 * (vec[ROW_FA + i][xd[i]] + vec[ROW_FB + i][xd[i]]) * dx
+    slipping[:] = 0
+    slipping[i] = pulls[i]
+    out[:] = d1
+    _finish(rep, best_rx, best_n, slipping)
+    return OK
+
+
+@numba.njit(cache=True, inline="always")
+def _finish(rep, rx, n, slipping):
+    for k in range(2):
+        rep[REP_GX + k] = rx[k]
+        rep[REP_N + k] = n[k]
+        rep[REP_SLIPPING + k] = slipping[k]
+
+
+@numba.njit(cache=True)
+def feet_step(d, kg, f_ext, gs, slipping, xd, zd, mu4, bc, sc, rep, ds):
+    """Increments kg[0] -> kg[1] -> ... ((n + 1, n_el, 4) [1/m]) with the engagements gs
+    ((n + 1, 2)) from d: the configurations after each increment into ds (n, n_dof); rep
+    accumulated. Returns a status code (the increments done so far are in ds)."""
+    n = kg.shape[0] - 1
+    for j in range(n):
+        start = d if j == 0 else ds[j - 1]
+        status = increment(
+            start,
+            kg[j],
+            kg[j + 1],
+            f_ext,
+            gs[j],
+            gs[j + 1],
+            slipping,
+            xd,
+            zd,
+            mu4,
+            bc,
+            sc,
+            rep,
+            ds[j],
+        )
+        if status != OK:
+            return status
+    return OK
+
+
+@numba.njit(cache=True)
+def grip_response(g, command, t, engage, release, out):
+    """Exact engagement (2,) at time t [s] from g under the held command (0/1)."""
+    for k in range(2):
+        tau = engage if command[k] > g[k] else release
+        out[k] = command[k] + (g[k] - command[k]) * np.exp(-t / tau)
+
+
+@numba.njit(cache=True)
+def lag_at(kappa, u, t, tau, rate, out):
+    """Exact solution of the rate-limited lag (A1) at t [s] from kappa under the command u
+    (`actuators.rate_limited_lag`), into out (n,)."""
+    for k in range(kappa.shape[0]):
+        gap = u[k] - kappa[k]
+        t_lin = max(abs(gap) - rate * tau, 0.0) / rate
+        moved = np.sign(gap) * rate * min(t, t_lin)
+        out[k] = u[k] - (gap - moved) * np.exp(-max(t - t_lin, 0.0) / tau)
+
+
+@numba.njit(cache=True)
+def increment_work(d0, d1, k0, k1, ei, le, sc):
+    """Actuation work [J] of the increment kappa# k0 -> k1, configuration d0 -> d1 (trapezoid of
+    (A2), `actuators.increment_work`)."""
+    kap0 = el.evaluate_fields(d0, le, el.GAUSS_XI)[2]
+    kap1 = el.evaluate_fields(d1, le, el.GAUSS_XI)[2]
+    w = 0.0
+    for e in range(le.shape[0]):
+        for q in range(el.N_GAUSS):
+            m_mid = 0.5 * (ei * (kap0[e, q] - k0[e, q]) + ei * (kap1[e, q] - k1[e, q]))
+            w += le[e] * el.GAUSS_W[q] * m_mid * (k1[e, q] - k0[e, q])
+    return -w
+
+
+@numba.njit(cache=True)
+def n_substeps(lag_k, kappa_ctrl, command, dt, min_sub, has_lag, tau, rate, limit):
+    """Substeps of a control step: no control point's kappa# may move more than `limit`
+    [1/m] in one (the lag is monotone within a step, so its initial rate is its largest)."""
+    big = 0.0
+    for k in range(command.shape[0]):
+        if has_lag:
+            big = max(big, abs(min(max((command[k] - lag_k[k]) / tau, -rate), rate)) * dt)
+        else:
+            big = max(big, abs(command[k] - kappa_ctrl[k]))
+    return max(1, min_sub, int(np.ceil(big / limit - 1e-12)))
+
+
+@numba.njit(cache=True)
+def drive_step(
+    state, command, grip_cmd, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc, sc, rep
+):
+    """One control step of the driven inchworm on friction feet (`drive.DrivenInchworm.step`).
+
+    state: (d (n_dof,), lag kappa# (n,), realised kappa_ctrl (n,), engagement g (2,),
+    slipping (2,) int), updated in place on success; command (n,) [1/m]; grip_cmd (2,) 0/1;
+    act = (has_lag, tau [s], rate [1/(m s)], increment limit [1/m], EI [N m^2]);
+    feet = (x dofs (2,), z dofs (2,), mu (4,), engage [s], release [s]); rep (N_REPORT,) zeroed
+    here: slip, friction work, ground forces, iterations, onsets, positive and net actuation
+    work [J], increments. Returns a status code (state untouched unless OK)."""
+    d, lag_k, kappa_ctrl, g, slipping = state
+    has_lag, tau, rate, limit, ei = act
+    xd, zd, mu4, engage, release = feet
+    le = bc[0]
+    rep[:] = 0.0
+    n = n_substeps(lag_k, kappa_ctrl, command, dt, min_sub, has_lag, tau, rate, limit)
+    rep[REP_INC] = n
+    vec = sc[0]
+    d_prev, d_cur = vec[ROW_DA], np.empty_like(d)
+    d_prev[:] = d
+    nc = command.shape[0]
+    ka, kb = np.empty(nc), np.empty(nc)
+    ga, gb = g.copy(), np.empty(2)
+    gauss_flat = gauss_s.ravel()
+    kga = np.interp(gauss_flat, s_ctrl, lag_k if has_lag else kappa_ctrl).reshape(gauss_s.shape)
+    ka[:] = lag_k if has_lag else kappa_ctrl
+    slip_state = slipping.copy()
+    for j in range(1, n + 1):
+        t = dt * j / n
+        if has_lag:
+            lag_at(lag_k, command, t, tau, rate, kb)
+        else:
+            kb[:] = kappa_ctrl + (j / n) * (command - kappa_ctrl)
+        kgb = np.interp(gauss_flat, s_ctrl, kb).reshape(gauss_s.shape)
+        grip_response(g, grip_cmd, t, engage, release, gb)
+        status = increment(
+            d_prev, kga, kgb, f_ext, ga, gb, slip_state, xd, zd, mu4, bc, sc, rep, d_cur
+        )
+        if status != OK:
+            return status
+        w = increment_work(d_prev, d_cur, kga, kgb, ei, le, sc)
+        rep[REP_POS] += max(w, 0.0)
+        rep[REP_NET] += w
+        d_prev[:] = d_cur
+        kga = kgb
+        ka[:] = kb
+        ga[:] = gb
+    d[:] = d_cur
+    if has_lag:
+        lag_at(lag_k, command, dt, tau, rate, lag_k)
+    kappa_ctrl[:] = ka
+    g[:] = ga
+    slipping[:] = slip_state
+    return OK
