@@ -25,6 +25,7 @@ SHORT: dict[str, dict[str, Any]] = {
     "GOWEC-v0": {"n_periods": 1, "steps_per_period": 12},
     "GyroStabilizer-v0": {"episode_seconds": 0.6},
     "GOWEC-v1": {"episode_seconds": 0.2},
+    "Inchworm-v0": {"max_episode_steps": 5},
 }
 # scenes with the most effects on (irregular seas draw per-env random components at reset)
 FULL: dict[str, dict[str, Any]] = {
@@ -49,6 +50,7 @@ FULL: dict[str, dict[str, Any]] = {
         "gimbal_damping": 50.0,
     },
     "GOWEC-v1": {"significant_wave_height": 2.0, "n_components": 8},
+    "Inchworm-v0": {"n_control_points": 5, "n_elements": 8, "reset_noise_scale": 0.5},
 }
 # kwargs that blow the state up within a step (numerical-failure path)
 BLOWUP: dict[str, dict[str, Any]] = {
@@ -59,6 +61,7 @@ BLOWUP: dict[str, dict[str, Any]] = {
         "gimbal_drive": "kinematic",  # the torque-limited default drive cannot blow up
     },
     "GOWEC-v1": {"max_generator_torque": 1e300, "max_generator_power": 1e300},
+    "Inchworm-v0": {"friction_coefficients": (0.0, 0.0, 0.0, 0.0)},  # both feet slip
 }
 SEEDS = [11, 3, 7]
 ENV_STAB = "GyroStabilizer-v0"

@@ -22,6 +22,7 @@ VECTOR_SPECS: dict[str, str] = {
     "GOWEC-v0": "mf_envs.envs.gowec.vector:GOWECVectorEnv",
     "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.vector:GyroStabilizerVectorEnv",
     "GOWEC-v1": "mf_envs.envs.gowec_v1.vector:GOWECV1VectorEnv",
+    "Inchworm-v0": "mf_envs.envs.inchworm.vector:InchwormVectorEnv",
 }
 
 

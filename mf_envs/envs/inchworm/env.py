@@ -220,6 +220,7 @@ class InchwormEnv(MFEnv):
             ) from None
         self.sim = self.driven.sim
         self.S_ctrl = self.driven.S_ctrl
+        self._obs_geometry = spec.observe_geometry(self.sim, self.S_ctrl)
         self.switching = "anchor_switching" in self.effects
         n_act = self.n_ctrl + (1 if self.switching else 0)
         self.action_space = spaces.Box(-1.0, 1.0, (n_act,), np.float32)
@@ -299,9 +300,8 @@ class InchwormEnv(MFEnv):
 
     # ------------------------------------------------------------------ helpers
     def _observe(self) -> np.ndarray:
-        return spec.observe(
-            self.sim, self.S_ctrl, self._kappa_ctrl, self.max_curvature, self._weight
-        )
+        args = (self._obs_geometry, self._kappa_ctrl, self.max_curvature, self._weight)
+        return spec.observe(self.sim, *args)
 
     def _get_info(self, terms: dict[str, float], report: Any) -> dict[str, Any]:
         sim = self.sim

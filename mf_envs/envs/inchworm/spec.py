@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from mf_envs.envs._spec import Field, ObsLayout
+from mf_envs.envs.inchworm.observe import observe_row, sample_points
 
 CURVATURE_OBS_LIMIT = 20.0  # |kappa L| bound of the observation (also caps max_curvature * L)
 REACTION_OBS_LIMIT = 20.0  # |ground reaction| / body weight bound
@@ -49,22 +50,28 @@ def observation_layout(n: int) -> ObsLayout:
     )
 
 
+def observe_geometry(sim: Any, s_ctrl: np.ndarray) -> tuple:
+    """The constant geometry `observe.observe_row` needs for the inchworm `sim`."""
+    xis, s_samples = sample_points(sim.model)
+    return (sim.model.le, *sim.model.quad, xis, s_samples, np.asarray(s_ctrl, float))
+
+
 def observe(
-    sim: Any, s_ctrl: np.ndarray, kappa_ctrl: np.ndarray, max_curvature: float, weight: float
+    sim: Any, geometry: tuple, kappa_ctrl: np.ndarray, max_curvature: float, weight: float
 ) -> np.ndarray:
-    """The observation (layout order, float32) of the inchworm simulation `sim`."""
-    L = sim.params.length
-    psi_t, psi_h = sim.end_angles()
-    r_t, r_h = sim.support_reactions()
-    grip = 1.0 if sim.anchor == "head" else -1.0
-    return np.concatenate(
-        [
-            sim.curvature_at(s_ctrl) * L,
-            kappa_ctrl / max_curvature,
-            [psi_t, psi_h, (sim.x_head - sim.x_tail) / L, grip],
-            [r_t / weight, r_h / weight],
-        ]
-    ).astype(np.float32)
+    """The observation (layout order, float32) of the inchworm simulation `sim`
+    (`observe.observe_row`; `geometry` from `observe_geometry`)."""
+    n = len(kappa_ctrl)
+    out = np.empty(2 * n + 6, np.float32)
+    own = sim.terrain is None
+    reactions = np.zeros(2) if own else np.array(sim.support_reactions())
+    nd = sim.model.n_dof
+    observe_row(
+        sim.state.d, sim.x_origin, sim.kappa, np.asarray(kappa_ctrl, float),
+        sim.anchor == "head", reactions, own, geometry, sim.f_ext,
+        (sim.params.length, max_curvature, weight), np.empty(nd), np.empty((21, nd)), out,
+    )  # fmt: skip
+    return out
 
 
 def tail_position(sim: Any) -> tuple[float, float]:

@@ -489,3 +489,49 @@ def band_solve_into(ab, r, work, piv, x):
         for i in range(max(0, j - kv), j):
             x[i] -= work[j, kv + i - j] * xj
     return 0
+
+
+@numba.njit(cache=True)
+def band_spd_solve_into(ab, r, work, x):
+    """Solve K x = r for a symmetric banded K (21, n) by LDL^T without pivoting (banded
+    Cholesky without square roots): the stiffness of a stable configuration is symmetric
+    positive definite, where this is stable and ~4x cheaper than `band_solve_into` (no fill).
+    work (n, 3 HALF_BW + 1) is scratch (L below the diagonal of row j: work[j, HALF_BW - t]
+    = L[j, j - t], D in work[j, HALF_BW]); x (n,) receives the solution. Returns 0, or
+    k + 1 if the pivot of column k is not positive (K not positive definite: use the LU)."""
+    n = r.shape[0]
+    hb = HALF_BW
+    for j in range(n):
+        for t in range(hb + 1):  # row j, columns j - hb .. j of the lower triangle
+            work[j, t] = ab[hb + hb - t, j - hb + t] if j - hb + t >= 0 else 0.0
+    for j in range(n):
+        lo = max(0, j - hb)
+        # L[j, k] D[k] for k < j, then D[j]
+        for k in range(lo, j):
+            s = work[j, hb - (j - k)]
+            for m in range(max(lo, k - hb), k):  # row j still holds L[j, m] D[m] here
+                s -= work[j, hb - (j - m)] * work[k, hb - (k - m)]
+            work[j, hb - (j - k)] = s
+        dj = work[j, hb]
+        for k in range(lo, j):
+            ljk_dk = work[j, hb - (j - k)]
+            ljk = ljk_dk / work[k, hb]
+            dj -= ljk * ljk_dk
+            work[j, hb - (j - k)] = ljk
+        if not dj > 0.0:
+            return j + 1
+        work[j, hb] = dj
+    for i in range(n):
+        x[i] = r[i]
+    for j in range(n):
+        s = x[j]
+        for k in range(max(0, j - hb), j):
+            s -= work[j, hb - (j - k)] * x[k]
+        x[j] = s
+    for j in range(n):
+        x[j] /= work[j, hb]
+    for j in range(n - 1, -1, -1):
+        xj = x[j]
+        for k in range(max(0, j - hb), j):
+            x[k] -= work[j, hb - (j - k)] * xj
+    return 0

@@ -1,0 +1,90 @@
+"""N inchworms on friction feet stepped in one compiled call (the native vector env's kernel).
+
+Every active row runs exactly what the single env runs for one control step (the action
+scaling of `InchwormEnv.step`, `quasistatic.drive_step`, the re-centring of the local origin
+of `Inchworm._recenter`, the observation of `envs.inchworm.observe.observe_row`), so a row is
+bit-identical to a single env. Rows are independent; with more than one numba thread they are
+spread over the cores (`prange`), which does not change any row's arithmetic.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+from numba import prange
+
+from mf_envs.envs.inchworm.observe import observe_row
+from mf_envs.physics.beam import element as el
+from mf_envs.physics.inchworm import quasistatic as qs
+
+
+@numba.njit(cache=True, parallel=True)
+def step_rows(active, actions, state, work, cfg, out):
+    """Advance the active rows one control step.
+
+    actions (N, n [+ 1]) in [-1, 1]; state = (d (N, n_dof), x_origin (N,), lag kappa# (N, n),
+    realised kappa_ctrl (N, n), engagement (N, 2), slipping (N, 2) int, commanded kappa#
+    (N, n), head grips (N,) bool); work = (vec, ab, work, piv, kap) scratch with a leading N
+    axis; cfg = (switching, max_curvature, control_dt, min_substeps, act, feet, S_ctrl,
+    gauss_S, f_ext, beam constants, observation geometry, (length, max_curvature, weight),
+    centerline xis); out = (status (N,) int, report (N, qs.N_REPORT), tail before (N, 2) =
+    (x_origin, local x), obs (N, 2 n + 6) float32, elastic energy (N,), centerline (N, P, 2),
+    kappa# at the Gauss points (N, n_el, 4))."""
+    d_all, xo, lag, kc, g, slip, cmd_all, head = state
+    vec, ab, wk, piv, kap = work
+    switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc, geo, scales, xis = cfg
+    status, rep, before, obs, energy, line, kg = out
+    n = cmd_all.shape[1]
+    nd = d_all.shape[1]
+    length = scales[0]
+    for i in prange(d_all.shape[0]):
+        if not active[i]:
+            continue
+        cmd = np.empty(n)
+        for k in range(n):
+            cmd[k] = -max_curv * 0.5 * (actions[i, k] + 1.0)
+        grip = np.ones(2)
+        grips_head = True
+        if switching:
+            grips_head = actions[i, n] > 0.0
+            grip[0] = 0.0 if grips_head else 1.0
+            grip[1] = 1.0 if grips_head else 0.0
+        d = d_all[i]
+        before[i, 0] = xo[i]
+        before[i, 1] = d[0]
+        sc = (vec[i], ab[i], wk[i], piv[i], kap[i])
+        st = qs.drive_step(
+            (d, lag[i], kc[i], g[i], slip[i]), cmd, grip, dt, min_sub, act, feet, s_ctrl,
+            gauss_s, f_ext, bc, sc, rep[i],
+        )  # fmt: skip
+        status[i] = st
+        if st == qs.OK:
+            cmd_all[i] = cmd
+            head[i] = grips_head
+            shift = d[0]
+            if abs(shift) > length:
+                for j in range(0, nd, 6):
+                    d[j] -= shift
+                xo[i] += shift
+        kg[i] = np.interp(gauss_s.ravel(), s_ctrl, kc[i]).reshape(gauss_s.shape)
+        le = bc[0]
+        energy[i] = el.assemble_into(d, le, kg[i], bc[1], bc[2], bc[3], False, vec[i][0], ab[i])
+        observe_row(
+            d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales,
+            vec[i][0], ab[i], obs[i],
+        )  # fmt: skip
+        centerline_into(d, xo[i], le, xis, line[i])
+
+
+@numba.njit(cache=True)
+def centerline_into(d, x_origin, le, xis, out):
+    """The curve of centroids (`BeamModel.centerline` plus the origin) into out (P, 2) [m]."""
+    pos = el.evaluate_fields(d, le, xis)[0]
+    ne, nx = pos.shape[0], pos.shape[1]
+    for e in range(ne):
+        for q in range(nx):
+            out[e * nx + q, 0] = pos[e, q, 0] + x_origin
+            out[e * nx + q, 1] = pos[e, q, 1]
+    last = el.evaluate_fields(d[d.shape[0] - 11 :], le[ne - 1 :], np.ones(1))[0]
+    out[ne * nx, 0] = last[0, 0, 0] + x_origin
+    out[ne * nx, 1] = last[0, 0, 1]
