@@ -494,44 +494,58 @@ def band_solve_into(ab, r, work, piv, x):
 @numba.njit(cache=True)
 def band_spd_solve_into(ab, r, work, x):
     """Solve K x = r for a symmetric banded K (21, n) by LDL^T without pivoting (banded
-    Cholesky without square roots): the stiffness of a stable configuration is symmetric
-    positive definite, where this is stable and ~4x cheaper than `band_solve_into` (no fill).
-    work (n, 3 HALF_BW + 1) is scratch (L below the diagonal of row j: work[j, HALF_BW - t]
-    = L[j, j - t], D in work[j, HALF_BW]); x (n,) receives the solution. Returns 0, or
-    k + 1 if the pivot of column k is not positive (K not positive definite: use the LU)."""
+    Cholesky without square roots, right-looking: the updates are contiguous axpys). The
+    stiffness of a stable configuration is symmetric positive definite, where this is stable,
+    needs no fill and half the work of `band_solve_into`. work (n, >= HALF_BW + 1) is scratch
+    (column j of L below the diagonal in work[j, 1:], D in work[j, 0]); x (n,) receives the
+    solution. Returns 0, or k + 1 if the pivot of column k is not positive (K is not positive
+    definite: use the LU)."""
     n = r.shape[0]
     hb = HALF_BW
     for j in range(n):
-        for t in range(hb + 1):  # row j, columns j - hb .. j of the lower triangle
-            work[j, t] = ab[hb + hb - t, j - hb + t] if j - hb + t >= 0 else 0.0
+        for t in range(hb + 1):
+            work[j, t] = ab[hb + t, j] if j + t < n else 0.0
+    v = np.empty(hb + 1)
     for j in range(n):
-        lo = max(0, j - hb)
-        # L[j, k] D[k] for k < j, then D[j]
-        for k in range(lo, j):
-            s = work[j, hb - (j - k)]
-            for m in range(max(lo, k - hb), k):  # row j still holds L[j, m] D[m] here
-                s -= work[j, hb - (j - m)] * work[k, hb - (k - m)]
-            work[j, hb - (j - k)] = s
-        dj = work[j, hb]
-        for k in range(lo, j):
-            ljk_dk = work[j, hb - (j - k)]
-            ljk = ljk_dk / work[k, hb]
-            dj -= ljk * ljk_dk
-            work[j, hb - (j - k)] = ljk
+        dj = work[j, 0]
         if not dj > 0.0:
             return j + 1
-        work[j, hb] = dj
+        m = min(hb, n - 1 - j)
+        inv = 1.0 / dj
+        for t in range(1, m + 1):
+            v[t] = work[j, t]
+            work[j, t] = v[t] * inv
+        for t in range(1, m + 1):
+            row = work[j + t]
+            vt = v[t]
+            for u in range(m - t + 1):
+                row[u] -= work[j, t + u] * vt
     for i in range(n):
         x[i] = r[i]
     for j in range(n):
-        s = x[j]
-        for k in range(max(0, j - hb), j):
-            s -= work[j, hb - (j - k)] * x[k]
-        x[j] = s
-    for j in range(n):
-        x[j] /= work[j, hb]
-    for j in range(n - 1, -1, -1):
         xj = x[j]
-        for k in range(max(0, j - hb), j):
-            x[k] -= work[j, hb - (j - k)] * xj
+        for t in range(1, min(hb, n - 1 - j) + 1):
+            x[j + t] -= work[j, t] * xj
+    for j in range(n):
+        x[j] /= work[j, 0]
+    for j in range(n - 1, -1, -1):
+        s = x[j]
+        for t in range(1, min(hb, n - 1 - j) + 1):
+            s -= work[j, t] * x[j + t]
+        x[j] = s
     return 0
+
+
+@numba.njit(cache=True)
+def centerline_into(d, x_origin, le, xis, out):
+    """The curve of centroids at the local xis of every element and the last node, x shifted
+    by x_origin [m], into out (n_el len(xis) + 1, 2) [m] (`BeamModel.centerline`)."""
+    pos = evaluate_fields(d, le, xis)[0]
+    ne, nx = pos.shape[0], pos.shape[1]
+    for e in range(ne):
+        for q in range(nx):
+            out[e * nx + q, 0] = pos[e, q, 0] + x_origin
+            out[e * nx + q, 1] = pos[e, q, 1]
+    last = evaluate_fields(d[d.shape[0] - 11 :], le[ne - 1 :], np.ones(1))[0]
+    out[ne * nx, 0] = last[0, 0, 0] + x_origin
+    out[ne * nx, 1] = last[0, 0, 1]

@@ -106,8 +106,10 @@ def newton(d, kap, f, fixed, bc, sc):
             res_first = res
         if not np.isfinite(res) or (it >= 3 and res > 1e3 * max(res_first, tol_r)):
             return False, it
-        if el.band_solve_into(ab, r, work, piv, delta) != 0:
-            return False, it
+        # LDL^T for the (usual) positive definite tangent, else the pivoting LU
+        if el.band_spd_solve_into(ab, r, work, delta) != 0:
+            if el.band_solve_into(ab, r, work, piv, delta) != 0:
+                return False, it
         step = 0.0
         for i in range(nd):
             d[i] += delta[i]
@@ -120,10 +122,12 @@ def newton(d, kap, f, fixed, bc, sc):
 
 
 @numba.njit(cache=True)
-def linear_path(d0, k0, k1, lam0, lam1, f_base, fa, fb, fixed, bc, sc, out):
+def linear_path(d0, k0, k1, lam0, lam1, f_base, fa, fb, fixed, bc, sc, out, guess1=None):
     """Quasi-static path mu = 0 -> 1 of the linear load (module docstring) from d0 (converged
     at mu = 0) into out (n_dof,) (may be d0); step halving on Newton failure, secant
-    predictor. Returns (ok, iterations, halvings): `solver.solve_static_path`."""
+    predictor. guess1: an optional start for the first (full) step, e.g. an interpolation
+    between known solutions (Newton retries from d0 if it fails from there). Returns (ok,
+    iterations, halvings): `solver.solve_static_path`."""
     max_iter, max_halvings = bc[10], bc[11]
     vec, kap = sc[0], sc[4][0]
     d, dp, guess, f = vec[ROW_D], vec[ROW_DPREV], vec[ROW_GUESS], vec[ROW_F]
@@ -134,8 +138,11 @@ def linear_path(d0, k0, k1, lam0, lam1, f_base, fa, fb, fixed, bc, sc, out):
     iterations, halvings = 0, 0
     while lam < 1.0 - 1e-14:
         h = min(h, 1.0 - lam)
+        first = guess1 is not None and not has_prev and h == 1.0
         for i in range(nd):
             guess[i] = d[i] + (d[i] - dp[i]) * (h / h_prev) if has_prev else d[i]
+            if first:
+                guess[i] = guess1[i]
             if fixed[i]:
                 guess[i] = d[i]
         mu = lam + h
@@ -144,7 +151,7 @@ def linear_path(d0, k0, k1, lam0, lam1, f_base, fa, fb, fixed, bc, sc, out):
         for i in range(nd):
             f[i] = f_base[i] + fa[i] + mu * (fb[i] - fa[i])
         ok, it = newton(guess, kap, f, fixed, bc, sc)
-        if not ok and has_prev:  # retry without the predictor
+        if not ok and (has_prev or first):  # retry without the predictor
             guess[:] = d
             ok, it = newton(guess, kap, f, fixed, bc, sc)
         iterations += it

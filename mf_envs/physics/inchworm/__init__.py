@@ -53,6 +53,7 @@ from mf_envs.physics.beam import (
     support_dofs,
     time_step,
 )
+from mf_envs.physics.beam.element import centerline_into
 from mf_envs.physics.beam.static import scratch as static_scratch
 from mf_envs.physics.beam.static import solve_linear_path
 
@@ -338,8 +339,9 @@ class Inchworm:
 
     def centerline(self, per_element: int = 8) -> np.ndarray:
         """(N, 2) curve of centroids (x, z) [m], inertial frame."""
-        line = self.model.centerline(self.state.d, per_element)
-        line[:, 0] += self.x_origin
+        xis = np.linspace(0.0, 1.0, per_element + 1)[:-1]
+        line = np.empty((per_element * self.model.n_elements + 1, 2))
+        centerline_into(self.state.d, self.x_origin, self.model.le, xis, line)
         return line
 
     def end_angles(self) -> tuple[float, float]:

@@ -30,7 +30,8 @@ _R0 = static.N_ROWS_OWN
 ROW_TRIAL, ROW_DLO, ROW_DL, ROW_BEST = _R0, _R0 + 1, _R0 + 2, _R0 + 3
 ROW_STAR, ROW_D1 = _R0 + 4, _R0 + 6  # two rows each: one per candidate foot
 ROW_FA, ROW_FB, ROW_FEXT, ROW_ZERO, ROW_DA = _R0 + 8, _R0 + 10, _R0 + 12, _R0 + 13, _R0 + 14
-EXTRA_ROWS = 15
+ROW_DHI, ROW_GUESS1 = _R0 + 15, _R0 + 16
+EXTRA_ROWS = 17
 # report slots: slip (2) [m], friction work [J], ground x (2) [N], normal (2) [N],
 # slipping (2) direction, iterations, onsets, positive work [J], net work [J], increments
 REP_SLIP, REP_FWORK, REP_GX, REP_N, REP_SLIPPING, REP_ITER, REP_ONSETS = 0, 2, 3, 5, 7, 9, 10
@@ -76,12 +77,14 @@ def _excess(mu4, rx, nz, g, i):
 
 
 @numba.njit(cache=True)
-def _onset(d, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, bc, sc):
+def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, bc, sc):
     """lambda* in [0, 1] where foot i, pulled towards s, reaches its holding limit on the stuck
-    path (regula falsi, the algorithm of `feet`). The configuration there goes to the
-    ROW_STAR + i row. Returns (lambda*, ok, iterations)."""
+    path from d (lambda = 0) to d_end (lambda = 1) (regula falsi, the algorithm of `feet`;
+    Newton starts on the chord of the bracket's solutions). The configuration there goes to
+    the ROW_STAR + i row. Returns (lambda*, ok, iterations)."""
     vec, kap = sc[0], sc[4][1]
     zero, d_lo, dl, best_d = vec[ROW_ZERO], vec[ROW_DLO], vec[ROW_DL], vec[ROW_BEST]
+    d_hi, guess1 = vec[ROW_DHI], vec[ROW_GUESS1]
     rx, nz = np.empty(2), np.empty(2)
     _ground(d, k0, f_ext, xd, zd, bc, sc, rx, nz)
     lo, hi, e_hi = 0.0, 1.0, e1
@@ -90,13 +93,19 @@ def _onset(d, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, b
         vec[ROW_STAR + i][:] = d
         return 0.0, True, 0
     d_lo[:] = d
+    d_hi[:] = d_end
     best_e, best_lam = abs(e_lo), 0.0
     best_d[:] = d
     iterations = 0
     for _ in range(30):
         lam = lo + (hi - lo) * e_lo / (e_lo - e_hi)
         lam = min(max(lam, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
-        ok, it, _h = static.linear_path(d_lo, k0, k1, lo, lam, f_ext, zero, zero, fixed, bc, sc, dl)
+        w = (lam - lo) / (hi - lo)  # start Newton on the chord of the bracket's solutions
+        for k in range(d.shape[0]):
+            guess1[k] = d_lo[k] + w * (d_hi[k] - d_lo[k])
+        ok, it, _h = static.linear_path(
+            d_lo, k0, k1, lo, lam, f_ext, zero, zero, fixed, bc, sc, dl, guess1
+        )
         iterations += it
         if not ok:
             return 0.0, False, iterations
@@ -111,6 +120,7 @@ def _onset(d, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, b
             d_lo[:] = dl
         else:
             hi, e_hi = lam, e
+            d_hi[:] = dl
         if abs(e) < 1e-9 * max(abs(nz[i]), 1e-12) or hi - lo < 1e-12:
             break
     vec[ROW_STAR + i][:] = best_d
@@ -146,8 +156,11 @@ def _slip(i, s, lam, k0, k1, f_ext, g0, g1, n_trial, xd, zd, mu4, bc, sc, rx1, n
     fext[:] = f_ext + fb
     _ground(d1, k1, fext, xd, zd, bc, sc, rx1, n1)
     if abs(n1[i] - n_trial) > 1e-9 * max(abs(n_trial), 1e-12):  # refresh N at the end once
+        fext[:] = fb  # the first end load; continue from d1 in the friction load alone (the
+        # end equilibrium does not depend on the load path: a few Newton iterations instead
+        # of the whole slip path again)
         fb[xd[i]] = -s * holding_limit(mu4, g1[i], s, n1[i])
-        ok, it, _h = static.linear_path(d_star, k0, k1, lam, 1.0, f_ext, fa, fb, fixed, bc, sc, d1)
+        ok, it, _h = static.linear_path(d1, k1, k1, 0.0, 1.0, f_ext, fext, fb, fixed, bc, sc, d1)
         iterations += it
         if not ok:
             return 0.0, False, iterations
@@ -190,8 +203,9 @@ def increment(d, k0, k1, f_ext, g0, g1, slipping, xd, zd, mu4, bc, sc, rep, out)
     for i in range(2):
         if e[i] > 0.0:
             lam, ok, it = _onset(
-                d, k0, k1, f_ext, g0, g1, i, pulls[i], e[i], slipping[i], both, xd, zd, mu4, bc, sc
-            )
+                d, trial, k0, k1, f_ext, g0, g1, i, pulls[i], e[i], slipping[i], both, xd, zd,
+                mu4, bc, sc,
+            )  # fmt: skip
             rep[REP_ITER] += it
             if not ok:
                 return NEWTON_FAILED

@@ -73,18 +73,4 @@ def step_rows(active, actions, state, work, cfg, out):
             d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales,
             vec[i][0], ab[i], obs[i],
         )  # fmt: skip
-        centerline_into(d, xo[i], le, xis, line[i])
-
-
-@numba.njit(cache=True)
-def centerline_into(d, x_origin, le, xis, out):
-    """The curve of centroids (`BeamModel.centerline` plus the origin) into out (P, 2) [m]."""
-    pos = el.evaluate_fields(d, le, xis)[0]
-    ne, nx = pos.shape[0], pos.shape[1]
-    for e in range(ne):
-        for q in range(nx):
-            out[e * nx + q, 0] = pos[e, q, 0] + x_origin
-            out[e * nx + q, 1] = pos[e, q, 1]
-    last = el.evaluate_fields(d[d.shape[0] - 11 :], le[ne - 1 :], np.ones(1))[0]
-    out[ne * nx, 0] = last[0, 0, 0] + x_origin
-    out[ne * nx, 1] = last[0, 0, 1]
+        el.centerline_into(d, xo[i], le, xis, line[i])
