@@ -28,6 +28,11 @@ Scenes (the `dt` column is the refinement parameter named in `param`):
   instability on the nonlinear beam: "newmark", "generalized_alpha" at rho_inf = 1).
 - `inchworm_gait`: advance per cycle of the two seed gaits (kappa0# = 13, gravity off) against the
   stress-free chord (L - chord, a quadrature), param h = L / n_el.
+- `inchworm_terrain`: tail advance per cycle [L] of the seed_uniform gait (one cycle of 2 s in 40
+  control steps) on dry sand (`terrain`, quasi-static) against 64 elements (quick: 32); param h.
+- `inchworm_inertia`: the same gait with `inertia` (energy-momentum, rho_inf 0.8, 12 elements)
+  against 256 Newmark steps per control step (quick: 64); param dt [s]. The first bending mode
+  (~150 Hz) is resolved only below dt ~ 1 ms: accuracy costs time here too.
 """
 
 from __future__ import annotations
@@ -334,11 +339,53 @@ def _inchworm(quick: bool) -> list[dict]:
     return rows
 
 
+SOIL_SCENE = frozenset({"gravity", "terrain", "anchor_switching", "shear_deformation"})
+INERTIA_SCENE = frozenset({"gravity", "shear_deformation", "anchor_switching", "inertia"})
+
+
+def _uniform_cycle(sim: Inchworm, substeps: int = 1) -> float:
+    """Tail advance [L] of one seed_uniform cycle (kappa0# = 13 1/m) in 40 control steps of
+    0.05 s, each in at least `substeps` increments (Newmark steps with `inertia`)."""
+    x0 = sim.x_tail
+    for i in range(1, 41):
+        kappa = np.full(sim.kappa.shape, seed_uniform_kappa(2 * np.pi * i / 40, 13.0))
+        sim.actuate(kappa, 0.05, min_increments=substeps)
+    return (sim.x_tail - x0) / sim.params.length
+
+
+def _inchworm_effects(quick: bool) -> list[dict]:
+    """The inchworm's heavier effects, against converged fine runs: `terrain` (Bekker/Janosi
+    soil, quasi-static) refined in elements, and `inertia` (energy-momentum Newmark, 12
+    elements) refined in the time step (increments left to the step count)."""
+    rows = []
+    ns, n_ref = ((4, 8, 16), 32) if quick else ((4, 8, 16, 32), 64)
+    ref = _uniform_cycle(Inchworm(InchwormParams(n_elements=n_ref), SOIL_SCENE))
+    for n in ns:
+        sim = Inchworm(InchwormParams(n_elements=n), SOIL_SCENE)
+        adv, sec = timed(lambda sim=sim: _uniform_cycle(sim), repeat=1)
+        rows.append(accuracy_row("inchworm_terrain", "quasi-static on dry sand", 0.3 / n,
+                                 abs(adv - ref), sec, "h", elements=n, reference_elements=n_ref,
+                                 advance_per_cycle_L=adv))  # fmt: skip
+    ms, m_ref = ((1, 4, 16), 64) if quick else ((1, 4, 16, 64), 256)
+    p = InchwormParams(n_elements=12)
+
+    def dynamic(m: int) -> float:
+        return _uniform_cycle(Inchworm(p, INERTIA_SCENE, increment_factor=1e3), m)
+
+    ref = dynamic(m_ref)
+    for m in ms:
+        adv, sec = timed(lambda m=m: dynamic(m), repeat=1)
+        rows.append(accuracy_row("inchworm_inertia", "energy-momentum, rho_inf 0.8", 0.05 / m,
+                                 abs(adv - ref), sec, "dt", steps_per_control_step=m,
+                                 reference_dt=0.05 / m_ref, advance_per_cycle_L=adv))  # fmt: skip
+    return rows
+
+
 def rows(quick: bool) -> list[dict]:
     solve_cantilever(1.0, 1e4, 1e4, 1.0, 2, tip_force=(0, -1.0))  # numba warm-up
     out = []
     parts = (_timoshenko, _rollup, _elastica, _newmark, _newton_tol, _locking, _period, _energy)
-    for part in (*parts, _inchworm):
+    for part in (*parts, _inchworm, _inchworm_effects):
         out.extend(part(quick))
     return out
 
