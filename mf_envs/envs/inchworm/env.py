@@ -329,7 +329,7 @@ class InchwormEnv(MFEnv):
         """Keep the drawable state if it is finite (after a numerical failure the physics state
         may be NaN; render() then shows the last finite one)."""
         keys = ("centerline", "x_head", "x_tail")
-        if all(np.all(np.isfinite(info[k])) for k in keys):
+        if np.isfinite(info["x_head"] + info["x_tail"]) and np.isfinite(info["centerline"]).all():
             self._frame_state = {k: info[k] for k in (*keys, "anchor")}
             self._frame_state["step"] = self._steps
 

@@ -37,11 +37,12 @@ def observe_row(
     length, max_curvature, weight = scales
     n = kappa_cmd.shape[0]
     ne = le.shape[0]
-    kap = el.evaluate_fields(d, le, xis)[2].ravel()
-    last = el.evaluate_fields(d[d.shape[0] - 11 :], le[ne - 1 :], np.ones(1))[2]
-    samples = np.empty(kap.shape[0] + 1)
-    samples[:-1] = kap
-    samples[-1] = last[0, 0]
+    nx = xis.shape[0]
+    samples = np.empty(ne * nx + 1)
+    for e in range(ne):
+        for q in range(nx):
+            samples[e * nx + q] = _kappa_at(d, 6 * e, le[e], xis[q])
+    samples[ne * nx] = _kappa_at(d, 6 * (ne - 1), le[ne - 1], 1.0)
     curv = np.interp(s_ctrl, s_samples, samples)
     nd = d.shape[0]
     r_t, r_h = reactions[0], reactions[1]
@@ -60,3 +61,13 @@ def observe_row(
     out[2 * n + 3] = 1.0 if head_grips else -1.0
     out[2 * n + 4] = r_t / weight
     out[2 * n + 5] = r_h / weight
+
+
+@numba.njit(cache=True, inline="always")
+def _kappa_at(d, base, le, xi):
+    """kappa = psi' at local xi of the element whose first dof is `base` (the expression of
+    `element._point_strains` with the psi shape functions of `element._shape`)."""
+    dn0 = (4.0 * xi - 3.0) / le
+    dn1 = (4.0 * xi - 1.0) / le
+    dn2 = (4.0 - 8.0 * xi) / le
+    return dn0 * d[base + 4] + dn1 * d[base + 10] + dn2 * d[base + 5]

@@ -34,6 +34,7 @@ coordinates keep every run bit-identical to the same run started at the origin.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
@@ -339,7 +340,7 @@ class Inchworm:
 
     def centerline(self, per_element: int = 8) -> np.ndarray:
         """(N, 2) curve of centroids (x, z) [m], inertial frame."""
-        xis = np.linspace(0.0, 1.0, per_element + 1)[:-1]
+        xis = _sample_xis(per_element)
         line = np.empty((per_element * self.model.n_elements + 1, 2))
         centerline_into(self.state.d, self.x_origin, self.model.le, xis, line)
         return line
@@ -372,6 +373,14 @@ class Inchworm:
     def elastic_energy(self) -> float:
         """Stored elastic energy [J]."""
         return self.model.elastic_energy(self.state.d, self.kappa)
+
+
+@functools.lru_cache(maxsize=8)
+def _sample_xis(per_element: int) -> np.ndarray:
+    """Local sample points 0, 1/k, ..., (k - 1)/k of an element (read-only, cached)."""
+    xis = np.linspace(0.0, 1.0, per_element + 1)[:-1]
+    xis.flags.writeable = False
+    return xis
 
 
 def kappa_at_gauss(S_ctrl: np.ndarray, values: np.ndarray, gauss_S: np.ndarray) -> np.ndarray:

@@ -150,8 +150,16 @@ class DrivenInchworm:
             self.meter.add(increment_work(sim.model, d_a, sim.state.d, gauss[j], gauss[j + 1]))
         return iterations
 
-    def kernel_args(self, min_substeps: int = 1) -> tuple:
-        """(act, feet, S_ctrl, gauss_S, f_ext, beam constants) of `quasistatic.drive_step`."""
+    def kernel_args(self) -> tuple:
+        """(act, feet, S_ctrl, gauss_S, f_ext, beam constants) of `quasistatic.drive_step`
+        (rebuilt when the Newton settings or the increment factor change)."""
+        sim = self.sim
+        key = (sim.settings, sim.increment_factor)
+        if getattr(self, "_args_key", None) != key:
+            self._args, self._args_key = self._kernel_args(), key
+        return self._args
+
+    def _kernel_args(self) -> tuple:
         sim, lag = self.sim, self.lag
         tau, rate = (lag.params.time_constant, lag.params.rate_limit) if lag else (1.0, 1.0)
         limit = sim.increment_factor * sim.params.max_dkappa
