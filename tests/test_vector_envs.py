@@ -8,6 +8,7 @@ import importlib.util
 from typing import Any
 
 import gymnasium as gym
+import numba
 import numpy as np
 import pytest
 from gymnasium.vector import AutoresetMode
@@ -383,23 +384,31 @@ def test_stabilizer_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict)
     _compiled_resets_match_sync(ENV_STAB, kw, mode, {"roll_rate": 0.01}, V.DRAW_BUFFER)
 
 
-def test_stabilizer_threads_do_not_change_results() -> None:
-    """Rows stepped in blocks on worker threads (num_threads > 1) == one thread (the default),
-    bit for bit, through autoresets; num_threads is checked."""
-    n = 300
-    kw = {"episode_seconds": 0.3}
-    one = make_vec(ENV_STAB, n, **kw)
-    many = make_vec(ENV_STAB, n, num_threads=3, **kw)  # 3 row blocks at once
+@pytest.mark.parametrize("env_id", VEC_IDS)
+def test_threads_do_not_change_results(env_id: str) -> None:
+    """Rows stepped in blocks on worker threads (num_threads > 1) == one thread, bit for bit,
+    through autoresets; num_threads is checked and its automatic choice follows the row cost."""
+    from mf_envs.envs._vector import MIN_ROWS_PER_THREAD
+
+    heavy = env_id == "Inchworm-v0"
+    n = 5 if heavy else 300
+    kw = SHORT[env_id]
+    one = make_vec(env_id, n, num_threads=1, **kw)
+    many = make_vec(env_id, n, num_threads=3, **kw)  # 3 row blocks at once
     assert (one.unwrapped.num_threads, many.unwrapped.num_threads) == (1, 3)
+    auto = make_vec(env_id, 2 if heavy else 2 * MIN_ROWS_PER_THREAD["light"], **kw).unwrapped
+    assert auto.row_cost == ("heavy" if heavy else "light")
+    assert auto.num_threads == min(2, numba.get_num_threads())
+    assert make_vec(env_id, 1, **kw).unwrapped.num_threads == 1
     out_a, out_b = one.reset(seed=1), many.reset(seed=1)
-    for t, a in enumerate(actions(one, 20)):
+    for t, a in enumerate(actions(one, 12 if heavy else 20)):
         out_a, out_b = one.step(a), many.step(a)
         for x, y in zip(out_a[:4], out_b[:4]):
             np.testing.assert_array_equal(x, y, err_msg=f"step {t}")
         assert_infos_equal(out_a[4], out_b[4], f"step {t}: ")
-    for bad in (0, 1.5, "2"):
+    for bad in (0, 1.5, "2", True):
         with pytest.raises(ValueError, match="num_threads"):
-            make_vec(ENV_STAB, 2, num_threads=bad)
+            make_vec(env_id, 2, num_threads=bad)
 
 
 def test_stabilizer_threaded_env_survives_fork() -> None:

@@ -18,30 +18,25 @@ frequency). Autoresets and seedless resets without options therefore run in one 
 Irregular seas (a new sea of many draws per reset) keep the template path. See
 `mf_envs.envs._vector`.
 
-Threads (opt-in, kwarg `num_threads`): the rows are stepped in num_threads blocks at once,
-block 0 in the calling thread and the others on a shared pool of Python worker threads
-(`step_rows` releases the GIL); rows are independent, so results are bit-identical to one thread
-(`tests/test_vector_envs.py`). Not numba's `parallel=True`: its GNU OpenMP threads spin, and with
-another process busy on one of the 2 cores they ran 2.7x (N = 1024) to 10x (N = 256) slower than
-one thread; these threads wait without spinning (within 10 % of one thread in that test) and a
-forked child makes its own. Measured (N = 1024, random actions, autoresets): one thread 1.3x the
-env-steps/s this module had before its compiled step and resets (issue 17); two threads gained
-1.37x over one on a lightly loaded machine and nothing with both cores busy, hence off by default.
+Threads (kwarg `num_threads`, `mf_envs.envs._vector.run_row_blocks`): the rows are stepped in
+num_threads blocks at once, block 0 in the calling thread and the others on a shared pool of
+Python worker threads (`step_rows` releases the GIL); rows are independent, so results are
+bit-identical to one thread (`tests/test_vector_envs.py`). Default: one block per CPU once each
+gets >= 128 rows. Measured (N = 1024, random actions, autoresets, quiet 2-core machine): 0.56M
+env-steps/s on one thread, 1.01M on two (issue 17); with both cores busy elsewhere, two threads
+gained nothing over one (and lost < 10 %).
 """
 
 from __future__ import annotations
 
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import numba
 import numpy as np
 
-from mf_envs._validate import check_int
 from mf_envs.envs._predraw import PredrawnResets
-from mf_envs.envs._vector import BatchedVectorEnv
+from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
 from mf_envs.envs.gyro_stabilizer import spec, wiring
 from mf_envs.envs.gyro_stabilizer.env import GyroStabilizerEnv
 from mf_envs.frames.kernels import rk4_work, rkmk4_rwork
@@ -54,15 +49,6 @@ _ROLL = spec.OBS.index("roll")
 COLS = spec.INFO_KEYS[:11]
 C_ENERGY, C_RROLL, C_REFFORT, C_TIME, N_COLS = 10, 11, 12, 13, 14
 ROLL0, RATE0, PHASE0 = (-0.05, 0.05), (-0.02, 0.02), (0.0, 2.0 * math.pi)  # reset's U(lo, hi)
-_POOL: dict[str, Any] = {"pid": None, "pool": None, "size": 0}  # worker threads (`_workers`)
-
-
-def _workers(n: int) -> ThreadPoolExecutor:
-    """A shared pool of at least n worker threads of this process (a forked child, which has
-    none of its parent's threads, makes its own)."""
-    if _POOL["pid"] != os.getpid() or _POOL["size"] < n:
-        _POOL.update(pid=os.getpid(), pool=ThreadPoolExecutor(n, "mf_envs-stab"), size=n)
-    return _POOL["pool"]
 
 
 @numba.njit(cache=True, inline="always")
@@ -203,15 +189,6 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
     single_env_cls = GyroStabilizerEnv
     DRAWS_PER_RESET = 3
 
-    def __init__(self, num_envs: int = 1, *, num_threads: int | None = 1, **kwargs: Any):
-        """num_threads: rows are stepped in this many blocks at once (1, the default: in the
-        calling thread only; None: one block per CPU of numba's count; module doc on when it
-        pays); results do not depend on it."""
-        super().__init__(num_envs, **kwargs)
-        if num_threads is None:
-            num_threads = numba.get_num_threads()
-        self.num_threads = check_int("num_threads", num_threads, 1)  # = row blocks
-
     def _alloc(self, n: int) -> None:
         env = self.template
         self.b = alloc_batch(n, K.N_STATE, K.N_PARAMS, (1, 2))
@@ -269,17 +246,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
             b["out"], self._steps, self._obs, self._fresh, cols, self._ok, self._reward,
             env.roll_scale, env.effort_weight, env.control_dt,
         )  # fmt: skip
-        n, k = self.num_envs, self.num_threads
-        if k == 1:
-            step_rows(0, n, *args)
-        else:  # blocks 1..k-1 on worker threads, block 0 here (GIL released in step_rows)
-            pool = _workers(k - 1)
-            jobs = [
-                pool.submit(step_rows, j * n // k, (j + 1) * n // k, *args) for j in range(1, k)
-            ]
-            step_rows(0, n // k, *args)
-            for job in jobs:
-                job.result()
+        run_row_blocks(step_rows, self.num_envs, self.num_threads, *args)
         info: dict[str, Any] = dict(zip(COLS, cols))
         info["time"] = cols[C_TIME]
         info["reward_terms"] = {"roll": cols[C_RROLL], "effort": cols[C_REFFORT]}

@@ -3,24 +3,24 @@
 Every active row runs exactly what the single env runs for one control step (the action
 scaling of `InchwormEnv.step`, `quasistatic.drive_step`, the re-centring of the local origin
 of `Inchworm._recenter`, the observation of `envs.inchworm.observe.observe_row`), so a row is
-bit-identical to a single env. Rows are independent; with more than one numba thread they are
-spread over the cores (`prange`), which does not change any row's arithmetic.
+bit-identical to a single env. Rows are independent; blocks of rows run on threads
+(`envs._vector.run_row_blocks`), which does not change any row's arithmetic.
 """
 
 from __future__ import annotations
 
 import numba
 import numpy as np
-from numba import prange
 
 from mf_envs.envs.inchworm.observe import observe_row
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.inchworm import quasistatic as qs
 
 
-@numba.njit(cache=True, parallel=True)
-def step_rows(active, actions, state, work, cfg, out):
-    """Advance the active rows one control step.
+@numba.njit(cache=True, nogil=True)
+def step_rows(lo, hi, active, actions, state, work, cfg, out):
+    """Advance the active rows among lo..hi - 1 one control step (releases the GIL: blocks of
+    rows run on threads, `envs._vector.run_row_blocks`).
 
     actions (N, n [+ 1]) in [-1, 1]; state = (d (N, n_dof), x_origin (N,), lag kappa# (N, n),
     realised kappa_ctrl (N, n), engagement (N, 2), slipping (N, 2) int, commanded kappa#
@@ -37,7 +37,7 @@ def step_rows(active, actions, state, work, cfg, out):
     n = cmd_all.shape[1]
     nd = d_all.shape[1]
     length = scales[0]
-    for i in prange(d_all.shape[0]):
+    for i in range(lo, hi):
         if not active[i]:
             continue
         cmd = np.empty(n)

@@ -2,10 +2,10 @@
 
 `gym.make_vec("Inchworm-v0", num_envs=N, vectorization_mode="vector_entry_point", **kwargs)`
 builds it; `kwargs` are those of `gym.make("Inchworm-v0", ...)` plus `autoreset_mode` (default
-NEXT_STEP) and `num_threads` (numba threads for the rows, default: all cores; a row's
-arithmetic does not depend on it). The scene must include `friction` (the default scene; the
-quasi-static friction step is what is compiled); other effect sets raise ValueError naming
-`effects` (use `vectorization_mode="sync"` for them).
+NEXT_STEP) and `num_threads` (blocks of rows stepped at once on threads, default: one per
+CPU; a row's arithmetic does not depend on it). The scene must include `friction` (the default
+scene; the quasi-static friction step is what is compiled); other effect sets raise ValueError
+naming `effects` (use `vectorization_mode="sync"` for them).
 
 Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `InchwormEnv`s with
 the same seeds (`tests/test_vector_envs.py`): resets go through a template single env whose
@@ -18,11 +18,9 @@ from __future__ import annotations
 
 from typing import Any
 
-import numba
 import numpy as np
 
-from mf_envs._validate import check_int
-from mf_envs.envs._vector import BatchedVectorEnv
+from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
 from mf_envs.envs.inchworm.batch import step_rows
 from mf_envs.envs.inchworm.env import InchwormEnv
 from mf_envs.physics.inchworm import quasistatic as qs
@@ -37,12 +35,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
     infos batched as Gymnasium does with the single env's keys (`spec.INFO_KEYS`)."""
 
     single_env_cls = InchwormEnv
-
-    def __init__(self, num_envs: int = 1, *, num_threads: int | None = None, **kw: Any) -> None:
-        if num_threads is not None:
-            check_int("num_threads", num_threads, 1, numba.config.NUMBA_NUM_THREADS)
-        self.num_threads = num_threads or numba.config.NUMBA_NUM_THREADS
-        super().__init__(num_envs, **kw)
+    row_cost = "heavy"  # ~1 ms per row: one block per CPU from N = 2
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -95,12 +88,10 @@ class InchwormVectorEnv(BatchedVectorEnv):
         env = self.template
         status, rep, before, obs, energy_el, line, _ = self._out
         status[~active] = qs.OK
-        threads = numba.get_num_threads()
-        numba.set_num_threads(self.num_threads)
-        try:
-            step_rows(active, actions, self._state, self._work, self._cfg, self._out)
-        finally:
-            numba.set_num_threads(threads)
+        run_row_blocks(
+            step_rows, self.num_envs, self.num_threads, active, actions, self._state,
+            self._work, self._cfg, self._out,
+        )  # fmt: skip
         self._steps[active] += 1
         d, xo, _, kc, g, _, cmd, head = self._state
         ok = status == qs.OK

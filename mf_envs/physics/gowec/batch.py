@@ -14,12 +14,13 @@ import numpy as np
 from mf_envs.physics.gowec.kernels import fast_step_into
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def batch_fast_step(
-    active, t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, two_d,
+    lo, hi, active, t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, two_d,
     energy, w, eta,
 ):  # fmt: skip
-    """Advance the rows i with active[i] in place; rows not active are left untouched.
+    """Advance the rows i in lo..hi - 1 with active[i] in place; rows not active are left
+    untouched. Releases the GIL (blocks of rows on threads: `envs._vector.run_row_blocks`).
 
     Shapes: active (N,) bool; t (N,) s, time at the start of the step; phi (N,) rad, phid (N,)
     rad/s, updated in place; Mg (N,) N m, generator torque held over the step; dt (s) substep,
@@ -29,8 +30,8 @@ def batch_fast_step(
     two_d: both slope angles. Outputs: energy (N,) J harvested in the step, w (N, 3) buoy body
     rates rad/s and eta (N,) m wave elevation at the end of the step.
     """
-    work = np.empty((6, 2))  # one scratch for all rows (fast_step_into)
-    for i in range(active.shape[0]):
+    work = np.empty((6, 2))  # one scratch for the block's rows (fast_step_into)
+    for i in range(lo, hi):
         if not active[i]:
             continue
         p, v, e, w1, w2, w3, z = fast_step_into(

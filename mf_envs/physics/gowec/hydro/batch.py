@@ -79,14 +79,15 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals):
     return True, y1
 
 
-@numba.njit(cache=True)
-def batch_step_rows(active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss,
-                    vals, ok):  # fmt: skip
-    """`step_row` for every active row i: Y (N, n_state) updated in place where ok; t0, t1,
-    tau (N,); om, cp, cr, amp, eps (N, M) the sea of each row; shared = `floating.pack`'s
-    first nine entries (the same for every row); vals (N, N_VALS); ok (N,) bool."""
+@numba.njit(cache=True, nogil=True)
+def batch_step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc,
+                    loss, vals, ok):  # fmt: skip
+    """`step_row` for every active row i in lo..hi - 1: Y (N, n_state) updated in place where
+    ok; t0, t1, tau (N,); om, cp, cr, amp, eps (N, M) the sea of each row; shared =
+    `floating.pack`'s first nine entries (the same for every row); vals (N, N_VALS); ok (N,)
+    bool. Releases the GIL (blocks of rows on threads: `envs._vector.run_row_blocks`)."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
-    for i in range(active.shape[0]):
+    for i in range(lo, hi):
         if not active[i]:
             continue
         args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i])
