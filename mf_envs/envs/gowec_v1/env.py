@@ -12,7 +12,7 @@ from mf_envs._validate import check_int, check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import spec
-from mf_envs.envs.gowec_v1.observe import observe_one
+from mf_envs.envs.gowec_v1.observe import observe_one, step_one
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import batch as hb
@@ -185,6 +185,7 @@ class GOWECV1Env(MFEnv):
         self.state = self.model.initial_state()
         self._t, self._steps, self._last_power = 0.0, 0, 0.0
         self._vals = np.zeros(hb.N_VALS)
+        self._consts_key: tuple | None = None  # `_consts`' cache key
 
     # ------------------------------------------------------------------ public quantities
     def hydrostatic_stiffness(self) -> float:
@@ -228,21 +229,21 @@ class GOWECV1Env(MFEnv):
         self._steps += 1
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
-        ok, y = hb.step_row(
+        obs, (loss, lo, hi, limits) = np.empty(8, np.float32), self._consts
+        ok, y, finite, over, out = step_one(
             t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
-            self.wave.amplitudes, self.wave.phases, self.control_dt, self._loss(), self._vals,
+            self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals, lo, hi,
+            obs, limits,
         )  # fmt: skip
         if not ok:
             info = dict(power=0.0, overspeed=False, out_of_range=False)
             info["reward_terms"] = {"net_electrical_energy": 0.0}
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
-        self.state, obs = y, np.empty(8, np.float32)
-        finite = observe_one(y, self.observation_space.low, self.observation_space.high, obs)
-        reward, terms = self._get_rew(self._vals[11])
+        self.state = y
+        reward = float(self._vals[11] * self._energy_scale)  # net electrical energy / scale
         info = self._info_from(self._vals)
-        info["reward_terms"] = terms
-        over = info["overspeed"] = bool(abs(y[5]) > self.max_gimbal_rate)
-        out = info["out_of_range"] = bool(max(abs(y[0]), abs(y[1])) > spec.MAX_BUOY_ANGLE)
+        info["reward_terms"] = {"net_electrical_energy": reward}
+        info["overspeed"], info["out_of_range"] = over, out
         if finite and math.isfinite(reward):  # _finish_step's checks, done in the kernel
             self._last_obs = obs
             return obs, reward, over or out, truncated, info
@@ -251,6 +252,16 @@ class GOWECV1Env(MFEnv):
     def _loss(self) -> float:
         """Rotor loss (W) while the rotor spins, else 0."""
         return self.rotor_loss * (self.model.psid != 0.0)
+
+    @property
+    def _consts(self) -> tuple:
+        """(rotor loss W, obs bounds, (max gimbal rate, max buoy angle)), rebuilt when the public
+        attributes they come from change (e.g. domain randomisation)."""
+        sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
+        if self._consts_key != key:
+            lim = (self.max_gimbal_rate, spec.MAX_BUOY_ANGLE)
+            self._consts_val, self._consts_key = (self._loss(), sp.low, sp.high, lim), key
+        return self._consts_val
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -314,30 +325,17 @@ class GOWECV1Env(MFEnv):
 
     def _info_from(self, v: np.ndarray) -> dict[str, Any]:
         """The info dict from `hb.step_row`'s value slots v (N_VALS,)."""
-        self._last_power = float(v[0])
-        return {
-            "power": float(v[0]),
-            "power_mechanical": float(v[1]),
-            "buoy_pitch": float(v[2]),
-            "buoy_roll": float(v[3]),
-            "buoy_rate": v[4:6].copy(),
-            "excitation_moment": float(v[6]),
-            "gyro_moment": float(v[7]),
-            "gimbal_angle": float(v[8]),
-            "gimbal_rate": float(v[9]),
-            "wave_elevation": float(v[10]),
-            "time": self._t,
-            "numerical_failure": False,
-        }
+        x = v.tolist()
+        self._last_power = x[0]
+        return {"power": x[0], "power_mechanical": x[1], "buoy_pitch": x[2], "buoy_roll": x[3],
+                "buoy_rate": v[4:6].copy(), "excitation_moment": x[6], "gyro_moment": x[7],
+                "gimbal_angle": x[8], "gimbal_rate": x[9], "wave_elevation": x[10],
+                "time": self._t, "numerical_failure": False}  # fmt: skip
 
     def _get_obs(self) -> np.ndarray:
         obs = np.empty(8, np.float32)  # observe.py: the hull body rates of the module doc
         observe_one(self.state, self.observation_space.low, self.observation_space.high, obs)
         return obs
-
-    def _get_rew(self, energy: float) -> tuple[float, dict[str, float]]:
-        r = float(energy * self._energy_scale)
-        return r, {"net_electrical_energy": r}
 
     def _draw_frame(self) -> np.ndarray:
         from mf_envs.envs.gowec_v1.render import draw_frame

@@ -48,6 +48,7 @@ class FloatingModel:
         g = np.array(
             [gyro.rotor_inertia, gyro.transverse, *gyro.gimbal_inertia, units], dtype=float
         )
+        self._packed: tuple | None = None  # `_args`' cache
         self.p = fl.FloatingParams(
             inertia=np.array([hull.inertia + hull.added_mass_inf, Iz]),
             gyro=g,
@@ -83,7 +84,7 @@ class FloatingModel:
     # ------------------------------------------------------------------ sea and PTO
     def set_sea(self, wave: WaveField | None) -> None:
         """Excitation from a wave field (None = calm water)."""
-        self.wave = wave
+        self.wave, self._packed = wave, None
         if wave is None:
             self._om = np.zeros(0)
             self._cp = self._cr = np.zeros(0, dtype=complex)
@@ -96,12 +97,13 @@ class FloatingModel:
 
     def set_viscous(self, damping: float) -> None:
         """Extra linear viscous damping b_v per axis (N m s/rad)."""
-        self.p = dataclasses.replace(self.p, viscous=float(damping))
+        self.p, self._packed = dataclasses.replace(self.p, viscous=float(damping)), None
 
     def set_radiation(self, on: bool) -> None:
         """Radiation memory on (the fit) or off (A_inf only: no wave damping)."""
         Cr = self.fit.C[0] if on else np.zeros_like(self.fit.C[0])
-        self.p = dataclasses.replace(self.p, Cr=np.ascontiguousarray(Cr, dtype=float))
+        Cr = np.ascontiguousarray(Cr, dtype=float)
+        self.p, self._packed = dataclasses.replace(self.p, Cr=Cr), None
 
     def set_pto(self, damping: float, stiffness: float) -> None:
         """Linear PTO gains c (N m s/rad) and k (N m/rad) of the drive's inner loop."""
@@ -120,7 +122,10 @@ class FloatingModel:
         return fl.rk4_steps(t, y, float(tau), dt, n, self._args())
 
     def _args(self) -> tuple:
-        return fl.pack(self.p, self._om, self._cp, self._cr)
+        """`floating.pack` of the params and the sea, cached until either changes."""
+        if self._packed is None:
+            self._packed = fl.pack(self.p, self._om, self._cp, self._cr)
+        return self._packed
 
     def excitation(self, t: float) -> tuple[float, float]:
         """(M_x, M_y) wave excitation moments (N m) about e1 (pitch) and e2 (roll)."""
