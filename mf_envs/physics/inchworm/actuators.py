@@ -50,6 +50,7 @@ import numpy as np
 
 from mf_envs._validate import check_positive
 from mf_envs.physics.beam import GAUSS_W, BeamModel
+from mf_envs.physics.inchworm import quasistatic as qs
 
 SMA_TIME_CONSTANT = 0.3  # tau [s]: 3 tau ~ 1 s relaxation of a thin Flexinol wire in still air
 SMA_RATE_LIMIT = 13.0  # r [1/(m s)]: the seed's full range kappa0# = 13 1/m in ~1 s
@@ -86,24 +87,19 @@ class ActuatorParams:
         return max(np.pi * float(amplitude) / self.rate_limit, 2.0 * np.pi * self.time_constant)
 
 
-def lag_time_to_linear_end(gap: np.ndarray, tau: float, rate: float) -> np.ndarray:
-    """Time [s] the rate-limited lag (A1) spends in its linear (saturated) phase for an initial
-    gap u - kappa# [1/m]: (|gap| - r tau) / r, zero if the lag starts unsaturated."""
-    return np.maximum(np.abs(gap) - rate * tau, 0.0) / rate
-
-
 def rate_limited_lag(
     kappa: np.ndarray, u: np.ndarray, t: np.ndarray | float, tau: float, rate: float
 ) -> np.ndarray:
-    """Exact solution of (A1) at time t >= 0 [s] from kappa (n,) under the held command u (n,)
-    [1/m]; t broadcasts against kappa (e.g. t of shape (m, 1) gives (m, n))."""
-    kappa, u = np.asarray(kappa, float), np.asarray(u, float)
+    """Exact solution of (A1) from kappa (n,) under the held command u (n,) [1/m] at the time t
+    [s] (-> (n,)) or the times t (m,) or (m, 1) (-> (m, n)), t >= 0: the compiled
+    `quasistatic.lag_at` (the linear phase lasts (|u - kappa| - r tau) / r, then the gap decays
+    as exp(-t / tau))."""
+    kappa, u = np.asarray(kappa, float).reshape(-1), np.asarray(u, float).reshape(-1)
     t = np.asarray(t, float)
-    gap = u - kappa
-    t_lin = lag_time_to_linear_end(gap, tau, rate)
-    moved = np.sign(gap) * rate * np.minimum(t, t_lin)  # saturated phase
-    rest = gap - moved  # |rest| = r tau once the linear phase is over
-    return u - rest * np.exp(-np.maximum(t - t_lin, 0.0) / tau)
+    out = np.empty((t.size, kappa.size))
+    for j, tj in enumerate(t.reshape(-1)):
+        qs.lag_at(kappa, u, float(tj), tau, rate, out[j])
+    return out[0] if t.ndim == 0 else out
 
 
 class RateLimitedLag:
@@ -164,9 +160,10 @@ def increment_work(
 ) -> float:
     """Actuation work [J] over one increment kappa# k0 -> k1 (n_el, 4), configuration d0 -> d1:
     the time integral of (A2) by the trapezoidal rule in the increment, -int M_mid (k1 - k0) dS
-    with M_mid the mean of M3 at both ends (second order in the increment size)."""
-    m_mid = 0.5 * (bending_moment(model, d0, k0) + bending_moment(model, d1, k1))
-    return -integrate_along(model, m_mid * (k1 - k0))
+    with M_mid the mean of M3 at both ends (second order in the increment size); the compiled
+    `quasistatic.increment_work`."""
+    k0, k1 = np.ascontiguousarray(k0, float), np.ascontiguousarray(k1, float)
+    return float(qs.increment_work(d0, d1, k0, k1, model.params.EI, model.le))
 
 
 @dataclass

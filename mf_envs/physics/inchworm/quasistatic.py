@@ -307,9 +307,9 @@ def lag_at(kappa, u, t, tau, rate, out):
 
 
 @numba.njit(cache=True)
-def increment_work(d0, d1, k0, k1, ei, le, sc):
+def increment_work(d0, d1, k0, k1, ei, le):
     """Actuation work [J] of the increment kappa# k0 -> k1, configuration d0 -> d1 (trapezoid of
-    (A2), `actuators.increment_work`)."""
+    (A2), the module doc of `actuators`)."""
     kap0 = el.evaluate_fields(d0, le, el.GAUSS_XI)[2]
     kap1 = el.evaluate_fields(d1, le, el.GAUSS_XI)[2]
     w = 0.0
@@ -375,7 +375,7 @@ def drive_step(
         )
         if status != OK:
             return status
-        w = increment_work(d_prev, d_cur, kga, kgb, ei, le, sc)
+        w = increment_work(d_prev, d_cur, kga, kgb, ei, le)
         rep[REP_POS] += max(w, 0.0)
         rep[REP_NET] += w
         d_prev[:] = d_cur
