@@ -184,7 +184,7 @@ class GOWECV1Env(MFEnv):
         )
         self.state = self.model.initial_state()
         self._t, self._steps, self._last_power = 0.0, 0, 0.0
-        self._vals = np.zeros(hb.N_VALS)
+        self._vals, self._work = np.zeros(hb.N_VALS), hb.step_work(self.state.shape[0])
         self._consts_key: tuple | None = None  # `_consts`' cache key
 
     # ------------------------------------------------------------------ public quantities
@@ -232,8 +232,8 @@ class GOWECV1Env(MFEnv):
         obs, (loss, lo, hi, limits) = np.empty(8, np.float32), self._consts
         ok, y, finite, over, out = step_one(
             t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
-            self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals, lo, hi,
-            obs, limits,
+            self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals,
+            self._work, lo, hi, obs, limits,
         )  # fmt: skip
         if not ok:
             info = dict(power=0.0, overspeed=False, out_of_range=False)

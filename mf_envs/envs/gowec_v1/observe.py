@@ -35,11 +35,11 @@ def observe_rows(active, Y, lo, hi, obs):
 
 
 @numba.njit(cache=True)
-def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, lo, hi, obs, limits):
+def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, obs, limits):
     """The single env's step in one compiled call: `step_row`, then (if the state is finite)
     `observe_one` into obs and the termination tests; limits = (max gimbal rate rad/s, max buoy
-    angle rad). Returns (ok, y1, finite obs, overspeed, out of range)."""
-    ok, y1 = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals)
+    angle rad), w = `step_work`. Returns (ok, y1, finite obs, overspeed, out of range)."""
+    ok, y1 = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w)
     if not ok:
         return False, y1, False, False, False
     finite = observe_one(y1, lo, hi, obs)

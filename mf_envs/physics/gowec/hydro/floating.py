@@ -275,15 +275,21 @@ def rk4_steps(t, y, tau, dt, n, args):
     """n RK4 substeps of dt (s) from (t, y) with the PTO command tau held; returns y (new).
     args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr) as `deriv` (`pack`).
     The stage loop is the one of `mf_envs.frames.kernels.make_rk4`."""
-    work = rk4_work(y.shape[0])
-    full = (tau, args, scratch())
     y = y.copy()
+    rk4_steps_into(t, y, tau, dt, n, args, rk4_work(y.shape[0]), scratch())
+    return y
+
+
+@numba.njit(cache=True)
+def rk4_steps_into(t, y, tau, dt, n, args, work, sc):
+    """`rk4_steps` in place on y with caller-owned temporaries: work = `rk4_work(n_state)`,
+    sc = `scratch()` (no allocation: the env's step calls it every control step)."""
+    full = (tau, args, sc)
     for _ in range(n):
         dy, _ = _rk4(t, y, dt, full, work)
         for i in range(y.shape[0]):
             y[i] += dy[i]
         t += dt
-    return y
 
 
 def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray) -> tuple:
