@@ -196,7 +196,8 @@ def _element_point(de, le, xi, w, ea, gas, ei, ksh, fe, ke, with_tangent, sc):
     v = (-s Nz', c Nz') on the 8 z dofs and Np, Np' on the 3 psi dofs,
         B_T rows = (u, g2 Np), (v, -g1 Np), (0, Np'),  a = (v, 0),  b = (u, 0),  p = (0, Np),
     so K = ea B1 B1^T + gas B2 B2^T + ei B3 B3^T + K_geo reduces to the blocks
-        zz: ea u u^T + gas v v^T,
+        zz: ea u u^T + gas v v^T = [[A, B], [B, C]] (x) Nz' Nz'^T, A = ea c^2 + gas s^2,
+            B = (ea - gas) c s, C = ea s^2 + gas c^2,
         z-psi: (alpha u + beta v) Np^T,  alpha = ea g2 - N2,  beta = N1 - gas g1,
         psi-psi: (ea g2^2 + gas g1^2 - N1 g1 - N2 g2) Np Np^T + ei Np' Np'^T.
     sc: scratch (4, 8) for the shape functions and u, v. Returns the point's stored energy [J]."""
@@ -218,9 +219,16 @@ def _element_point(de, le, xi, w, ea, gas, ei, ksh, fe, ke, with_tangent, sc):
         fe[8 + k] += w * (npsi[k] * (g2 * n1 - g1 * n2) + dnpsi[k] * m3)
     if with_tangent:
         wea, wgas = w * ea, w * gas
-        for i in range(8):
-            for j in range(i, 8):
-                ke[i, j] += wea * u[i] * u[j] + wgas * v[i] * v[j]
+        # zz = wea u u^T + wgas v v^T = [[A, B], [B, C]] (x) Nz' Nz'^T
+        a_, b_, c_ = wea * c * c + wgas * s * s, (wea - wgas) * c * s, wea * s * s + wgas * c * c
+        for i in range(4):
+            di = dnz[i]
+            for j in range(4):
+                dd = di * dnz[j]
+                ke[i, 4 + j] += b_ * dd
+                if j >= i:
+                    ke[i, j] += a_ * dd
+                    ke[4 + i, 4 + j] += c_ * dd
         alpha = w * (ea * g2 - n2)
         beta = w * (n1 - gas * g1)
         for i in range(8):
