@@ -11,8 +11,9 @@ onset search, every friction solve), so nothing here allocates: the caller passe
 (`scratch(model)`) and the beam's constants (`constants(model, settings)`). Failures come back
 as flags (no exceptions inside compiled code); the Python wrappers raise.
 
-Hand-written: no library solves the nonlinear banded equilibrium of this element; the banded
-LU is `element.band_solve_into`.
+Hand-written: no library solves the nonlinear banded equilibrium of this element from compiled
+code; the linear solves are `element.band_spd_solve_into` (banded LDL^T, the tangent of a stable
+configuration is positive definite) with `element.band_solve_into` (pivoting LU) as fallback.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import numba
 import numpy as np
 
 from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam.solver import NewtonDivergence
 
 # rows of Scratch.vec (each (n_dof,)): Newton's, the path's, then free for callers
 ROW_P, ROW_R, ROW_DELTA, ROW_D, ROW_DPREV, ROW_GUESS, ROW_F = range(7)
@@ -185,8 +187,6 @@ def solve_linear_path(
     """Quasi-static path kappa# k0 -> k1 ((n_el, 4) [1/m]) under the dead load f_ext from d0
     (converged at k0) with the prescribed dofs `fixed`: (d, Newton iterations, halvings).
     Raises solver.NewtonDivergence when halving cannot rescue Newton."""
-    from mf_envs.physics.beam.solver import NewtonDivergence
-
     sc = sc if sc is not None else scratch(model.n_elements)
     zero = np.zeros(model.n_dof)
     out = np.empty(model.n_dof)
