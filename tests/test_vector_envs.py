@@ -443,3 +443,27 @@ def test_stabilizer_threaded_env_survives_fork() -> None:
         os.waitpid(pid, 0)
         pytest.fail("the forked child did not finish in 60 s")
     assert os.waitstatus_to_exitcode(status) == 0
+
+
+def test_inchworm_native_vector_env_runs_the_friction_scene() -> None:
+    """The inchworm's native vector env compiles the friction scene (the default); other scenes
+    are refused with a ValueError naming `effects`, and the trainers fall back to single envs."""
+    from mf_envs.envs import native_vector_supported
+    from mf_envs.envs.inchworm.env import SEED_SCENE_EFFECTS
+
+    assert native_vector_supported("Inchworm-v0")
+    assert native_vector_supported("Inchworm-v0", {"effects": ("gravity", "friction")})
+    assert not native_vector_supported("Inchworm-v0", {"effects": SEED_SCENE_EFFECTS})
+    assert native_vector_supported("GOWEC-v0") and native_vector_supported("CartPole-v1")
+    with pytest.raises(ValueError, match="effects"):
+        make_vec("Inchworm-v0", 2, effects=SEED_SCENE_EFFECTS)
+    pytest.importorskip("stable_baselines3", reason="needs the train extra")
+    from mf_envs.train.vec import make_train_env
+
+    kw = {"effects": SEED_SCENE_EFFECTS, "max_episode_steps": 3}
+    venv, kind = make_train_env("Inchworm-v0", 2, seed=0, env_kwargs=kw)
+    assert kind == "dummy"
+    venv.close()
+    venv, kind = make_train_env("Inchworm-v0", 2, seed=0, env_kwargs={"max_episode_steps": 3})
+    assert kind == "native"
+    venv.close()

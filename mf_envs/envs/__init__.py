@@ -47,3 +47,18 @@ def register_envs() -> None:
             if vec is not None and importlib.util.find_spec(vec.split(":")[0]) is None:
                 vec = None
             gym.register(id=env_id, entry_point=ENV_SPECS[env_id], vector_entry_point=vec)
+
+
+def native_vector_supported(env_id: str, env_kwargs: dict | None = None) -> bool:
+    """Whether `env_id` has a native vector env that runs the single env of `env_kwargs` (the
+    inchworm's compiles the friction scene only): our vector env class's `supports`; for an id
+    that is not ours, whether its spec has a vector entry point."""
+    import importlib
+
+    entry = VECTOR_SPECS.get(env_id)
+    if entry is None:
+        return gym.spec(env_id).vector_entry_point is not None
+    if importlib.util.find_spec(entry.split(":")[0]) is None:
+        return False
+    module, name = entry.split(":")
+    return bool(getattr(importlib.import_module(module), name).supports(**(env_kwargs or {})))

@@ -155,6 +155,12 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         self._is_reset = False
         self._alloc(n)
 
+    @classmethod
+    def supports(cls, **env_kwargs: Any) -> bool:
+        """Whether this vector env runs the single env of these kwargs (all of them, unless a
+        subclass compiles only some scenes)."""
+        return True
+
     # ------------------------------------------------------------------ subclass hooks
     @abc.abstractmethod
     def _alloc(self, n: int) -> None:

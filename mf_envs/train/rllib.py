@@ -9,8 +9,9 @@ Native vector envs: RLlib >= 2.4x's `SingleAgentEnvRunner` builds its env with
 `gym.make_vec(name, num_envs=num_envs_per_env_runner, vectorization_mode=mode)`, and the
 VECTOR_ENTRY_POINT mode hands the whole batch to our creator. Our vector envs use Gymnasium's
 NEXT_STEP autoreset, the semantics the runner expects (the step after a done one is the reset
-observation), and batched dict infos, which the runner's `DictInfoToList` unpacks. Envs without
-a native vector env (Inchworm-v0) run with RLlib's SYNC vectorisation of single envs.
+observation), and batched dict infos, which the runner's `DictInfoToList` unpacks. Scenes without
+a native vector env (Inchworm-v0 without `friction`) run with RLlib's SYNC vectorisation of
+single envs.
 
 `PPO_CONFIGS` is the documented per-env starting point. Its keys (all optional except those
 `_BASE` supplies): `timesteps` (training budget), `num_env_runners` (Ray actors sampling in
@@ -77,10 +78,13 @@ def require_ray() -> Any:
     return ray
 
 
-def has_native_vector_env(env_id: str) -> bool:
+def has_native_vector_env(env_id: str, env_kwargs: dict[str, Any] | None = None) -> bool:
+    """A native vector env that runs this scene (the inchworm's: the friction scene only)."""
     import mf_envs  # noqa: F401
+    from mf_envs.envs import native_vector_supported
 
-    return gym.spec(env_id).vector_entry_point is not None
+    spec = gym.spec(env_id)
+    return spec.vector_entry_point is not None and native_vector_supported(env_id, env_kwargs)
 
 
 def make_env(env_id: str, env_config: dict[str, Any]) -> gym.Env | gym.vector.VectorEnv:
@@ -91,7 +95,7 @@ def make_env(env_id: str, env_config: dict[str, Any]) -> gym.Env | gym.vector.Ve
     n = kwargs.pop("num_envs", None)
     if n is None:
         return gym.make(env_id, **kwargs)
-    mode = "vector_entry_point" if has_native_vector_env(env_id) else "sync"
+    mode = "vector_entry_point" if has_native_vector_env(env_id, kwargs) else "sync"
     return gym.make_vec(env_id, num_envs=int(n), vectorization_mode=mode, **kwargs)
 
 
@@ -125,7 +129,7 @@ def ppo_config(env_id: str, seed: int = 0, **overrides: Any) -> Any:
 
     register_rllib_envs()
     s = ppo_settings(env_id, overrides)
-    native = has_native_vector_env(env_id)
+    native = has_native_vector_env(env_id, s["env_kwargs"])
     connector = None
     if s["mean_std_filter"]:
         from ray.rllib.connectors.env_to_module.mean_std_filter import MeanStdFilter

@@ -116,8 +116,12 @@ def split_infos(infos: dict[str, Any], n: int) -> list[dict[str, Any]]:
 
 def native_vector_env(env_id: str, n_envs: int, env_kwargs: dict[str, Any]) -> VecEnv | None:
     """The env's own vector env adapted to SB3, or None if it has none / it cannot be adapted."""
-    spec = gym.spec(env_id)
-    if spec.vector_entry_point is None:
+    from mf_envs.envs import native_vector_supported
+
+    if gym.spec(env_id).vector_entry_point is None:
+        return None
+    if not native_vector_supported(env_id, env_kwargs):  # e.g. an inchworm without friction
+        print(f"note: the native vector env of {env_id} does not run this scene; DummyVecEnv")
         return None
     try:  # ask for SAME_STEP autoreset (SB3's semantics) if the vector env takes the option
         venv = gym.make_vec(

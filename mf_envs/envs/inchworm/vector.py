@@ -37,6 +37,18 @@ class InchwormVectorEnv(BatchedVectorEnv):
     single_env_cls = InchwormEnv
     row_cost = "heavy"  # ~1 ms per row: one block per CPU from N = 2
 
+    @classmethod
+    def supports(cls, **env_kwargs: Any) -> bool:
+        """Only the friction scene (the default effects include it) is compiled."""
+        from mf_envs.effects import resolve_effects
+        from mf_envs.envs.inchworm.env import DEFAULT_EFFECTS
+        from mf_envs.physics.inchworm import INCHWORM_EFFECTS
+        from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS
+
+        avail = {**INCHWORM_EFFECTS, **DRIVE_EFFECTS}
+        effects = resolve_effects(env_kwargs.get("effects"), avail, DEFAULT_EFFECTS)
+        return "friction" in effects
+
     def _alloc(self, n: int) -> None:
         env = self.template
         if "friction" not in env.effects:
