@@ -79,9 +79,10 @@ def _excess(mu4, rx, nz, g, i):
 @numba.njit(cache=True)
 def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, bc, sc):
     """lambda* in [0, 1] where foot i, pulled towards s, reaches its holding limit on the stuck
-    path from d (lambda = 0) to d_end (lambda = 1) (regula falsi, the algorithm of `feet`;
-    Newton starts on the chord of the bracket's solutions). The configuration there goes to
-    the ROW_STAR + i row. Returns (lambda*, ok, iterations)."""
+    path from d (lambda = 0) to d_end (lambda = 1) (regula falsi with the Illinois
+    modification, the algorithm of `feet`; Newton starts on the chord of the bracket's
+    solutions). The configuration there goes to the ROW_STAR + i row. Returns (lambda*, ok,
+    iterations)."""
     vec, kap = sc[0], sc[4][1]
     zero, d_lo, dl, best_d = vec[ROW_ZERO], vec[ROW_DLO], vec[ROW_DL], vec[ROW_BEST]
     d_hi, guess1 = vec[ROW_DHI], vec[ROW_GUESS1]
@@ -96,10 +97,10 @@ def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd,
     d_hi[:] = d_end
     best_e, best_lam = abs(e_lo), 0.0
     best_d[:] = d
-    iterations = 0
+    iterations, side = 0, 0
     for _ in range(30):
         lam = lo + (hi - lo) * e_lo / (e_lo - e_hi)
-        lam = min(max(lam, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
+        lam = min(max(lam, lo + 1e-6 * (hi - lo)), hi - 1e-6 * (hi - lo))
         w = (lam - lo) / (hi - lo)  # start Newton on the chord of the bracket's solutions
         for k in range(d.shape[0]):
             guess1[k] = d_lo[k] + w * (d_hi[k] - d_lo[k])
@@ -115,11 +116,15 @@ def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd,
         if abs(e) < best_e:
             best_e, best_lam = abs(e), lam
             best_d[:] = dl
-        if e <= 0.0:
-            lo, e_lo = lam, e
+        if e <= 0.0:  # Illinois: halve the stale end's excess when the same side repeats
+            if side < 0:
+                e_hi *= 0.5
+            lo, e_lo, side = lam, e, -1
             d_lo[:] = dl
         else:
-            hi, e_hi = lam, e
+            if side > 0:
+                e_lo *= 0.5
+            hi, e_hi, side = lam, e, 1
             d_hi[:] = dl
         if abs(e) < 1e-9 * max(abs(nz[i]), 1e-12) or hi - lo < 1e-12:
             break
