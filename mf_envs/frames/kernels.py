@@ -362,8 +362,9 @@ def rkmk4_rwork() -> np.ndarray:
     return np.empty((2, 3, 3))
 
 
-def _specialise(template: Callable, rhs, inputs, prefix: str):
-    """Compile `template` with `_rhs`/`_inputs` bound to the model's jitted functions (module doc).
+def _specialise(template: Callable, rhs, inputs, prefix: str, inline: str = "never"):
+    """Compile `template` with `_rhs`/`_inputs` bound to the model's jitted functions (module doc);
+    inline="always" inlines it into its callers (numba IR inlining).
 
     The result is cached beside the model's module (its file stamps the cache) under a name that
     also carries a checksum of this file, so editing either invalidates it."""
@@ -376,16 +377,17 @@ def _specialise(template: Callable, rhs, inputs, prefix: str):
     glb = dict(template.__globals__, _rhs=rhs, _inputs=inputs)
     fn = types.FunctionType(code, glb, name)
     fn.__module__, fn.__doc__ = py.__module__, template.__doc__
-    return numba.njit(cache=True)(fn)
+    return numba.njit(cache=True, inline=inline)(fn)
 
 
-def make_rk4(rhs, inputs):
+def make_rk4(rhs, inputs, inline: str = "never"):
     """The RK4 step `step(t, x, dt, args, work) -> (dx, inputs(t + dt))` for one model (numba).
 
     rhs(t, x, inp, args, out) (writes x' (n,) into out) and inputs(t, args) -> inp must be
     `numba.njit` functions;
-    `step` is itself jitted and callable from the model's kernels."""
-    return _specialise(_rk4_template, rhs, inputs, "rk4")
+    `step` is itself jitted and callable from the model's kernels; inline="always" inlines it
+    into them instead of calling it."""
+    return _specialise(_rk4_template, rhs, inputs, "rk4", inline)
 
 
 def make_rkmk4(rhs, inputs):

@@ -40,6 +40,7 @@ def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, 
     `observe_one` into obs and the termination tests; limits = (max gimbal rate rad/s, max buoy
     angle rad), w = `step_work`. Returns (ok, y1, finite obs, overspeed, out of range)."""
     ok, y1 = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w)
+    y1 = y1.copy()  # the env keeps it as its state; step_row's y1 is a view into w
     if not ok:
         return False, y1, False, False, False
     finite = observe_one(y1, lo, hi, obs)

@@ -16,13 +16,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.gowec.hydro.floating import (
-    N_MECH,
-    deriv_into,
-    excitation,
-    mass_rhs_into,
-    rk4_steps_into,
-)
+from mf_envs.physics.gowec.hydro.floating import N_MECH, _mechanics, excitation, rk4_steps_into
 
 N_VALS = 12  # step_row's value slots (see its docstring)
 
@@ -38,83 +32,50 @@ def elevation(t, amp, om, eps):
 
 @numba.njit(cache=True)
 def step_work(n_state):
-    """One flat buffer of `step_row`'s temporaries for a state of n_state (one array: cheap to
-    pass from Python; `_views` carves it)."""
-    return np.zeros(6 * n_state + 54)
-
-
-@numba.njit(cache=True, inline="always")
-def _views(w, n):
-    """(RK4 work (5, n), `floating.scratch()`-like (M, v, gy, Q, u', cs), dy (n,), and M (3, 3),
-    v, gy (3,), cs (2, 2), zeros (6,) of the hull-only mass) as views of the flat buffer w."""
-    o = 5 * n
-    sc = (
-        w[o : o + 9].reshape((3, 3)),
-        w[o + 9 : o + 12],
-        w[o + 12 : o + 15],
-        w[o + 15 : o + 18],
-        w[o + 18 : o + 21],
-        w[o + 21 : o + 25].reshape((2, 2)),
-    )
-    o += 25
-    hull = (
-        w[o + n : o + n + 9].reshape((3, 3)),
-        w[o + n + 9 : o + n + 12],
-        w[o + n + 12 : o + n + 15],
-        w[o + n + 15 : o + n + 19].reshape((2, 2)),
-    )
-    zero = w[o + n + 19 : o + n + 25]
-    zero[:] = 0.0
-    return w[: 5 * n].reshape((5, n)), sc, w[o : o + n], hull, zero
+    """`step_row`'s temporaries for a state of n_state: the RK4 stage slopes and stage state
+    (5, n_state) and the end state (n_state,), as one flat buffer (one array: cheap to pass
+    from Python; `step_row` carves it)."""
+    return np.zeros(6 * n_state)
 
 
 @numba.njit(cache=True)
 def gyro_moment_pitch(t, y, tau, args):
     """Moment (N m) of the gyro units on the hull about the pitch axis e1 at (t, y) with the PTO
     command tau: minus the theta row of the gyro's B^T (J B u' + J B' u + w x h) (as
-    `floating.gyro_moment`, the matrix-vector product summed in index order)."""
-    return gyro_moment_pitch_into(t, y, tau, args, step_work(y.shape[0]))
-
-
-@numba.njit(cache=True, inline="always")
-def gyro_moment_pitch_into(t, y, tau, args, w):
-    """`gyro_moment_pitch` with the temporaries w = `step_work(n_state)`."""
-    p_in, p_gy, psid = args[0], args[1], args[2]
-    _, sc, acc, (Mh, vh, gyh, csh), zero = _views(w, y.shape[0])
-    deriv_into(t, y, tau, args, acc, sc)
-    q, u = y[0:3], y[3:6]
-    Mf, vf, gy, csf = sc[0], sc[1], sc[2], sc[5]
-    mass_rhs_into(q, u, p_in, p_gy, psid, Mf, vf, gy, csf)
-    mass_rhs_into(q, u, p_in, zero, 0.0, Mh, vh, gyh, csh)
-    s = 0.0
-    for j in range(3):
-        s += (Mf[0, j] - Mh[0, j]) * acc[3 + j]
-    return -(s + gy[0])
+    `floating.gyro_moment`): row 0 of the gyro's mass matrix (M* less the hull's; its only
+    entry is (0, 0)) times u', plus the gyro's velocity terms."""
+    mx, my = excitation(t, args[9], args[10], args[11])
+    ud, m, _, _, _ = _mechanics(t, y, tau, args, mx, my)
+    return -((m[0] - m[11]) * ud[0] + m[7])
 
 
 @numba.njit(cache=True)
 def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     """One control step from (t0, y) to t1 = t0 + dtc (s) with the PTO command tau (N m) held
-    over n RK4 substeps of dt. Returns (ok, y1): ok False if the state is not finite (then
-    `vals` is untouched); else vals (N_VALS,) = (net electrical power W, mechanical power W,
-    pitch rad, roll rad, pitch rate rad/s, roll rate rad/s, excitation moment N m, gyro moment
-    N m, gimbal angle rad, gimbal rate rad/s, elevation m, net electrical energy J), the powers
-    from the integrated PTO energies over dtc, `loss` (W) the rotor loss subtracted."""
+    over n RK4 substeps of dt (w = `step_work`). Returns (ok, y1), y1 a view into w: ok False
+    if the state is not finite (then `vals` is untouched); else vals (N_VALS,) = (net electrical
+    power W, mechanical power W, pitch rad, roll rad, pitch rate rad/s, roll rate rad/s,
+    excitation moment N m, gyro moment N m, gimbal angle rad, gimbal rate rad/s, elevation m,
+    net electrical energy J), the powers from the integrated PTO energies over dtc, `loss` (W)
+    the rotor loss subtracted."""
+    m = y.shape[0]
     k = N_MECH + 2 * args[5].shape[0]
-    try:  # numba's solve raises on a non-finite mass matrix
-        y1 = y.copy()
-        work, sc, _, _, _ = _views(w, y.shape[0])
-        rk4_steps_into(t0, y1, tau, dt, n, args, work, sc)
-    except Exception:  # noqa: BLE001  (numba: any exception of the solve)
-        y1 = np.full_like(y, np.nan)
-    for i in range(y1.shape[0]):
+    y1 = w[5 * m : 6 * m]
+    y1[:] = y
+    try:  # a zero pivot of the 3 x 3 solve raises ZeroDivisionError (numba's float division)
+        rk4_steps_into(t0, y1, tau, dt, n, args, w[: 5 * m].reshape((5, m)))
+    except Exception:  # noqa: BLE001
+        y1[:] = np.nan
+    for i in range(m):
         if not math.isfinite(y1[i]):
             return False, y1
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
     vals[0], vals[1] = p_el, (y1[k + 3] - y[k + 3]) / dtc
     vals[2], vals[3], vals[4], vals[5] = y1[0], y1[1], y1[3], y1[4]
-    vals[6] = excitation(t1, args[9], args[10], args[11])[0]
-    vals[7] = gyro_moment_pitch_into(t1, y1, tau, args, w)
+    mx, my = excitation(t1, args[9], args[10], args[11])
+    vals[6] = mx
+    ud, mt, _, _, _ = _mechanics(t1, y1, tau, args, mx, my)
+    vals[7] = -((mt[0] - mt[11]) * ud[0] + mt[7])
     vals[8], vals[9] = y1[2], y1[5]
     vals[10] = elevation(t1, amp, args[9], eps)
     vals[11] = p_el * dtc

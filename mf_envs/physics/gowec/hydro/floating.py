@@ -111,163 +111,170 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
     also the spin coupling S = sum_s s w_g3(s) (rad/s) and the gyro units' share of v (3,).
     gyro = (Ja, Jt, Jg1, Jg2, Jg3, n_units); unit s = +1 has gimbal angle phi and spin psi',
     unit s = -1 (dual configuration, ch. 3 Sec. 3.2.3) -phi and -psi'."""
-    M, v, gy = np.empty((3, 3)), np.empty(3), np.empty(3)
-    spin = mass_rhs_into(q, u, inertia, gyro, psid, M, v, gy, np.empty((2, 2)))
-    return M, v, spin, gy
+    m = _mass_terms(q[1], q[2], u[0], u[1], u[2], inertia, gyro, psid)
+    M = np.zeros((3, 3))
+    M[0, 0], M[1, 1], M[1, 2], M[2, 1], M[2, 2] = m[0], m[1], m[2], m[2], m[3]
+    return M, np.array([m[4], m[5], m[6]]), m[10], np.array([m[7], m[8], m[9]])
 
 
 @numba.njit(cache=True, inline="always")
-def mass_rhs_into(q, u, inertia, gyro, psid, M, v, gy, cs):
-    """`mass_and_rhs` into caller-owned M (3, 3), v (3,), gy (3,) (no allocation: the RK4
-    stages call it 4 times per substep), and (cos b, sin b) of each unit into cs (2, 2);
-    returns the spin coupling S (rad/s)."""
-    th_d, ro_d, ph_d = u[0], u[1], u[2]
-    cr_, sr_ = math.cos(q[1]), math.sin(q[1])
+def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid):
+    """`mass_and_rhs` on scalars (the RK4 stages call it 4 times per substep; no arrays, so no
+    reference counting): returns (M00, M11, M12 = M21, M22 (M01 = M02 = 0: w_1 of every body
+    depends on theta' only), v (3), gy (3), S, the hull's M00 alone, and (cos b, sin b) of
+    units 1 and 2 (zeros for a missing unit))."""
+    cr_, sr_ = math.cos(ro), math.sin(ro)
     Ih, Iz = inertia[0], inertia[1]
     Ja, Jt, Jg1, Jg2, Jg3 = gyro[0], gyro[1], gyro[2], gyro[3], gyro[4]
     # gimbal + rotor (principal in the gimbal frame): J1, J2, J3 (rotor spin added in h3)
     G1, G2, G3 = Jg1 + Jt, Jg2 + Jt, Jg3 + Ja
-    M[:, :] = 0.0
-    M[0, 0] = Ih * cr_ * cr_ + Iz * sr_ * sr_
-    M[1, 1] = Ih
+    m00 = Ih * cr_ * cr_ + Iz * sr_ * sr_
+    hull00, m11, m12, m22 = m00, Ih, 0.0, 0.0
     # hull: w = (c th', ro', s th'), B'u = (-s ro' th', 0, c ro' th')
     w1, w2, w3 = cr_ * th_d, ro_d, sr_ * th_d
     d1, d3 = -sr_ * ro_d * th_d, cr_ * ro_d * th_d
     e1 = Ih * d1 + (w2 * Iz * w3 - w3 * Ih * w2)
     e2 = w3 * Ih * w1 - w1 * Iz * w3
     e3 = Iz * d3 + (w1 * Ih * w2 - w2 * Ih * w1)
-    v[0] = cr_ * e1 + sr_ * e3
-    v[1] = e2
-    v[2] = 0.0
-    gy[:] = 0.0
-    spin = 0.0
+    gy0, gy1, gy2, spin = 0.0, 0.0, 0.0, 0.0
+    c1, s1, c2, s2 = 0.0, 0.0, 0.0, 0.0
     for k in range(int(gyro[5])):
         sg = 1.0 - 2.0 * k
         # w = (cb th', ro' + s ph', sb th'), b = ro + s phi, B'u = (-sb bd th', 0, cb bd th')
-        b = q[1] + sg * q[2]
+        b = ro + sg * ph
         cb, sb = math.cos(b), math.sin(b)
-        cs[k, 0], cs[k, 1] = cb, sb
+        if k == 0:
+            c1, s1 = cb, sb
+        else:
+            c2, s2 = cb, sb
         bd = ro_d + sg * ph_d
-        M[0, 0] += G1 * cb * cb + G3 * sb * sb
-        M[1, 1] += G2
-        M[1, 2] += sg * G2
-        M[2, 1] += sg * G2
-        M[2, 2] += G2
+        m00 += G1 * cb * cb + G3 * sb * sb
+        m11 += G2
+        m12 += sg * G2
+        m22 += G2
         g1, g2, g3 = cb * th_d, bd, sb * th_d
         h1, h2, h3 = G1 * g1, G2 * g2, G3 * g3 + sg * Ja * psid
         f1 = G1 * (-sb * bd * th_d) + (g2 * h3 - g3 * h2)
         f2 = g3 * h1 - g1 * h3
         f3 = G3 * (cb * bd * th_d) + (g1 * h2 - g2 * h1)
-        gy[0] += cb * f1 + sb * f3
-        gy[1] += f2
-        gy[2] += sg * f2
+        gy0 += cb * f1 + sb * f3
+        gy1 += f2
+        gy2 += sg * f2
         spin += sg * g3
-    for i in range(3):
-        v[i] += gy[i]
-    return spin
+    v0, v1, v2 = cr_ * e1 + sr_ * e3 + gy0, e2 + gy1, 0.0 + gy2
+    return (m00, m11, m12, m22, v0, v1, v2, gy0, gy1, gy2, spin, hull00, c1, s1, c2, s2)
 
 
 @numba.njit(cache=True, inline="always")
-def solve3_into(M, r, x):
-    """x (3,) with M x = r for the (3, 3) mass matrix: Gaussian elimination with partial
-    pivoting, hand-written because LAPACK's call overhead dominates a 3 x 3 solve in the RK4
-    loop; a singular or non-finite M gives a non-finite x (the env's failure path). M and r
-    are overwritten (the caller's temporaries); the solution goes into x (3,)."""
-    A, b = M, r
-    for c in range(3):
-        p = c
-        for i in range(c + 1, 3):
-            if abs(A[i, c]) > abs(A[p, c]):
-                p = i
-        if p != c:
-            for j in range(3):
-                A[c, j], A[p, j] = A[p, j], A[c, j]
-            b[c], b[p] = b[p], b[c]
-        for i in range(c + 1, 3):
-            f = A[i, c] / A[c, c]
-            for j in range(c, 3):
-                A[i, j] -= f * A[c, j]
-            b[i] -= f * b[c]
-    for i in range(2, -1, -1):
-        s = b[i]
-        for j in range(i + 1, 3):
-            s -= A[i, j] * x[j]
-        x[i] = s / A[i, i]
+def _solve3(a, b):
+    """x with A x = b for A = a (9-tuple, row-major) and b (3-tuple): Gaussian elimination with
+    partial pivoting on scalars (LAPACK's call overhead dominates a 3 x 3 solve in the RK4
+    loop); a singular or non-finite A gives a non-finite x (the env's failure path)."""
+    a00, a01, a02, a10, a11, a12, a20, a21, a22 = a
+    b0, b1, b2 = b
+    p, big = 0, abs(a00)  # column 0: the first row of largest |a_i0| is swapped with row 0
+    if abs(a10) > big:
+        p, big = 1, abs(a10)
+    if abs(a20) > big:
+        p = 2
+    if p == 1:
+        a00, a01, a02, a10, a11, a12, b0, b1 = a10, a11, a12, a00, a01, a02, b1, b0
+    elif p == 2:
+        a00, a01, a02, a20, a21, a22, b0, b2 = a20, a21, a22, a00, a01, a02, b2, b0
+    f = a10 / a00
+    a11, a12, b1 = a11 - f * a01, a12 - f * a02, b1 - f * b0
+    f = a20 / a00
+    a21, a22, b2 = a21 - f * a01, a22 - f * a02, b2 - f * b0
+    if abs(a21) > abs(a11):  # column 1
+        a11, a12, a21, a22, b1, b2 = a21, a22, a11, a12, b2, b1
+    f = a21 / a11
+    a22, b2 = a22 - f * a12, b2 - f * b1
+    x2 = b2 / a22
+    x1 = (b1 - a12 * x2) / a11
+    x0 = (b0 - a01 * x1 - a02 * x2) / a00
+    return x0, x1, x2
 
 
-@numba.njit(cache=True)
-def scratch():
-    """Caller-owned temporaries of `deriv_into`: (M (3, 3), v, gy, Q, u' (3,) each, (cos b,
-    sin b) of each gyro unit (2, 2))."""
-    return np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3), np.empty(3), np.empty((2, 2))
+@numba.njit(cache=True, inline="always")
+def _mechanics(t, y, tau, args, mx, my):
+    """The mechanical part of `deriv` at (t, y) with the excitation (mx, my) (N m) at t:
+    (u' (3), the mass terms of `_mass_terms`, radiation moments mu_t, mu_r (N m), M_g (N m))."""
+    p_in, p_gy, psid, C, bv, Ar, _, Cr, pto = args[:9]
+    nr = Ar.shape[0]
+    m = _mass_terms(y[1], y[2], y[3], y[4], y[5], p_in, p_gy, psid)
+    mu_t, mu_r = 0.0, 0.0
+    for i in range(nr):
+        mu_t += Cr[i] * y[6 + i]
+        mu_r += Cr[i] * y[6 + nr + i]
+    Mg = pto_torque(y[2], y[5], tau, pto)
+    q0 = mx - C * y[0] - mu_t - bv * y[3] - m[4]
+    q1 = my - C * y[1] - mu_r - bv * y[4] - m[5]
+    q2 = -p_gy[5] * Mg - m[6]
+    a = (m[0], 0.0, 0.0, 0.0, m[1], m[2], 0.0, m[2], m[3])
+    return _solve3(a, (q0, q1, q2)), m, mu_t, mu_r, Mg
 
 
 @numba.njit(cache=True)
 def deriv(t, y, tau, args):
     """dy/dt (module doc layout) with the PTO command tau (N m); args: `pack`."""
     dy = np.empty_like(y)
-    deriv_into(t, y, tau, args, dy, scratch())
+    mx, my = excitation(t, args[9], args[10], args[11])
+    deriv_into(t, y, tau, args, mx, my, dy)
     return dy
 
 
 @numba.njit(cache=True, inline="always")
-def deriv_into(t, y, tau, args, dy, work):
-    """`deriv` into dy (n_state,) with the temporaries `work` = `scratch()` (no allocation)."""
-    p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr = args
-    M, v, gy, Q, ud, cs = work
+def deriv_into(t, y, tau, args, mx, my, dy):
+    """`deriv` into dy (n_state,) with the excitation (mx, my) (N m) at t given (the RK4 step
+    evaluates it once per stage time: `excitation`); no allocation, no temporaries."""
+    p_gy, psid, Ar, Br, pto = args[1], args[2], args[5], args[6], args[8]
+    bv = args[4]
     nr = Ar.shape[0]
-    q, u = y[0:3], y[3:6]
-    xt, xr = y[6 : 6 + nr], y[6 + nr : 6 + 2 * nr]
-    mass_rhs_into(q, u, p_in, p_gy, psid, M, v, gy, cs)
-    mx, my = excitation(t, om, cp, cr)
-    mu_t, mu_r = 0.0, 0.0
-    for i in range(nr):
-        mu_t += Cr[i] * xt[i]
-        mu_r += Cr[i] * xr[i]
-    Mg = pto_torque(q[2], u[2], tau, pto)
-    Q[0] = mx - C * q[0] - mu_t - bv * u[0] - v[0]
-    Q[1] = my - C * q[1] - mu_r - bv * u[1] - v[1]
-    nu = p_gy[5]
-    Q[2] = -nu * Mg - v[2]
-    solve3_into(M, Q, ud)
+    ud, m, mu_t, mu_r, Mg = _mechanics(t, y, tau, args, mx, my)
     for i in range(3):
-        dy[i] = u[i]
+        dy[i] = y[3 + i]
         dy[3 + i] = ud[i]
+    th_d, ro_d, ph_d = y[3], y[4], y[5]
     for i in range(nr):  # radiation states: x' = A x + B u (loops: no BLAS call per row)
         at, ar = 0.0, 0.0
         for j in range(nr):
-            at += Ar[i, j] * xt[j]
-            ar += Ar[i, j] * xr[j]
-        dy[6 + i] = at + Br[i] * u[0]
-        dy[6 + nr + i] = ar + Br[i] * u[1]
+            at += Ar[i, j] * y[6 + j]
+            ar += Ar[i, j] * y[6 + nr + j]
+        dy[6 + i] = at + Br[i] * th_d
+        dy[6 + nr + i] = ar + Br[i] * ro_d
     k = 6 + 2 * nr
-    P = nu * Mg * u[2]
-    dy[k] = mx * u[0] + my * u[1]
-    dy[k + 1] = mu_t * u[0] + mu_r * u[1]
-    dy[k + 2] = bv * (u[0] * u[0] + u[1] * u[1])
+    nu = p_gy[5]
+    P = nu * Mg * ph_d
+    dy[k] = mx * th_d + my * ro_d
+    dy[k + 1] = mu_t * th_d + mu_r * ro_d
+    dy[k + 2] = bv * (th_d * th_d + ro_d * ro_d)
     dy[k + 3] = P
     dy[k + 4] = P * pto[4] if P >= 0.0 else P / pto[5]
     # rotor motors hold +-psi': torque Ja d/dt(w_g3) with w_g3 = sin(b) theta', b = rho + s phi
     pm = 0.0
     for j in range(int(nu)):
         sg = 1.0 - 2.0 * j
-        pm += sg * (cs[j, 0] * (u[1] + sg * u[2]) * u[0] + cs[j, 1] * ud[0])
+        cb, sb = (m[12], m[13]) if j == 0 else (m[14], m[15])
+        pm += sg * (cb * (ro_d + sg * ph_d) * th_d + sb * ud[0])
     dy[k + 5] = p_gy[0] * pm * psid
 
 
 @numba.njit(cache=True, inline="always")
 def _stage_rhs(t, x, inp, args, out):
-    """`deriv_into` in the RK4 template's form; args = (tau, deriv args, `scratch()`)."""
-    deriv_into(t, x, args[0], args[1], out, args[2])
+    """`deriv_into` in the RK4 template's form; inp = the excitation (mx, my) at t, args =
+    (tau, deriv args)."""
+    deriv_into(t, x, args[0], args[1], inp[0], inp[1], out)
 
 
-@numba.njit(cache=True)
-def _no_inputs(t, args):
-    """The wave excitation is evaluated inside `deriv`: no separate inputs."""
-    return 0.0
+@numba.njit(cache=True, inline="always")
+def _stage_excitation(t, args):
+    """The wave excitation (mx, my) at t: the template evaluates it once at each of t, t + dt/2
+    and t + dt (the two middle stages share it)."""
+    a = args[1]
+    return excitation(t, a[9], a[10], a[11])
 
 
-_rk4 = make_rk4(_stage_rhs, _no_inputs)
+_rk4 = make_rk4(_stage_rhs, _stage_excitation, inline="always")
 
 
 @numba.njit(cache=True)
@@ -276,15 +283,15 @@ def rk4_steps(t, y, tau, dt, n, args):
     args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr) as `deriv` (`pack`).
     The stage loop is the one of `mf_envs.frames.kernels.make_rk4`."""
     y = y.copy()
-    rk4_steps_into(t, y, tau, dt, n, args, rk4_work(y.shape[0]), scratch())
+    rk4_steps_into(t, y, tau, dt, n, args, rk4_work(y.shape[0]))
     return y
 
 
 @numba.njit(cache=True)
-def rk4_steps_into(t, y, tau, dt, n, args, work, sc):
-    """`rk4_steps` in place on y with caller-owned temporaries: work = `rk4_work(n_state)`,
-    sc = `scratch()` (no allocation: the env's step calls it every control step)."""
-    full = (tau, args, sc)
+def rk4_steps_into(t, y, tau, dt, n, args, work):
+    """`rk4_steps` in place on y with caller-owned temporaries work = `rk4_work(n_state)` (no
+    allocation: the env's step calls it every control step)."""
+    full = (tau, args)
     for _ in range(n):
         dy, _ = _rk4(t, y, dt, full, work)
         for i in range(y.shape[0]):
