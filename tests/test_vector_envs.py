@@ -362,6 +362,24 @@ def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
     _compiled_resets_match_sync("GOWEC-v0", kw, mode, {"gimbal_angle": 0.05}, buffer)
 
 
+GOWEC_V1_SCENES = [{}, {"wave_direction": 0.4, "gyro_units": 1, "wave_amplitude": 0.3}]
+
+
+@pytest.mark.parametrize("scene", GOWEC_V1_SCENES)
+@pytest.mark.parametrize("mode", list(AutoresetMode))
+def test_gowec_v1_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict) -> None:
+    """GOWEC-v1's compiled resets (regular seas: the phase and gimbal angle pre-drawn, the
+    excitation coefficients from the single env's function) as GOWEC-v0's above, with template
+    resets carrying an option (`buoy_pitch`) in between; also a wave off the pitch axis and
+    one gyro unit. Irregular seas keep the template path."""
+    from mf_envs.envs.gowec_v1.vector import GOWECV1VectorEnv as V
+
+    kw = {"episode_seconds": 0.08, **scene}  # an episode every 4 steps
+    assert make_vec("GOWEC-v1", 2, **kw).unwrapped._fast  # the compiled path is taken
+    assert not make_vec("GOWEC-v1", 2, **FULL["GOWEC-v1"]).unwrapped._fast
+    _compiled_resets_match_sync("GOWEC-v1", kw, mode, {"buoy_pitch": 0.05}, V.DRAW_BUFFER)
+
+
 STAB_SCENES = [
     {},
     {"heading": 0.3, "ship_speed": 10.0},

@@ -7,19 +7,32 @@ same seeds (`tests/test_vector_envs.py`): resets go through a template single en
 sea are copied into the row), steps through `physics.gowec.hydro.batch.batch_step_rows`, which
 calls the single env's own step kernel (`step_row`) for every row; observations are built by
 `observe_rows` with the single env's expressions. See `mf_envs.envs._vector`.
+
+Compiled resets (regular seas): `GOWECV1Env.reset()` without options draws two doubles, the wave
+phase U(0, 2 pi) and the gimbal angle U(-0.1, 0.1), and the phase enters only the row's sea
+(eps and the excitation coefficients). Autoresets and seedless resets without options therefore
+skip the template env: the doubles are pre-drawn from each row's generator
+(`mf_envs.envs._predraw`), the coefficients come from the single env's own
+`floating.excitation_coefficients` (per row, the same arrays), and one numba call (`reset_rows`)
+writes the state, the reset infos' values and the observations. Irregular seas (a new sea of
+many draws per reset) keep the template path.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
+import numba
 import numpy as np
 
+from mf_envs.envs._predraw import PredrawnResets
 from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
-from mf_envs.envs.gowec_v1.observe import observe_rows
-from mf_envs.physics.gowec.hydro.batch import N_VALS, batch_step_rows
+from mf_envs.envs.gowec_v1.observe import observe_one, observe_rows
+from mf_envs.physics.gowec.hydro.batch import N_VALS, batch_step_rows, elevation, gyro_moment_pitch
+from mf_envs.physics.gowec.hydro.floating import excitation, excitation_coefficients
 
 # info keys from step_row's value slots (buoy_rate is the pair of slots 4, 5)
 _SCALAR_SLOTS = {
@@ -28,9 +41,32 @@ _SCALAR_SLOTS = {
     "wave_elevation": 10,
 }  # fmt: skip
 _FAILURE_KEYS = ("power", "reward_terms", "overspeed", "out_of_range", "numerical_failure")
+PHASE0, GIMBAL0 = (0.0, 2.0 * math.pi), (-0.1, 0.1)  # GOWECV1Env.reset's U(low, high) draws
 
 
-class GOWECV1VectorEnv(BatchedVectorEnv):
+@numba.njit(cache=True)
+def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, amp, eps, vals, lo, hi, obs):
+    """GOWECV1Env.reset() (no options) for the rows idx whose sea (om, cp, cr, amp, eps) is in
+    place: the state at rest with the gimbal angle gimbal[j] (rad), steps = 0, the reset info's
+    value slots (`step_row`'s layout, at t = 0 with tau = 0) and the float32 observations."""
+    for j in range(idx.shape[0]):
+        i = idx[j]
+        y = Y[i]
+        y[:] = 0.0
+        y[2] = gimbal[j]
+        steps[i] = 0
+        args = (*shared, om[i], cp[i], cr[i])
+        v = vals[i]
+        v[:] = 0.0
+        v[2], v[3], v[4], v[5] = y[0], y[1], y[3], y[4]
+        v[6] = excitation(0.0, om[i], cp[i], cr[i])[0]
+        v[7] = gyro_moment_pitch(0.0, y, 0.0, args)
+        v[8], v[9] = y[2], y[5]
+        v[10] = elevation(0.0, amp[i], om[i], eps[i])
+        observe_one(y, lo, hi, obs[i])
+
+
+class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
     """N independent `GOWEC-v1` envs (same kwargs, own seeds) stepped in one numba call.
 
     Observations (N, 8) float32 (`spec.OBS`), actions (N, 1) in [-1, 1], rewards (N,) float64,
@@ -38,6 +74,7 @@ class GOWECV1VectorEnv(BatchedVectorEnv):
     """
 
     single_env_cls = GOWECV1Env
+    DRAWS_PER_RESET = 2  # wave phase, gimbal angle
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -51,6 +88,9 @@ class GOWECV1VectorEnv(BatchedVectorEnv):
         self._ok = np.ones(n, dtype=bool)
         self._lo = self.single_observation_space.low.astype(np.float32)
         self._hi = self.single_observation_space.high.astype(np.float32)
+        self._predraw_alloc(n, not env.irregular)
+        if not env.irregular:  # the hull's excitation at the regular wave's frequency
+            self._X = np.array([env.model.hull.at(float(w))[2] for w in env.wave.omegas])
 
     def _load(self, i: int) -> None:
         env, sea = self.template, self.sea
@@ -62,10 +102,51 @@ class GOWECV1VectorEnv(BatchedVectorEnv):
             sea[key][i] = value
         self._steps[i] = 0
 
+    def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
+        if not self._predrawn(idx):
+            return None
+        env, sea, draws, ptr = self.template, self.sea, self._draws, self._ptr
+        gimbal = np.empty(idx.shape[0])
+        for j, i in enumerate(idx.tolist()):
+            p = int(ptr[i])
+            phase = PHASE0[0] + (PHASE0[1] - PHASE0[0]) * float(draws[i, p])
+            gimbal[j] = GIMBAL0[0] + (GIMBAL0[1] - GIMBAL0[0]) * float(draws[i, p + 1])
+            ptr[i] = p + 2
+            eps = np.array([phase])  # as waves.regular_wave and model.set_sea
+            sea["cp"][i], sea["cr"][i] = excitation_coefficients(
+                self._X, env.wave.amplitudes, eps, env.wave.direction
+            )
+            sea["eps"][i] = eps
+        reset_rows(
+            idx, gimbal, self.Y, self._steps, env.model._args()[:9], sea["om"], sea["cp"],
+            sea["cr"], sea["amp"], sea["eps"], self._vals, self._lo, self._hi, self._obs,
+        )  # fmt: skip
+        return self._reset_infos(idx)
+
+    def _reset_infos(self, idx: np.ndarray) -> dict[str, Any]:
+        """The batched reset infos of rows idx (GOWECV1Env.reset's keys, dtypes and values)."""
+        n = self.num_envs
+        mask = np.zeros(n, dtype=bool)
+        mask[idx] = True
+        v = np.zeros((n, N_VALS))
+        v[idx] = self._vals[idx]
+        info: dict[str, Any] = {key: v[:, j].copy() for key, j in _SCALAR_SLOTS.items()}
+        info["buoy_rate"] = v[:, 4:6].copy()
+        info["time"] = np.zeros(n)
+        info["numerical_failure"] = np.zeros(n, dtype=bool)
+        info["reward_terms"] = {"net_electrical_energy": np.zeros(n), "_net_electrical_energy":
+                                mask.copy()}  # fmt: skip
+        info["overspeed"], info["out_of_range"] = np.zeros(n, bool), np.zeros(n, bool)
+        for key in list(info):
+            if not key.startswith("_"):
+                info[f"_{key}"] = mask.copy()
+        return info
+
     def state_nbytes(self) -> int:
-        """Bytes of the per-env batch state (physics, sea, counters, values, observations)."""
+        """Bytes of the per-env batch state (physics, sea, counters, values, observations,
+        pre-drawn resets)."""
         arrays = [self.Y, *self.sea.values(), self._steps, self._vals, self._fresh, self._obs]
-        return int(sum(a.nbytes for a in arrays)) + self._ok.nbytes
+        return int(sum(a.nbytes for a in arrays)) + self._ok.nbytes + self._draws.nbytes
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         env, sea, dtc = self.template, self.sea, self.template.control_dt
