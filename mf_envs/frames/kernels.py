@@ -390,7 +390,8 @@ def make_rk4(rhs, inputs, inline: str = "never"):
     return _specialise(_rk4_template, rhs, inputs, "rk4", inline)
 
 
-def make_rkmk4(rhs, inputs):
+def make_rkmk4(rhs, inputs, inline: str = "never"):
     """The RKMK4 step `step(t, y, R, dt, args, work, Rwork) -> (dy, R_new, inputs(t + dt))`;
-    rhs(t, y, R, inp, args, out) -> omega and inputs(t, args) jitted (see `_rkmk4_template`)."""
-    return _specialise(_rkmk4_template, rhs, inputs, "rkmk4")
+    rhs(t, y, R, inp, args, out) -> omega and inputs(t, args) jitted (see `_rkmk4_template`);
+    inline as `make_rk4`."""
+    return _specialise(_rkmk4_template, rhs, inputs, "rkmk4", inline)
