@@ -3,8 +3,9 @@
 `gym.make_vec("GOWEC-v1", num_envs=N, vectorization_mode="vector_entry_point", **kwargs)` builds
 it; `kwargs` are those of `gym.make("GOWEC-v1", ...)` plus `autoreset_mode` (default NEXT_STEP).
 Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `GOWECV1Env`s with the
-same seeds (`tests/test_vector_envs.py`): resets go through a template single env (its state and
-sea are copied into the row), steps through `physics.gowec.hydro.batch.batch_step_rows`, which
+same seeds (`tests/test_vector_envs.py`): seeded resets, resets with options and resets in
+irregular seas go through a template single env (its state and sea are copied into the row), the
+others are compiled (below); steps through `physics.gowec.hydro.batch.batch_step_rows`, which
 calls the single env's own step kernel (`step_row`) for every row; observations are built by
 `observe_rows` with the single env's expressions. See `mf_envs.envs._vector`.
 
@@ -16,6 +17,10 @@ skip the template env: the doubles are pre-drawn from each row's generator
 `floating.excitation_coefficients` (per row, the same arrays), and one numba call (`reset_rows`)
 writes the state, the reset infos' values and the observations. Irregular seas (a new sea of
 many draws per reset) keep the template path.
+
+Measured (N = 1024, random actions every step, autoresets, 2-core machine, medians of five 3 s
+runs): 0.33M env-steps/s on one thread, 0.57M on two (issue 17; single runs 0.37-0.57M on this
+shared machine). The kernel is `step_row` at ~2.7 us per row: 16 RK4 stages of ~150 ns.
 """
 
 from __future__ import annotations

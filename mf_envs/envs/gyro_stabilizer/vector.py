@@ -22,9 +22,9 @@ Threads (kwarg `num_threads`, `mf_envs.envs._vector.run_row_blocks`): the rows a
 num_threads blocks at once, block 0 in the calling thread and the others on a shared pool of
 Python worker threads (`step_rows` releases the GIL); rows are independent, so results are
 bit-identical to one thread (`tests/test_vector_envs.py`). Default: one block per CPU once each
-gets >= 128 rows. Measured (N = 1024, random actions, autoresets, quiet 2-core machine): 0.56M
-env-steps/s on one thread, 1.01M on two (issue 17); with both cores busy elsewhere, two threads
-gained nothing over one (and lost < 10 %).
+gets >= 128 rows. Measured (N = 1024, random actions, autoresets, 2-core machine, medians of
+five runs): 0.72M env-steps/s on one thread, 1.19M on two (issue 17); with both cores busy
+elsewhere, two threads gained nothing over one (and lost < 10 %).
 """
 
 from __future__ import annotations
