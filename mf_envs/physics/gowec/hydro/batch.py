@@ -16,7 +16,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.gowec.hydro.floating import N_MECH, _mechanics, excitation, rk4_steps_into
+from mf_envs.physics.gowec.hydro.floating import N_MECH, excitation, mechanics, rk4_steps_into
 
 N_VALS = 12  # step_row's value slots (see its docstring)
 
@@ -45,7 +45,13 @@ def gyro_moment_pitch(t, y, tau, args):
     `floating.gyro_moment`): row 0 of the gyro's mass matrix (M* less the hull's; its only
     entry is (0, 0)) times u', plus the gyro's velocity terms."""
     mx, my = excitation(t, args[9], args[10], args[11])
-    ud, m, _, _, _ = _mechanics(t, y, tau, args, mx, my)
+    return _gyro_pitch(mechanics(t, y, tau, args, mx, my))
+
+
+@numba.njit(cache=True, inline="always")
+def _gyro_pitch(mech):
+    """The pitch moment of `gyro_moment_pitch` from `floating.mechanics`' result."""
+    ud, m = mech[0], mech[1]
     return -((m[0] - m[11]) * ud[0] + m[7])
 
 
@@ -74,8 +80,7 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     vals[2], vals[3], vals[4], vals[5] = y1[0], y1[1], y1[3], y1[4]
     mx, my = excitation(t1, args[9], args[10], args[11])
     vals[6] = mx
-    ud, mt, _, _, _ = _mechanics(t1, y1, tau, args, mx, my)
-    vals[7] = -((mt[0] - mt[11]) * ud[0] + mt[7])
+    vals[7] = _gyro_pitch(mechanics(t1, y1, tau, args, mx, my))
     vals[8], vals[9] = y1[2], y1[5]
     vals[10] = elevation(t1, amp, args[9], eps)
     vals[11] = p_el * dtc

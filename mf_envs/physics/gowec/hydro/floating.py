@@ -196,7 +196,7 @@ def _solve3(a, b):
 
 
 @numba.njit(cache=True, inline="always")
-def _mechanics(t, y, tau, args, mx, my):
+def mechanics(t, y, tau, args, mx, my):
     """The mechanical part of `deriv` at (t, y) with the excitation (mx, my) (N m) at t:
     (u' (3), the mass terms of `_mass_terms`, radiation moments mu_t, mu_r (N m), M_g (N m))."""
     p_in, p_gy, psid, C, bv, Ar, _, Cr, pto = args[:9]
@@ -230,7 +230,7 @@ def deriv_into(t, y, tau, args, mx, my, dy):
     p_gy, psid, Ar, Br, pto = args[1], args[2], args[5], args[6], args[8]
     bv = args[4]
     nr = Ar.shape[0]
-    ud, m, mu_t, mu_r, Mg = _mechanics(t, y, tau, args, mx, my)
+    ud, m, mu_t, mu_r, Mg = mechanics(t, y, tau, args, mx, my)
     for i in range(3):
         dy[i] = y[3 + i]
         dy[3 + i] = ud[i]
