@@ -66,6 +66,34 @@ def test_energy_balance_irregular_pll():
     assert e["excitation"] > 0 and e["radiated"] > 0
 
 
+def test_gyro_moment_is_the_hull_pitch_balance():
+    """info["gyro_moment"] (the compiled row-0 form) = what the hull alone needs besides its
+    external loads: (M_hull u' + v_hull)_theta - (M_x - C theta - mu_theta - b_v theta'), with
+    u' from the coupled solve (`model.accelerations`) and the hull-only mass terms; a second
+    formulation of the moment, at states reached under random torque in an oblique sea."""
+    from mf_envs.physics.gowec.hydro import floating as fl
+
+    env = gym.make("GOWEC-v1", wave_direction=0.7, wave_amplitude=1.0).unwrapped
+    env.reset(seed=4)
+    rng = np.random.default_rng(0)
+    m, nr, checked = env.model, env.model.p.Ar.shape[0], 0
+    for _ in range(200):
+        a = float(rng.uniform(-1, 1))
+        _, _, term, _, info = env.step(np.array([a], dtype=np.float32))
+        if term:
+            env.reset()
+            continue
+        y, t, tau = env.state, env._t, a * env.max_generator_torque
+        ud = m.accelerations(t, y, tau)
+        Mh, vh, _, _ = fl.mass_and_rhs(y[0:3], y[3:6], m.p.inertia, np.zeros(6), 0.0)
+        mu = float(m.p.Cr @ y[6 : 6 + nr])
+        ext = m.excitation(t)[0] - m.p.stiffness * y[0] - mu - m.p.viscous * y[3]
+        expected = (Mh @ ud + vh)[0] - ext
+        assert info["gyro_moment"] == pytest.approx(expected, rel=1e-9, abs=1e-9 * abs(ext))
+        checked += 1
+    assert checked > 100 and abs(info["gyro_moment"]) > 0.0
+
+
 def test_matched_linear_pto_absorbs_the_optimum():
     """c*, k* (issue 14) on a small regular wave: mean PTO power = |M_ex|^2 / (8 R), R = B + b_v."""
     T, a = 6.5, 0.02

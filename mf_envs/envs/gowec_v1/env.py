@@ -17,7 +17,6 @@ from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import batch as hb
 from mf_envs.physics.gowec.hydro import load_hull
-from mf_envs.physics.gowec.hydro.floating import excitation
 from mf_envs.physics.gowec.hydro.model import FloatingModel, radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -315,12 +314,10 @@ class GOWECV1Env(MFEnv):
 
     def _info(self, p_el: float, p_mech: float, tau: float) -> dict[str, Any]:
         """The info of the current state (reset): the same compiled quantities as a step."""
-        y, args, v = self.state, self.model._args(), self._vals
-        v[0], v[1], v[2], v[3], v[4], v[5] = p_el, p_mech, y[0], y[1], y[3], y[4]
-        v[6] = excitation(self._t, args[9], args[10], args[11])[0]
-        v[7] = hb.gyro_moment_pitch(self._t, y, float(tau), args)
-        v[8], v[9] = y[2], y[5]
-        v[10] = hb.elevation(self._t, self.wave.amplitudes, args[9], self.wave.phases)
+        v, wave = self._vals, self.wave
+        v[0], v[1] = p_el, p_mech
+        hb.state_values(self._t, self.state, float(tau), self.model._args(), wave.amplitudes,
+                        wave.phases, v)  # fmt: skip
         return self._info_from(v)
 
     def _info_from(self, v: np.ndarray) -> dict[str, Any]:

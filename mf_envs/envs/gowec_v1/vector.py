@@ -36,8 +36,8 @@ from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
 from mf_envs.envs.gowec_v1.observe import observe_one, observe_rows
-from mf_envs.physics.gowec.hydro.batch import N_VALS, batch_step_rows, elevation, gyro_moment_pitch
-from mf_envs.physics.gowec.hydro.floating import excitation, excitation_coefficients
+from mf_envs.physics.gowec.hydro.batch import N_VALS, batch_step_rows, state_values_into
+from mf_envs.physics.gowec.hydro.floating import excitation_coefficients
 
 # info keys from step_row's value slots (buoy_rate is the pair of slots 4, 5)
 _SCALAR_SLOTS = {
@@ -60,14 +60,9 @@ def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, amp, eps, vals, lo, hi
         y[:] = 0.0
         y[2] = gimbal[j]
         steps[i] = 0
-        args = (*shared, om[i], cp[i], cr[i])
         v = vals[i]
         v[:] = 0.0
-        v[2], v[3], v[4], v[5] = y[0], y[1], y[3], y[4]
-        v[6] = excitation(0.0, om[i], cp[i], cr[i])[0]
-        v[7] = gyro_moment_pitch(0.0, y, 0.0, args)
-        v[8], v[9] = y[2], y[5]
-        v[10] = elevation(0.0, amp[i], om[i], eps[i])
+        state_values_into(0.0, y, 0.0, (*shared, om[i], cp[i], cr[i]), amp[i], eps[i], v)
         observe_one(y, lo, hi, obs[i])
 
 
@@ -95,7 +90,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         self._hi = self.single_observation_space.high.astype(np.float32)
         self._predraw_alloc(n, not env.irregular)
         if not env.irregular:  # the hull's excitation at the regular wave's frequency
-            self._X = np.array([env.model.hull.at(float(w))[2] for w in env.wave.omegas])
+            self._X = env.model.hull_excitation(env.wave.omegas)
 
     def _load(self, i: int) -> None:
         env, sea = self.template, self.sea

@@ -3,7 +3,7 @@
 `step_row` is one control step of one buoy: `floating.rk4_steps` (Rios 2017 ch. 3, the Cummins
 equation with the gyro's B-matrix coupling, `floating` module doc) plus what the env reports at
 the end of the step: PTO powers from the integrated energies, the excitation moment, the gyro's
-moment on the hull (`gyro_moment_pitch`, the compiled twin of `floating.gyro_moment`) and the wave
+moment on the hull (`_gyro_pitch`, the compiled twin of `floating.gyro_moment`) and the wave
 elevation (Eq. 89 at the origin). The single env (`envs.gowec_v1.env`) calls it for its one row and
 the native vector env (`envs.gowec_v1.vector`) calls `batch_step_rows` over N rows, so the two
 agree bit for bit. Arrays float64, SI units.
@@ -38,19 +38,32 @@ def step_work(n_state):
     return np.zeros(6 * n_state)
 
 
-@numba.njit(cache=True)
-def gyro_moment_pitch(t, y, tau, args):
-    """Moment (N m) of the gyro units on the hull about the pitch axis e1 at (t, y) with the PTO
-    command tau: minus the theta row of the gyro's B^T (J B u' + J B' u + w x h) (as
-    `floating.gyro_moment`): row 0 of the gyro's mass matrix (M* less the hull's; its only
-    entry is (0, 0)) times u', plus the gyro's velocity terms."""
+@numba.njit(cache=True, inline="always")
+def state_values_into(t, y, tau, args, amp, eps, vals):
+    """Slots 2-10 of `step_row`'s values (its docstring) at (t, y) with the PTO command tau:
+    the buoy and gimbal state, the excitation moment, the gyro moment (`_gyro_pitch`) and
+    the elevation, for the sea (args, amp, eps)."""
     mx, my = excitation(t, args[9], args[10], args[11])
-    return _gyro_pitch(mechanics(t, y, tau, args, mx, my))
+    vals[2], vals[3], vals[4], vals[5] = y[0], y[1], y[3], y[4]
+    vals[6] = mx
+    vals[7] = _gyro_pitch(mechanics(t, y, tau, args, mx, my))
+    vals[8], vals[9] = y[2], y[5]
+    vals[10] = elevation(t, amp, args[9], eps)
+
+
+@numba.njit(cache=True)
+def state_values(t, y, tau, args, amp, eps, vals):
+    """`state_values_into`, callable from Python (the single env's reset info)."""
+    state_values_into(t, y, tau, args, amp, eps, vals)
 
 
 @numba.njit(cache=True, inline="always")
 def _gyro_pitch(mech):
-    """The pitch moment of `gyro_moment_pitch` from `floating.mechanics`' result."""
+    """Moment (N m) of the gyro units on the hull about the pitch axis e1 from
+    `floating.mechanics`' result at a state: minus the theta row of the gyro's
+    B^T (J B u' + J B' u + w x h) (as `floating.gyro_moment`), i.e. row 0 of the gyro's mass
+    matrix (M* less the hull's; its only entry is (0, 0)) times u', plus the gyro's velocity
+    terms."""
     ud, m = mech[0], mech[1]
     return -((m[0] - m[11]) * ud[0] + m[7])
 
@@ -77,12 +90,7 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
             return False, y1
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
     vals[0], vals[1] = p_el, (y1[k + 3] - y[k + 3]) / dtc
-    vals[2], vals[3], vals[4], vals[5] = y1[0], y1[1], y1[3], y1[4]
-    mx, my = excitation(t1, args[9], args[10], args[11])
-    vals[6] = mx
-    vals[7] = _gyro_pitch(mechanics(t1, y1, tau, args, mx, my))
-    vals[8], vals[9] = y1[2], y1[5]
-    vals[10] = elevation(t1, amp, args[9], eps)
+    state_values_into(t1, y1, tau, args, amp, eps, vals)
     vals[11] = p_el * dtc
     return True, y1
 

@@ -89,11 +89,16 @@ class FloatingModel:
             self._om = np.zeros(0)
             self._cp = self._cr = np.zeros(0, dtype=complex)
             return
-        X = np.array([self.hull.at(float(w))[2] for w in wave.omegas])
+        X = self.hull_excitation(wave.omegas)
         self._om = np.asarray(wave.omegas, dtype=float)
         self._cp, self._cr = fl.excitation_coefficients(
             X, wave.amplitudes, wave.phases, wave.direction
         )
+
+    def hull_excitation(self, omegas: NDArray) -> NDArray[np.complex128]:
+        """The hull's complex pitch excitation per unit amplitude (N m/m) at each frequency
+        (rad/s) of omegas (`HullCoefficients.at`)."""
+        return np.array([self.hull.at(float(w))[2] for w in omegas])
 
     def set_viscous(self, damping: float) -> None:
         """Extra linear viscous damping b_v per axis (N m s/rad)."""
