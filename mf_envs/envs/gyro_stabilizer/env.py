@@ -34,12 +34,6 @@ OBS_HIGH = spec.OBS.high()
 _ROLL = spec.OBS.index("roll")
 
 
-def _roll(R: np.ndarray) -> float:
-    """Roll (rad) of the attitude R, as `physics.ship.roll_angle`, with libm's scalar atan2: the
-    vector env's kernel calls the same one (numpy's SIMD arctan2 can differ by an ulp)."""
-    return math.atan2(R[2, 1], R[2, 2])
-
-
 class GyroStabilizerEnv(MFEnv):
     """
     ## Description
@@ -271,7 +265,7 @@ class GyroStabilizerEnv(MFEnv):
             self._t, y, R, u, self.physics_dt, self.n_substeps, self._P, self._tab, self._out
         )
         self._steps += 1
-        roll = _roll(R)
+        roll = K.roll_of(R)
         ok = spec.observe(roll, y, R, self._obs)
         obs = self._obs.copy()  # clipped to the observation bounds
         self._energy = float(y[K.E_STATE] - e0)
@@ -314,7 +308,7 @@ class GyroStabilizerEnv(MFEnv):
         self._t, self._steps, self._energy = 0.0, 0, 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
         self._out[:] = (0.0, mw, *K.drive_output(0.0, self._y, self._R, 0.0, self._P))
-        roll0 = _roll(self._R)
+        roll0 = K.roll_of(self._R)
         spec.observe(roll0, self._y, self._R, self._obs)
         terms0 = {"roll": 0.0, "effort": 0.0}
         info = spec.step_info(roll0, self._y, self._out, 0.0, terms0, 0.0)
@@ -338,7 +332,7 @@ class GyroStabilizerEnv(MFEnv):
         psi = math.fmod(self.gyro.rotor_speed * t, 2.0 * math.pi)
         angles = (phi,) if self.n_gyros == 1 else (phi, -phi)
         rotors = (psi,) if self.n_gyros == 1 else (psi, -psi)
-        roll = math.degrees(_roll(R))
+        roll = math.degrees(K.roll_of(R))
         return draw_ship(
             ship_R=R.copy(),
             gimbal_angles=angles,

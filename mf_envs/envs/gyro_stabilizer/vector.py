@@ -94,7 +94,7 @@ def _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last,
         e0 = yl[K.E_STATE]
         t[i] = K.advance_with(t[i], yl, Rl, u[i], dt, n_sub, Pl, tab[i], ol, work, Rwork)
         steps[i] += 1
-        roll = math.atan2(Rl[2, 1], Rl[2, 2])
+        roll = K.roll_of(Rl)
         ok = spec.observe(roll, yl, Rl, ob)
         if not ok:  # the last finite observation stays (and is scored)
             for k in range(ob.shape[0]):
@@ -171,7 +171,7 @@ def reset_rows(idx, draws, ptr, p_sign, t, y, R, P, tab, out, steps, obs, cols):
         out[i, 0] = 0.0
         out[i, 1] = K.external_moment(0.0, y[i], Ri, P[i], tab[i])[3]
         out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i])
-        roll0 = math.atan2(Ri[2, 1], Ri[2, 2])
+        roll0 = K.roll_of(Ri)
         spec.observe(roll0, y[i], Ri, obs[i])
         _info_row(cols[i], roll0, y[i], out[i], 0.0)
         cols[i, C_RROLL], cols[i, C_REFFORT], cols[i, C_TIME] = 0.0, 0.0, 0.0

@@ -14,8 +14,6 @@ env stops matching the single env bit for bit).
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
@@ -40,14 +38,6 @@ def batch_advance(active, t, y, R, u, dt, n_sub, P, tab, out):
             t[i] = advance_with(
                 t[i], y[i], R[i], u[i], dt, n_sub, P[i], tab[i], out[i], work, Rwork
             )
-
-
-@numba.njit(cache=True)
-def batch_roll(R, out):
-    """Roll r = atan2(R32, R33) (rad, z-y-x Euler angles) of attitudes R (N, 3, 3) into out (N,)
-    (math.atan2 row by row, bit-identical to the scalar `math.atan2` of the single env)."""
-    for i in range(R.shape[0]):
-        out[i] = math.atan2(R[i, 2, 1], R[i, 2, 2])
 
 
 def alloc_batch(n_envs: int, n_state: int, n_params: int, table_shape: tuple[int, int]):

@@ -254,6 +254,15 @@ def _stop_gimbal(y, P):
 
 
 @numba.njit(cache=True)
+def roll_of(R) -> float:
+    """Roll r = atan2(R32, R33) (rad, z-y-x Euler angles) of one attitude R (3, 3) with libm's
+    scalar atan2: the single env (through numba's dispatch) and the vector kernel call this one
+    function, so they agree bit for bit (numpy's SIMD `arctan2`, `ship.roll_angle`, can differ
+    from it by an ulp on AVX-512 machines)."""
+    return math.atan2(R[2, 1], R[2, 2])
+
+
+@numba.njit(cache=True)
 def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyros: int) -> float:
     """Gyroscopic roll moment on the hull, -n H phi' cos(phi) (N m; Eq. 123 right-hand side):
     gimbal angle phi (rad) and rate phi' (rad/s) of gyro 1, H = J3^(3) psi' (N m s) per gyro."""
