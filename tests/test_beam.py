@@ -62,6 +62,32 @@ def test_internal_force_is_gradient_of_energy():
         assert g == pytest.approx(p[j], rel=1e-6, abs=1e-6 * np.max(np.abs(p)))
 
 
+def test_forces_at_dofs_equal_the_assembled_force():
+    """element.forces_at_into (only the elements holding the asked dofs are evaluated) gives
+    the bits of the full assembly there, on a mesh of unequal elements (the shape tables
+    refill): end nodes, a node two elements share, mid-node psi dofs; kappa_at gives the
+    curvature of evaluate_fields."""
+    rng = np.random.default_rng(4)
+    le = np.array([0.3, 0.3, 0.5, 0.2, 0.2])
+    nd = el.n_dof(le.size)
+    d = 0.2 * rng.standard_normal(nd)
+    d[0::6] += np.append(0.0, np.cumsum(le))
+    kap = rng.standard_normal((le.size, el.N_GAUSS))
+    qxi, qw, stiff = el.quadrature("sri", 0.3, 2e4, 7e3, 2.0)
+    p, ab = np.empty(nd), np.empty((el.N_BAND, nd))
+    el.assemble_into(d, le, kap, qxi, qw, stiff, False, p, ab)
+    dofs = np.array([0, 2, 9, 11, 17, nd - 3, nd - 5])
+    out = np.empty(dofs.size)
+    el.forces_at_into(d, le, kap, qxi, qw, stiff, dofs, out)
+    assert np.array_equal(out, p[dofs])
+    assert np.all(out != 0.0)
+    xis = np.array([0.0, 0.37, 1.0])
+    kap_fields = el.evaluate_fields(d, le, xis)[2]
+    for e in range(le.size):
+        for q, xi in enumerate(xis):
+            assert el.kappa_at(d, 6 * e, le[e], xi) == kap_fields[e, q]
+
+
 def test_rigid_motion_is_stress_free():
     """Objectivity: a rotated, translated straight beam has zero internal force."""
     model = BeamModel(BeamParams(2.0, 1e5, 4e4, 3.0, 4))

@@ -70,7 +70,6 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
         le = bc[0]
         energy[i] = el.assemble_into(d, le, kg[i], bc[1], bc[2], bc[3], False, vec[i][0], ab[i])
         observe_row(
-            d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales,
-            vec[i][0], ab[i], obs[i],
+            d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales, obs[i],
         )  # fmt: skip
         el.centerline_into(d, xo[i], le, xis, line[i])

@@ -24,7 +24,7 @@ def sample_points(model) -> tuple[np.ndarray, np.ndarray]:
 @numba.njit(cache=True)
 def observe_row(
     d, x_origin, kappa_gauss, kappa_cmd, head_grips, reactions, own_reactions, geometry,
-    f_ext, scales, p, ab, out,
+    f_ext, scales, out,
 ):  # fmt: skip
     """The observation (layout of `spec.observation_layout`) into out (float32, 2 n + 6).
 
@@ -32,7 +32,7 @@ def observe_row(
     kappa_cmd (n,) commanded kappa# [1/m]; head_grips: bool; reactions (2,) [N] used when
     own_reactions is False (terrain), else the residual P - F at the feet's z dofs;
     geometry = (le, qxi, qw, stiff, xis, S samples, S control points);
-    scales = (length, max_curvature, weight); p, ab: scratch of the assembly."""
+    scales = (length, max_curvature, weight)."""
     le, qxi, qw, stiff, xis, s_samples, s_ctrl = geometry
     length, max_curvature, weight = scales
     n = kappa_cmd.shape[0]
@@ -41,15 +41,16 @@ def observe_row(
     samples = np.empty(ne * nx + 1)
     for e in range(ne):
         for q in range(nx):
-            samples[e * nx + q] = _kappa_at(d, 6 * e, le[e], xis[q])
-    samples[ne * nx] = _kappa_at(d, 6 * (ne - 1), le[ne - 1], 1.0)
+            samples[e * nx + q] = el.kappa_at(d, 6 * e, le[e], xis[q])
+    samples[ne * nx] = el.kappa_at(d, 6 * (ne - 1), le[ne - 1], 1.0)
     curv = np.interp(s_ctrl, s_samples, samples)
     nd = d.shape[0]
     r_t, r_h = reactions[0], reactions[1]
     if own_reactions:
-        el.assemble_into(d, le, kappa_gauss, qxi, qw, stiff, False, p, ab)
-        r_t = p[2] - f_ext[2]
-        r_h = p[nd - 3] - f_ext[nd - 3]
+        p = np.empty(2)
+        el.forces_at_into(d, le, kappa_gauss, qxi, qw, stiff, np.array([2, nd - 3]), p)
+        r_t = p[0] - f_ext[2]
+        r_h = p[1] - f_ext[nd - 3]
     for k in range(n):
         out[k] = curv[k] * length
         out[n + k] = kappa_cmd[k] / max_curvature
@@ -61,13 +62,3 @@ def observe_row(
     out[2 * n + 3] = 1.0 if head_grips else -1.0
     out[2 * n + 4] = r_t / weight
     out[2 * n + 5] = r_h / weight
-
-
-@numba.njit(cache=True, inline="always")
-def _kappa_at(d, base, le, xi):
-    """kappa = psi' at local xi of the element whose first dof is `base` (the expression of
-    `element._point_strains` with the psi shape functions of `element._shape`)."""
-    dn0 = (4.0 * xi - 3.0) / le
-    dn1 = (4.0 * xi - 1.0) / le
-    dn2 = (4.0 - 8.0 * xi) / le
-    return dn0 * d[base + 4] + dn1 * d[base + 10] + dn2 * d[base + 5]

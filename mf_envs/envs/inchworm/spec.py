@@ -65,11 +65,10 @@ def observe(
     out = np.empty(2 * n + 6, np.float32)
     own = sim.terrain is None
     reactions = np.zeros(2) if own else np.array(sim.support_reactions())
-    nd = sim.model.n_dof
     observe_row(
         sim.state.d, sim.x_origin, sim.kappa, np.asarray(kappa_ctrl, float),
         sim.anchor == "head", reactions, own, geometry, sim.f_ext,
-        (sim.params.length, max_curvature, weight), np.empty(nd), np.empty((21, nd)), out,
+        (sim.params.length, max_curvature, weight), out,
     )  # fmt: skip
     return out
 

@@ -147,14 +147,41 @@ def shape_functions(xi: float, le: float) -> tuple[np.ndarray, np.ndarray, np.nd
     return _shape(float(xi), float(le))
 
 
+# one point's shape functions in a row of 16 (`_shape_row`): N_z, N_z', N_psi, N_psi' at
+# these offsets (the gaps keep the blocks aligned)
+SH_NZ, SH_DNZ, SH_NPSI, SH_DNPSI = 0, 4, 8, 12
+SH_LEN = 16
+# element dof k sits at global dof 6 e + LOC[k] (Eq. 71c); LOC_INV the other way round
+LOC = (0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5)
+LOC_INV = (0, 1, 4, 5, 8, 10, 2, 3, 6, 7, 9)
+
+
 @numba.njit(cache=True, inline="always")
-def _point_strains(de, dnz, npsi, dnpsi):
+def _shape_row(xi, le, sh):
+    """`_shape` into a row sh (SH_LEN,) at the SH_* offsets (no allocation)."""
+    _shape_into(
+        xi, le, sh[SH_NZ : SH_NZ + 4], sh[SH_DNZ : SH_DNZ + 4], sh[SH_NPSI : SH_NPSI + 3],
+        sh[SH_DNPSI : SH_DNPSI + 3],
+    )  # fmt: skip
+
+
+@numba.njit(cache=True, inline="always")
+def _shape_table(xis, le, shp):
+    """Rows of shape functions (`_shape_row`) at the local points xis (n,) into shp (n, SH_LEN).
+    They depend on the element only through its length: the loops below refill the table
+    only when le changes (the values, hence the bits, are those of `_shape`)."""
+    for q in range(xis.shape[0]):
+        _shape_row(xis[q], le, shp[q])
+
+
+@numba.njit(cache=True, inline="always")
+def _point_strains(de, sh):
     """psi, kappa, cos psi, sin psi, gamma_1, gamma_2 at a point from the 11 element dofs and
-    the shape functions there (Eqs. 74, 75)."""
-    dz1 = dnz[0] * de[0] + dnz[1] * de[1] + dnz[2] * de[2] + dnz[3] * de[3]
-    dz2 = dnz[0] * de[4] + dnz[1] * de[5] + dnz[2] * de[6] + dnz[3] * de[7]
-    psi = npsi[0] * de[8] + npsi[1] * de[9] + npsi[2] * de[10]
-    kap = dnpsi[0] * de[8] + dnpsi[1] * de[9] + dnpsi[2] * de[10]
+    the shape functions there (a `_shape_row`) (Eqs. 74, 75)."""
+    dz1 = sh[4] * de[0] + sh[5] * de[1] + sh[6] * de[2] + sh[7] * de[3]
+    dz2 = sh[4] * de[4] + sh[5] * de[5] + sh[6] * de[6] + sh[7] * de[7]
+    psi = sh[8] * de[8] + sh[9] * de[9] + sh[10] * de[10]
+    kap = sh[12] * de[8] + sh[13] * de[9] + sh[14] * de[10]
     c = np.cos(psi)
     s = np.sin(psi)
     g1 = c * dz1 + s * dz2
@@ -162,12 +189,15 @@ def _point_strains(de, dnz, npsi, dnpsi):
     return psi, kap, c, s, g1, g2
 
 
-@numba.njit(cache=True)
-def _gp_kinematics(de, le, xi):
-    """Strains and helpers at one Gauss point from the 11 element dofs."""
-    nz, dnz, npsi, dnpsi = _shape(xi, le)
-    psi, kap, c, s, g1, g2 = _point_strains(de, dnz, npsi, dnpsi)
-    return nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2
+@numba.njit(cache=True, inline="always")
+def kappa_at(d, base, le, xi):
+    """kappa = psi' [1/m] at local xi of the element of length le whose first global dof is
+    `base` (the expression of `_point_strains` with the psi shape functions of `_shape`,
+    without the rest of the point)."""
+    dn0 = (4.0 * xi - 3.0) / le
+    dn1 = (4.0 * xi - 1.0) / le
+    dn2 = (4.0 - 8.0 * xi) / le
+    return dn0 * d[base + 4] + dn1 * d[base + 10] + dn2 * d[base + 5]
 
 
 @numba.njit(cache=True)
@@ -190,7 +220,7 @@ def assemble_internal(d, le, kappa_sharp, qxi, qw, stiff, with_tangent):
 
 
 @numba.njit(cache=True, inline="always")
-def _element_point(de, le, xi, w, ea, gas, ei, ksh, fe, ke, with_tangent, sc):
+def _element_point(de, sh, w, ea, gas, ei, ksh, fe, ke, with_tangent, u, v):
     """Add one quadrature point's force and tangent to the element's fe (11,), ke (11, 11)
     (upper triangle), exploiting the structure of B_T: with u = (c Nz', s Nz') and
     v = (-s Nz', c Nz') on the 8 z dofs and Np, Np' on the 3 psi dofs,
@@ -200,31 +230,30 @@ def _element_point(de, le, xi, w, ea, gas, ei, ksh, fe, ke, with_tangent, sc):
             B = (ea - gas) c s, C = ea s^2 + gas c^2,
         z-psi: (alpha u + beta v) Np^T,  alpha = ea g2 - N2,  beta = N1 - gas g1,
         psi-psi: (ea g2^2 + gas g1^2 - N1 g1 - N2 g2) Np Np^T + ei Np' Np'^T.
-    sc: scratch (4, 8) for the shape functions and u, v. Returns the point's stored energy [J]."""
-    nz, dnz, npsi, dnpsi = sc[0, :4], sc[0, 4:], sc[1, :3], sc[1, 4:7]
-    u, v = sc[2], sc[3]
-    _shape_into(xi, le, nz, dnz, npsi, dnpsi)
-    psi, kap, c, s, g1, g2 = _point_strains(de, dnz, npsi, dnpsi)
+    sh: the point's shape functions (`_shape_row`); u, v (8,) scratch. Returns the point's
+    stored energy [J]."""
+    psi, kap, c, s, g1, g2 = _point_strains(de, sh)
     n1 = ea * (g1 - 1.0)
     n2 = gas * g2
     m3 = ei * (kap - ksh)
     for k in range(4):
-        u[k] = c * dnz[k]
-        u[4 + k] = s * dnz[k]
-        v[k] = -s * dnz[k]
-        v[4 + k] = c * dnz[k]
+        dk = sh[SH_DNZ + k]
+        u[k] = c * dk
+        u[4 + k] = s * dk
+        v[k] = -s * dk
+        v[4 + k] = c * dk
     for i in range(8):
         fe[i] += w * (u[i] * n1 + v[i] * n2)
     for k in range(3):
-        fe[8 + k] += w * (npsi[k] * (g2 * n1 - g1 * n2) + dnpsi[k] * m3)
+        fe[8 + k] += w * (sh[SH_NPSI + k] * (g2 * n1 - g1 * n2) + sh[SH_DNPSI + k] * m3)
     if with_tangent:
         wea, wgas = w * ea, w * gas
         # zz = wea u u^T + wgas v v^T = [[A, B], [B, C]] (x) Nz' Nz'^T
         a_, b_, c_ = wea * c * c + wgas * s * s, (wea - wgas) * c * s, wea * s * s + wgas * c * c
         for i in range(4):
-            di = dnz[i]
+            di = sh[SH_DNZ + i]
             for j in range(4):
-                dd = di * dnz[j]
+                dd = di * sh[SH_DNZ + j]
                 ke[i, 4 + j] += b_ * dd
                 if j >= i:
                     ke[i, j] += a_ * dd
@@ -234,13 +263,35 @@ def _element_point(de, le, xi, w, ea, gas, ei, ksh, fe, ke, with_tangent, sc):
         for i in range(8):
             zi = alpha * u[i] + beta * v[i]
             for k in range(3):
-                ke[i, 8 + k] += zi * npsi[k]
+                ke[i, 8 + k] += zi * sh[SH_NPSI + k]
         gpp = w * (ea * g2 * g2 + gas * g1 * g1 - n1 * g1 - n2 * g2)
         wei = w * ei
         for i in range(3):
+            npi, dpi = sh[SH_NPSI + i], sh[SH_DNPSI + i]
             for j in range(i, 3):
-                ke[8 + i, 8 + j] += gpp * npsi[i] * npsi[j] + wei * dnpsi[i] * dnpsi[j]
+                ke[8 + i, 8 + j] += gpp * npi * sh[SH_NPSI + j] + wei * dpi * sh[SH_DNPSI + j]
     return 0.5 * w * (n1 * (g1 - 1.0) + n2 * g2 + m3 * (kap - ksh))
+
+
+@numba.njit(cache=True, inline="always")
+def _element(d, e, le_e, kappa_sharp, qw, stiff, shp, de, fe, ke, uv, with_tangent, energy):
+    """Element e's force into fe (11,) and, with_tangent, its upper-triangle tangent into ke
+    (11, 11), its dofs into de (11,); shp: the shape table of its quadrature at its length.
+    Returns energy plus the element's stored energy, point by point [J]."""
+    base = 6 * e
+    for k in range(11):
+        de[k] = d[base + LOC[k]]
+    fe[:] = 0.0
+    if with_tangent:
+        ke[:, :] = 0.0
+    for g in range(qw.shape[0]):
+        ksh = kappa_sharp[e, g] if g < N_GAUSS else 0.0
+        w = qw[g] * le_e
+        energy += _element_point(
+            de, shp[g], w, stiff[g, 0], stiff[g, 1], stiff[g, 2], ksh, fe, ke, with_tangent,
+            uv[0], uv[1],
+        )  # fmt: skip
+    return energy
 
 
 @numba.njit(cache=True)
@@ -253,44 +304,58 @@ def assemble_into(d, le, kappa_sharp, qxi, qw, stiff, with_tangent, p, ab):
     if with_tangent:
         ab[:, :] = 0.0
     energy = 0.0
-    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
-    de = np.empty(11)
+    de, fe = np.empty(11), np.empty(11)
     ke = np.empty((11, 11))
-    fe = np.empty(11)
-    sc = np.empty((4, 8))
+    uv = np.empty((2, 8))
+    shp = np.empty((qxi.shape[0], SH_LEN))
+    le_tab = np.nan
     for e in range(ne):
+        if le[e] != le_tab:
+            _shape_table(qxi, le[e], shp)
+            le_tab = le[e]
+        energy = _element(d, e, le[e], kappa_sharp, qw, stiff, shp, de, fe, ke, uv,
+                          with_tangent, energy)  # fmt: skip
         base = 6 * e
-        for k in range(11):
-            de[k] = d[base + loc[k]]
-        fe[:] = 0.0
-        ke[:, :] = 0.0
-        for g in range(qxi.shape[0]):
-            ksh = kappa_sharp[e, g] if g < N_GAUSS else 0.0
-            w = qw[g] * le[e]
-            energy += _element_point(
-                de,
-                le[e],
-                qxi[g],
-                w,
-                stiff[g, 0],
-                stiff[g, 1],
-                stiff[g, 2],
-                ksh,
-                fe,
-                ke,
-                with_tangent,
-                sc,
-            )
         for i in range(11):
-            gi = base + loc[i]
-            p[gi] += fe[i]
-            if with_tangent:
+            p[base + LOC[i]] += fe[i]
+        if with_tangent:
+            for i in range(11):
+                gi = base + LOC[i]
                 for j in range(i, 11):
-                    gj = base + loc[j]
+                    gj = base + LOC[j]
                     ab[HALF_BW + gi - gj, gj] += ke[i, j]
                     if j != i:
                         ab[HALF_BW + gj - gi, gi] += ke[i, j]
     return energy
+
+
+@numba.njit(cache=True)
+def forces_at_into(d, le, kappa_sharp, qxi, qw, stiff, dofs, out):
+    """The internal force P at the global dofs `dofs` (k,) int into out (k,): the bits of
+    `assemble_into`'s P there (the same element contributions added in the same order), but
+    only the elements holding those dofs are evaluated (e.g. the two end elements for the
+    ground reactions at the feet)."""
+    out[:] = 0.0
+    de, fe = np.empty(11), np.empty(11)
+    ke = np.empty((11, 11))
+    uv = np.empty((2, 8))
+    shp = np.empty((qxi.shape[0], SH_LEN))
+    le_tab = np.nan
+    for e in range(le.shape[0]):
+        base = 6 * e
+        hit = False
+        for m in range(dofs.shape[0]):
+            hit = hit or base <= dofs[m] <= base + 10
+        if not hit:
+            continue
+        if le[e] != le_tab:
+            _shape_table(qxi, le[e], shp)
+            le_tab = le[e]
+        _element(d, e, le[e], kappa_sharp, qw, stiff, shp, de, fe, ke, uv, False, 0.0)
+        for m in range(dofs.shape[0]):
+            off = dofs[m] - base
+            if 0 <= off <= 10:
+                out[m] += fe[LOC_INV[off]]
 
 
 @numba.njit(cache=True)
@@ -355,15 +420,20 @@ def evaluate_fields(d, le, xis):
     kap_o = np.empty((ne, nx))
     g1_o = np.empty((ne, nx))
     g2_o = np.empty((ne, nx))
-    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
     de = np.empty(11)
+    shp = np.empty((nx, SH_LEN))
+    le_tab = np.nan
     for e in range(ne):
+        if le[e] != le_tab:
+            _shape_table(xis, le[e], shp)
+            le_tab = le[e]
         for k in range(11):
-            de[k] = d[6 * e + loc[k]]
+            de[k] = d[6 * e + LOC[k]]
         for q in range(nx):
-            nz, dnz, npsi, dnpsi, psi, kap, c, s, g1, g2 = _gp_kinematics(de, le[e], xis[q])
-            pos[e, q, 0] = nz[0] * de[0] + nz[1] * de[1] + nz[2] * de[2] + nz[3] * de[3]
-            pos[e, q, 1] = nz[0] * de[4] + nz[1] * de[5] + nz[2] * de[6] + nz[3] * de[7]
+            sh = shp[q]
+            psi, kap, c, s, g1, g2 = _point_strains(de, sh)
+            pos[e, q, 0] = sh[0] * de[0] + sh[1] * de[1] + sh[2] * de[2] + sh[3] * de[3]
+            pos[e, q, 1] = sh[0] * de[4] + sh[1] * de[5] + sh[2] * de[6] + sh[3] * de[7]
             psi_o[e, q] = psi
             kap_o[e, q] = kap
             g1_o[e, q] = g1
@@ -499,6 +569,22 @@ def band_solve_into(ab, r, work, piv, x):
     return 0
 
 
+@numba.njit(cache=True, inline="always")
+def _ldl_column(work, j, m, v):
+    """Step j of `band_spd_solve_into`: column j of L (m entries below the diagonal) and the
+    update of the trailing band. Called with the literal HALF_BW for the full columns (fixed
+    trip counts, which the compiler unrolls) and with m near the end: the same operations."""
+    inv = 1.0 / work[j, 0]
+    for t in range(1, m + 1):
+        v[t] = work[j, t]
+        work[j, t] = v[t] * inv
+    for t in range(1, m + 1):
+        row = work[j + t]
+        vt = v[t]
+        for u in range(m - t + 1):
+            row[u] -= work[j, t + u] * vt
+
+
 @numba.njit(cache=True)
 def band_spd_solve_into(ab, r, work, x):
     """Solve K x = r for a symmetric banded K (21, n) by LDL^T without pivoting (banded
@@ -515,31 +601,35 @@ def band_spd_solve_into(ab, r, work, x):
             work[j, t] = ab[hb + t, j] if j + t < n else 0.0
     v = np.empty(hb + 1)
     for j in range(n):
-        dj = work[j, 0]
-        if not dj > 0.0:
+        if not work[j, 0] > 0.0:
             return j + 1
         m = min(hb, n - 1 - j)
-        inv = 1.0 / dj
-        for t in range(1, m + 1):
-            v[t] = work[j, t]
-            work[j, t] = v[t] * inv
-        for t in range(1, m + 1):
-            row = work[j + t]
-            vt = v[t]
-            for u in range(m - t + 1):
-                row[u] -= work[j, t + u] * vt
+        if m == HALF_BW:
+            _ldl_column(work, j, HALF_BW, v)
+        else:
+            _ldl_column(work, j, m, v)
     for i in range(n):
         x[i] = r[i]
     for j in range(n):
         xj = x[j]
-        for t in range(1, min(hb, n - 1 - j) + 1):
-            x[j + t] -= work[j, t] * xj
+        m = min(hb, n - 1 - j)
+        if m == HALF_BW:
+            for t in range(1, HALF_BW + 1):
+                x[j + t] -= work[j, t] * xj
+        else:
+            for t in range(1, m + 1):
+                x[j + t] -= work[j, t] * xj
     for j in range(n):
         x[j] /= work[j, 0]
     for j in range(n - 1, -1, -1):
         s = x[j]
-        for t in range(1, min(hb, n - 1 - j) + 1):
-            s -= work[j, t] * x[j + t]
+        m = min(hb, n - 1 - j)
+        if m == HALF_BW:
+            for t in range(1, HALF_BW + 1):
+                s -= work[j, t] * x[j + t]
+        else:
+            for t in range(1, m + 1):
+                s -= work[j, t] * x[j + t]
         x[j] = s
     return 0
 

@@ -77,6 +77,14 @@ def constants(model, settings) -> tuple:
     )
 
 
+@numba.njit(cache=True, inline="always")
+def lerp_into(k0, k1, lam, out):
+    """out = k0 + lam (k1 - k0) for (n_el, 4) curvature tables, without temporaries."""
+    for e in range(k0.shape[0]):
+        for g in range(k0.shape[1]):
+            out[e, g] = k0[e, g] + lam * (k1[e, g] - k0[e, g])
+
+
 @numba.njit(cache=True)
 def newton(d, kap, f, fixed, bc, sc):
     """Newton-Raphson for F - P(d) = 0 on the free dofs, in place on d (the start, prescribed
@@ -149,7 +157,7 @@ def linear_path(d0, k0, k1, lam0, lam1, f_base, fa, fb, fixed, bc, sc, out, gues
                 guess[i] = d[i]
         mu = lam + h
         lk = lam0 + mu * (lam1 - lam0)
-        kap[:, :] = k0 + lk * (k1 - k0)
+        lerp_into(k0, k1, lk, kap)
         for i in range(nd):
             f[i] = f_base[i] + fa[i] + mu * (fb[i] - fa[i])
         ok, it = newton(guess, kap, f, fixed, bc, sc)

@@ -61,12 +61,14 @@ def holding_limit(mu4, g, direction, normal):
 
 @numba.njit(cache=True)
 def _ground(d, kap, f_ext, xd, zd, bc, sc, rx, nz):
-    """Ground forces on the feet: rx, nz (2,) [N] = (P(d) - F_ext) at the x and z dofs."""
-    p = sc[0][static.ROW_P]
-    el.assemble_into(d, bc[0], kap, bc[1], bc[2], bc[3], False, p, sc[1])
+    """Ground forces on the feet: rx, nz (2,) [N] = (P(d) - F_ext) at the x and z dofs (only
+    the end elements evaluated: `element.forces_at_into`)."""
+    dofs = np.array([xd[0], xd[1], zd[0], zd[1]])
+    p = np.empty(4)
+    el.forces_at_into(d, bc[0], kap, bc[1], bc[2], bc[3], dofs, p)
     for i in range(2):
-        rx[i] = p[xd[i]] - f_ext[xd[i]]
-        nz[i] = p[zd[i]] - f_ext[zd[i]]
+        rx[i] = p[i] - f_ext[xd[i]]
+        nz[i] = p[2 + i] - f_ext[zd[i]]
 
 
 @numba.njit(cache=True, inline="always")
@@ -110,7 +112,7 @@ def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd,
         iterations += it
         if not ok:
             return 0.0, False, iterations
-        kap[:, :] = k0 + lam * (k1 - k0)
+        static.lerp_into(k0, k1, lam, kap)
         _ground(dl, kap, f_ext, xd, zd, bc, sc, rx, nz)
         e = -s * rx[i] - holding_limit(mu4, g0[i] + lam * (g1[i] - g0[i]), s, nz[i])
         if abs(e) < best_e:
@@ -146,7 +148,7 @@ def _slip(i, s, lam, k0, k1, f_ext, g0, g1, n_trial, xd, zd, mu4, bc, sc, rx1, n
     fixed[zd[0]] = True
     fixed[zd[1]] = True
     fixed[xd[1 - i]] = True
-    kap[:, :] = k0 + lam * (k1 - k0)
+    static.lerp_into(k0, k1, lam, kap)
     rx, n0 = np.empty(2), np.empty(2)
     _ground(d_star, kap, f_ext, xd, zd, bc, sc, rx, n0)
     fa[:] = 0.0
@@ -315,12 +317,12 @@ def lag_at(kappa, u, t, tau, rate, out):
 def increment_work(d0, d1, k0, k1, ei, le):
     """Actuation work [J] of the increment kappa# k0 -> k1, configuration d0 -> d1 (trapezoid of
     (A2), the module doc of `actuators`)."""
-    kap0 = el.evaluate_fields(d0, le, el.GAUSS_XI)[2]
-    kap1 = el.evaluate_fields(d1, le, el.GAUSS_XI)[2]
     w = 0.0
     for e in range(le.shape[0]):
         for q in range(el.N_GAUSS):
-            m_mid = 0.5 * (ei * (kap0[e, q] - k0[e, q]) + ei * (kap1[e, q] - k1[e, q]))
+            kap0 = el.kappa_at(d0, 6 * e, le[e], el.GAUSS_XI[q])
+            kap1 = el.kappa_at(d1, 6 * e, le[e], el.GAUSS_XI[q])
+            m_mid = 0.5 * (ei * (kap0 - k0[e, q]) + ei * (kap1 - k1[e, q]))
             w += le[e] * el.GAUSS_W[q] * m_mid * (k1[e, q] - k0[e, q])
     return -w
 
