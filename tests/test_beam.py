@@ -88,6 +88,25 @@ def test_forces_at_dofs_equal_the_assembled_force():
             assert el.kappa_at(d, 6 * e, le[e], xi) == kap_fields[e, q]
 
 
+def test_actuation_load_is_the_derivative_of_the_force_in_kappa_sharp():
+    """element.actuation_load_into = dP/dkappa# . dk, against the difference of two assembled
+    forces (P is affine in kappa#: exact up to round-off for any step), at a deformed state."""
+    rng = np.random.default_rng(5)
+    model = BeamModel(BeamParams(1.3, 2e4, 7e3, 2.0, 4))
+    d = model.straight() + 0.2 * rng.standard_normal(model.n_dof)
+    kap = rng.standard_normal((4, el.N_GAUSS))
+    dk = rng.standard_normal((4, el.N_GAUSS))
+    p1, _ = model.internal(d, kap + dk, False)
+    p0, _ = model.internal(d, kap, False)
+    load = np.empty(model.n_dof)
+    qxi, qw, stiff = model.quad
+    el.actuation_load_into(model.le, qxi, qw, stiff, dk, load)
+    assert np.max(np.abs(load - (p1 - p0))) < 1e-12 * np.max(np.abs(p1))
+    psi = np.zeros(model.n_dof, bool)
+    psi[4::6], psi[5::6] = True, True
+    assert np.all(load[~psi] == 0.0) and np.max(np.abs(load[psi])) > 0.1
+
+
 def test_rigid_motion_is_stress_free():
     """Objectivity: a rotated, translated straight beam has zero internal force."""
     model = BeamModel(BeamParams(2.0, 1e5, 4e4, 3.0, 4))

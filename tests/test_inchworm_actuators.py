@@ -11,7 +11,9 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from mf_envs.physics.beam import static
 from mf_envs.physics.inchworm import Inchworm, InchwormParams, run_gait, seed_uniform_kappa
+from mf_envs.physics.inchworm import quasistatic as qs
 from mf_envs.physics.inchworm.actuators import (
     ActuatorParams,
     RateLimitedLag,
@@ -230,6 +232,43 @@ def test_onset_is_located_inside_the_increment():
     _, rep2 = probe_feet.step(probe.state.d, [k0, k0 + lam * (k1 - k0)], f, np.ones(2), 0.01)
     assert rep2.slipping[0] == 0
     assert -rep2.ground_x[0] == pytest.approx(0.2 * WEIGHT / 2, rel=1e-6)
+
+
+def test_bordered_onset_agrees_with_the_bracketing_search():
+    """The onset by Newton on (d, lambda) together converges on its own (no fallback) to the
+    lambda* and configuration of regula falsi on stuck solves, in fewer iterations, and the
+    foot's ground force there equals its holding limit."""
+    sim, feet = _feet_scene(FrictionParams(slide_forward=0.2), k_start=-1.0)
+    m, f = sim.model, sim.f_ext
+    k0 = sim.kappa.copy()
+    k1 = k0 - 0.2
+    xd, zd, mu4 = feet.kernel_args()[:3]
+    bc = static.constants(m, feet.settings)
+    both = np.zeros(m.n_dof, bool)
+    both[xd], both[zd] = True, True
+    d0 = sim.state.d.copy()
+    d1, _, _ = static.solve_linear_path(m, d0, k0, k1, f, both, feet.settings)
+    sc = qs.scratch(m.n_elements)
+    rx, nz = np.empty(2), np.empty(2)
+    qs._ground(d1, k1, f, xd, zd, bc, sc, rx, nz)
+    g = feet.g.copy()
+    e1 = -FORWARD * rx[0] - feet.params.holding_limit(g[0], FORWARD, nz[0])
+    assert e1 > 0.0  # the released tail, pulled forward, exceeds its limit at the end
+    args = (d0, d1, k0, k1, f, g, g, 0, FORWARD, e1, 0, both, xd, zd, mu4, bc, sc)
+    lam_r, ok_r, it_r = qs._onset(*args, True)
+    d_r = sc.vec[qs.ROW_STAR].copy()
+    lam_b, ok_b, it_b = qs._onset(*args)
+    d_b = sc.vec[qs.ROW_STAR].copy()
+    assert ok_r and ok_b and 0.0 < lam_b < 1.0
+    assert lam_b == pytest.approx(lam_r, abs=1e-8)
+    assert np.max(np.abs(d_b - d_r)) < 1e-10  # m, rad
+    assert it_b < it_r
+    guess = d0 + lam_r * (d1 - d0)  # the bordered Newton alone, from near the answer
+    lam_d, ok_d, _ = qs._onset_bordered(lam_r, guess, k0, k1, f, g, g, 0, FORWARD, both,
+                                        xd, zd, mu4, bc, sc)  # fmt: skip
+    assert ok_d and lam_d == pytest.approx(lam_r, abs=1e-8)
+    qs._ground(d_b, k0 + lam_b * (k1 - k0), f, xd, zd, bc, sc, rx, nz)
+    assert -rx[0] == pytest.approx(0.2 * nz[0], rel=1e-8)
 
 
 def test_anisotropic_feet_ratchet_forward_without_switching():

@@ -359,6 +359,26 @@ def forces_at_into(d, le, kappa_sharp, qxi, qw, stiff, dofs, out):
 
 
 @numba.njit(cache=True)
+def actuation_load_into(le, qxi, qw, stiff, dk, out):
+    """dP/dkappa# . dk into out (n_dof,): the change of the internal force per unit change of
+    the actuation curvature along dk (n_el, 4) [1/m] at the Gauss points. kappa# enters P only
+    through M3 = EI (kappa - kappa#) on the psi dofs, so P is affine in kappa# and this does
+    not depend on the configuration: -int EI Np'^T dk dS (the bending row of Eq. 80b)."""
+    out[:] = 0.0
+    shp = np.empty((qxi.shape[0], SH_LEN))
+    le_tab = np.nan
+    for e in range(le.shape[0]):
+        if le[e] != le_tab:
+            _shape_table(qxi, le[e], shp)
+            le_tab = le[e]
+        base = 6 * e
+        for g in range(N_GAUSS):
+            m = -qw[g] * le[e] * stiff[g, 2] * dk[e, g]
+            for k in range(3):
+                out[base + LOC[8 + k]] += m * shp[g, SH_DNPSI + k]
+
+
+@numba.njit(cache=True)
 def assemble_mass(le, m_a, j3):
     """Consistent mass matrix, banded (21, n_dof) (Eqs. 83, 104-106), by 4-point Gauss (exact).
 
@@ -594,7 +614,17 @@ def band_spd_solve_into(ab, r, work, x):
     (column j of L below the diagonal in work[j, 1:], D in work[j, 0]); x (n,) receives the
     solution. Returns 0, or k + 1 if the pivot of column k is not positive (K is not positive
     definite: use the LU)."""
-    n = r.shape[0]
+    status = band_ldl_factor(ab, work)
+    if status == 0:
+        band_ldl_solve(work, r, x)
+    return status
+
+
+@numba.njit(cache=True)
+def band_ldl_factor(ab, work):
+    """The LDL^T factors of `band_spd_solve_into` into work; returns its status. Factor once,
+    then `band_ldl_solve` for each right-hand side."""
+    n = ab.shape[1]
     hb = HALF_BW
     for j in range(n):
         for t in range(hb + 1):
@@ -608,6 +638,14 @@ def band_spd_solve_into(ab, r, work, x):
             _ldl_column(work, j, HALF_BW, v)
         else:
             _ldl_column(work, j, m, v)
+    return 0
+
+
+@numba.njit(cache=True)
+def band_ldl_solve(work, r, x):
+    """x (n,) with K x = r from the factors of `band_ldl_factor` in work."""
+    n = r.shape[0]
+    hb = HALF_BW
     for i in range(n):
         x[i] = r[i]
     for j in range(n):
@@ -631,7 +669,6 @@ def band_spd_solve_into(ab, r, work, x):
             for t in range(1, m + 1):
                 s -= work[j, t] * x[j + t]
         x[j] = s
-    return 0
 
 
 @numba.njit(cache=True)

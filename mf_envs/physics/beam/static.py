@@ -85,6 +85,23 @@ def lerp_into(k0, k1, lam, out):
             out[e, g] = k0[e, g] + lam * (k1[e, g] - k0[e, g])
 
 
+@numba.njit(cache=True, inline="always")
+def residual_scale(d, f, bc):
+    """(f_ref, tol_r) of the seed's convergence test (Eqs. 96-98) at the start d under the
+    load f: residuals are measured as max |r u_scale| / f_ref against tol_r, raised above
+    rtol to what round-off allows at the configuration's reach."""
+    u_scale, ei_l, rigid_l, length, rtol = bc[4], bc[5], bc[6], bc[7], bc[8]
+    nd = d.shape[0]
+    fmax = 0.0
+    for i in range(nd):
+        fmax = max(fmax, abs(f[i] * u_scale[i]))
+    f_ref = ei_l + fmax
+    reach = 1.0
+    for i in range(0, nd, 6):
+        reach = max(reach, abs(d[i]) / length, abs(d[i + 2]) / length)
+    return f_ref, max(rtol, 256.0 * EPS * rigid_l * reach / f_ref)
+
+
 @numba.njit(cache=True)
 def newton(d, kap, f, fixed, bc, sc):
     """Newton-Raphson for F - P(d) = 0 on the free dofs, in place on d (the start, prescribed
@@ -94,14 +111,7 @@ def newton(d, kap, f, fixed, bc, sc):
     vec, ab, work, piv = sc[0], sc[1], sc[2], sc[3]
     p, r, delta = vec[ROW_P], vec[ROW_R], vec[ROW_DELTA]
     nd = d.shape[0]
-    fmax = 0.0
-    for i in range(nd):
-        fmax = max(fmax, abs(f[i] * u_scale[i]))
-    f_ref = ei_l + fmax
-    reach = 1.0
-    for i in range(0, nd, 6):
-        reach = max(reach, abs(d[i]) / length, abs(d[i + 2]) / length)
-    tol_r = max(rtol, 256.0 * EPS * rigid_l * reach / f_ref)
+    f_ref, tol_r = residual_scale(d, f, bc)
     res_first = np.inf
     for it in range(1, max_iter + 1):
         el.assemble_into(d, le, kap, qxi, qw, stiff, True, p, ab)

@@ -19,8 +19,10 @@ weight) and are held in x only by dry (Coulomb) friction:
 
 Quasi-static active set (hand-written; no library solves stick-slip on this beam): each
 actuation increment is first solved with both feet stuck; if a foot's force exceeds its
-holding limit, the onset lambda* inside the increment is located by regula falsi (Illinois) on
-the stuck solutions (so slip begins exactly where |R_x| = F_hold), and the rest of the increment
+holding limit, the onset lambda* inside the increment is located on the stuck path where
+|R_x| = F_hold exactly: Newton on the stuck configuration and lambda together (the equilibrium
+bordered by the onset condition, from regula falsi's first point), with regula falsi (Illinois)
+on stuck solutions as the fallback (`quasistatic._onset`), and the rest of the increment
 is solved with that foot free under its friction force (a dead load, refreshed once with the
 normal load at the end). With only the two feet carrying horizontal forces (gravity is vertical
 and the feet sit on the line z = 0, so the friction forces do not change N), the ground forces on

@@ -4,7 +4,7 @@ One control step of `drive.DrivenInchworm` with the `friction` effect, in one co
 the actuator lag (A1) gives kappa# at the control points at the substep ends, linear
 interpolation carries it to the Gauss points, the feet's engagement follows its exact
 first-order response, and every substep is one actuation increment of `feet` (stick; else the
-slip onset by regula falsi on the stuck path, then the slipping foot under its friction load,
+slip onset on the stuck path (`_onset`), then the slipping foot under its friction load,
 the normal load refreshed once; the tie rule). The algorithm and its physics are documented in
 `feet` and `actuators`; this module is their compiled form (no Python objects, failures as
 status codes), used by `FrictionFeet.step`, `DrivenInchworm.step` and the batched vector env
@@ -31,7 +31,8 @@ ROW_TRIAL, ROW_DLO, ROW_DL, ROW_BEST = _R0, _R0 + 1, _R0 + 2, _R0 + 3
 ROW_STAR, ROW_D1 = _R0 + 4, _R0 + 6  # two rows each: one per candidate foot
 ROW_FA, ROW_FB, ROW_FEXT, ROW_ZERO, ROW_DA = _R0 + 8, _R0 + 10, _R0 + 12, _R0 + 13, _R0 + 14
 ROW_DHI, ROW_GUESS1 = _R0 + 15, _R0 + 16
-EXTRA_ROWS = 17
+ROW_C, ROW_B, ROW_Y, ROW_Z = _R0 + 17, _R0 + 18, _R0 + 19, _R0 + 20  # the bordered onset's
+EXTRA_ROWS = 21
 # report slots: slip (2) [m], friction work [J], ground x (2) [N], normal (2) [N],
 # slipping (2) direction, iterations, onsets, positive work [J], net work [J], increments
 REP_SLIP, REP_FWORK, REP_GX, REP_N, REP_SLIPPING, REP_ITER, REP_ONSETS = 0, 2, 3, 5, 7, 9, 10
@@ -79,12 +80,17 @@ def _excess(mu4, rx, nz, g, i):
 
 
 @numba.njit(cache=True)
-def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, bc, sc):
+def _onset(
+    d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, bc, sc,
+    bracket_only=False,
+):  # fmt: skip
     """lambda* in [0, 1] where foot i, pulled towards s, reaches its holding limit on the stuck
-    path from d (lambda = 0) to d_end (lambda = 1) (regula falsi with the Illinois
-    modification, the algorithm of `feet`; Newton starts on the chord of the bracket's
-    solutions). The configuration there goes to the ROW_STAR + i row. Returns (lambda*, ok,
-    iterations)."""
+    path from d (lambda = 0) to d_end (lambda = 1), e1 > 0 the excess at d_end. Newton on
+    (d, lambda) together (`_onset_bordered`) from regula falsi's first point on the chord of
+    the bracket; should it fail (or with bracket_only), regula falsi with the Illinois
+    modification on stuck solves (the algorithm of `feet`; each solve starts on the chord of
+    the bracket's solutions). The configuration there goes to the ROW_STAR + i row. Returns
+    (lambda*, ok, iterations)."""
     vec, kap = sc[0], sc[4][1]
     zero, d_lo, dl, best_d = vec[ROW_ZERO], vec[ROW_DLO], vec[ROW_DL], vec[ROW_BEST]
     d_hi, guess1 = vec[ROW_DHI], vec[ROW_GUESS1]
@@ -95,11 +101,22 @@ def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd,
     if slipping_i == s or e_lo >= 0.0:
         vec[ROW_STAR + i][:] = d
         return 0.0, True, 0
-    d_lo[:] = d
+    lam = min(max(e_lo / (e_lo - e_hi), 1e-6), 1.0 - 1e-6)  # regula falsi's first point
+    for k in range(d.shape[0]):  # and the chord of the bracket's solutions there
+        dl[k] = d[k] + lam * (d_end[k] - d[k])
+    ok, iterations = False, 0
+    if not bracket_only:
+        lam, ok, iterations = _onset_bordered(
+            lam, dl, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc, sc
+        )
+    if ok:
+        vec[ROW_STAR + i][:] = dl
+        return lam, True, iterations
+    d_lo[:] = d  # else bracket: regula falsi with the Illinois modification
     d_hi[:] = d_end
     best_e, best_lam = abs(e_lo), 0.0
     best_d[:] = d
-    iterations, side = 0, 0
+    side = 0
     for _ in range(30):
         lam = lo + (hi - lo) * e_lo / (e_lo - e_hi)
         lam = min(max(lam, lo + 1e-6 * (hi - lo)), hi - 1e-6 * (hi - lo))
@@ -132,6 +149,82 @@ def _onset(d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd,
             break
     vec[ROW_STAR + i][:] = best_d
     return best_lam, True, iterations
+
+
+@numba.njit(cache=True)
+def _onset_bordered(lam, d, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc, sc):
+    """Newton on the stuck configuration d and the onset lambda together: the equilibrium on
+    the free dofs, P(d, kappa#(lambda)) = F, bordered by the onset condition e(d, lambda) =
+    -s R_x,i - mu(g_i(lambda)) max(N_i, 0) = 0. Per iteration one tangent K, one LDL^T and two
+    solves: K y = F - P, K z = dP/dlambda (`element.actuation_load_into`, psi dofs only), then
+    dlambda = -(e + c.y) / (de/dlambda - c.z) with c = de/dd = -s K[x_i, :] - mu K[z_i, :] (the
+    unconstrained rows of the foot's dofs) and dd = y - z dlambda. From a start on the chord
+    of the bracket it converges quadratically, where the bracketing search needs a stuck
+    solve per trial lambda. d (the start) is updated in place. Returns (lambda, ok,
+    iterations); not ok when it fails to converge inside (0, 1) within max_iter iterations or
+    the tangent is not positive definite (the caller brackets instead)."""
+    le, qxi, qw, stiff, u_scale, dtol, max_iter = bc[0], bc[1], bc[2], bc[3], bc[4], bc[9], bc[10]
+    vec, ab, work, kap, dk = sc[0], sc[1], sc[2], sc[4][1], sc[4][2]
+    p, r = vec[static.ROW_P], vec[static.ROW_R]
+    c, b, y, z = vec[ROW_C], vec[ROW_B], vec[ROW_Y], vec[ROW_Z]
+    nd, hb = d.shape[0], el.HALF_BW
+    xi, zi = xd[i], zd[i]
+    for e in range(dk.shape[0]):
+        for q in range(dk.shape[1]):
+            dk[e, q] = k1[e, q] - k0[e, q]
+    el.actuation_load_into(le, qxi, qw, stiff, dk, b)
+    b_x, b_z = b[xi], b[zi]  # zero (kappa# loads only psi dofs): kept for the general form
+    for j in range(nd):
+        if fixed[j]:
+            b[j] = 0.0
+    f_ref, tol_r = static.residual_scale(d, f_ext, bc)
+    dg = g1[i] - g0[i]
+    dmu_dg = (mu4[0] - mu4[2]) if s == FORWARD else (mu4[1] - mu4[3])
+    for it in range(1, max_iter + 1):
+        static.lerp_into(k0, k1, lam, kap)
+        el.assemble_into(d, le, kap, qxi, qw, stiff, True, p, ab)
+        g = g0[i] + lam * dg
+        nz = p[zi] - f_ext[zi]
+        e = -s * (p[xi] - f_ext[xi]) - holding_limit(mu4, g, s, nz)
+        mu_n = friction_coefficient(mu4, g, s) if nz > 0.0 else 0.0
+        de_dlam = -s * b_x - mu_n * b_z - dmu_dg * dg * max(nz, 0.0)
+        c[:] = 0.0
+        for j in range(max(0, xi - hb), min(nd, xi + hb + 1)):
+            c[j] -= s * ab[hb + xi - j, j]
+        for j in range(max(0, zi - hb), min(nd, zi + hb + 1)):
+            c[j] -= mu_n * ab[hb + zi - j, j]
+        res = 0.0
+        for j in range(nd):
+            r[j] = f_ext[j] - p[j]
+            if fixed[j]:
+                c[j] = 0.0
+        el.constrain_band(ab, r, fixed)
+        for j in range(nd):
+            res = max(res, abs(r[j] * u_scale[j]))
+        res /= f_ref
+        if not (np.isfinite(res) and np.isfinite(e)) or el.band_ldl_factor(ab, work) != 0:
+            return lam, False, it
+        el.band_ldl_solve(work, r, y)
+        el.band_ldl_solve(work, b, z)
+        cy, cz = 0.0, 0.0
+        for j in range(nd):
+            cy += c[j] * y[j]
+            cz += c[j] * z[j]
+        dlam = -(e + cy) / (de_dlam - cz)
+        if not np.isfinite(dlam):
+            return lam, False, it
+        step = 0.0
+        for j in range(nd):
+            dj = y[j] - z[j] * dlam
+            d[j] += dj
+            step = max(step, abs(dj / u_scale[j]))
+        lam += dlam
+        if not 0.0 < lam < 1.0:
+            return lam, False, it
+        small_e = abs(e) < 1e-9 * max(abs(nz), 1e-12)
+        if res < tol_r and small_e and (step < dtol or res < 1e-2 * tol_r) and abs(dlam) < dtol:
+            return lam, True, it
+    return lam, False, max_iter
 
 
 @numba.njit(cache=True)
