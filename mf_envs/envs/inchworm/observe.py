@@ -48,7 +48,7 @@ def observe_row(
     r_t, r_h = reactions[0], reactions[1]
     if own_reactions:
         p = np.empty(2)
-        el.forces_at_into(d, le, kappa_gauss, qxi, qw, stiff, np.array([2, nd - 3]), p)
+        el.forces_at_into(d, le, kappa_gauss, qxi, qw, stiff, (2, nd - 3), p)
         r_t = p[0] - f_ext[2]
         r_h = p[1] - f_ext[nd - 3]
     for k in range(n):

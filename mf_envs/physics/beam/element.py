@@ -166,22 +166,26 @@ def _shape_row(xi, le, sh):
 
 
 @numba.njit(cache=True, inline="always")
-def _shape_table(xis, le, shp):
-    """Rows of shape functions (`_shape_row`) at the local points xis (n,) into shp (n, SH_LEN).
-    They depend on the element only through its length: the loops below refill the table
-    only when le changes (the values, hence the bits, are those of `_shape`)."""
-    for q in range(xis.shape[0]):
-        _shape_row(xis[q], le, shp[q])
+def _shape_table(xis, le, shp, le_tab):
+    """Rows of shape functions (`_shape_row`) at the local points xis (n,) into shp (n, SH_LEN)
+    for an element of length le, unless the table already holds them (le == le_tab: they
+    depend on the element only through its length; the values, hence the bits, are those of
+    `_shape`). Returns le, the length the table now holds (start with le_tab = nan)."""
+    if le != le_tab:
+        for q in range(xis.shape[0]):
+            _shape_row(xis[q], le, shp[q])
+    return le
 
 
 @numba.njit(cache=True, inline="always")
 def _point_strains(de, sh):
     """psi, kappa, cos psi, sin psi, gamma_1, gamma_2 at a point from the 11 element dofs and
     the shape functions there (a `_shape_row`) (Eqs. 74, 75)."""
-    dz1 = sh[4] * de[0] + sh[5] * de[1] + sh[6] * de[2] + sh[7] * de[3]
-    dz2 = sh[4] * de[4] + sh[5] * de[5] + sh[6] * de[6] + sh[7] * de[7]
-    psi = sh[8] * de[8] + sh[9] * de[9] + sh[10] * de[10]
-    kap = sh[12] * de[8] + sh[13] * de[9] + sh[14] * de[10]
+    z, n, k = SH_DNZ, SH_NPSI, SH_DNPSI
+    dz1 = sh[z] * de[0] + sh[z + 1] * de[1] + sh[z + 2] * de[2] + sh[z + 3] * de[3]
+    dz2 = sh[z] * de[4] + sh[z + 1] * de[5] + sh[z + 2] * de[6] + sh[z + 3] * de[7]
+    psi = sh[n] * de[8] + sh[n + 1] * de[9] + sh[n + 2] * de[10]
+    kap = sh[k] * de[8] + sh[k + 1] * de[9] + sh[k + 2] * de[10]
     c = np.cos(psi)
     s = np.sin(psi)
     g1 = c * dz1 + s * dz2
@@ -310,9 +314,7 @@ def assemble_into(d, le, kappa_sharp, qxi, qw, stiff, with_tangent, p, ab):
     shp = np.empty((qxi.shape[0], SH_LEN))
     le_tab = np.nan
     for e in range(ne):
-        if le[e] != le_tab:
-            _shape_table(qxi, le[e], shp)
-            le_tab = le[e]
+        le_tab = _shape_table(qxi, le[e], shp, le_tab)
         energy = _element(d, e, le[e], kappa_sharp, qw, stiff, shp, de, fe, ke, uv,
                           with_tangent, energy)  # fmt: skip
         base = 6 * e
@@ -331,7 +333,8 @@ def assemble_into(d, le, kappa_sharp, qxi, qw, stiff, with_tangent, p, ab):
 
 @numba.njit(cache=True)
 def forces_at_into(d, le, kappa_sharp, qxi, qw, stiff, dofs, out):
-    """The internal force P at the global dofs `dofs` (k,) int into out (k,): the bits of
+    """The internal force P at the global dofs `dofs` (k ints: an array or a tuple) into out
+    (k,): the bits of
     `assemble_into`'s P there (the same element contributions added in the same order), but
     only the elements holding those dofs are evaluated (e.g. the two end elements for the
     ground reactions at the feet)."""
@@ -344,15 +347,13 @@ def forces_at_into(d, le, kappa_sharp, qxi, qw, stiff, dofs, out):
     for e in range(le.shape[0]):
         base = 6 * e
         hit = False
-        for m in range(dofs.shape[0]):
+        for m in range(len(dofs)):
             hit = hit or base <= dofs[m] <= base + 10
         if not hit:
             continue
-        if le[e] != le_tab:
-            _shape_table(qxi, le[e], shp)
-            le_tab = le[e]
+        le_tab = _shape_table(qxi, le[e], shp, le_tab)
         _element(d, e, le[e], kappa_sharp, qw, stiff, shp, de, fe, ke, uv, False, 0.0)
-        for m in range(dofs.shape[0]):
+        for m in range(len(dofs)):
             off = dofs[m] - base
             if 0 <= off <= 10:
                 out[m] += fe[LOC_INV[off]]
@@ -368,9 +369,7 @@ def actuation_load_into(le, qxi, qw, stiff, dk, out):
     shp = np.empty((qxi.shape[0], SH_LEN))
     le_tab = np.nan
     for e in range(le.shape[0]):
-        if le[e] != le_tab:
-            _shape_table(qxi, le[e], shp)
-            le_tab = le[e]
+        le_tab = _shape_table(qxi, le[e], shp, le_tab)
         base = 6 * e
         for g in range(N_GAUSS):
             m = -qw[g] * le[e] * stiff[g, 2] * dk[e, g]
@@ -444,15 +443,13 @@ def evaluate_fields(d, le, xis):
     shp = np.empty((nx, SH_LEN))
     le_tab = np.nan
     for e in range(ne):
-        if le[e] != le_tab:
-            _shape_table(xis, le[e], shp)
-            le_tab = le[e]
+        le_tab = _shape_table(xis, le[e], shp, le_tab)
         for k in range(11):
             de[k] = d[6 * e + LOC[k]]
         for q in range(nx):
             sh = shp[q]
             psi, kap, c, s, g1, g2 = _point_strains(de, sh)
-            pos[e, q, 0] = sh[0] * de[0] + sh[1] * de[1] + sh[2] * de[2] + sh[3] * de[3]
+            pos[e, q, 0] = sh[0] * de[0] + sh[1] * de[1] + sh[2] * de[2] + sh[3] * de[3]  # N_z
             pos[e, q, 1] = sh[0] * de[4] + sh[1] * de[5] + sh[2] * de[6] + sh[3] * de[7]
             psi_o[e, q] = psi
             kap_o[e, q] = kap
@@ -593,7 +590,8 @@ def band_solve_into(ab, r, work, piv, x):
 def _ldl_column(work, j, m, v):
     """Step j of `band_spd_solve_into`: column j of L (m entries below the diagonal) and the
     update of the trailing band. Called with the literal HALF_BW for the full columns (fixed
-    trip counts, which the compiler unrolls) and with m near the end: the same operations."""
+    trip counts, which the compiler unrolls) and with m near the end: the same operations
+    (so are `_ldl_forward` and `_ldl_back`)."""
     inv = 1.0 / work[j, 0]
     for t in range(1, m + 1):
         v[t] = work[j, t]
@@ -649,26 +647,36 @@ def band_ldl_solve(work, r, x):
     for i in range(n):
         x[i] = r[i]
     for j in range(n):
-        xj = x[j]
         m = min(hb, n - 1 - j)
         if m == HALF_BW:
-            for t in range(1, HALF_BW + 1):
-                x[j + t] -= work[j, t] * xj
+            _ldl_forward(work, x, j, HALF_BW)
         else:
-            for t in range(1, m + 1):
-                x[j + t] -= work[j, t] * xj
+            _ldl_forward(work, x, j, m)
     for j in range(n):
         x[j] /= work[j, 0]
     for j in range(n - 1, -1, -1):
-        s = x[j]
         m = min(hb, n - 1 - j)
         if m == HALF_BW:
-            for t in range(1, HALF_BW + 1):
-                s -= work[j, t] * x[j + t]
+            _ldl_back(work, x, j, HALF_BW)
         else:
-            for t in range(1, m + 1):
-                s -= work[j, t] * x[j + t]
-        x[j] = s
+            _ldl_back(work, x, j, m)
+
+
+@numba.njit(cache=True, inline="always")
+def _ldl_forward(work, x, j, m):
+    """Column j of the forward substitution with L (m entries below the diagonal)."""
+    xj = x[j]
+    for t in range(1, m + 1):
+        x[j + t] -= work[j, t] * xj
+
+
+@numba.njit(cache=True, inline="always")
+def _ldl_back(work, x, j, m):
+    """Row j of the back substitution with L^T (m entries right of the diagonal)."""
+    s = x[j]
+    for t in range(1, m + 1):
+        s -= work[j, t] * x[j + t]
+    x[j] = s
 
 
 @numba.njit(cache=True)

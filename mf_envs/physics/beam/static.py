@@ -109,7 +109,7 @@ def newton(d, kap, f, fixed, bc, sc):
     bool. Returns (converged, iterations): `solver.newton` with dyn = extra = None, except
     that an iterate whose residual is already below 1e-2 rtol is returned as it is (the
     seed's test accepts it whatever the step; solving for a round-off correction is skipped)."""
-    le, qxi, qw, stiff, u_scale, ei_l, rigid_l, length, rtol, dtol, max_iter, _ = bc
+    le, qxi, qw, stiff, u_scale, dtol, max_iter = bc[0], bc[1], bc[2], bc[3], bc[4], bc[9], bc[10]
     vec, ab, work, piv = sc[0], sc[1], sc[2], sc[3]
     p, r, delta = vec[ROW_P], vec[ROW_R], vec[ROW_DELTA]
     nd = d.shape[0]

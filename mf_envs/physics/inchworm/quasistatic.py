@@ -64,9 +64,8 @@ def holding_limit(mu4, g, direction, normal):
 def _ground(d, kap, f_ext, xd, zd, bc, sc, rx, nz):
     """Ground forces on the feet: rx, nz (2,) [N] = (P(d) - F_ext) at the x and z dofs (only
     the end elements evaluated: `element.forces_at_into`)."""
-    dofs = np.array([xd[0], xd[1], zd[0], zd[1]])
-    p = np.empty(4)
-    el.forces_at_into(d, bc[0], kap, bc[1], bc[2], bc[3], dofs, p)
+    p = sc[0][static.ROW_P][:4]  # Newton's scratch row (as the full assembly used)
+    el.forces_at_into(d, bc[0], kap, bc[1], bc[2], bc[3], (xd[0], xd[1], zd[0], zd[1]), p)
     for i in range(2):
         rx[i] = p[i] - f_ext[xd[i]]
         nz[i] = p[2 + i] - f_ext[zd[i]]
@@ -173,7 +172,6 @@ def _onset_bordered(lam, d, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc,
         for q in range(dk.shape[1]):
             dk[e, q] = k1[e, q] - k0[e, q]
     el.actuation_load_into(le, qxi, qw, stiff, dk, b)
-    b_x, b_z = b[xi], b[zi]  # zero (kappa# loads only psi dofs): kept for the general form
     for j in range(nd):
         if fixed[j]:
             b[j] = 0.0
@@ -187,7 +185,8 @@ def _onset_bordered(lam, d, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc,
         nz = p[zi] - f_ext[zi]
         e = -s * (p[xi] - f_ext[xi]) - holding_limit(mu4, g, s, nz)
         mu_n = friction_coefficient(mu4, g, s) if nz > 0.0 else 0.0
-        de_dlam = -s * b_x - mu_n * b_z - dmu_dg * dg * max(nz, 0.0)
+        # kappa# loads only psi dofs (b = 0 at x_i, z_i): e depends on lambda through mu(g)
+        de_dlam = -dmu_dg * dg * max(nz, 0.0)
         c[:] = 0.0
         for j in range(max(0, xi - hb), min(nd, xi + hb + 1)):
             c[j] -= s * ab[hb + xi - j, j]
