@@ -429,6 +429,26 @@ def test_threads_do_not_change_results(env_id: str) -> None:
             make_vec(env_id, 2, num_threads=bad)
 
 
+def test_row_blocks_share_rows_so_that_blocks_end_together() -> None:
+    """RowBlocks' split: a worker that starts its block 0.1 s late at 1 ms per row gets
+    (T - start) / cost rows with T the common end, here 550 / 450 of 1000 rows (T = 0.55 s),
+    approached geometrically (smoothing 0.3 per run); edges keep every block >= 1 row."""
+    from mf_envs.envs._rows import RowBlocks
+
+    rb = RowBlocks(1000, 2)
+    assert rb.bounds() == [0, 500, 1000]
+    for _ in range(60):
+        b = rb.bounds()
+        n0, n1 = b[1] - b[0], b[2] - b[1]
+        rb._rebalance([(0.0, n0 * 1e-3), (0.1, 0.1 + n1 * 1e-3)])
+    assert rb.bounds() == [0, 550, 1000]
+    np.testing.assert_allclose(rb.shares, [550.0, 450.0], atol=1.0)
+    rb.shares = [0.2, 999.8]
+    assert rb.bounds() == [0, 1, 1000]
+    rb3 = RowBlocks(2, 3)  # fewer rows than blocks: one row each
+    assert rb3.k == 2 and rb3.bounds() == [0, 1, 2]
+
+
 def test_stabilizer_threaded_env_survives_fork() -> None:
     """A process forked after the worker threads started (it has none of them) steps its
     threaded vector env on its own workers, with the parent's results."""

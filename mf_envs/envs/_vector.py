@@ -26,8 +26,6 @@ Rendering is not supported (`render_mode` must be None): render a single env ins
 from __future__ import annotations
 
 import abc
-import os
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import gymnasium as gym
@@ -37,18 +35,10 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from mf_envs._validate import check_int
+from mf_envs.envs._rows import RowBlocks
 
-_POOL: dict[str, Any] = {"pid": None, "pool": None, "size": 0}  # worker threads (`_workers`)
 # rows per thread below which more threads do not pay (`resolve_threads`' automatic choice)
 MIN_ROWS_PER_THREAD = {"light": 128, "heavy": 1}
-
-
-def _workers(n: int) -> ThreadPoolExecutor:
-    """A shared pool of at least n worker threads of this process (a forked child, which has
-    none of its parent's threads, makes its own)."""
-    if _POOL["pid"] != os.getpid() or _POOL["size"] < n:
-        _POOL.update(pid=os.getpid(), pool=ThreadPoolExecutor(n, "mf_envs-rows"), size=n)
-    return _POOL["pool"]
 
 
 def resolve_threads(num_threads: Any, num_envs: int, rows: str = "light") -> int:
@@ -61,25 +51,6 @@ def resolve_threads(num_threads: Any, num_envs: int, rows: str = "light") -> int
         return check_int("num_threads", num_threads, 1)
     per = MIN_ROWS_PER_THREAD[rows]
     return max(1, min(numba.get_num_threads(), num_envs // per))
-
-
-def run_row_blocks(kernel: Any, n_rows: int, n_blocks: int, *args: Any) -> None:
-    """kernel(lo, hi, *args) over the rows split in n_blocks contiguous blocks at once: block 0
-    in the calling thread, the others on the shared worker pool (the kernel must release the
-    GIL: numba `nogil=True`). Rows are independent, so the result does not depend on n_blocks.
-    Not numba's `parallel=True`: its OpenMP threads spin, and with another process busy on one
-    of 2 cores they ran 2.7-10x slower than one thread (measured, issue 17); these wait. With
-    one of 2 cores busy elsewhere two blocks cost GOWEC-v0 (N = 1024) 7.5 % against one and
-    gained the inchworm (N = 64) 6 %; on a quiet machine they gain 1.5-1.9x."""
-    k = max(1, min(n_blocks, n_rows))
-    if k == 1:
-        kernel(0, n_rows, *args)
-        return
-    pool = _workers(k - 1)
-    jobs = [pool.submit(kernel, j * n_rows // k, (j + 1) * n_rows // k, *args) for j in range(1, k)]
-    kernel(0, n_rows // k, *args)
-    for job in jobs:
-        job.result()
 
 
 def seed_list(seed: int | list[int | None] | None, n: int) -> list[int | None]:
@@ -131,7 +102,7 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         if isinstance(num_envs, bool):
             raise ValueError(f"num_envs: must be an integer >= 1, got {num_envs!r}")
         self.num_envs = check_int("num_envs", num_envs, low=1)
-        # blocks of rows stepped at once on threads (`run_row_blocks`); results do not depend on it
+        # blocks of rows stepped at once on threads (`_rows.RowBlocks`); results do not depend on it
         self.num_threads = resolve_threads(num_threads, self.num_envs, self.row_cost)
         if render_mode is not None:
             raise ValueError(
@@ -153,6 +124,7 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         self._obs = np.zeros((n, *self.single_observation_space.shape), dtype=np.float32)
         self._all = np.ones(n, dtype=bool)
         self._is_reset = False
+        self.blocks = RowBlocks(n, self.num_threads)  # the rows' split over threads
         self._alloc(n)
 
     @classmethod
@@ -241,7 +213,10 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         redo = self._done if mode == AutoresetMode.NEXT_STEP else None
         active = self._all if redo is None or not redo.any() else ~redo
         obs, rew, term, trunc, info = self._step_batch(a, active)
-        self._obs[active] = obs[active]
+        if active is self._all:  # np.copyto: a boolean-mask copy took 27 us of a 0.6 ms step
+            np.copyto(self._obs, obs)
+        else:
+            np.copyto(self._obs, obs, where=active.reshape(-1, *[1] * (obs.ndim - 1)))
         masked = bool(term.any())  # failures mask keys out
         if redo is not None and redo.any():
             rew[redo], term[redo], trunc[redo] = 0.0, False, False

@@ -27,7 +27,7 @@ import numba
 import numpy as np
 
 from mf_envs.envs._predraw import PredrawnResets
-from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
+from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec import spec
 from mf_envs.envs.gowec.env import GOWECEnv
 from mf_envs.physics.gowec import buoy_rates_into
@@ -124,10 +124,9 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         b, env, kn = self.b, self.template, self._kernel
         Mg = actions[:, 0] * env.max_generator_torque
         b["t"][:] = self._steps * env.control_dt
-        run_row_blocks(
-            batch_fast_step, self.num_envs, self.num_threads,
-            active, b["t"], b["phi"], b["phid"], Mg, env.physics_dt, env.n_substeps,
-            kn["inert"], kn["psid"], b["amp"], b["om"], b["eps"], b["k"],
+        self.blocks.run(
+            batch_fast_step, active, b["t"], b["phi"], b["phid"], Mg, env.physics_dt,
+            env.n_substeps, kn["inert"], kn["psid"], b["amp"], b["om"], b["eps"], b["k"],
             kn["cth"], kn["sth"], kn["two_d"], b["energy"], b["w"], b["eta"],
         )  # fmt: skip
         self._steps[active] += 1

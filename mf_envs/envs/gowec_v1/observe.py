@@ -9,7 +9,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.gowec.hydro.batch import step_row
+from mf_envs.physics.gowec.hydro.batch import end_state, step_row
 
 
 @numba.njit(cache=True)
@@ -39,8 +39,8 @@ def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, 
     """The single env's step in one compiled call: `step_row`, then (if the state is finite)
     `observe_one` into obs and the termination tests; limits = (max gimbal rate rad/s, max buoy
     angle rad), w = `step_work`. Returns (ok, y1, finite obs, overspeed, out of range)."""
-    ok, y1 = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w)
-    y1 = y1.copy()  # the env keeps it as its state; step_row's y1 is a view into w
+    ok = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w)
+    y1 = end_state(w, y.shape[0]).copy()  # the env keeps it as its state
     if not ok:
         return False, y1, False, False, False
     finite = observe_one(y1, lo, hi, obs)

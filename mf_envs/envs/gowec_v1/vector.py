@@ -32,7 +32,7 @@ import numba
 import numpy as np
 
 from mf_envs.envs._predraw import PredrawnResets
-from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
+from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
 from mf_envs.envs.gowec_v1.observe import observe_one, observe_rows
@@ -157,10 +157,10 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         ok = self._ok
         ok[~active] = True
         shared = env.model._args()[:9]
-        run_row_blocks(
-            batch_step_rows, self.num_envs, self.num_threads, active, t0, t1, self.Y, tau,
-            env.physics_dt, env.n_substeps, shared, sea["om"], sea["cp"], sea["cr"], sea["amp"],
-            sea["eps"], dtc, env._loss(), self._vals, ok,
+        self.blocks.run(
+            batch_step_rows, active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps,
+            shared, sea["om"], sea["cp"], sea["cr"], sea["amp"], sea["eps"], dtc, env._loss(),
+            self._vals, ok,
         )  # fmt: skip
         obs = self._fresh
         observe_rows(active & ok, self.Y, self._lo, self._hi, obs)

@@ -9,9 +9,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs.envs._spec import Field, ObsLayout
 
 OBS = ObsLayout(
@@ -57,7 +57,7 @@ A physics_dt beyond the RK4 limit is refused (ValueError naming physics_dt).
 _HIGH = tuple(float(v) for v in OBS.high())
 
 
-@numba.njit(cache=True)
+@kernel
 def observe(roll, y, R, out):
     """The observation (OBS order) of ship state y (N_STATE,), attitude R (3, 3) and its roll
     angle (rad) into the float32 row `out`, clipped to the bounds; returns False (out untouched)
@@ -76,7 +76,7 @@ def observe(roll, y, R, out):
     return True
 
 
-@numba.njit(cache=True)
+@kernel
 def observe_rows(active, roll, y, R, out, ok):
     """`observe` for every active row i: roll (N,), y (N, N_STATE), R (N, 3, 3), out (N, 6)."""
     for i in range(y.shape[0]):

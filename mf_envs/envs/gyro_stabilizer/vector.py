@@ -18,7 +18,7 @@ frequency). Autoresets and seedless resets without options therefore run in one 
 Irregular seas (a new sea of many draws per reset) keep the template path. See
 `mf_envs.envs._vector`.
 
-Threads (kwarg `num_threads`, `mf_envs.envs._vector.run_row_blocks`): the rows are stepped in
+Threads (kwarg `num_threads`, `mf_envs.envs._rows.RowBlocks`): the rows are stepped in
 num_threads blocks at once, block 0 in the calling thread and the others on a shared pool of
 Python worker threads (`step_rows` releases the GIL); rows are independent, so results are
 bit-identical to one thread (`tests/test_vector_envs.py`). Default: one block per CPU once each
@@ -35,8 +35,9 @@ from typing import Any
 import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs.envs._predraw import PredrawnResets
-from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
+from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gyro_stabilizer import spec, wiring
 from mf_envs.envs.gyro_stabilizer.env import GyroStabilizerEnv
 from mf_envs.frames.kernels import rk4_work, rkmk4_rwork
@@ -81,29 +82,36 @@ def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, o
 @numba.njit(cache=True)
 def _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
                 ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
-    """`step_rows` for the rows lo <= i < hi (own stepper scratch)."""
+    """`step_rows` for the rows lo <= i < hi: this task's scratch, then `_rows`."""
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
-    # the row is stepped in this task's own buffers: views of the shared batch arrays would
-    # touch their (shared) reference counts at every row, which threads contend for
-    yl, Rl, ol, Pl = np.empty(y.shape[1]), np.empty((3, 3)), np.empty(4), np.empty(P.shape[1])
     ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
+    _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
+
+
+@kernel
+def _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c):  # fmt: skip
+    """The row loop of `step_rows` on the batch arrays in place (a `mf_envs._jit.kernel`: its
+    row views cost no reference counts, so threads share the arrays freely); work, Rwork: the
+    stepper's scratch, ob (6,) float32 and c (N_COLS,) one row's observation and info columns."""
     for i in range(lo, hi):
         if not active[i]:
             continue
-        _gather(i, y, R, P, out, yl, Rl, Pl, ol)
-        e0 = yl[K.E_STATE]
-        t[i] = K.advance_with(t[i], yl, Rl, u[i], dt, n_sub, Pl, tab[i], ol, work, Rwork)
+        yi, Ri, oi = y[i], R[i], out[i]
+        e0 = yi[K.E_STATE]
+        t[i] = K.advance_with(t[i], yi, Ri, u[i], dt, n_sub, P[i], tab[i], oi, work, Rwork)
         steps[i] += 1
-        roll = K.roll_of(Rl)
-        ok = spec.observe(roll, yl, Rl, ob)
+        roll = K.roll_of(Ri)
+        ok = spec.observe(roll, yi, Ri, ob)
         if not ok:  # the last finite observation stays (and is scored)
             for k in range(ob.shape[0]):
                 ob[k] = last[i, k]
-        energy = yl[K.E_STATE] - e0
+        energy = yi[K.E_STATE] - e0
         q = np.float64(ob[_ROLL]) / roll_scale
         c[C_RROLL], c[C_REFFORT] = -(q * q), -effort_weight * energy
         rew = c[C_RROLL] + c[C_REFFORT]
-        _info_row(c, roll, yl, ol, energy)
+        _info_row(c, roll, yi, oi, energy)
         c[C_TIME] = steps[i] * control_dt
         ok_out[i] = ok and math.isfinite(rew)
         if not ok_out[i]:  # MFEnv._finish_step: last finite obs, reward 0, terminated
@@ -111,37 +119,10 @@ def _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last,
                 ob[k] = last[i, k]
             rew = 0.0
         reward[i] = rew
-        _scatter(i, yl, Rl, ol, ob, c, y, R, out, obs, cols)
-
-
-@numba.njit(cache=True, inline="always")
-def _gather(i, y, R, P, out, yl, Rl, Pl, ol):
-    """Row i of the batch arrays into the task's buffers (element by element: no views)."""
-    for k in range(y.shape[1]):
-        yl[k] = y[i, k]
-    for a in range(3):
-        for k in range(3):
-            Rl[a, k] = R[i, a, k]
-    for k in range(P.shape[1]):
-        Pl[k] = P[i, k]
-    for k in range(4):
-        ol[k] = out[i, k]
-
-
-@numba.njit(cache=True, inline="always")
-def _scatter(i, yl, Rl, ol, ob, c, y, R, out, obs, cols):
-    """The task's buffers back into row i of the batch arrays (`_gather`'s inverse)."""
-    for k in range(y.shape[1]):
-        y[i, k] = yl[k]
-    for a in range(3):
-        for k in range(3):
-            R[i, a, k] = Rl[a, k]
-    for k in range(4):
-        out[i, k] = ol[k]
-    for k in range(ob.shape[0]):
-        obs[i, k] = ob[k]
-    for k in range(c.shape[0]):
-        cols[k, i] = c[k]
+        for k in range(ob.shape[0]):
+            obs[i, k] = ob[k]
+        for k in range(c.shape[0]):
+            cols[k, i] = c[k]
 
 
 @numba.njit(cache=True)
@@ -246,7 +227,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
             b["out"], self._steps, self._obs, self._fresh, cols, self._ok, self._reward,
             env.roll_scale, env.effort_weight, env.control_dt,
         )  # fmt: skip
-        run_row_blocks(step_rows, self.num_envs, self.num_threads, *args)
+        self.blocks.run(step_rows, *args)
         info: dict[str, Any] = dict(zip(COLS, cols))
         info["time"] = cols[C_TIME]
         info["reward_terms"] = {"roll": cols[C_RROLL], "effort": cols[C_REFFORT]}

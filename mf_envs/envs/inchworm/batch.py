@@ -4,7 +4,7 @@ Every active row runs exactly what the single env runs for one control step (the
 scaling of `InchwormEnv.step`, `quasistatic.drive_step`, the re-centring of the local origin
 of `Inchworm._recenter`, the observation of `envs.inchworm.observe.observe_row`), so a row is
 bit-identical to a single env. Rows are independent; blocks of rows run on threads
-(`envs._vector.run_row_blocks`), which does not change any row's arithmetic.
+(`envs._rows.RowBlocks`), which does not change any row's arithmetic.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from mf_envs.physics.inchworm import quasistatic as qs
 @numba.njit(cache=True, nogil=True)
 def step_rows(lo, hi, active, actions, state, work, cfg, out):
     """Advance the active rows among lo..hi - 1 one control step (releases the GIL: blocks of
-    rows run on threads, `envs._vector.run_row_blocks`).
+    rows run on threads, `envs._rows.RowBlocks`).
 
     actions (N, n [+ 1]) in [-1, 1]; state = (d (N, n_dof), x_origin (N,), lag kappa# (N, n),
     realised kappa_ctrl (N, n), engagement (N, 2), slipping (N, 2) int, commanded kappa#

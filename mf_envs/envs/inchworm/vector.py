@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs.envs._vector import BatchedVectorEnv, run_row_blocks
+from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.inchworm.batch import step_rows
 from mf_envs.envs.inchworm.env import InchwormEnv
 from mf_envs.physics.inchworm import quasistatic as qs
@@ -100,10 +100,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         env = self.template
         status, rep, before, obs, energy_el, line, _ = self._out
         status[~active] = qs.OK
-        run_row_blocks(
-            step_rows, self.num_envs, self.num_threads, active, actions, self._state,
-            self._work, self._cfg, self._out,
-        )  # fmt: skip
+        self.blocks.run(step_rows, active, actions, self._state, self._work, self._cfg, self._out)
         self._steps[active] += 1
         d, xo, _, kc, g, _, cmd, head = self._state
         ok = status == qs.OK

@@ -20,7 +20,7 @@ def batch_fast_step(
     energy, w, eta,
 ):  # fmt: skip
     """Advance the rows i in lo..hi - 1 with active[i] in place; rows not active are left
-    untouched. Releases the GIL (blocks of rows on threads: `envs._vector.run_row_blocks`).
+    untouched. Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`).
 
     Shapes: active (N,) bool; t (N,) s, time at the start of the step; phi (N,) rad, phid (N,)
     rad/s, updated in place; Mg (N,) N m, generator torque held over the step; dt (s) substep,

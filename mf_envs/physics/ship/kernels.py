@@ -42,6 +42,7 @@ import math
 import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs.frames.kernels import make_rkmk4, rk4_work, rkmk4_rwork
 from mf_envs.physics.ship.coupling import N_COUPLING, solve_sway_roll_yaw
 from mf_envs.physics.ship.drive import end_stop
@@ -222,7 +223,7 @@ def stage_rhs(t, y, R, inp, args, dy):
 _rkmk4 = make_rkmk4(stage_rhs, stage_inputs, inline="always")
 
 
-@numba.njit(cache=True)
+@kernel
 def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     """One Runge-Kutta-Munthe-Kaas step (`mf_envs.frames.kernels`, RK4 tableau, the attitude in
     the Lie algebra: 4th order in R and w, R orthogonal to round-off) of y and R in place.
@@ -243,7 +244,7 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     return inp[0]
 
 
-@numba.njit(cache=True)
+@kernel
 def _stop_gimbal(y, P):
     """Inelastic end stop of the free gimbal (`ship.drive.end_stop`) at +-phi_max; one gyro's
     hull takes the reaction that keeps L_2 = J_yy w2 + J_g phi' (the pair's cancels)."""
@@ -253,7 +254,7 @@ def _stop_gimbal(y, P):
         y[1] -= P[S.D2] * jump / (P[S.J2] + P[S.D2])
 
 
-@numba.njit(cache=True)
+@kernel
 def roll_of(R) -> float:
     """Roll r = atan2(R32, R33) (rad, z-y-x Euler angles) of one attitude R (3, 3) with libm's
     scalar atan2: the single env (through numba's dispatch) and the vector kernel call this one
@@ -269,7 +270,7 @@ def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyr
     return -n_gyros * angular_momentum * phi_rate * math.cos(phi)
 
 
-@numba.njit(cache=True)
+@kernel
 def gyro_moment(y, P):
     """Gyro roll moment (N m, Eq. 123) of state y: `gyro_roll_moment` with the packed P."""
     return gyro_roll_moment(y[3], y[4], P[S.JR3] * P[S.PSID], P[S.NGYRO])
@@ -283,7 +284,7 @@ def advance(t, y, R, u, dt, n_sub, P, tab, out):
     return advance_with(t, y, R, u, dt, n_sub, P, tab, out, rk4_work(y.shape[0]), rkmk4_rwork())
 
 
-@numba.njit(cache=True)
+@kernel
 def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
     """`advance` with the caller's stepper scratch work (5, N_STATE), Rwork (2, 3, 3) (the batch
     reuses one pair for every row)."""
@@ -297,7 +298,7 @@ def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
     return t
 
 
-@numba.njit(cache=True)
+@kernel
 def drive_output(t, y, R, u, P):
     """(torque on gyro 1's gimbal in N m, power n tau phi' in W) of the drive at state y.
 

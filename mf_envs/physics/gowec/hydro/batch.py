@@ -16,6 +16,7 @@ import math
 import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs.physics.gowec.hydro.floating import N_MECH, excitation, mechanics, rk4_steps_into
 
 N_VALS = 12  # step_row's value slots (see its docstring)
@@ -68,31 +69,39 @@ def _gyro_pitch(mech):
     return -((m[0] - m[11]) * ud[0] + m[7])
 
 
-@numba.njit(cache=True)
+@kernel
 def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     """One control step from (t0, y) to t1 = t0 + dtc (s) with the PTO command tau (N m) held
-    over n RK4 substeps of dt (w = `step_work`). Returns (ok, y1), y1 a view into w: ok False
-    if the state is not finite (then `vals` is untouched); else vals (N_VALS,) = (net electrical
-    power W, mechanical power W, pitch rad, roll rad, pitch rate rad/s, roll rate rad/s,
-    excitation moment N m, gyro moment N m, gimbal angle rad, gimbal rate rad/s, elevation m,
-    net electrical energy J), the powers from the integrated PTO energies over dtc, `loss` (W)
-    the rotor loss subtracted."""
+    over n RK4 substeps of dt (w = `step_work`; the new state y1 is written into its last
+    n_state entries, `end_state(w, n_state)`). Returns ok: False if y1 is not finite (then
+    `vals` is untouched); else vals (N_VALS,) = (net electrical power W, mechanical power W,
+    pitch rad, roll rad, pitch rate rad/s, roll rate rad/s, excitation moment N m, gyro moment
+    N m, gimbal angle rad, gimbal rate rad/s, elevation m, net electrical energy J), the
+    powers from the integrated PTO energies over dtc, `loss` (W) the rotor loss subtracted.
+    A `mf_envs._jit.kernel` (no reference counting; it returns no array)."""
     m = y.shape[0]
     k = N_MECH + 2 * args[5].shape[0]
     y1 = w[5 * m : 6 * m]
-    y1[:] = y
+    for i in range(m):  # element-wise: a slice copy may allocate (no runtime here)
+        y1[i] = y[i]
     try:  # a zero pivot of the 3 x 3 solve raises ZeroDivisionError (numba's float division)
         rk4_steps_into(t0, y1, tau, dt, n, args, w[: 5 * m].reshape((5, m)))
     except Exception:  # noqa: BLE001
-        y1[:] = np.nan
+        y1[0] = np.nan
     for i in range(m):
         if not math.isfinite(y1[i]):
-            return False, y1
+            return False
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
     vals[0], vals[1] = p_el, (y1[k + 3] - y[k + 3]) / dtc
     state_values_into(t1, y1, tau, args, amp, eps, vals)
     vals[11] = p_el * dtc
-    return True, y1
+    return True
+
+
+@numba.njit(cache=True, inline="always")
+def end_state(w, m):
+    """The state y1 that `step_row` wrote into its work buffer w, for a state of m entries."""
+    return w[5 * m : 6 * m]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -101,15 +110,26 @@ def batch_step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, a
     """`step_row` for every active row i in lo..hi - 1: Y (N, n_state) updated in place where
     ok; t0, t1, tau (N,); om, cp, cr, amp, eps (N, M) the sea of each row; shared =
     `floating.pack`'s first nine entries (the same for every row); vals (N, N_VALS); ok (N,)
-    bool. Releases the GIL (blocks of rows on threads: `envs._vector.run_row_blocks`)."""
-    p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
+    bool. Releases the GIL (blocks of rows on threads: `envs._vector.RowBlocks`)."""
     w = step_work(Y.shape[1])  # one set of temporaries for the block's rows
+    _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss, vals,
+          ok, w)  # fmt: skip
+
+
+@kernel
+def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss, vals,
+          ok, w):  # fmt: skip
+    """The row loop of `batch_step_rows` (a `mf_envs._jit.kernel`: the rows' views of the
+    shared arrays cost no reference counts)."""
+    p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
+    m = Y.shape[1]
     for i in range(lo, hi):
         if not active[i]:
             continue
         args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i])
-        good, y1 = step_row(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc,
-                            loss, vals[i], w)  # fmt: skip
+        good = step_row(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc, loss,
+                        vals[i], w)  # fmt: skip
         ok[i] = good
         if good:
-            Y[i, :] = y1
+            for j in range(m):
+                Y[i, j] = w[5 * m + j]

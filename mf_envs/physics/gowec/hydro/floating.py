@@ -44,6 +44,7 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs._jit import kernel
 from mf_envs.frames.kernels import make_rk4, rk4_work
 
 N_MECH = 6
@@ -287,7 +288,7 @@ def rk4_steps(t, y, tau, dt, n, args):
     return y
 
 
-@numba.njit(cache=True)
+@kernel
 def rk4_steps_into(t, y, tau, dt, n, args, work):
     """`rk4_steps` in place on y with caller-owned temporaries work = `rk4_work(n_state)` (no
     allocation: the env's step calls it every control step)."""

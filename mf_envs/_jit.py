@@ -1,0 +1,56 @@
+"""`kernel`: numba's njit for hot kernels that only borrow arrays (no reference counting).
+
+Numba's runtime counts references to every array a compiled function binds: each view
+(`work[0]`, `y[i]`) and each array argument of a helper inlined with `inline="always"` costs an
+atomic increment and decrement (`lock inc` / `lock dec`, each a full memory barrier). In the
+ship's RK4-Munthe-Kaas step they took 23 % of the samples (perf, issue 17) although every array
+there belongs to the caller for the whole call. `kernel` compiles such a function with numba's
+`_nrt=False` flag (the one numba uses for its own allocation-free helpers), which emits none.
+
+What a kernel may do, and how it is checked (`tests/test_jit.py`):
+- allocate nothing, nor call anything that does: numba refuses to compile it (a loud error, at
+  the first call), slice copies (`a[:] = b`, which may allocate) included: copy element-wise;
+- return no array, nor a tuple holding one (numba allows returning an argument array, but the
+  counting caller would then release a reference it never got): `array_returns()`
+  lists the compiled kernels that do, and must be empty after the envs have run;
+- and numba's allocation counters balance over runs of every env that uses kernels.
+Callers with the runtime allocate the scratch and pass it in (`..._rows(..., work)`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numba
+from numba.core import types
+
+KERNELS: list[Any] = []  # every dispatcher made by `kernel` (for the checks above)
+
+
+def kernel(fn: Callable | None = None, **options: Any) -> Any:
+    """`numba.njit(cache=True, _nrt=False, **options)`, registered in KERNELS (module doc);
+    usable as `@kernel` or `@kernel(nogil=True)`."""
+    if fn is None:
+        return lambda f: kernel(f, **options)
+    disp = numba.njit(cache=True, _nrt=False, **options)(fn)
+    KERNELS.append(disp)
+    return disp
+
+
+def _holds_array(t: types.Type) -> bool:
+    if isinstance(t, types.Array):
+        return True
+    if isinstance(t, types.BaseTuple):
+        return any(_holds_array(e) for e in t.types)
+    return False
+
+
+def array_returns() -> list[str]:
+    """Names of the compiled kernels whose return type holds an array (must be none)."""
+    bad = []
+    for disp in KERNELS:
+        for sig in disp.nopython_signatures:
+            if _holds_array(sig.return_type):
+                bad.append(f"{disp.py_func.__module__}.{disp.py_func.__qualname__}{sig}")
+    return bad

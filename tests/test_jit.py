@@ -1,0 +1,87 @@
+"""The kernels compiled without reference counting (`mf_envs._jit.kernel`) keep its rules: they
+return no array, they allocate nothing (numba refuses to compile one that does), and numba's
+allocation counters balance over runs of every env that uses them. The checks are shown to
+fail on kernels that break the rules."""
+
+from __future__ import annotations
+
+import gc
+
+import gymnasium as gym
+import numba
+import numpy as np
+import pytest
+from numba.core.runtime import _nrt_python, rtsys
+
+import mf_envs  # noqa: F401  (registers the envs)
+from mf_envs import _jit
+
+KERNEL_ENVS = ("GyroStabilizer-v0", "GOWEC-v1")
+
+
+def _run(env_id: str, steps: int) -> None:
+    """steps random steps of the single env and of a 3-env native vector env (with resets)."""
+    env = gym.make(env_id, episode_seconds=0.3)
+    env.reset(seed=0)
+    env.action_space.seed(0)
+    for _ in range(steps):
+        if any(env.step(env.action_space.sample())[2:4]):
+            env.reset()
+    vec = gym.make_vec(
+        env_id, num_envs=3, vectorization_mode="vector_entry_point", episode_seconds=0.3
+    )
+    vec.reset(seed=0)
+    vec.action_space.seed(0)
+    for _ in range(steps):
+        vec.step(vec.action_space.sample())
+
+
+def _live() -> int:
+    """Allocations minus frees of numba's runtime so far (counters switched on on first use)."""
+    if not _nrt_python.memsys_stats_enabled():
+        _nrt_python.memsys_enable_stats()
+    gc.collect()
+    stats = rtsys.get_allocation_stats()
+    return stats.alloc - stats.free
+
+
+@pytest.mark.parametrize("env_id", KERNEL_ENVS)
+def test_kernels_return_no_array_and_leak_nothing(env_id: str) -> None:
+    """After the envs ran (their kernels compiled or loaded), no kernel returns an array, and
+    numba's live allocations do not grow with the number of steps."""
+    _run(env_id, 5)  # compiles / loads everything the steps use
+    live = _live()
+    _run(env_id, 30)
+    assert _live() == live
+    used = [k for k in _jit.KERNELS if k.nopython_signatures]
+    assert len(used) >= 3  # the envs' steps went through kernels
+    assert _jit.array_returns() == []
+
+
+def test_the_checks_catch_a_kernel_that_breaks_the_rules() -> None:
+    """A kernel that allocates, itself or in a function it calls, does not compile; one that
+    returns its argument array compiles (numba allows that), and `array_returns` lists it."""
+
+    @numba.njit
+    def fresh(n):
+        return np.zeros(n)
+
+    def allocates(n):
+        return np.zeros(n)[0]
+
+    def calls_an_allocation(n):
+        return fresh(n)[0]
+
+    def returns_argument(a):
+        return a
+
+    n_kernels = len(_jit.KERNELS)
+    try:
+        for fn in (allocates, calls_an_allocation):
+            with pytest.raises(numba.core.errors.NumbaError):
+                _jit.kernel(fn)(3)
+        assert _jit.array_returns() == []
+        _jit.kernel(returns_argument)(np.zeros(3))
+        assert len(_jit.array_returns()) == 1 and "returns_argument" in _jit.array_returns()[0]
+    finally:
+        del _jit.KERNELS[n_kernels:]
