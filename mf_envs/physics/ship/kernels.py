@@ -43,7 +43,7 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.frames.kernels import make_rkmk4, rk4_work, rkmk4_rwork
+from mf_envs.frames.kernels import make_rkmk4, rk4_work, rkmk4_rwork, sincos_near
 from mf_envs.physics.ship.coupling import N_COUPLING, solve_sway_roll_yaw
 from mf_envs.physics.ship.drive import end_stop
 from mf_envs.physics.ship.layout import (  # noqa: F401 (re-exported)
@@ -69,6 +69,7 @@ from mf_envs.physics.ship.loads import (  # noqa: F401 (re-exported: the kernels
     hull_moment,
     table_value,
     wave_loads,
+    wave_loads_near,
 )
 
 # P: the packed parameter vector of `layout.KernelParams`, indexed P[S.NAME]
@@ -149,13 +150,14 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
 
 
 @numba.njit(cache=True, inline="always")
-def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P):
+def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
     """(w1', w2', w3', phi', phi'', z', drive power n |tau phi'|, v') of the rotational state, the
     drive-loop integral z and the sway velocity v (`ship.coupling`) at attitude third row
     (r20, r21, r22).
 
     mw: wave roll moment (N m) at the stage time; pg: (phi, phi', phi'') of a prescribed gimbal
-    at that time (`gimbal_motion`, ignored for the servo and torque drives).
+    at that time (`gimbal_motion`, ignored for the servo and torque drives); near = (phi0,
+    cos phi0, sin phi0) at the step's start (`frames.kernels.sincos_near`).
     """
     mode = int(P[S.GMODE])
     free = mode == GIMBAL_TORQUE
@@ -164,7 +166,9 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P):
     phidd = 0.0
     if not free and mode != GIMBAL_SERVO:
         phi, phid, phidd = pg
-    c, s = math.cos(phi), math.sin(phi)  # once per stage (the drive and the balance share them)
+        c, s = math.cos(phi), math.sin(phi)
+    else:  # once per stage (the drive and the balance share them), from the step's start
+        c, s = sincos_near(phi, near[0], near[1], near[2])
     if free:
         tau, dz = gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c, s)
     elif mode == GIMBAL_SERVO:
@@ -188,9 +192,10 @@ def _trans_rates(x3, v1, v2, v3, fw, P):
 @numba.njit(cache=True, inline="always")
 def stage_inputs(t, args):
     """The state-free inputs at time t: (wave moment N m, heave force N, prescribed gimbal
-    (phi, phi', phi'') of gyro 1; unused by the servo and torque drives)."""
-    u, P, tab = args
-    mw, fw = wave_loads(t, P, tab)
+    (phi, phi', phi'') of gyro 1; unused by the servo and torque drives). args = (u, P, tab,
+    near), near the step's start values of `_near`."""
+    u, P, tab, near = args
+    mw, fw = wave_loads_near(t, P, tab, near[3], near[4], near[5])
     mode = int(P[S.GMODE])
     if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
         return mw, fw, gimbal_motion(t, 0.0, 0.0, u, P)
@@ -202,10 +207,12 @@ def stage_rhs(t, y, R, inp, args, dy):
     """y' (n,) of the state y at attitude R (module doc) into dy; returns the body rate omega
     (3-tuple, rad/s): the right-hand side of the RKMK4 step. The gimbal is prescribed by inp in
     the sinusoidal/continuous modes."""
-    u, P, tab = args
+    u, P, tab, near = args
     mw, fw, pg = inp
     r20, r21, r22 = R[2, 0], R[2, 1], R[2, 2]
-    a = ang_rates(y[0], y[1], y[2], y[3], y[4], y[Z_STATE], y[V_STATE], r20, r21, r22, u, mw, pg, P)
+    a = ang_rates(
+        y[0], y[1], y[2], y[3], y[4], y[Z_STATE], y[V_STATE], r20, r21, r22, u, mw, pg, P, near
+    )
     for i in range(5):
         dy[i] = a[i]
     for i in range(5, y.shape[0]):
@@ -231,7 +238,7 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     `gimbal_limits` then meets its inelastic end stops (`_stop_gimbal`). work (5, n),
     Rwork (2, 3, 3): the stepper's scratch (`frames.kernels.rk4_work`, `rkmk4_rwork`).
     Returns the wave moment (N m) at t + dt."""
-    dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab), work, Rwork)
+    dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab, _near(t, y[3], P)), work, Rwork)
     for i in range(y.shape[0]):
         y[i] += dy[i]
     for i in range(3):
@@ -242,6 +249,21 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     elif mode == GIMBAL_TORQUE and P[S.LIMITS] > 0.5:
         _stop_gimbal(y, P)
     return inp[0]
+
+
+@numba.njit(cache=True, inline="always")
+def _near(t, phi, P):
+    """(phi, cos phi, sin phi, t, cos a, sin a) at a step's start: gimbal angle phi (rad) of the
+    servo and torque drives and the regular wave's phase a = omega t + eps (rad), from which
+    the stages get theirs (`frames.kernels.sincos_near`; zeros where unused)."""
+    mode = int(P[S.GMODE])
+    c = s = cw = sw = 0.0
+    if mode == GIMBAL_SERVO or mode == GIMBAL_TORQUE:
+        c, s = math.cos(phi), math.sin(phi)
+    if int(P[S.WMODE]) == WAVE_REGULAR:
+        a = P[S.WOMEGA] * t + P[S.WPHASE]
+        cw, sw = math.cos(a), math.sin(a)
+    return phi, c, s, t, cw, sw
 
 
 @kernel

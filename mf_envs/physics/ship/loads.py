@@ -10,6 +10,7 @@ import math
 import numba
 import numpy as np
 
+from mf_envs.frames.kernels import sincos_near
 from mf_envs.physics.ship.drive import drive_torque
 from mf_envs.physics.ship.layout import (
     DRV0,
@@ -130,6 +131,18 @@ def wave_loads(t: float, P: np.ndarray, tab: np.ndarray):
         if trans:
             fw = table_value(t, tab, 1, P[S.TABDT])
     return mw, fw
+
+
+@numba.njit(cache=True, inline="always")
+def wave_loads_near(t: float, P: np.ndarray, tab: np.ndarray, t0: float, c0: float, s0: float):
+    """`wave_loads` at t from the regular wave's cos and sin at t0 (c0, s0) by
+    `frames.kernels.sincos_near` (a Runge-Kutta step's stages: one libm sincos per step);
+    equal to `wave_loads` to round-off, and bit for bit at t = t0."""
+    if int(P[S.WMODE]) != WAVE_REGULAR:
+        return wave_loads(t, P, tab)
+    om, ph = P[S.WOMEGA], P[S.WPHASE]
+    c, s = sincos_near(om * t + ph, om * t0 + ph, c0, s0)
+    return P[S.WM0] * c, (P[S.WF0] * s if P[S.TRANS] > 0.5 else 0.0)
 
 
 @numba.njit(cache=True)
