@@ -1,6 +1,7 @@
 """GOWEC-v1's observation (`spec.OBS`) from the state, compiled: one definition for the single
 env's step and the native vector env's rows (bit-identical float32 values); `step_one`, the
-single env's whole step in one call (fewer dispatches: the env runs near Pendulum-v1's rate)."""
+single env's whole step in one call (fewer dispatches: the env runs near Pendulum-v1's rate),
+and `step_rows`, the vector env's (the same `step_row` and `observe_one` for every row)."""
 
 from __future__ import annotations
 
@@ -9,7 +10,8 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.physics.gowec.hydro.batch import end_state, step_row
+from mf_envs._jit import kernel
+from mf_envs.physics.gowec.hydro.batch import end_state, step_row, step_work
 
 
 @numba.njit(cache=True)
@@ -26,12 +28,37 @@ def observe_one(y, lo, hi, obs):
     return finite
 
 
-@numba.njit(cache=True)
-def observe_rows(active, Y, lo, hi, obs):
-    """`observe_one` for the active rows of Y (N, n_state) into obs (N, 8)."""
-    for i in range(active.shape[0]):
-        if active[i]:
-            observe_one(Y[i], lo, hi, obs[i])
+@numba.njit(cache=True, nogil=True)
+def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss,
+              vals, ok, o_lo, o_hi, obs):  # fmt: skip
+    """The native vector env's step of the active rows lo <= i < hi: `step_row`, and where it
+    succeeded the new state into Y (N, n_state) and `observe_one` into obs (N, 8); ok (N,) bool,
+    vals (N, N_VALS); t0, t1, tau (N,); om, cp, cr, amp, eps (N, M) each row's sea; shared =
+    `floating.pack`'s first nine entries (the same for every row); o_lo, o_hi the observation
+    bounds. Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`)."""
+    _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss, vals,
+          ok, o_lo, o_hi, obs, step_work(Y.shape[1]))  # fmt: skip
+
+
+@kernel
+def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss, vals,
+          ok, o_lo, o_hi, obs, w):  # fmt: skip
+    """The row loop of `step_rows` with one `step_work` buffer w (a `mf_envs._jit.kernel`: the
+    rows' views of the shared arrays cost no reference counts)."""
+    p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
+    m = Y.shape[1]
+    for i in range(lo, hi):
+        if not active[i]:
+            continue
+        args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i])
+        good = step_row(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc, loss,
+                        vals[i], w)  # fmt: skip
+        ok[i] = good
+        if good:
+            yi = Y[i]
+            for j in range(m):
+                yi[j] = w[5 * m + j]
+            observe_one(yi, o_lo, o_hi, obs[i])
 
 
 @numba.njit(cache=True)

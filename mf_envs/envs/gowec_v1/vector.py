@@ -5,9 +5,9 @@ it; `kwargs` are those of `gym.make("GOWEC-v1", ...)` plus `autoreset_mode` (def
 Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `GOWECV1Env`s with the
 same seeds (`tests/test_vector_envs.py`): seeded resets, resets with options and resets in
 irregular seas go through a template single env (its state and sea are copied into the row), the
-others are compiled (below); steps through `physics.gowec.hydro.batch.batch_step_rows`, which
-calls the single env's own step kernel (`step_row`) for every row; observations are built by
-`observe_rows` with the single env's expressions. See `mf_envs.envs._vector`.
+others are compiled (below); steps through `observe.step_rows`, which calls the single env's own
+step kernel (`step_row`) and observation (`observe_one`) for every row. See
+`mf_envs.envs._vector`.
 
 Compiled resets (regular seas): `GOWECV1Env.reset()` without options draws two doubles, the wave
 phase U(0, 2 pi) and the gimbal angle U(-0.1, 0.1), and the phase enters only the row's sea
@@ -19,8 +19,10 @@ writes the state, the reset infos' values and the observations. Irregular seas (
 many draws per reset) keep the template path.
 
 Measured (N = 1024, random actions every step, autoresets, 2-core machine, medians of five 3 s
-runs): 0.33M env-steps/s on one thread, 0.57M on two (issue 17; single runs 0.37-0.57M on this
-shared machine). The kernel is `step_row` at ~2.7 us per row: 16 RK4 stages of ~150 ns.
+runs): 0.42M env-steps/s on one thread, 0.63M on two (issue 17; runs 0.57-0.74M on this shared
+machine). The kernel is `step_row` (a `mf_envs._jit.kernel`, as the row loop) at ~2.2 us per
+row: 16 RK4 stages of ~140 ns; most of the rest is the Python around the resets (under random
+actions some row resets in three steps of four).
 """
 
 from __future__ import annotations
@@ -35,8 +37,8 @@ from mf_envs.envs._predraw import PredrawnResets
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
-from mf_envs.envs.gowec_v1.observe import observe_one, observe_rows
-from mf_envs.physics.gowec.hydro.batch import N_VALS, batch_step_rows, state_values_into
+from mf_envs.envs.gowec_v1.observe import observe_one, step_rows
+from mf_envs.physics.gowec.hydro.batch import N_VALS, state_values_into
 from mf_envs.physics.gowec.hydro.floating import excitation_coefficients
 
 # info keys from step_row's value slots (buoy_rate is the pair of slots 4, 5)
@@ -157,16 +159,16 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         ok = self._ok
         ok[~active] = True
         shared = env.model._args()[:9]
-        self.blocks.run(
-            batch_step_rows, active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps,
-            shared, sea["om"], sea["cp"], sea["cr"], sea["amp"], sea["eps"], dtc, env._loss(),
-            self._vals, ok,
-        )  # fmt: skip
         obs = self._fresh
-        observe_rows(active & ok, self.Y, self._lo, self._hi, obs)
+        self.blocks.run(
+            step_rows, active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps, shared,
+            sea["om"], sea["cp"], sea["cr"], sea["amp"], sea["eps"], dtc, env._loss(), self._vals,
+            ok, self._lo, self._hi, obs,
+        )  # fmt: skip
         v, Y = self._vals, self.Y
         reward = v[:, 11] * env._energy_scale
-        info: dict[str, Any] = {key: v[:, j].copy() for key, j in _SCALAR_SLOTS.items()}
+        vt = v.T.copy()  # one copy; the info columns are its rows (fresh every step)
+        info: dict[str, Any] = {key: vt[j] for key, j in _SCALAR_SLOTS.items()}
         info["buoy_rate"] = v[:, 4:6].copy()
         info["time"] = t1.copy()
         info["reward_terms"] = {"net_electrical_energy": reward.copy()}

@@ -4,9 +4,9 @@
 equation with the gyro's B-matrix coupling, `floating` module doc) plus what the env reports at
 the end of the step: PTO powers from the integrated energies, the excitation moment, the gyro's
 moment on the hull (`_gyro_pitch`, the compiled twin of `floating.gyro_moment`) and the wave
-elevation (Eq. 89 at the origin). The single env (`envs.gowec_v1.env`) calls it for its one row and
-the native vector env (`envs.gowec_v1.vector`) calls `batch_step_rows` over N rows, so the two
-agree bit for bit. Arrays float64, SI units.
+elevation (Eq. 89 at the origin). The single env (`envs.gowec_v1.observe.step_one`) calls it for
+its one row and the native vector env (`envs.gowec_v1.observe.step_rows`) for each of its N rows,
+so the two agree bit for bit. Arrays float64, SI units.
 """
 
 from __future__ import annotations
@@ -102,34 +102,3 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
 def end_state(w, m):
     """The state y1 that `step_row` wrote into its work buffer w, for a state of m entries."""
     return w[5 * m : 6 * m]
-
-
-@numba.njit(cache=True, nogil=True)
-def batch_step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc,
-                    loss, vals, ok):  # fmt: skip
-    """`step_row` for every active row i in lo..hi - 1: Y (N, n_state) updated in place where
-    ok; t0, t1, tau (N,); om, cp, cr, amp, eps (N, M) the sea of each row; shared =
-    `floating.pack`'s first nine entries (the same for every row); vals (N, N_VALS); ok (N,)
-    bool. Releases the GIL (blocks of rows on threads: `envs._vector.RowBlocks`)."""
-    w = step_work(Y.shape[1])  # one set of temporaries for the block's rows
-    _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss, vals,
-          ok, w)  # fmt: skip
-
-
-@kernel
-def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, amp, eps, dtc, loss, vals,
-          ok, w):  # fmt: skip
-    """The row loop of `batch_step_rows` (a `mf_envs._jit.kernel`: the rows' views of the
-    shared arrays cost no reference counts)."""
-    p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
-    m = Y.shape[1]
-    for i in range(lo, hi):
-        if not active[i]:
-            continue
-        args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i])
-        good = step_row(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc, loss,
-                        vals[i], w)  # fmt: skip
-        ok[i] = good
-        if good:
-            for j in range(m):
-                Y[i, j] = w[5 * m + j]
