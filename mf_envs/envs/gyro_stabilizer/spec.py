@@ -1,7 +1,7 @@
 """GyroStabilizer-v0's env concerns, declared once: observation layout, reward terms, info keys,
 failure contract. Used by `GyroStabilizerEnv` (env.py) and the native vector env (vector.py);
-the observation and the finiteness check are one numba function, `observe`, which the vector env
-calls row by row (`observe_rows`), so the two agree bit for bit.
+the observation and the finiteness check are one numba function, `observe`, which the vector
+env's row loop (`vector._rows`) calls for each row, so the two agree bit for bit.
 """
 
 from __future__ import annotations
@@ -74,14 +74,6 @@ def observe(roll, y, R, out):
     for i in range(6):
         out[i] = min(max(vals[i], -_HIGH[i]), _HIGH[i])
     return True
-
-
-@kernel
-def observe_rows(active, roll, y, R, out, ok):
-    """`observe` for every active row i: roll (N,), y (N, N_STATE), R (N, 3, 3), out (N, 6)."""
-    for i in range(y.shape[0]):
-        if active[i]:
-            ok[i] = observe(roll[i], y[i], R[i], out[i])
 
 
 def reward_terms(roll_obs, energy, roll_scale: float, effort_weight: float) -> dict[str, Any]:
