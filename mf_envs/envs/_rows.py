@@ -74,12 +74,12 @@ class RowBlocks:
     one of 2 cores busy elsewhere two blocks cost GOWEC-v0 (N = 1024) 7.5 % against one and
     gained the inchworm (N = 64) 6 %; on a quiet machine they gain 1.5-1.9x.
 
-    The split adapts so that the blocks end together: a worker starts its block some 50-120 us
-    after the calling thread (queue, wake-up, the GIL until the caller's kernel releases it),
-    which with equal blocks left the caller waiting (GyroStabilizer-v0, N = 1024: 120 us of a
-    540 us step). After each run, the rows are shared out again from the blocks' measured start
-    times and mean row cost (block j gets (T - start_j) / cost rows, all ending at T), smoothed
-    by SMOOTH."""
+    The split adapts so that the blocks end together: a worker starts its block after the
+    calling thread (wake-up, then the GIL until the caller's kernel releases it: ~20 us with
+    `_Worker`, 50-120 us with `concurrent.futures`), which with equal blocks left the caller
+    waiting (GyroStabilizer-v0, N = 1024: 120 us of a 0.7 ms step with the latter). After each
+    run, the rows are shared out again from the blocks' measured start times and mean row cost
+    (block j gets (T - start_j) / cost rows, all ending at T), smoothed by SMOOTH."""
 
     SMOOTH = 0.3  # weight of the latest run's balanced shares
 

@@ -25,7 +25,7 @@ rows are independent, so results are bit-identical to one thread (`tests/test_ve
 Default: one block per CPU once each gets >= 128 rows. The row loop (`_rows`) and the ship's
 step are `mf_envs._jit.kernel`s: compiled without reference counting, so the rows' views of the
 shared arrays cost nothing. Measured (N = 1024, random actions, autoresets, 2-core machine,
-medians of five 3 s runs): 1.11M env-steps/s on one thread, 1.75M on two (runs 1.69-1.82M;
+medians of five 3 s runs): 1.12M env-steps/s on one thread, 1.79M on two (runs 1.69-1.88M;
 issue 17); with both cores busy elsewhere, two threads gained nothing over one (and lost
 < 10 %).
 """
