@@ -73,19 +73,12 @@ def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, o
     """One control step of the active rows lo <= i < hi (GyroStabilizerEnv.step without Python;
     the GIL is released, so threads can step disjoint blocks of rows at once).
 
-    t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.batch_advance`;
+    t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.alloc_batch`;
     u (N,) rad/s; steps (N,) int64; last (N, 6) float32 the last returned observations; writes
     obs (N, 6) float32, cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False
     on a numerical failure (the step then scores 0 and keeps the last observation), reward (N,).
+    This task's scratch is allocated here; the rows are stepped by `_rows`.
     """
-    _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
-                ok_out, reward, roll_scale, effort_weight, control_dt)  # fmt: skip
-
-
-@numba.njit(cache=True)
-def _step_range(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
-                ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
-    """`step_rows` for the rows lo <= i < hi: this task's scratch, then `_rows`."""
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
     ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
     _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,

@@ -334,10 +334,9 @@ def assemble_into(d, le, kappa_sharp, qxi, qw, stiff, with_tangent, p, ab):
 @numba.njit(cache=True)
 def forces_at_into(d, le, kappa_sharp, qxi, qw, stiff, dofs, out):
     """The internal force P at the global dofs `dofs` (k ints: an array or a tuple) into out
-    (k,): the bits of
-    `assemble_into`'s P there (the same element contributions added in the same order), but
-    only the elements holding those dofs are evaluated (e.g. the two end elements for the
-    ground reactions at the feet)."""
+    (k,): the bits of `assemble_into`'s P there (the same element contributions added in the
+    same order), but only the elements holding those dofs are evaluated (e.g. the two end
+    elements for the ground reactions at the feet)."""
     out[:] = 0.0
     de, fe = np.empty(11), np.empty(11)
     ke = np.empty((11, 11))
