@@ -11,18 +11,33 @@ import numpy as np
 
 def check_finite(name: str, value: Any) -> np.ndarray:
     """Return `value` as a float64 array; ValueError naming `name` if any entry is NaN/inf."""
-    if type(value) is float or type(value) is int:  # fast path for scalars (reset hot path)
+    if type(value) is float:  # fast path for scalars (reset hot path)
         if not math.isfinite(value):
             raise ValueError(f"{name}: must be finite, got {value!r}")
+        return np.float64(value)
+    if type(value) is int:  # an int beyond float64's range (10**400) is not finite as a float
+        if not -_MAX_FLOAT <= value <= _MAX_FLOAT:
+            raise ValueError(f"{name}: must be finite (|x| < 1.8e308), got {_short(value)}")
         return np.float64(value)
     _reject_non_numbers(name, value)
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError, OverflowError) as exc:
-        raise ValueError(f"{name}: expected a number or array of numbers, got {value!r}") from exc
+        raise ValueError(
+            f"{name}: expected a real number or array of real numbers, got {_short(value)}"
+        ) from exc
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name}: must be finite, got {value!r}")
+        raise ValueError(f"{name}: must be finite, got {_short(value)}")
     return arr
+
+
+_MAX_FLOAT = float(np.finfo(np.float64).max)
+
+
+def _short(value: Any) -> str:
+    """`repr(value)`, cut to 80 characters (a 400-digit integer or a long list stays readable)."""
+    text = repr(value)
+    return text if len(text) <= 80 else f"{text[:60]}... ({len(text)} characters)"
 
 
 def _reject_non_numbers(name: str, value: Any) -> None:
@@ -32,10 +47,12 @@ def _reject_non_numbers(name: str, value: Any) -> None:
     for v in items:
         if isinstance(v, (list, tuple)):
             _reject_non_numbers(name, v)
-        elif isinstance(v, (bool, np.bool_, str, bytes)) or v is None:
-            raise ValueError(f"{name}: expected a number, got {value!r}")
+        elif isinstance(v, (bool, np.bool_, str, bytes, complex, np.complexfloating, dict)):
+            raise ValueError(f"{name}: expected a real number, got {_short(value)}")
+        elif v is None:
+            raise ValueError(f"{name}: expected a real number, got {_short(value)}")
     if isinstance(value, np.ndarray) and value.dtype.kind not in "iuf":
-        raise ValueError(f"{name}: expected a numeric array, got dtype {value.dtype}")
+        raise ValueError(f"{name}: expected a real numeric array, got dtype {value.dtype}")
 
 
 def check_range(
@@ -95,6 +112,52 @@ def check_int(name: str, value: Any, low: int | None = None, high: int | None = 
 def check_choice(name: str, value: Any, choices: Iterable[Any]) -> Any:
     """`value` must be one of `choices`."""
     choices = tuple(choices)
-    if value not in choices:
+    # an array, list or dict is never a choice (`in` would compare it elementwise or fail)
+    if not isinstance(value, (str, int, float, type(None))) or value not in choices:
         raise ValueError(f"{name}: must be one of {choices}, got {value!r}")
     return value
+
+
+def as_action(name: str, action: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """`action` as a finite float64 array of `shape` (an array of the same size is reshaped);
+    ValueError naming `name` for strings, bools, objects, complex numbers, NaN/inf and a wrong
+    size: numpy would silently read "0.5" as 0.5 and True as 1.0."""
+    try:
+        raw = np.asarray(action)
+    except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, odd objects
+        raise ValueError(
+            f"{name}: expected real numbers of shape {shape}, got {_short(action)}"
+        ) from exc
+    if raw.dtype.kind not in "iuf":
+        raise ValueError(
+            f"{name}: expected real numbers of shape {shape}, got {_short(action)} "
+            f"(dtype {raw.dtype})"
+        )
+    size = math.prod(shape)
+    if raw.size != size:
+        raise ValueError(f"{name}: expected shape {shape}, got shape {raw.shape}")
+    a = raw.astype(np.float64).reshape(shape)
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: must be finite, got {_short(action)}")
+    return a
+
+
+def finite_scalar(name: str, value: Any) -> float:
+    """A finite real number (not an array, string or bool) as a float; ValueError naming `name`."""
+    return _scalar(name, check_finite(name, value))
+
+
+def positive_scalar(name: str, value: Any) -> float:
+    """A finite real number > 0 as a float; ValueError naming `name`."""
+    return _scalar(name, check_positive(name, value))
+
+
+def nonnegative_scalar(name: str, value: Any) -> float:
+    """A finite real number >= 0 as a float; ValueError naming `name`."""
+    return _scalar(name, check_nonnegative(name, value))
+
+
+def _scalar(name: str, arr: np.ndarray) -> float:
+    if np.ndim(arr) != 0:
+        raise ValueError(f"{name}: expected a number, got an array of shape {np.shape(arr)}")
+    return float(arr)

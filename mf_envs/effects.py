@@ -50,6 +50,8 @@ def resolve_effects(
         chosen = tuple(default)
     elif isinstance(effects, str):
         chosen = (effects,)
+    elif isinstance(effects, Mapping) or not isinstance(effects, Iterable):
+        raise ValueError(f"{param}: expected a tuple of effect names, got {effects!r}")
     else:
         try:
             chosen = tuple(effects)

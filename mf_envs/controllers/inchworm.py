@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brute, minimize
 
-from mf_envs._validate import check_int, check_positive
+from mf_envs._validate import check_int, check_positive, positive_scalar
 from mf_envs.controllers import register
 from mf_envs.physics.inchworm.actuators import RateLimitedLag
 from mf_envs.physics.inchworm.drive import (
@@ -51,7 +51,7 @@ class OpenLoopGait:
         self.max_curvature = float(self.base.max_curvature)
         self.dt = float(self.base.control_dt)
         self.command = command
-        self.period = float(check_positive("period", period))
+        self.period = positive_scalar("period", period)
         self.steps_per_cycle = max(1, int(round(self.period / self.dt)))  # for reporting
         self.switching = bool(self.base.switching)
         act = self.base.actuator

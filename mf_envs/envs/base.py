@@ -16,7 +16,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from mf_envs._validate import check_range
+from mf_envs._validate import as_action, check_range
 from mf_envs.effects import resolve_effects
 
 MIN_DT = 1e-6  # s, smallest control or physics step
@@ -66,13 +66,13 @@ class MFEnv(gym.Env):
     def _episode_steps(self, episode_seconds: Any) -> int:
         """Control steps in `episode_seconds` (s): ceil(episode_seconds / control_dt), >= 1."""
         seconds = check_range("episode_seconds", episode_seconds, MIN_DT, None)
-        steps = max(1, math.ceil(seconds / self.control_dt - 1e-9))
-        if steps > MAX_EPISODE_STEPS:
+        ratio = seconds / self.control_dt  # may overflow to inf (1e308 s): refused below
+        if not ratio <= MAX_EPISODE_STEPS:
             raise ValueError(
-                f"episode_seconds: {steps} control steps exceeds {MAX_EPISODE_STEPS}; "
-                "shorten the episode or raise control_dt"
+                f"episode_seconds: {seconds:g} s is {ratio:.3g} control steps, more than "
+                f"{MAX_EPISODE_STEPS}; shorten the episode or raise control_dt"
             )
-        return steps
+        return max(1, math.ceil(ratio - 1e-9))
 
     @property
     def dt(self) -> float:
@@ -107,16 +107,14 @@ class MFEnv(gym.Env):
 
     # ------------------------------------------------------------------ actions
     def _validate_action(self, action: Any) -> np.ndarray:
-        """float64 copy of `action` clipped to [-1, 1]; NaN/inf raise ValueError (documented)."""
-        a = np.asarray(action, dtype=np.float64).reshape(self.action_space.shape)
-        if not np.all(np.isfinite(a)):
-            raise ValueError(f"action: must be finite, got {action!r}")
-        return np.clip(a, -1.0, 1.0)
+        """float64 copy of `action` clipped to [-1, 1]; NaN/inf, strings, bools and a wrong size
+        raise ValueError naming `action` (documented)."""
+        return np.clip(as_action("action", action, self.action_space.shape), -1.0, 1.0)
 
     def _scalar_action(self, action: Any) -> float:
         """The one action of a Box(-1, 1, (1,)) env as a float in [-1, 1]: the contract of
         `_validate_action` without its array overhead (the per-step hot path)."""
-        if isinstance(action, np.ndarray) and action.shape == (1,):
+        if isinstance(action, np.ndarray) and action.shape == (1,) and action.dtype.kind == "f":
             u = float(action[0])
             if not math.isfinite(u):
                 raise ValueError(f"action: must be finite, got {action!r}")

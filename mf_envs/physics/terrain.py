@@ -62,7 +62,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from mf_envs._validate import check_finite, check_nonnegative, check_positive
+from mf_envs._validate import (
+    check_finite,
+    check_nonnegative,
+    check_positive,
+    finite_scalar,
+    nonnegative_scalar,
+    positive_scalar,
+)
 from mf_envs.physics.constants import G as STANDARD_GRAVITY
 
 
@@ -85,10 +92,10 @@ class SoilParams:
     def __post_init__(self) -> None:
         check_nonnegative("k_c", self.k_c)
         check_nonnegative("k_phi", self.k_phi)
-        if not 0.0 < float(check_positive("n", self.n)) < 3.0:
+        if not 0.0 < positive_scalar("n", self.n) < 3.0:
             raise ValueError(f"n: must be in (0, 3), got {self.n!r}")
         check_nonnegative("cohesion", self.cohesion)
-        if not 0.0 <= float(check_finite("friction_angle", self.friction_angle)) < math.pi / 2:
+        if not 0.0 <= finite_scalar("friction_angle", self.friction_angle) < math.pi / 2:
             raise ValueError(
                 f"friction_angle: must be in [0, pi/2) rad, got {self.friction_angle!r}"
             )
@@ -128,21 +135,21 @@ def soil(name: str) -> SoilParams:
 def bekker_pressure(soil: SoilParams, width: float, sinkage: ArrayLike) -> NDArray[np.float64]:
     """p = (k_c/b + k_phi) Delta^n, Pa, Eq. 56 without regularisation (0 for Delta <= 0)."""
     d = np.maximum(check_finite("sinkage", sinkage), 0.0)
-    return soil.modulus(float(check_positive("width", width))) * d**soil.n
+    return soil.modulus(positive_scalar("width", width)) * d**soil.n
 
 
 def plate_sinkage(soil: SoilParams, weight: float, width: float, length: float) -> float:
     """Static sinkage (m) of a rigid plate b x l (m) under weight W (N), Eq. 56 inverted:
     z = (W / (b l (k_c/b + k_phi)))^(1/n)."""
-    b, l = float(check_positive("width", width)), float(check_positive("length", length))
-    W = float(check_nonnegative("weight", weight))
+    b, l = positive_scalar("width", width), positive_scalar("length", length)
+    W = nonnegative_scalar("weight", weight)
     return (W / (b * l * soil.modulus(b))) ** (1.0 / soil.n)
 
 
 def gravity_line_load(mass_per_length: float, g: float = STANDARD_GRAVITY) -> NDArray[np.float64]:
     """(f_x, f_z) = (0, -m_A g), N/m: the seed's Eq. 99a with z up."""
-    m = float(check_nonnegative("mass_per_length", mass_per_length))
-    return np.array([0.0, -m * float(check_nonnegative("g", g))])
+    m = nonnegative_scalar("mass_per_length", mass_per_length)
+    return np.array([0.0, -m * nonnegative_scalar("g", g)])
 
 
 @dataclass(frozen=True)

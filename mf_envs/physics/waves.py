@@ -39,7 +39,14 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import quad
 from scipy.special import j1
 
-from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
+from mf_envs._validate import (
+    check_finite,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    nonnegative_scalar,
+    positive_scalar,
+)
 from mf_envs.physics.constants import RHO_SEAWATER, G  # G re-exported: waves.G (ch. 3 Eq. 15)
 
 BREAKING_STEEPNESS = 1.0 / (24.0 * math.pi)  # a/(g T^2) at a 30 deg crest slope (Eq. 97: 0.01326)
@@ -292,7 +299,7 @@ def regular_wave(
     """A single harmonic, eta = a cos(k x.n - w t + phase) (Eqs. 76, 89); buoy_radius (m) of the
     slope-averaging waterplane (0 = point buoy)."""
     check_positive("amplitude", amplitude)
-    T = float(check_positive("period", period))
+    T = positive_scalar("period", period)
     check_finite("direction", direction)
     w = np.array([2.0 * math.pi / T])
     return WaveField(
@@ -301,7 +308,7 @@ def regular_wave(
         np.array([float(phase)]),
         wavenumber(w, depth),
         float(direction),
-        float(check_nonnegative("buoy_radius", buoy_radius)),
+        nonnegative_scalar("buoy_radius", buoy_radius),
     )
 
 
@@ -344,7 +351,7 @@ class IrregularSea(WaveField):
         w = edges[:-1] + rng.uniform(0.0, 1.0, n) * dw
         a = np.sqrt(2.0 * spectrum_fn(w, hs, tp) * dw)
         eps = rng.uniform(0.0, 2.0 * math.pi, n)
-        r = float(check_nonnegative("buoy_radius", buoy_radius))
+        r = nonnegative_scalar("buoy_radius", buoy_radius)
         super().__init__(a, w, eps, wavenumber(w, depth), float(direction), r)
         object.__setattr__(self, "hs", float(hs))
         object.__setattr__(self, "tp", float(tp))

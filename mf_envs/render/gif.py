@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
-from mf_envs._validate import check_positive
+from mf_envs._validate import positive_scalar
 
 
 def save_gif(frames: Iterable[np.ndarray], path: str | Path, fps: float = 30) -> Path:
@@ -18,7 +18,7 @@ def save_gif(frames: Iterable[np.ndarray], path: str | Path, fps: float = 30) ->
     One median-cut palette serves all frames (no dithering). Parent folders are created.
     Returns the path written.
     """
-    fps = float(check_positive("fps", fps))
+    fps = positive_scalar("fps", fps)
     arrays = []
     for i, frame in enumerate(frames):
         a = np.asarray(frame)

@@ -8,7 +8,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mf_envs._validate import check_finite
+from mf_envs._validate import check_finite, finite_scalar
 from mf_envs.render.canvas import Canvas, check_size, font
 
 BODY = (104, 168, 84)
@@ -49,9 +49,9 @@ def draw_inchworm(
     c = check_finite("centerline", centerline)
     if c.ndim != 2 or c.shape[1] != 2 or c.shape[0] < 2:
         raise ValueError(f"centerline: expected shape (N, 2) with N >= 2, got {c.shape}")
-    xh = float(check_finite("x_head", x_head))
-    xt = float(check_finite("x_tail", x_tail))
-    gz = float(check_finite("ground_z", ground_z))
+    xh = finite_scalar("x_head", x_head)
+    xt = finite_scalar("x_tail", x_tail)
+    gz = finite_scalar("ground_z", ground_z)
     h, w = check_size(size)
     length = float(np.sum(np.hypot(*np.diff(c, axis=0).T))) or 1.0
     canvas = Canvas((h, w), (234, 240, 246), (214, 224, 234))

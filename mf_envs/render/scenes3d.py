@@ -11,7 +11,13 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mf_envs._validate import check_finite, check_positive, check_shape
+from mf_envs._validate import (
+    check_finite,
+    check_positive,
+    check_shape,
+    finite_scalar,
+    positive_scalar,
+)
 from mf_envs.frames import rot_y
 from mf_envs.render import meshes
 from mf_envs.render.canvas import Canvas, axis_triad, check_size
@@ -191,9 +197,9 @@ def draw_gowec(
     of the wave so the profile reads as in a wave flume. Returns uint8 (H, W, 3).
     """
     R = _attitude("buoy_R", buoy_R)
-    phi = float(check_finite("gimbal_angle", gimbal_angle))
-    psi = float(check_finite("rotor_angle", rotor_angle))
-    theta = float(check_finite("wave_direction", wave_direction))
+    phi = finite_scalar("gimbal_angle", gimbal_angle)
+    psi = finite_scalar("rotor_angle", rotor_angle)
+    theta = finite_scalar("wave_direction", wave_direction)
     s = np.ravel(check_finite("wave_x", wave_x))
     z = np.ravel(check_finite("wave_z", wave_z))
     if s.shape != z.shape or len(s) < 2:
@@ -202,7 +208,7 @@ def draw_gowec(
         raise ValueError("wave_x: must be strictly increasing")
     size = check_size(size)
     span = float(s[-1] - s[0])
-    rb = span / 10 if buoy_radius is None else float(check_positive("buoy_radius", buoy_radius))
+    rb = span / 10 if buoy_radius is None else positive_scalar("buoy_radius", buoy_radius)
     eta0 = float(np.interp(0.0, s, z))
     slope = float(np.interp(0.0, s, np.gradient(z, s)))
     d = np.array([np.cos(theta), np.sin(theta), 0.0])

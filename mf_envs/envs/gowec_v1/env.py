@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_int, check_range
+from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import spec
@@ -118,14 +118,13 @@ class GOWECV1Env(MFEnv):
         if self.irregular:
             hs = check_range("significant_wave_height", significant_wave_height, 1e-6, 30.0)
             self.wave_amplitude = hs / (2.0 * math.sqrt(2.0))
-        self.wave_period = check_range(
-            "peak_period" if self.irregular else "wave_period",
-            peak_period if self.irregular else wave_period,
-            0.5,
-            60.0,
-        )
-        if spectrum not in SPECTRA:
-            raise ValueError(f"spectrum: one of {sorted(SPECTRA)}, got {spectrum!r}")
+        # both periods are checked whichever sea is used (a bad one is an error either way)
+        periods = {
+            name: check_range(name, value, 0.5, 60.0)
+            for name, value in (("wave_period", wave_period), ("peak_period", peak_period))
+        }
+        self.wave_period = periods["peak_period" if self.irregular else "wave_period"]
+        check_choice("spectrum", spectrum, SPECTRA)
         self.spectrum, self.gamma = spectrum, check_range("gamma", gamma, 1.0, 20.0)
         self.n_components = check_int("n_components", n_components, low=1, high=4096)
         self.eta_g = check_range("generator_efficiency", generator_efficiency, 1e-3, 1.0)

@@ -230,7 +230,8 @@ class GyroStabilizerEnv(MFEnv):
             self.wave_spreading = check_range("wave_spreading", wave_spreading, 1e-3, 1e3)
         self.effective_slope = self.hull.effective_slope
         self.roll_scale = check_range("roll_scale", roll_scale, 1e-6, 10.0)
-        self.effort_weight = check_range("effort_weight", effort_weight, -1e6, 1e6)
+        self.effort_weight = check_range("effort_weight", effort_weight, 0.0, 1e6)  # >= 0: a
+        # negative weight would pay for drive energy
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
         self.table_dt = min(0.5 * self.physics_dt, 0.01)

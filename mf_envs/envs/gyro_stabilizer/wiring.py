@@ -33,7 +33,12 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs._validate import check_nonnegative, check_positive, check_range, check_shape
+from mf_envs._validate import (
+    check_range,
+    check_shape,
+    nonnegative_scalar,
+    positive_scalar,
+)
 from mf_envs.effects import resolve_effects
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DriveParams, RollGimbal, electric_drive, stable_physics_dt
@@ -71,7 +76,10 @@ def build_hull(
         bad = sorted(set(hull) - {f.name for f in dataclasses.fields(Hull)})
         if bad:
             raise ValueError(f"hull: unknown fields {bad}")
-        base = dataclasses.replace(Hull.yacht(), **hull)
+        try:
+            base = dataclasses.replace(Hull.yacht(), **hull)
+        except ValueError as exc:  # Hull names its field: say it is inside `hull`
+            raise ValueError(f"hull.{exc}") from None
     else:
         raise ValueError(f"hull: expected a Hull, a preset name or a dict, got {hull!r}")
     over: dict[str, Any] = {}
@@ -96,6 +104,20 @@ def build_ship_params(hull: Hull, speed: float) -> ShipParams:
     return sp
 
 
+MAX_DRIVE_GAIN = 1e12  # SI (N m, W, N m s/rad, N m/rad): far above any gimbal drive
+MAX_BANDWIDTH = 1e5  # rad/s: a rate loop's w_b (w_b^2 J_g must stay a finite stiffness)
+
+
+def _optional(name: str, value: Any, high: float, positive: bool = False) -> float | None:
+    """None, or a finite number in [0, high] (> 0 when `positive`); ValueError naming `name`."""
+    if value is None:
+        return None
+    x = check_range(name, value, 0.0, high)
+    if positive and x <= 0.0:
+        raise ValueError(f"{name}: must be > 0, got {value!r}")
+    return x
+
+
 def build_machine(
     kind: str,
     env: Any,
@@ -106,7 +128,15 @@ def build_machine(
     damping: float | None,
     stiffness: float | None,
 ) -> DriveParams | None:
-    """The `DriveParams` of `gimbal_drive` (None for the kinematic servo), env doc defaults."""
+    """The `DriveParams` of `gimbal_drive` (None for the kinematic servo), env doc defaults.
+    Every drive kwarg is validated whichever drive is chosen (a bad value is an error even
+    where the drive ignores it)."""
+    loop_gain = _optional("gimbal_loop_gain", loop_gain, MAX_DRIVE_GAIN, positive=True)
+    max_torque = _optional("max_gimbal_torque", max_torque, MAX_DRIVE_GAIN, positive=True)
+    max_power = _optional("max_drive_power", max_power, MAX_DRIVE_GAIN, positive=True)
+    bandwidth = _optional("drive_bandwidth", bandwidth, MAX_BANDWIDTH, positive=True)
+    damping = _optional("gimbal_damping", damping, MAX_DRIVE_GAIN)
+    stiffness = _optional("gimbal_stiffness", stiffness, MAX_DRIVE_GAIN)
     if kind == "kinematic":
         return None
     gyro, hull, n = env.gyro, env.hull, env.n_gyros
@@ -114,26 +144,26 @@ def build_machine(
     j = hull.inertia[0] + hull.added_roll_inertia + n * jg
     wn = math.sqrt(hull.roll_stiffness / j) if hull.roll_stiffness > 0 else 2 * math.pi / 10.0
     if loop_gain is not None:  # v0 name: the proportional gain K_p = 2 w_b J_g (zeta = 1)
-        bandwidth = float(check_positive("gimbal_loop_gain", loop_gain)) / (2.0 * jg)
+        bandwidth = positive_scalar("gimbal_loop_gain", loop_gain) / (2.0 * jg)
     kw: dict[str, Any] = {
         "max_rate": env.max_precession_rate,
         "max_angle": env.max_gimbal_angle,
-        "max_power": float(check_positive("max_drive_power", max_power)),
-        "bandwidth": float(check_positive("drive_bandwidth", bandwidth)),
+        "max_power": positive_scalar("max_drive_power", max_power),
+        "bandwidth": positive_scalar("drive_bandwidth", bandwidth),
     }
     if max_torque is not None:
-        kw["max_torque"] = float(check_positive("max_gimbal_torque", max_torque))
+        kw["max_torque"] = positive_scalar("max_gimbal_torque", max_torque)
     elif gyro.angular_momentum == 0.0:  # rotor stopped: enough to reach max_rate in 1/w_b
         kw["max_torque"] = jg * kw["bandwidth"] * kw["max_rate"]
     if kind in ("electric", "brake"):
-        kw["damping"] = float(check_nonnegative("gimbal_damping", damping or 0.0))
+        kw["damping"] = nonnegative_scalar("gimbal_damping", damping or 0.0)
         return dataclasses.replace(electric_drive(abs(gyro.angular_momentum), **kw), kind=kind)
     h = abs(gyro.angular_momentum)
     stiff = math.sqrt(max(hull.roll_stiffness, 1.0) * j)
     c = n * h * h / stiff if damping is None else damping  # gyro roll damping ratio 0.5
     k = jg * wn * wn if stiffness is None else stiffness  # gimbal pendulum tuned to the roll
-    kw["damping"] = float(check_nonnegative("gimbal_damping", c))
-    kw["stiffness"] = float(check_nonnegative("gimbal_stiffness", k if kind != "damper" else 0.0))
+    kw["damping"] = nonnegative_scalar("gimbal_damping", c)
+    kw["stiffness"] = nonnegative_scalar("gimbal_stiffness", k if kind != "damper" else 0.0)
     return DriveParams(kind, **kw)
 
 

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mf_envs._validate import check_choice, check_finite
+from mf_envs._validate import check_choice, finite_scalar
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.algorithmic import assemble_algorithmic
 from mf_envs.physics.beam.solver import (
@@ -91,11 +91,11 @@ class TimeScheme:
 
     def __post_init__(self) -> None:
         check_choice("scheme", self.name, SCHEMES)
-        rho = float(check_finite("rho_inf", self.rho_inf))
+        rho = finite_scalar("rho_inf", self.rho_inf)
         low = 1.0 / 3.0 if self.name == "energy_momentum" else 0.0
         if not low - 1e-12 <= rho <= 1.0:
             raise ValueError(f"rho_inf: must be in [{low:.4g}, 1] for {self.name}, got {rho!r}")
-        if not float(check_finite("newmark_gamma", self.newmark_gamma)) >= 0.5:
+        if not finite_scalar("newmark_gamma", self.newmark_gamma) >= 0.5:
             raise ValueError(f"newmark_gamma: must be >= 1/2, got {self.newmark_gamma!r}")
 
     @property

@@ -40,7 +40,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from mf_envs._validate import check_finite, check_int, check_positive
+from mf_envs._validate import check_int, check_positive, finite_scalar
 from mf_envs.physics.beam import (
     BeamModel,
     BeamParams,
@@ -179,7 +179,7 @@ class Inchworm:
     # ------------------------------------------------------------------ state
     def reset(self, x_tail: float = 0.0) -> None:
         """Straight, unactuated, at rest, tail at x_tail [m]; head anchored (loading first)."""
-        self.x_origin = float(check_finite("x_tail", x_tail))  # local x = 0 at the tail
+        self.x_origin = finite_scalar("x_tail", x_tail)  # local x = 0 at the tail
         d = self.model.straight()
         if self.terrain is not None:  # bottom surface on the ground; settling finds the sinkage
             from mf_envs.physics.terrain import plate_sinkage

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from mf_envs._validate import check_finite, check_nonnegative, check_shape
+from mf_envs._validate import check_finite, check_nonnegative, check_shape, nonnegative_scalar
 from mf_envs.frames.so3 import orthonormality_error
 from mf_envs.physics.multibody import kernels as K
 from mf_envs.physics.multibody.joints import Body, MBState
@@ -59,7 +59,7 @@ class Multibody:
                         raise ValueError(f"{b.name}.{nm}: must be a rotation matrix")
                     arr[i] = Rv
             axis[i] = j.axis_vector()
-            mass[i] = float(check_nonnegative(f"{b.name}.mass", b.mass))
+            mass[i] = nonnegative_scalar(f"{b.name}.mass", b.mass)
             inertia[i] = _inertia_matrix(f"{b.name}.inertia", b.inertia)
         ndof = np.array([K.NU[t] for t in jtype], dtype=np.int64)
         nqs = np.array([K.NQ[t] for t in jtype], dtype=np.int64)

@@ -19,7 +19,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_bvp
 
-from mf_envs._validate import check_finite, check_int, check_positive, check_shape
+from mf_envs._validate import (
+    check_int,
+    check_shape,
+    finite_scalar,
+    positive_scalar,
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,10 +48,10 @@ def elastica_cantilever(
     n_continuation: int = 8,
 ) -> ElasticaSolution:
     """Solve the elastica cantilever (module docstring); raises RuntimeError if solve_bvp fails."""
-    L = float(check_positive("length", length))
-    EI = float(check_positive("EI", EI))
+    L = positive_scalar("length", length)
+    EI = positive_scalar("EI", EI)
     P = check_shape("tip_force", tip_force, (2,))
-    M0 = float(check_finite("tip_moment", tip_moment))
+    M0 = finite_scalar("tip_moment", tip_moment)
     q = check_shape("distributed_load", distributed_load, (2,))
     steps = check_int("n_continuation", n_continuation, low=1)
     s = np.linspace(0.0, L, 201)

@@ -6,10 +6,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from mf_envs._validate import (
-    check_finite,
-    check_shape,
-)
+from mf_envs._validate import check_shape, finite_scalar
 from mf_envs.frames import compose, frame_connection, rot_z
 from mf_envs.physics.multilink.params import ChainParams
 
@@ -247,7 +244,7 @@ def generalized_loads(
     out[t:] = -s * A[:, 0] + c * A[:, 1]
     if link_moments is not None:
         out[t:] += check_shape("link_moments", link_moments, (n,))
-    out[-1] += float(check_finite("tip_moment", tip_moment))
+    out[-1] += finite_scalar("tip_moment", tip_moment)
     if t:
         out[:2] = F.sum(axis=0) + P
     return out

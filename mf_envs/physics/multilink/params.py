@@ -13,8 +13,10 @@ from mf_envs._validate import (
     check_finite,
     check_int,
     check_nonnegative,
-    check_positive,
     check_shape,
+    finite_scalar,
+    nonnegative_scalar,
+    positive_scalar,
 )
 
 BASES = ("clamped", "free")
@@ -52,11 +54,11 @@ class ChainParams:
         n = check_int("n_links", self.n_links, low=2 if self.base == "free" else 1)
         set_ = object.__setattr__
         set_(self, "n_links", n)
-        set_(self, "link_length", float(check_positive("link_length", self.link_length)))
-        set_(self, "link_mass", float(check_positive("link_mass", self.link_mass)))
-        set_(self, "link_inertia", float(check_nonnegative("link_inertia", self.link_inertia)))
-        set_(self, "joint_damping", float(check_nonnegative("joint_damping", self.joint_damping)))
-        set_(self, "base_angle", float(check_finite("base_angle", self.base_angle)))
+        set_(self, "link_length", positive_scalar("link_length", self.link_length))
+        set_(self, "link_mass", positive_scalar("link_mass", self.link_mass))
+        set_(self, "link_inertia", nonnegative_scalar("link_inertia", self.link_inertia))
+        set_(self, "joint_damping", nonnegative_scalar("joint_damping", self.joint_damping))
+        set_(self, "base_angle", finite_scalar("base_angle", self.base_angle))
         k = check_nonnegative("joint_stiffness", np.atleast_1d(self.joint_stiffness))
         k = check_shape("joint_stiffness", k, (self.n_joints,)).copy()
         for name, arr in (
@@ -103,10 +105,10 @@ def chain_from_beam(
     length: L, m; EI: N m^2; mass_per_length: kg/m; rotary_inertia_per_length: J_3, kg m (per
     unit length, e.g. rho I); link inertia J_c = m l^2 / 12 + J_3 l.
     """
-    L = float(check_positive("length", length))
-    EI = float(check_positive("EI", EI))
-    rho = float(check_positive("mass_per_length", mass_per_length))
-    J3 = float(check_nonnegative("rotary_inertia_per_length", rotary_inertia_per_length))
+    L = positive_scalar("length", length)
+    EI = positive_scalar("EI", EI)
+    rho = positive_scalar("mass_per_length", mass_per_length)
+    J3 = nonnegative_scalar("rotary_inertia_per_length", rotary_inertia_per_length)
     n = check_int("n_links", n_links, low=1)
     l = L / n
     check_choice("base", base, BASES)

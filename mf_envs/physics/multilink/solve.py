@@ -24,7 +24,13 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.linalg import LinAlgError, solveh_banded
 
-from mf_envs._validate import check_choice, check_finite, check_positive, check_shape
+from mf_envs._validate import (
+    check_choice,
+    check_finite,
+    check_shape,
+    finite_scalar,
+    positive_scalar,
+)
 from mf_envs.physics.multilink.kernels import chain_constants, eom_kernel
 from mf_envs.physics.multilink.model import (
     _difference,
@@ -146,7 +152,7 @@ def simulate(
     if the integrator fails.
     """
     check_choice("method", method, METHODS)
-    t_end = float(check_positive("t_end", t_end))
+    t_end = positive_scalar("t_end", t_end)
     n = params.n_dof
     y0 = np.concatenate([check_shape("q0", q0, (n,)), check_shape("qdot0", qdot0, (n,))])
 
@@ -202,7 +208,7 @@ def solve_static(
     n, l = params.n_links, params.link_length
     F = _link_forces(params, distributed_load)
     P = check_shape("tip_force", tip_force, (2,))
-    M0 = float(check_finite("tip_moment", tip_moment))
+    M0 = finite_scalar("tip_moment", tip_moment)
     Fg = F + params.link_mass * params.gravity
     # A = C^T F + c_tip P by suffix sums, O(n): the dead load seen by each link direction
     beyond = np.cumsum(Fg[::-1], axis=0)[::-1] - Fg

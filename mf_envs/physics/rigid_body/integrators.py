@@ -10,7 +10,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from mf_envs._validate import check_finite, check_int, check_positive, check_shape
+from mf_envs._validate import (
+    check_finite,
+    check_int,
+    check_positive,
+    check_shape,
+    finite_scalar,
+    positive_scalar,
+)
 from mf_envs.effects import resolve_effects
 from mf_envs.physics.constants import G as G_EARTH
 from mf_envs.physics.rigid_body import kernels as _k
@@ -69,14 +76,14 @@ def kinetic_energy(J: ArrayLike, omega: ArrayLike) -> NDArray[np.float64]:
 def cuboid_inertia(mass: float, a: float, b: float, c: float) -> NDArray[np.float64]:
     """Principal inertias (3,) kg m^2 of a homogeneous cuboid with edges a, b, c (m) along
     s1, s2, s3 (Eq. 21): J1 = m (b^2 + c^2)/12, J2 = m (c^2 + a^2)/12, J3 = m (a^2 + b^2)/12."""
-    m = float(check_positive("mass", mass))
-    a, b, c = (float(check_positive(n, v)) for n, v in (("a", a), ("b", b), ("c", c)))
+    m = positive_scalar("mass", mass)
+    a, b, c = (positive_scalar(n, v) for n, v in (("a", a), ("b", b), ("c", c)))
     return m / 12.0 * np.array([b * b + c * c, c * c + a * a, a * a + b * b])
 
 
 def flight_time(v0_vertical: float, g: float = G_EARTH) -> float:
     """Time in s from toss to catch at the same height: 2 v0 / g (ch. 2 §2.1.7)."""
-    return 2.0 * float(check_positive("v0", v0_vertical)) / float(check_positive("g", g))
+    return 2.0 * positive_scalar("v0", v0_vertical) / positive_scalar("g", g)
 
 
 def ballistic_position(
@@ -90,7 +97,7 @@ def ballistic_position(
     t = np.atleast_1d(check_finite("t", t))
     x0 = check_shape("x0", x0, (3,))
     v0 = check_shape("v0", v0, (3,))
-    g = float(check_finite("g", g))
+    g = finite_scalar("g", g)
     x = x0 + t[:, None] * v0
     x[:, 2] -= 0.5 * g * t * t
     return x
@@ -133,8 +140,8 @@ def simulate(
     """
     Jv = check_shape("J", check_positive("J", J), (3,))
     w0 = check_shape("omega0", omega0, (3,))
-    t_end = float(check_positive("t_end", t_end))
-    dt = float(check_positive("dt", dt))
+    t_end = positive_scalar("t_end", t_end)
+    dt = positive_scalar("dt", dt)
     if method not in _METHOD_CODE:
         raise ValueError(f"method: must be one of {METHODS}, got {method!r}")
     save_every = check_int("save_every", save_every, low=1)

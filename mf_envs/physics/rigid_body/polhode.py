@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from mf_envs._validate import check_positive, check_shape
+from mf_envs._validate import check_positive, check_shape, positive_scalar
 
 
 def sort_axes(J: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
@@ -94,7 +94,7 @@ def polhode(J: ArrayLike, d: float, n: int = 200) -> list[NDArray[np.float64]]:
     """
     Jv = _decreasing(J)
     r1, r3 = Jv[0] / Jv[1], Jv[2] / Jv[1]
-    d = float(check_positive("d", d))
+    d = positive_scalar("d", d)
     if not (r3 * (1 - 1e-12) <= d <= r1 * (1 + 1e-12)):
         raise ValueError(f"d: must lie in [J3/J2, J1/J2] = [{r3:.6g}, {r1:.6g}] (Eq. 37b), got {d}")
     if d == 1.0:

@@ -64,7 +64,13 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
-from mf_envs._validate import check_choice, check_nonnegative, check_positive
+from mf_envs._validate import (
+    check_choice,
+    check_nonnegative,
+    check_positive,
+    nonnegative_scalar,
+    positive_scalar,
+)
 
 DRIVE_KINDS = ("electric", "brake", "damper", "pendulous", "spring")
 KIND_ELECTRIC, KIND_BRAKE, KIND_DAMPER, KIND_PENDULOUS, KIND_SPRING = 1, 2, 3, 4, 5
@@ -121,7 +127,7 @@ class DriveParams:
         """(K_p in N m s/rad, K_i in N m/rad) of the PI loop for J_g = gimbal_inertia (kg m^2)."""
         if not self.active:
             return 0.0, 0.0
-        jg = float(check_positive("gimbal_inertia", gimbal_inertia))
+        jg = positive_scalar("gimbal_inertia", gimbal_inertia)
         return 2.0 * self.damping_ratio * self.bandwidth * jg, self.bandwidth**2 * jg
 
     def pack(self, gimbal_inertia: float) -> NDArray[np.float64]:
@@ -139,7 +145,7 @@ class DriveParams:
 def electric_drive(angular_momentum: float, **over: float) -> DriveParams:
     """The default electric drive sized for a rotor of angular momentum H (N m s), module doc:
     tau_max = 0.1 H (holds the precession up to a roll rate of 0.1 rad/s), 2 rad/s, 1 kW."""
-    h = float(check_nonnegative("angular_momentum", angular_momentum))
+    h = nonnegative_scalar("angular_momentum", angular_momentum)
     kw = {"max_torque": 0.1 * h, "max_rate": 2.0, "max_power": 1000.0}
     kw.update(over)
     return DriveParams("electric", **kw)

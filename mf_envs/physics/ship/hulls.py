@@ -26,7 +26,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs._validate import check_positive, nonnegative_scalar
 from mf_envs.physics.constants import RHO_SEAWATER, G
 from mf_envs.physics.ship.params import ShipParams
 
@@ -80,7 +80,7 @@ class Hull:
         check_positive("mass", self.mass)
         for name, value in asdict(self).items():
             if name not in ("mass", "inertia"):
-                object.__setattr__(self, name, float(check_nonnegative(name, value)))
+                object.__setattr__(self, name, nonnegative_scalar(name, value))
 
     # ------------------------------------------------------------------ presets
     @classmethod

@@ -40,6 +40,7 @@ from mf_envs._validate import (
     check_int,
     check_nonnegative,
     check_positive,
+    finite_scalar,
 )
 from mf_envs.effects import EFFECT_NAMES, resolve_effects
 from mf_envs.frames.so3 import rot_x
@@ -261,8 +262,8 @@ def initial_state(
     """(y, R): state vector (see `ship_kernels`) and attitude rot_x(roll) (inertial <- ship)."""
     y = np.zeros(K.N_STATE)
     y[0:3] = check_finite("omega", omega)
-    y[3] = float(check_finite("gimbal_angle", gimbal_angle))
-    y[4] = float(check_finite("gimbal_rate", gimbal_rate))
+    y[3] = finite_scalar("gimbal_angle", gimbal_angle)
+    y[4] = finite_scalar("gimbal_rate", gimbal_rate)
     return y, rot_x(roll)
 
 

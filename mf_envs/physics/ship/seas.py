@@ -46,7 +46,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import gammaln
 
-from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
+from mf_envs._validate import (
+    check_finite,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    finite_scalar,
+    positive_scalar,
+)
 from mf_envs.physics.ship.waves import G, _table_kernel
 from mf_envs.physics.waves import jonswap_spectrum
 
@@ -58,7 +65,7 @@ def encounter_frequency(
     heading beta rad (0 following, pi head)."""
     w = np.asarray(check_finite("omega", omega), dtype=np.float64)
     b = np.asarray(check_finite("heading", heading), dtype=np.float64)
-    u = float(check_finite("speed", speed))
+    u = finite_scalar("speed", speed)
     return w - w * w * u * np.cos(b) / g
 
 
@@ -70,7 +77,7 @@ def sinc(x: ArrayLike) -> NDArray[np.float64]:
 def spreading_density(theta: ArrayLike, s: float) -> NDArray[np.float64]:
     """cos-2s spreading D(theta) (1/rad), |theta| <= pi/2 about the mean direction (module doc)."""
     th = np.asarray(check_finite("theta", theta), dtype=np.float64)
-    s = float(check_positive("spreading", s))
+    s = positive_scalar("spreading", s)
     c = math.exp(gammaln(1.0 + s) - gammaln(0.5 + s)) / math.sqrt(math.pi)
     inside = np.abs(th) <= 0.5 * math.pi
     return np.where(inside, c * np.abs(np.cos(np.where(inside, th, 0.0))) ** (2.0 * s), 0.0)
@@ -134,7 +141,7 @@ def jonswap_sea(
 def regular_sea(amplitude: float, period: float, heading: float, phase: float = 0.0):
     """One regular component eta = a cos(k x.n - w t + phase) (m, s, rad, rad)."""
     check_nonnegative("amplitude", amplitude)
-    w = 2.0 * math.pi / float(check_positive("period", period))
+    w = 2.0 * math.pi / positive_scalar("period", period)
     one = np.ones(1)
     return SeaComponents(amplitude * one, w * one, float(heading) * one, float(phase) * one)
 
@@ -199,6 +206,6 @@ def regular_roll_moment(
     sea = regular_sea(1.0, period, heading)
     k = float(sea.omegas[0]) ** 2 / G
     gain = math.sin(heading) * float(sinc(0.5 * k * length * math.cos(heading)))
-    return float(check_finite("moment_amplitude", moment_amplitude)) * gain, float(
+    return finite_scalar("moment_amplitude", moment_amplitude) * gain, float(
         sea.encounter(speed)[0]
     )

@@ -21,6 +21,8 @@ Files are `.npz` read with `allow_pickle=False` (nothing loaded executes code).
 from __future__ import annotations
 
 import math
+import zipfile
+import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -98,6 +100,9 @@ class CylinderHull:
         )
 
 
+MAX_COEFFICIENT = 1e20  # SI; the largest ships' pitch stiffness and inertia are ~1e11-1e12
+
+
 @dataclass(frozen=True)
 class HullCoefficients:
     """Pitch coefficients of a hull about G (module docstring for conventions and units).
@@ -143,14 +148,18 @@ class HullCoefficients:
         if not p.is_file():
             raise ValueError(f"hull: file {str(p)!r} not found")
         try:
-            with np.load(p, allow_pickle=False) as z:
-                kw: dict[str, Any] = {k: float(z[k]) for k in _SCALARS}
+            z = np.load(p, allow_pickle=False)
+            if not isinstance(z, np.lib.npyio.NpzFile):
+                raise ValueError("an .npy array, not an .npz archive of named arrays")
+            with z:
+                kw: dict[str, Any] = {k: _entry(z, k, ()) for k in _SCALARS}
                 for k in _ARRAYS[:3]:
-                    kw[k] = np.asarray(z[k], dtype=float)
-                kw["excitation"] = np.asarray(z["excitation_re"]) + 1j * np.asarray(
-                    z["excitation_im"]
+                    kw[k] = _entry(z, k, None)
+                kw["excitation"] = _entry(z, "excitation_re", None) + 1j * _entry(
+                    z, "excitation_im", None
                 )
-        except (KeyError, OSError, ValueError) as exc:
+        except (KeyError, OSError, ValueError, TypeError, EOFError, zipfile.BadZipFile,
+                zlib.error) as exc:  # fmt: skip
             raise ValueError(
                 f"hull: file {str(p)!r} is not a hull coefficient file ({exc})"
             ) from exc
@@ -195,6 +204,20 @@ class HullCoefficients:
         return w_new
 
 
+def _entry(z: Any, key: str, shape: tuple[int, ...] | None) -> Any:
+    """Array `key` of the archive as float64: a scalar when `shape` is (), else 1-D."""
+    if key not in z.files:
+        raise KeyError(f"no array {key!r}")
+    a = np.asarray(z[key])
+    if a.dtype.kind not in "iuf":
+        raise ValueError(f"{key}: expected real numbers, got dtype {a.dtype}")
+    if shape == () and a.shape != ():
+        raise ValueError(f"{key}: expected a scalar, got shape {a.shape}")
+    if shape is None and a.ndim != 1:
+        raise ValueError(f"{key}: expected a 1-D array, got shape {a.shape}")
+    return float(a) if shape == () else a.astype(np.float64)
+
+
 def _validate(h: HullCoefficients) -> None:
     n = h.name
     om = np.asarray(h.omega, dtype=float)
@@ -218,6 +241,14 @@ def _validate(h: HullCoefficients) -> None:
             raise ValueError(f"hull {n!r}: {k} must be finite")
     if h.inertia + h.added_mass_inf <= 0:
         raise ValueError(f"hull {n!r}: inertia + added_mass_inf must be > 0")
+    for k in (*_ARRAYS[:3], "excitation", "stiffness", "inertia", "mass", "added_mass_inf",
+              "added_mass_zero"):  # fmt: skip
+        big = float(np.max(np.abs(getattr(h, k))))
+        if big > MAX_COEFFICIENT:  # 1e308 passes isfinite, then overflows in C (I + A)
+            raise ValueError(
+                f"hull {n!r}: {k} reaches {big:.3g}, beyond any floating body "
+                f"(|value| <= {MAX_COEFFICIENT:g} in SI units)"
+            )
 
 
 def load_hull(hull: HullCoefficients | str | Path | None = None) -> HullCoefficients:
