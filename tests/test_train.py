@@ -536,12 +536,12 @@ def test_domain_randomization_on_mf_envs(env_id):
     ids=str,
 )
 def test_every_config_file_parses(path):
-    from mf_envs.train.config import import_object
+    from mf_envs.train.config import wrapper_class
 
     for env_id in read_config(path):
         hp = load_hyperparams(env_id, path)
         for wrapper, _ in hp.env_wrappers:
-            assert callable(import_object(wrapper))
+            assert callable(wrapper_class(wrapper))
 
 
 NATIVE_IDS = [e for e in available_env_ids() if gym.spec(e).vector_entry_point is not None]

@@ -36,7 +36,7 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from mf_envs._validate import check_int
+from mf_envs._validate import as_action, check_int
 from mf_envs.envs._rows import RowBlocks
 
 # rows per thread below which more threads do not pay (`resolve_threads`' automatic choice)
@@ -197,14 +197,7 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
     # ------------------------------------------------------------------ steps
     def _check_actions(self, actions: Any) -> np.ndarray:
         shape = (self.num_envs, *self.single_action_space.shape)
-        a = np.asarray(actions, dtype=np.float64)
-        if a.shape != shape:
-            try:
-                a = a.reshape(shape)
-            except ValueError:
-                raise ValueError(f"actions: expected shape {shape}, got {a.shape}") from None
-        if not np.isfinite(a).all():
-            raise ValueError("actions: must be finite")
+        a = as_action("actions", actions, shape)
         return np.clip(a, -1.0, 1.0)
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict]:
@@ -278,7 +271,19 @@ def _overwrite(info: dict[str, Any], resets: dict[str, Any], idx: np.ndarray) ->
                 info[key][idx] = resets[key][idx]
             info[f"_{key}"][idx] = resets[f"_{key}"][idx]
         else:
-            info[f"_{key}"][idx] = False
+            _clear(info, key, idx)
+
+
+def _clear(info: dict[str, Any], key: str, idx: np.ndarray) -> None:
+    """Rows `idx` no longer have `key` (their reset info lacks it): mask False and the value the
+    dtype's zero (None for objects), as SyncVectorEnv leaves a row whose info lacks the key."""
+    value = info[key]
+    if isinstance(value, dict):
+        for sub in [k for k in value if not k.startswith("_")]:
+            _clear(value, sub, idx)
+    else:
+        value[idx] = None if value.dtype == object else 0
+    info[f"_{key}"][idx] = False
 
 
 def _prune(info: dict[str, Any]) -> dict[str, Any]:

@@ -33,13 +33,16 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import yaml
+
+from mf_envs._files import load_yaml, safe_name
 
 _KEYS = {
     "env_id", "seeds", "controllers", "mode", "env_kwargs", "scenes", "grid", "random",
     "samples", "sampler_seed", "plot", "name",
 }  # fmt: skip
 _CONTROLLER_KEYS = {"name", "kind", "params", "reset_options"}
+MAX_SEEDS = 10_000  # episode seeds of one sweep
+MAX_TRIALS = 1_000_000  # scenes x points x controllers x seeds (a config of a few lines)
 
 
 @dataclass(frozen=True)
@@ -98,13 +101,8 @@ def _fail(key: str, msg: str) -> ValueError:
 def load_config(path: str | Path) -> SweepConfig:
     """Parse and validate the sweep YAML at `path` (ValueError naming the bad key)."""
     p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"config: no such file {str(p)!r}")
-    try:
-        data = yaml.safe_load(p.read_text())
-    except yaml.YAMLError as exc:
-        raise ValueError(f"config: {p} is not valid YAML ({' '.join(str(exc).split())})") from exc
-    return parse_config(data, default_name=p.stem)
+    data = load_yaml(p, "config")
+    return parse_config(data, default_name=safe_name("config", p.stem))
 
 
 def parse_config(data: Any, default_name: str = "sweep") -> SweepConfig:
@@ -120,13 +118,16 @@ def parse_config(data: Any, default_name: str = "sweep") -> SweepConfig:
     base = _mapping("env_kwargs", data.get("env_kwargs", {}))
     scenes = _scenes(data.get("scenes"))
     points, axes = _points(data)
+    n_trials = len(scenes) * len(points) * len(controllers) * len(seeds)
+    if n_trials > MAX_TRIALS:
+        raise _fail("grid", f"{n_trials} trials, more than {MAX_TRIALS}; sweep fewer values")
     trials = tuple(
         Trial(env_id, scene, {**base, **skw, **pt}, {"scene": scene, **pt}, ctrl, seed)
         for (scene, skw), pt, ctrl, seed in itertools.product(
             scenes.items(), points, controllers, seeds
         )
     )
-    name = str(data.get("name", default_name))
+    name = safe_name("config: name", data.get("name", default_name))
     return SweepConfig(name, env_id, trials, axes, _plot(data.get("plot"), axes))
 
 
@@ -146,17 +147,34 @@ def _env_id(value: Any) -> str:
 def _seeds(value: Any) -> tuple[int, ...]:
     if isinstance(value, dict) and set(value) == {"start", "count"}:
         start, count = value["start"], value["count"]
-        if isinstance(start, int) and isinstance(count, int) and count >= 1:
+        if _plain_int(start) and _plain_int(count) and 1 <= count <= MAX_SEEDS:
             return tuple(range(start, start + count))
-    elif isinstance(value, list) and value and all(isinstance(s, int) for s in value):
-        if len(set(value)) == len(value):
+    elif isinstance(value, list) and 0 < len(value) <= MAX_SEEDS:
+        if all(_plain_int(s) for s in value) and len(set(value)) == len(value):
             return tuple(value)
-    raise _fail("seeds", f"a non-empty list of distinct ints or {{start, count}}, got {value!r}")
+    raise _fail(
+        "seeds",
+        f"a non-empty list of at most {MAX_SEEDS} distinct ints in [0, 2**32), or {{start, "
+        f"count}} with 1 <= count <= {MAX_SEEDS}; got {_short(value)}",
+    )
+
+
+def _plain_int(v: Any) -> bool:
+    """An int usable as an episode seed (bools are not seeds)."""
+    return isinstance(v, int) and not isinstance(v, bool) and 0 <= v < 2**32 - MAX_SEEDS
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else f"{text[:60]}... ({len(text)} characters)"
 
 
 def _mapping(key: str, value: Any) -> dict[str, Any]:
     if not isinstance(value, dict) or not all(isinstance(k, str) for k in value):
-        raise _fail(key, f"must be a mapping of kwarg names to values, got {value!r}")
+        raise _fail(key, f"must be a mapping of kwarg names to values, got {_short(value)}")
+    bad = [k for k in value if not k.isidentifier()]
+    if bad and key != "scenes":
+        raise _fail(f"{key}.{bad[0]}", "a name must be a Python identifier (a kwarg or key name)")
     return dict(value)
 
 
@@ -209,6 +227,9 @@ def _points(data: dict[str, Any]) -> tuple[list[dict[str, Any]], tuple[str, ...]
         for k, v in grid.items():
             if not isinstance(v, list) or not v:
                 raise _fail(f"grid.{k}", f"a non-empty list of values, got {v!r}")
+        size = math.prod(len(v) for v in grid.values())
+        if size > MAX_TRIALS:
+            raise _fail("grid", f"{size} points, more than {MAX_TRIALS}; sweep fewer values")
         combos = itertools.product(*grid.values())
         return [dict(zip(grid, c)) for c in combos], tuple(grid)
     if mode == "random":
@@ -219,8 +240,8 @@ def _points(data: dict[str, Any]) -> tuple[list[dict[str, Any]], tuple[str, ...]
 def _random_points(data: dict[str, Any]) -> tuple[list[dict[str, Any]], tuple[str, ...]]:
     axes = _mapping("random", data.get("random") or {})
     n = data.get("samples")
-    if not isinstance(n, int) or n < 1:
-        raise _fail("samples", f"random mode needs samples: a positive int, got {n!r}")
+    if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= MAX_TRIALS:
+        raise _fail("samples", f"random mode needs samples: an int in [1, {MAX_TRIALS}], got {n!r}")
     seed = data.get("sampler_seed", 0)
     if not isinstance(seed, int):
         raise _fail("sampler_seed", f"an int, got {seed!r}")
@@ -245,6 +266,8 @@ def _plot(value: Any, axes: tuple[str, ...]) -> dict[str, Any]:
     plot = _mapping("plot", value or {})
     if set(plot) - {"metric", "x", "y", "log"}:
         raise _fail("plot", f"keys are metric, x, y, log; got {sorted(plot)}")
+    if "metric" in plot:
+        safe_name("config: plot.metric", plot["metric"])  # it names the picture's file
     for k in ("x", "y"):
         if k in plot and plot[k] not in (*axes, "scene"):
             raise _fail(f"plot.{k}", f"{plot[k]!r} is not a swept axis {['scene', *axes]}")

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from mf_envs._files import inside, safe_name
 from mf_envs.sweep.config import SweepConfig
 
 UNITS = {
@@ -93,7 +94,7 @@ def _table(cfg: SweepConfig, rows: list[dict[str, Any]], metric: str, out: Path)
     n = len({r["seed"] for r in rows})
     ax.set_title(f"{cfg.env_id}: {metric}, mean ± std over {n} seeds", fontsize=10)
     fig.colorbar(im, ax=ax, label=label(metric))
-    return _save(fig, out / f"{cfg.name}_{metric}.png")
+    return _save(fig, out, f"{cfg.name}_{metric}.png")
 
 
 def _heatmaps(cfg: SweepConfig, rows: list[dict[str, Any]], metric: str, out: Path) -> Path:
@@ -117,7 +118,7 @@ def _heatmaps(cfg: SweepConfig, rows: list[dict[str, Any]], metric: str, out: Pa
         fig.colorbar(im, ax=ax, label=label(metric))
     n = len({r["seed"] for r in rows})
     fig.suptitle(f"{cfg.env_id}: {metric}, mean over {n} seed(s)", fontsize=11)
-    return _save(fig, out / f"{cfg.name}_{metric}_{x}_{y}.png")
+    return _save(fig, out, f"{cfg.name}_{metric}_{x}_{y}.png")
 
 
 def _edges(v: list[float]) -> np.ndarray:
@@ -129,9 +130,11 @@ def _edges(v: list[float]) -> np.ndarray:
     return np.concatenate([[2 * c[0] - mid[0]], mid, [2 * c[-1] - mid[-1]]])
 
 
-def _save(fig: Any, path: Path) -> Path:
+def _save(fig: Any, out: Path, name: str) -> Path:
+    """Write the figure as `out/name`; the name (from the config) must stay inside `out`."""
     import matplotlib.pyplot as plt
 
+    path = inside(out, Path(out) / safe_name("config: name", name), "config: name")
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

@@ -8,7 +8,9 @@ One top-level key per env id. Recognised keys, as in rl-zoo3:
 - `policy_kwargs`: a dict, or the zoo's string form
   `"dict(net_arch=[64, 64], activation_fn=nn.Tanh)"`, parsed by a whitelist (`train.kwargs`:
   numbers, booleans, lists, dicts, activation names; never `eval`);
-- `env_wrapper`: dotted path of a `gymnasium.Wrapper`, or `{path: {kwargs}}` (a list of either);
+- `env_wrapper`: the name of a wrapper from the whitelist `WRAPPERS` (the project's
+  `DomainRandomization`, a few Gymnasium wrappers), or `{name: {kwargs}}` (a list of either);
+  nothing else is imported, so a config cannot run code;
 - `env_kwargs`: `gym.make` kwargs (the zoo takes these on its command line; here they may live
   in the file so a config alone reproduces a run);
 - `eval_episodes`: episodes per EvalCallback check (the zoo's `--eval-episodes`; default 5);
@@ -26,8 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-
+from mf_envs._files import load_yaml
 from mf_envs.train.kwargs import parse_policy_kwargs as whitelist_policy_kwargs
 from mf_envs.train.kwargs import resolve_activation
 
@@ -64,12 +65,7 @@ class Hyperparams:
 def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
     """The whole YAML file as {env_id: {key: value}} (ValueError if missing or malformed)."""
     p = Path(path) if path is not None else DEFAULT_CONFIG
-    if not p.is_file():
-        raise ValueError(f"config: no such file {str(p)!r}")
-    try:
-        data = yaml.safe_load(p.read_text())
-    except yaml.YAMLError as exc:
-        raise ValueError(f"config: {p} is not valid YAML ({exc})") from exc
+    data = load_yaml(p, "config")
     if not isinstance(data, dict) or not all(isinstance(v, dict) for v in data.values()):
         raise ValueError(f"config: {p} must map env ids to dicts of hyperparameters")
     return data
@@ -159,18 +155,53 @@ def _parse_wrappers(value: Any) -> tuple[tuple[str, dict[str, Any]], ...]:
             out.append((item, {}))
         elif isinstance(item, dict) and len(item) == 1:
             ((name, kwargs),) = item.items()
+            if kwargs is not None and not isinstance(kwargs, dict):
+                raise ValueError(
+                    f"env_wrapper: kwargs of {name!r} must be a mapping, got {kwargs!r}"
+                )
             out.append((str(name), dict(kwargs or {})))
         else:
             raise ValueError(
                 f"env_wrapper: expected 'module.Class' or {{path: kwargs}}, got {item!r}"
             )
+    for name, _ in out:
+        if name not in WRAPPERS:
+            wrapper_class(name)  # the ValueError naming env_wrapper and the allowed names
     return tuple(out)
 
 
-def import_object(path: str) -> Any:
-    """`'package.module.Name'` -> the object (ValueError if it does not exist)."""
-    module, _, name = path.rpartition(".")
-    try:
-        return getattr(importlib.import_module(module), name)
-    except (ImportError, AttributeError, ValueError) as exc:
-        raise ValueError(f"env_wrapper: cannot import {path!r} ({exc})") from exc
+# The wrappers a config may name (`env_wrapper`): nothing else is imported or called, so a config
+# file cannot run code (an arbitrary dotted path once let `pydoc.pipepager` run a shell command).
+# Each name maps to (module, attribute); the short `train.randomize...` form is the README's.
+WRAPPERS: dict[str, tuple[str, str]] = {
+    "mf_envs.train.randomize.DomainRandomization": (
+        "mf_envs.train.randomize",
+        "DomainRandomization",
+    ),
+    "train.randomize.DomainRandomization": ("mf_envs.train.randomize", "DomainRandomization"),
+    **{
+        f"gymnasium.wrappers.{name}": ("gymnasium.wrappers", name)
+        for name in (
+            "ClipAction",
+            "RescaleAction",
+            "TimeLimit",
+            "TimeAwareObservation",
+            "FlattenObservation",
+            "NormalizeObservation",
+            "NormalizeReward",
+            "RecordEpisodeStatistics",
+        )
+    },
+}
+
+
+def wrapper_class(name: str) -> Any:
+    """The wrapper class a config's `env_wrapper` names, from the whitelist `WRAPPERS` only
+    (ValueError naming `env_wrapper` for any other name)."""
+    if name not in WRAPPERS:
+        raise ValueError(
+            f"env_wrapper: {name!r} is not one of the wrappers a config may name "
+            f"({sorted(WRAPPERS)}); nothing else is imported from a config"
+        )
+    module, attr = WRAPPERS[name]
+    return getattr(importlib.import_module(module), attr)

@@ -17,12 +17,15 @@ cloudpickled objects in its `data` entry that run code on load, so `load_policy`
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from mf_envs._files import safe_name
+from mf_envs._validate import check_finite, check_nonnegative, check_range
 from mf_envs.train.kwargs import activation_name, parse_policy_kwargs, resolve_activation
 
 POLICY_ROOT = Path(__file__).parent / "policies"
@@ -32,6 +35,7 @@ NORM_FILE = "obs_normalization.json"
 META_FILE = "meta.json"
 FORMAT = "mf-envs-policy/1"
 REFUSED_SUFFIXES = (".zip", ".pkl", ".pickle", ".pt", ".pth")
+MAX_JSON_BYTES = 8 << 20  # a policy folder's JSON files are a few KB
 
 
 @dataclass(frozen=True)
@@ -67,10 +71,25 @@ class ObsNormalization:
         }
 
     @classmethod
-    def from_json(cls, d: dict[str, Any]) -> ObsNormalization:
-        return cls(
-            np.array(d["mean"], float), np.array(d["var"], float), d["epsilon"], d["clip_obs"]
-        )
+    def from_json(cls, d: dict[str, Any], obs_dim: int | None = None) -> ObsNormalization:
+        """From `to_json`'s dict; ValueError naming the field for a missing or non-numeric field,
+        a length other than `obs_dim`, NaN/inf, a negative variance or a non-positive
+        epsilon/clip (checked here, at load, not at the first `predict`)."""
+        missing = sorted({"mean", "var", "epsilon", "clip_obs"} - set(d))
+        if missing:
+            raise ValueError(f"{NORM_FILE}: missing {missing}")
+        mean = check_finite(f"{NORM_FILE}: mean", d["mean"])
+        var = check_nonnegative(f"{NORM_FILE}: var", d["var"])
+        for name, arr in (("mean", mean), ("var", var)):
+            if arr.ndim != 1 or (obs_dim is not None and arr.shape != (obs_dim,)):
+                raise ValueError(
+                    f"{NORM_FILE}: {name} must list {obs_dim} numbers, got shape {arr.shape}"
+                )
+        eps = check_range(f"{NORM_FILE}: epsilon", d["epsilon"], 0.0, None)
+        clip = check_range(f"{NORM_FILE}: clip_obs", d["clip_obs"], 0.0, None)
+        if eps <= 0 or clip <= 0:
+            raise ValueError(f"{NORM_FILE}: epsilon and clip_obs must be > 0, got {eps}, {clip}")
+        return cls(mean, var, eps, clip)
 
 
 class PPOPolicy:
@@ -119,9 +138,16 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     meta = read_meta(folder)
     if meta.get("env_id", env_id) != env_id:
         raise ValueError(f"policy: {folder} was trained on {meta['env_id']}, not {env_id}")
+    desc = read_description(folder)
     norm_path = folder / NORM_FILE
-    norm = ObsNormalization.from_json(_read_json(norm_path)) if norm_path.is_file() else None
-    return PPOPolicy(_rebuild(folder), norm, meta)
+    norm = None
+    if norm_path.is_file():
+        obs_dim = math.prod(desc["observation_space"]["shape"])
+        try:
+            norm = ObsNormalization.from_json(_read_json(norm_path), obs_dim)
+        except ValueError as exc:
+            raise ValueError(f"policy: {norm_path}: {exc}") from exc
+    return PPOPolicy(_rebuild(folder, desc), norm, meta)
 
 
 def _refuse_pickles(folder: Path, path: str | Path | None) -> None:
@@ -137,26 +163,63 @@ def _refuse_pickles(folder: Path, path: str | Path | None) -> None:
         )
 
 
-def _rebuild(folder: Path) -> Any:
-    """SB3 `ActorCriticPolicy` from `policy.json` + `policy.safetensors` (eval mode, CPU)."""
+def read_description(folder: Path) -> dict[str, Any]:
+    """`policy.json`, checked field by field (format, policy, spaces with matching shapes and
+    finite bounds, policy_kwargs through the whitelist); ValueError naming the file."""
+    p = folder / POLICY_FILE
+    desc = _read_json(p)
+    if desc.get("format") != FORMAT or desc.get("policy") != "MlpPolicy":
+        raise ValueError(f"policy: {p} is not an {FORMAT} MlpPolicy file")
+    for key in ("observation_space", "action_space"):
+        space = desc.get(key)
+        if not isinstance(space, dict) or set(space) != {"shape", "low", "high"}:
+            raise ValueError(f"policy: {p}: {key} must be {{shape, low, high}}, got {space!r}")
+        shape = space["shape"]
+        if not (
+            isinstance(shape, list)
+            and 0 < len(shape) <= 3
+            and all(isinstance(n, int) and not isinstance(n, bool) and 0 < n <= 4096 for n in shape)
+        ):
+            raise ValueError(f"policy: {p}: {key}.shape must be a list of positive ints")
+        for bound in ("low", "high"):
+            b = space[bound]
+            if not isinstance(b, list) or len(b) != math.prod(shape):
+                raise ValueError(f"policy: {p}: {key}.{bound} must list {math.prod(shape)} numbers")
+            for v in b:
+                _num(v)
+    if not isinstance(desc.get("use_sde", False), bool):
+        raise ValueError(f"policy: {p}: use_sde must be true or false")
+    try:
+        desc["policy_kwargs"] = parse_policy_kwargs(desc.get("policy_kwargs", {}))
+    except ValueError as exc:
+        raise ValueError(f"policy: {p}: policy_kwargs: {exc}") from exc
+    return desc
+
+
+def _rebuild(folder: Path, desc: dict[str, Any]) -> Any:
+    """SB3 `ActorCriticPolicy` from `policy.json` (already checked) + `policy.safetensors`
+    (eval mode, CPU); ValueError naming the weights file if it is not safetensors or does not
+    fit the network (a pickle renamed `.safetensors` is refused by the format, never run)."""
     from safetensors.torch import load_file
     from stable_baselines3.common.policies import ActorCriticPolicy
 
-    desc = _read_json(folder / POLICY_FILE)
-    if desc.get("format") != FORMAT or desc.get("policy") != "MlpPolicy":
-        raise ValueError(f"policy: {folder / POLICY_FILE} is not an {FORMAT} MlpPolicy file")
-    kwargs = resolve_activation(parse_policy_kwargs(desc.get("policy_kwargs", {})))
+    kwargs = resolve_activation(desc["policy_kwargs"])
     pol = ActorCriticPolicy(
         _box(desc["observation_space"]),
         _box(desc["action_space"]),
         lambda _: 0.0,
-        use_sde=bool(desc.get("use_sde", False)),
+        use_sde=desc.get("use_sde", False),
         **kwargs,
     )
+    weights = folder / WEIGHTS_FILE
     try:
-        pol.load_state_dict(load_file(folder / WEIGHTS_FILE, device="cpu"), strict=True)
+        state = load_file(weights, device="cpu")
+    except Exception as exc:  # noqa: BLE001 - safetensors raises its own SafetensorError
+        raise ValueError(f"policy: {weights} is not a safetensors file ({exc})") from exc
+    try:
+        pol.load_state_dict(state, strict=True)
     except (RuntimeError, OSError) as exc:
-        raise ValueError(f"policy: weights in {folder / WEIGHTS_FILE} do not fit ({exc})") from exc
+        raise ValueError(f"policy: weights in {weights} do not fit ({exc})") from exc
     pol.set_training_mode(False)
     return pol
 
@@ -170,9 +233,9 @@ def _box(d: dict[str, Any]) -> Any:
 
 
 def _num(v: Any) -> float:
-    if isinstance(v, int | float) and not isinstance(v, bool):
+    if isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(float(v)):
         return float(v)
-    raise ValueError(f"policy: space bound {v!r} is not a number")
+    raise ValueError(f"policy: space bound {v!r} is not a finite number")
 
 
 def _space_json(space: Any) -> dict[str, Any]:
@@ -185,8 +248,10 @@ def _space_json(space: Any) -> dict[str, Any]:
 
 def _read_json(p: Path) -> dict[str, Any]:
     try:
+        if p.stat().st_size > MAX_JSON_BYTES:
+            raise ValueError(f"larger than {MAX_JSON_BYTES} bytes")
         d = json.loads(p.read_text())
-    except (OSError, ValueError) as exc:
+    except (OSError, ValueError) as exc:  # JSONDecodeError and UnicodeDecodeError are ValueErrors
         raise ValueError(f"policy: cannot read {p} ({exc})") from exc
     if not isinstance(d, dict):
         raise ValueError(f"policy: {p} must hold a JSON object")
@@ -222,8 +287,15 @@ def save_policy_files(folder: Path, model: Any, vecnorm: Any | None = None) -> l
 
 
 def read_meta(folder: Path) -> dict[str, Any]:
-    p = folder / META_FILE
-    return json.loads(p.read_text()) if p.is_file() else {}
+    """`folder/meta.json` as a dict ({} if absent); ValueError naming the file if it is not a
+    JSON object or its `env_id` is not a plain name (it names folders when a run is shipped)."""
+    p = Path(folder) / META_FILE
+    if not p.is_file():
+        return {}
+    meta = _read_json(p)
+    if "env_id" in meta:
+        safe_name(f"policy: {p}: env_id", meta["env_id"])
+    return meta
 
 
 def save_policy(folder: Path, model: Any, vecnorm: Any | None, meta: dict[str, Any]) -> list[Path]:

@@ -40,6 +40,14 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--force", action="store_true", help="ship even if worse than the baseline")
     p.add_argument("--note", default=None, help="a caveat stored in the shipped meta.json")
     args = p.parse_args(argv)
+    try:
+        return _ship(args)
+    except ValueError as exc:  # bad meta.json, env_id, files: one line, no traceback
+        print(f"ship: error: {exc}", file=sys.stderr)
+        return 2
+
+
+def _ship(args: argparse.Namespace) -> int:
     run_dir = Path(args.run_dir)
     meta = read_meta(run_dir)
     if "env_id" not in meta:

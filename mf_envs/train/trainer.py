@@ -20,8 +20,9 @@ from typing import Any
 
 import gymnasium as gym
 
+from mf_envs._files import inside
 from mf_envs._staging import moved, staged_dir
-from mf_envs.train.config import Hyperparams, import_object, load_hyperparams, resolve_schedules
+from mf_envs.train.config import Hyperparams, load_hyperparams, resolve_schedules, wrapper_class
 from mf_envs.train.evaluate import baseline_factories, evaluate_controllers, primary_metric, score
 from mf_envs.train.policy import (
     POLICY_FILE,
@@ -192,7 +193,7 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
     meta = read_meta(run_dir)
     if "env_id" not in meta:
         raise ValueError(f"run_dir: {run_dir} has no meta.json with an env_id")
-    dest = root / meta["env_id"]
+    dest = inside(root, Path(root) / meta["env_id"], f"{run_dir}/meta.json: env_id")
     dest.mkdir(parents=True, exist_ok=True)
     out = []
     for name in SHIP_FILES:
@@ -206,7 +207,7 @@ def _make_envs(hp: Hyperparams, seed: int) -> tuple[Any, str, Any]:
     from mf_envs.train.vec import make_train_env
 
     wrappers = [
-        functools.partial(import_object(path), **kw) if kw else import_object(path)
+        functools.partial(wrapper_class(path), **kw) if kw else wrapper_class(path)
         for path, kw in hp.env_wrappers
     ]
     venv, kind = make_train_env(
