@@ -1,17 +1,30 @@
-"""Property-based fuzz of every env (hypothesis): constructor kwargs, reset options and action
-sequences drawn from valid, extreme and wrong-typed values.
+"""Fuzz of every registered env: constructor kwargs, reset options and actions drawn from valid,
+extreme and wrong-typed values.
 
-The contract (docs/api.md, issue 12): the only exceptions an env may raise are ValueError or
-TypeError whose message names the offending argument (a kwarg, an option key, or `action`); no
-call takes more than 10 s; every observation and reward returned is finite (a blown-up state ends
-the episode with info["numerical_failure"], never a NaN). A fast profile runs in the normal suite;
-the `slow` profile draws >= 300 examples per env.
+The contract (docs/api.md): the only exception an env raises for bad input is a ValueError whose
+message names the offending public parameter (a kwarg, an option key, or `action`); a value of
+the wrong kind (a string, bool, list, dict, complex number, NaN or inf where a real number
+belongs) is never accepted; every observation and reward returned is finite (a blown-up state
+ends the episode with info["numerical_failure"], never a NaN).
+
+The env list and the kwargs come from the registry and the constructors' signatures, so an env
+added to `mf_envs.envs` is fuzzed without editing this file; `NOT_A_NUMBER` names the kwargs that
+legitimately take something other than one real number. Hang detection is left to the runner's
+own time limit: no test here asserts on elapsed time.
+
+Three layers:
+- `test_every_scalar_kwarg_refuses_every_bad_class`: each real-number kwarg of each env with each
+  bad value class (a table, complete and deterministic);
+- `test_fuzz_fast` / `test_fuzz_slow`: hypothesis draws whole scenes (several kwargs, options, a
+  seed) and runs them; the slow profile draws >= 300 examples per env (CI's second stage);
+- `test_bad_actions_are_refused_naming_action`: shapes and types of actions, single and vector.
 """
 
 from __future__ import annotations
 
+import importlib
+import inspect
 import math
-import time
 from typing import Any
 
 import gymnasium as gym
@@ -21,165 +34,266 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import mf_envs  # noqa: F401  (registers the envs)
-from mf_envs.envs.gowec.env import AVAILABLE_EFFECTS as GOWEC_EFFECTS
-from mf_envs.physics.inchworm import INCHWORM_EFFECTS
-from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS
-from mf_envs.physics.ship.model import SHIP_EFFECTS
+from mf_envs.envs import available_env_ids
 
-MAX_SECONDS = 10.0
 FAST, SLOW = 30, 300
-
-# values any numeric kwarg may get: extremes and wrong types next to the sane range
+ENV_IDS = available_env_ids()
+# kwargs that take something other than one real number (names, tuples, dicts, presets)
+NOT_A_NUMBER = {
+    "effects", "render_mode", "hull", "coupling", "friction_coefficients", "gimbal_inertia",
+    "ship_inertia", "soil", "spectrum", "form", "gimbal_drive", "wave_spreading",
+}  # fmt: skip
+# values that are never a real number: each must be refused by every real-number kwarg
+NEVER_A_NUMBER: dict[str, Any] = {
+    "nan": math.nan,
+    "inf": math.inf,
+    "-inf": -math.inf,
+    "10**400": 10**400,
+    "'abc'": "abc",
+    "'0.5'": "0.5",
+    "True": True,
+    "[]": [],
+    "[1, 2]": [1.0, 2.0],
+    "{}": {},
+    "1+1j": 1 + 1j,
+    "array(2)": np.array([1.0, 2.0]),
+    "object()": object(),
+}
+# extremes that may be valid or not, but never an exception other than a named ValueError
+EXTREMES = [0.0, -1.0, 1e-300, 1e308, -1e308, 1e17, -5.0]
 WILD = st.one_of(
-    st.sampled_from([0.0, -1.0, 1e-300, 1e308, -1e308, math.nan, math.inf, -math.inf, 1e17]),
-    st.sampled_from([True, False, None, "abc", "1.5", [1.0, 2.0], (), {}]),
+    st.sampled_from(EXTREMES),
+    st.sampled_from([v for k, v in NEVER_A_NUMBER.items() if k != "object()"] + [None]),
     st.integers(-(2**70), 2**70),
     st.floats(allow_nan=True, allow_infinity=True),
 )
+# every effect an env can switch (MFEnv.available_effects of its default instance)
+EFFECTS = {e: gym.make(e, disable_env_checker=True).unwrapped.available_effects for e in ENV_IDS}
+STEPS = {"Inchworm-v0": 3}  # steps per example (others: 20; the inchworm is ~0.5 ms/step)
 
 
-def _num(lo: float, hi: float) -> st.SearchStrategy[Any]:
-    """Mostly a sane value in [lo, hi] (log-uniform when both ends are positive), sometimes wild."""
-    if lo > 0:
-        sane = st.floats(math.log(lo), math.log(hi)).map(math.exp)
+def env_class(env_id: str) -> type:
+    entry = gym.spec(env_id).entry_point
+    if callable(entry):
+        return entry
+    module, _, name = entry.partition(":")
+    return getattr(importlib.import_module(module), name)
+
+
+def kwarg_defaults(env_id: str) -> dict[str, Any]:
+    """The constructor's kwargs and their defaults (render_mode left out)."""
+    params = list(inspect.signature(env_class(env_id).__init__).parameters.values())[1:]
+    return {
+        p.name: p.default
+        for p in params
+        if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD) and p.name != "render_mode"
+    }
+
+
+def real_kwargs(env_id: str) -> list[str]:
+    """Kwargs that take one real number (a number or None by default, not in NOT_A_NUMBER)."""
+    return [
+        k
+        for k, v in kwarg_defaults(env_id).items()
+        if k not in NOT_A_NUMBER
+        and (v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)))
+    ]
+
+
+def reset_options(env_id: str) -> tuple[str, ...]:
+    """The env's documented reset option keys (`envs.<env>.spec.RESET_OPTIONS`)."""
+    package = env_class(env_id).__module__.rpartition(".")[0]
+    return tuple(importlib.import_module(f"{package}.spec").RESET_OPTIONS)
+
+
+def message(exc: BaseException) -> str:
+    """The env's own message (gymnasium appends the kwargs to errors raised in make)."""
+    return str(exc).split(" was raised from the environment creator")[0]
+
+
+def assert_named(exc: BaseException, names: list[str]) -> None:
+    assert type(exc) is ValueError, f"{type(exc).__name__}, not ValueError: {exc}"
+    text = message(exc)
+    assert any(n in text for n in names), f"{text!r} names none of {names}"
+
+
+# ---------------------------------------------------------------------- the table
+@pytest.mark.parametrize("env_id", ENV_IDS)
+def test_every_scalar_kwarg_refuses_every_bad_class(env_id):
+    cls = env_class(env_id)
+    accepted, wrong = [], []
+    for name in real_kwargs(env_id):
+        for label, value in NEVER_A_NUMBER.items():
+            try:
+                cls(**{name: value}).close()
+                accepted.append(f"{name}={label}")
+            except ValueError as exc:
+                if name not in str(exc):
+                    wrong.append(f"{name}={label}: unnamed: {exc}")
+            except Exception as exc:  # noqa: BLE001 - any other type is the defect counted
+                wrong.append(f"{name}={label}: {type(exc).__name__}: {exc}")
+    assert not accepted, f"{env_id} accepted nonsense: {accepted}"
+    assert not wrong, f"{env_id}: {wrong}"
+
+
+def test_the_table_covers_the_kwargs_the_reviewers_named():
+    """The kwargs the last review found unchecked are among those the table sweeps."""
+    assert {"gimbal_stiffness", "max_drive_power", "drive_bandwidth", "effort_weight"} <= set(
+        real_kwargs("GyroStabilizer-v0")
+    )
+    assert {"peak_period", "significant_wave_height"} <= set(real_kwargs("GOWEC-v1"))
+
+
+@pytest.mark.parametrize("env_id", ENV_IDS)
+def test_every_reset_option_refuses_every_bad_class(env_id):
+    env = gym.make(env_id, disable_env_checker=True)
+    for key in reset_options(env_id):
+        for label, value in NEVER_A_NUMBER.items():
+            if isinstance(value, (list, np.ndarray)) and key == "kappa":
+                continue  # kappa takes an array: its wrong shapes are checked below
+            with pytest.raises(ValueError, match=key) as info:
+                env.reset(seed=0, options={key: value})
+            assert type(info.value) is ValueError, label
+    with pytest.raises(ValueError, match="options"):
+        env.reset(seed=0, options={"nonsense": 1.0})
+    with pytest.raises(ValueError, match="options"):
+        env.reset(seed=0, options=[("a", 1)])
+    env.close()
+
+
+# ---------------------------------------------------------------------- actions
+BAD_ACTIONS: dict[str, Any] = {
+    "'0.5'": "0.5",
+    "['0.5']": ["0.5"],
+    "True": True,
+    "[True]": np.array([True]),
+    "None": None,
+    "{}": {},
+    "object": object(),
+    "complex": np.array([1 + 1j]),
+    "nan": np.array([math.nan]),
+    "ragged": [[1.0], [1.0, 2.0]],
+}
+
+
+@pytest.mark.parametrize("env_id", ENV_IDS)
+def test_bad_actions_are_refused_naming_action(env_id):
+    env = gym.make(env_id, disable_env_checker=True)
+    env.reset(seed=0)
+    n = int(np.prod(env.action_space.shape))
+    cases = {
+        **BAD_ACTIONS,
+        "too long": np.zeros(n + 1),
+        "empty": np.zeros(0),
+        "2-D too big": np.zeros((2, n + 1)),
+    }
+    for label, action in cases.items():
+        with pytest.raises(ValueError, match="action") as info:
+            env.step(action)
+        assert type(info.value) is ValueError, label
+    # a valid action in another real dtype or as a list still works
+    env.step(np.zeros(n, dtype=np.float64))
+    env.step([0.0] * n)
+    env.close()
+
+
+@pytest.mark.parametrize("env_id", [e for e in ENV_IDS if gym.spec(e).vector_entry_point])
+def test_bad_vector_actions_are_refused_naming_actions(env_id):
+    from mf_envs.envs import native_vector_supported
+
+    if not native_vector_supported(env_id):
+        pytest.skip(f"{env_id}'s default scene has no native vector env")
+    envs = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point")
+    envs.reset(seed=0)
+    n = int(np.prod(envs.single_action_space.shape))
+    for label, action in {**BAD_ACTIONS, "one row short": np.zeros((1, n))}.items():
+        with pytest.raises(ValueError, match="actions") as info:
+            envs.step(action)
+        assert type(info.value) is ValueError, label
+    envs.close()
+
+
+# ---------------------------------------------------------------------- hypothesis scenes
+def _near(default: Any) -> st.SearchStrategy[Any]:
+    """A sane value near a real default (x 0.5-2, same sign; ints stay ints >= 1), 19 times in
+    20; else a wild value."""
+    if isinstance(default, int) and not isinstance(default, bool):
+        sane: st.SearchStrategy[Any] = st.integers(max(1, default // 2), max(1, default * 2))
+    elif default == 0.0:
+        sane = st.floats(-1.0, 1.0)
     else:
-        sane = st.floats(lo, hi)
-    return _mostly(sane)
-
-
-def _mostly(sane: st.SearchStrategy[Any]) -> st.SearchStrategy[Any]:
-    """`sane` 19 times in 20, else a wild value (so that most scenes get past make)."""
+        sane = st.floats(-0.7, 0.7).map(lambda x, d=default: d * math.exp(x))
     return st.integers(0, 19).flatmap(lambda i: WILD if i == 0 else sane)
 
 
-def _effects(available: Any) -> st.SearchStrategy[Any]:
-    """None, a subset of the available effects, or (1 in 20) a bad value."""
-    names = sorted(available)
-    valid = st.one_of(
-        st.none(), st.lists(st.sampled_from(names), max_size=len(names), unique=True).map(tuple)
-    )
-    bad = st.sampled_from(["bogus", ("gravity", 3), 7])
-    return st.integers(0, 19).flatmap(lambda i: bad if i == 0 else valid)
-
-
-KWARGS: dict[str, dict[str, st.SearchStrategy[Any]]] = {
-    "GOWEC-v0": {
-        "rotor_inertia": _num(1.0, 200.0),
-        "rotor_speed": st.one_of(st.just(0.0), _num(-1000.0, 1000.0)),
-        "wave_amplitude": _num(0.05, 5.0),
-        "wave_period": _num(2.0, 20.0),
-        "wave_direction": _num(-7.0, 7.0),
-        "max_generator_torque": _num(100.0, 1e6),
-        "max_gimbal_rate": _num(1.0, 100.0),
-        "steps_per_period": _mostly(st.integers(4, 400)),
-        "physics_dt": _num(1e-4, 0.1),
-        "n_components": _mostly(st.integers(1, 32)),
-        "buoy_radius": st.one_of(st.none(), _num(0.1, 10.0)),
-        "gimbal_inertia": _mostly(st.tuples(*[st.floats(0, 50)] * 3)),
-        "episode_seconds": st.one_of(st.none(), _num(0.1, 100.0)),
-        "effects": _effects(GOWEC_EFFECTS),
-    },
-    "GyroStabilizer-v0": {
-        "ship_inertia": st.one_of(st.none(), _mostly(st.tuples(*[_num(1e3, 1e6)] * 3))),
-        "n_gyros": _mostly(st.integers(0, 3)),
-        "rotor_inertia": _num(0.5, 100.0),
-        "rotor_speed": _num(-2000.0, 2000.0),
-        "wave_moment_amplitude": _num(-1e5, 1e5),
-        "wave_period": st.one_of(st.none(), _num(1.0, 30.0)),
-        "roll_stiffness": st.one_of(st.none(), _num(0.0, 1e6)),
-        "roll_damping": st.one_of(st.none(), _num(0.0, 1e5)),
-        "max_precession_rate": _num(0.1, 10.0),
-        "max_gimbal_angle": _num(0.1, 3.0),
-        "control_dt": _num(0.005, 0.5),
-        "physics_dt": st.one_of(st.none(), _num(1e-3, 0.1)),
-        "servo_time_constant": _num(0.005, 1.0),
-        "gimbal_drive": st.sampled_from(["servo", "torque", "magic"]),
-        "max_gimbal_torque": _num(0.0, 1e5),
-        "gimbal_damping": _num(0.0, 1e3),
-        "episode_seconds": _num(0.1, 60.0),
-        "effects": _effects(SHIP_EFFECTS),
-    },
-    "Inchworm-v0": {
-        "length": _num(0.1, 1.0),
-        "height": _num(0.003, 0.03),
-        "youngs_modulus": _num(1e8, 1e10),
-        "mass_per_length": _num(0.05, 2.0),
-        "n_elements": _mostly(st.integers(2, 16)),
-        "max_curvature": _num(1.0, 20.0),
-        "n_control_points": _mostly(st.integers(2, 5)),
-        "effort_weight": _num(0.0, 1.0),
-        "increment_factor": _num(1.0, 10.0),
-        "reset_noise_scale": _num(0.0, 1.0),
-        "physics_dt": _num(0.01, 0.1),
-        "actuator_time_constant": _num(0.01, 2.0),
-        "actuator_rate_limit": _num(0.5, 100.0),
-        "grip_time_constant": _num(0.01, 1.0),
-        "friction_coefficients": _mostly(st.tuples(*[st.floats(0.0, 2.0)] * 4)),
-        "effects": _effects({**INCHWORM_EFFECTS, **DRIVE_EFFECTS}),
-    },
-}
-OPTIONS: dict[str, dict[str, st.SearchStrategy[Any]]] = {
-    "GOWEC-v0": {
-        "gimbal_angle": _num(-20.0, 20.0),
-        "gimbal_rate": _num(-5.0, 5.0),
-        "wave_phase": _num(-20.0, 20.0),
-        "nonsense": st.just(1),
-    },
-    "GyroStabilizer-v0": {
-        "roll": _num(-2.0, 2.0),
-        "roll_rate": _num(-1.0, 1.0),
-        "gimbal_angle": _num(-3.0, 3.0),
-        "wave_phase": _num(-10.0, 10.0),
-        "nonsense": st.just(1),
-    },
-    "Inchworm-v0": {
-        "x_tail": _num(-1e6, 1e6),
-        "kappa": _mostly(st.lists(st.floats(-15.0, 0.0), min_size=2, max_size=4)),
-        "nonsense": st.just(1),
-    },
-}
-STEPS = {"GOWEC-v0": 20, "GyroStabilizer-v0": 20, "Inchworm-v0": 3}
+def _kwarg(env_id: str, name: str, default: Any) -> st.SearchStrategy[Any]:
+    if name == "effects":
+        names = list(EFFECTS[env_id])
+        valid = st.one_of(
+            st.none(),
+            st.lists(st.sampled_from(names), max_size=len(names), unique=True).map(tuple),
+        )
+        return st.integers(0, 19).flatmap(
+            lambda i: st.sampled_from(["bogus", ("gravity", 3), 7, {}]) if i == 0 else valid
+        )
+    if name in NOT_A_NUMBER or not (default is None or isinstance(default, (int, float))):
+        return st.one_of(st.just(default), WILD)
+    if default is None:
+        return st.one_of(st.none(), WILD)
+    return _near(default)
 
 
 def _scene(env_id: str) -> st.SearchStrategy[tuple[dict, dict, int]]:
-    kw = st.fixed_dictionaries({}, optional=KWARGS[env_id])
-    opts = st.fixed_dictionaries({}, optional=OPTIONS[env_id])
+    defaults = kwarg_defaults(env_id)
+    optional = {k: _kwarg(env_id, k, v) for k, v in defaults.items()}
+    kw = st.fixed_dictionaries({}, optional=optional)
+    opts = st.fixed_dictionaries(
+        {},
+        optional={
+            **{k: st.one_of(st.floats(-2.0, 2.0), WILD) for k in reset_options(env_id)},
+            "nonsense": st.just(1),
+        },
+    )
     return st.tuples(kw, opts, st.integers(0, 2**31 - 1))
 
 
-def _timed(fn, what: str):
-    t0 = time.perf_counter()
-    out = fn()
-    elapsed = time.perf_counter() - t0
-    assert elapsed < MAX_SECONDS, f"{what} took {elapsed:.1f} s"
+def _refused_nonsense(kwargs: dict[str, Any], real: set[str]) -> list[str]:
+    """Real-number kwargs given a value that is never a real number."""
+    out = []
+    for k, v in kwargs.items():
+        if k in real and v is not None:
+            if isinstance(v, (str, bool, list, dict, complex, np.ndarray)) or (
+                isinstance(v, float) and not math.isfinite(v)
+            ):
+                out.append(f"{k}={v!r}")
+            elif isinstance(v, int) and abs(v) > 1.8e308:
+                out.append(f"{k}=<huge int>")
     return out
 
 
-def _named(exc: Exception, names: list[str]) -> None:
-    assert isinstance(exc, (ValueError, TypeError)), repr(exc)
-    assert any(n in str(exc) for n in names), f"{exc!r} names none of {names}"
-
-
 def check_scene(env_id: str, kwargs: dict, options: dict, seed: int) -> None:
-    """One fuzz example: make, reset and step; only named ValueError/TypeError, all finite."""
+    """One fuzz example: make, reset and step; only named ValueErrors, nonsense never accepted,
+    everything returned finite."""
     try:
-        env = _timed(lambda: gym.make(env_id, disable_env_checker=True, **kwargs), "make")
+        env = gym.make(env_id, disable_env_checker=True, **kwargs)
     except Exception as exc:  # noqa: BLE001 - the contract is what is checked
-        _named(exc, list(kwargs))
+        assert_named(exc, list(kwargs))
         return
+    nonsense = _refused_nonsense(kwargs, set(real_kwargs(env_id)))
+    assert not nonsense, f"{env_id} accepted {nonsense}"
     try:
-        obs, _ = _timed(lambda: env.reset(seed=seed, options=options), "reset")
+        obs, _ = env.reset(seed=seed, options=options)
     except Exception as exc:  # noqa: BLE001
-        _named(exc, [*options, "options", *kwargs])
-        obs, _ = _timed(lambda: env.reset(seed=seed), "reset without options")
+        assert_named(exc, [*options, "options"])
+        obs, _ = env.reset(seed=seed)
     assert np.isfinite(obs).all() and env.observation_space.contains(obs)
     rng = np.random.default_rng(seed)
-    for _ in range(STEPS[env_id]):
+    for _ in range(STEPS.get(env_id, 20)):
         action = rng.uniform(-1.5, 1.5, env.action_space.shape).astype(np.float32)
-        obs, r, term, trunc, info = _timed(lambda a=action: env.step(a), "step")
+        obs, r, term, trunc, info = env.step(action)
         assert np.isfinite(obs).all() and math.isfinite(r), info
         if term or trunc:
-            obs, _ = _timed(lambda: env.reset(), "reset")
+            obs, _ = env.reset()
             assert np.isfinite(obs).all()
     env.close()
 
@@ -199,12 +313,12 @@ def _fuzz(env_id: str, n: int):
     return run
 
 
-@pytest.mark.parametrize("env_id", list(KWARGS))
+@pytest.mark.parametrize("env_id", ENV_IDS)
 def test_fuzz_fast(env_id):
     _fuzz(env_id, FAST if env_id != "Inchworm-v0" else FAST // 2)()
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("env_id", list(KWARGS))
+@pytest.mark.parametrize("env_id", ENV_IDS)
 def test_fuzz_slow(env_id):
     _fuzz(env_id, SLOW)()

@@ -11,6 +11,7 @@ Each env's controllers live in their own module (`controllers/<module>.py`) and 
 from __future__ import annotations
 
 import importlib
+import inspect
 from collections.abc import Callable
 from typing import Any, Protocol
 
@@ -64,4 +65,14 @@ def make_baseline(env: Any, kind: str | None = None, **params: Any) -> Any:
     kind = kinds[0] if kind is None else kind
     if kind not in kinds:
         raise ValueError(f"kind: {kind!r} is not a baseline for {env_id}; available: {kinds}")
-    return _REGISTRY[env_id][kind](env, **params)
+    factory = _REGISTRY[env_id][kind]
+    sig = inspect.signature(factory)
+    if not any(p.kind is p.VAR_KEYWORD for p in sig.parameters.values()):
+        names = [n for n in list(sig.parameters)[1:] if n != "self"]
+        unknown = sorted(set(params) - set(names))
+        if unknown:
+            raise ValueError(
+                f"params: {unknown} are not parameters of the {kind!r} baseline of {env_id}; "
+                f"it takes {names}"
+            )
+    return factory(env, **params)

@@ -271,26 +271,20 @@ def _overwrite(info: dict[str, Any], resets: dict[str, Any], idx: np.ndarray) ->
                 info[key][idx] = resets[key][idx]
             info[f"_{key}"][idx] = resets[f"_{key}"][idx]
         else:
-            _clear(info, key, idx)
-
-
-def _clear(info: dict[str, Any], key: str, idx: np.ndarray) -> None:
-    """Rows `idx` no longer have `key` (their reset info lacks it): mask False and the value the
-    dtype's zero (None for objects), as SyncVectorEnv leaves a row whose info lacks the key."""
-    value = info[key]
-    if isinstance(value, dict):
-        for sub in [k for k in value if not k.startswith("_")]:
-            _clear(value, sub, idx)
-    else:
-        value[idx] = None if value.dtype == object else 0
-    info[f"_{key}"][idx] = False
+            info[f"_{key}"][idx] = False
 
 
 def _prune(info: dict[str, Any]) -> dict[str, Any]:
-    """Drop the keys no sub-env has (all-False mask), as SyncVectorEnv never creates them."""
+    """Drop the keys no sub-env has (all-False mask), as SyncVectorEnv never creates them, and
+    zero a key's value in the rows whose mask is False (None for objects), as SyncVectorEnv
+    leaves a row whose info lacks the key: a failed or reset row keeps no stale value (e.g. a
+    SAME_STEP reset row's numerical_failure)."""
     for key in [k for k in info if not k.startswith("_")]:
         if isinstance(info[key], dict):
             _prune(info[key])
-        if not info[f"_{key}"].any():
+        mask = info[f"_{key}"]
+        if not mask.any():
             del info[key], info[f"_{key}"]
+        elif not isinstance(info[key], dict) and not mask.all():
+            info[key][~mask] = None if info[key].dtype == object else 0
     return info

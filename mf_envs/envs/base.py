@@ -47,6 +47,7 @@ class MFEnv(gym.Env):
             )
         self.render_mode = render_mode
         self.effects = resolve_effects(effects, available_effects, default_effects)
+        self.available_effects = tuple(sorted(available_effects))  # every effect it can switch
         control_dt = check_range("control_dt", control_dt, MIN_DT, MAX_CONTROL_DT)
         physics_dt = check_range("physics_dt", physics_dt, MIN_DT, None)
         # integer substeps; physics_dt is shrunk so that n * physics_dt == control_dt exactly

@@ -83,7 +83,8 @@ def run_trial(trial: Trial) -> dict[str, Any]:
 
 
 def check_env_kwargs(cfg: SweepConfig) -> None:
-    """Construct the env once per distinct kwargs, so a bad kwarg fails before any trial runs."""
+    """Construct the env once per distinct kwargs and each baseline once with its params, so a
+    bad kwarg or controller param fails before any trial runs."""
     seen: set[str] = set()
     for t in cfg.trials:
         key = json.dumps(t.kwargs, sort_keys=True)
@@ -93,6 +94,17 @@ def check_env_kwargs(cfg: SweepConfig) -> None:
                 gym.make(t.env_id, **t.kwargs).close()
             except TypeError as exc:  # an unknown kwarg name
                 raise ValueError(f"config: env kwargs {key}: {exc}") from exc
+    first = cfg.trials[0]
+    env = gym.make(first.env_id, **first.kwargs)
+    try:
+        for ctrl in {t.controller.name: t.controller for t in cfg.trials}.values():
+            if ctrl.kind.startswith("baseline"):
+                try:  # an unknown or wrongly typed param fails here, before any trial
+                    make_controller(env, ctrl.kind, ctrl.params)
+                except (TypeError, ValueError) as exc:
+                    raise ValueError(f"config: controllers: {ctrl.name}: {exc}") from None
+    finally:
+        env.close()
 
 
 def run_serial(trials: Sequence[Trial], sink: Callable[[dict[str, Any]], None]) -> None:

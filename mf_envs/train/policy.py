@@ -185,8 +185,9 @@ def read_description(folder: Path) -> dict[str, Any]:
             b = space[bound]
             if not isinstance(b, list) or len(b) != math.prod(shape):
                 raise ValueError(f"policy: {p}: {key}.{bound} must list {math.prod(shape)} numbers")
-            for v in b:
-                _num(v)
+            bad = [v for v in b if not _finite_number(v)]
+            if bad:
+                raise ValueError(f"policy: {p}: {key}.{bound} holds {bad[0]!r}, not a number")
     if not isinstance(desc.get("use_sde", False), bool):
         raise ValueError(f"policy: {p}: use_sde must be true or false")
     try:
@@ -232,8 +233,12 @@ def _box(d: dict[str, Any]) -> Any:
     return Box(low, high, dtype=np.float32)
 
 
+def _finite_number(v: Any) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(float(v))
+
+
 def _num(v: Any) -> float:
-    if isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(float(v)):
+    if _finite_number(v):
         return float(v)
     raise ValueError(f"policy: space bound {v!r} is not a finite number")
 
