@@ -133,6 +133,15 @@ def build_parser() -> argparse.ArgumentParser:
     )
     t.add_argument("--force", action="store_true", help="replace an existing run folder")
     t.add_argument("--tensorboard", action="store_true", help="write TensorBoard logs")
+    t.add_argument(
+        "--eval-episodes", type=int, default=5, help="episodes per evaluation (default: 5)"
+    )
+    t.add_argument(
+        "--vec-env",
+        choices=("auto", "dummy"),
+        default="auto",
+        help="auto: the env's native vector env where it has one (default); dummy: DummyVecEnv",
+    )
     t.add_argument("--backend", choices=("sb3", "rllib"), default="sb3", help="sb3 | rllib (Ray)")
     t.set_defaults(func=_cmd_train)
 

@@ -43,7 +43,7 @@ def test_config_parses_for_every_env(env_id):
     from stable_baselines3 import PPO
 
     hp = load_hyperparams(env_id)
-    assert hp.n_timesteps > 0 and 1 <= hp.n_envs <= 2
+    assert hp.n_timesteps is not None and hp.n_timesteps > 0 and 1 <= hp.n_envs <= 2
     kwargs = resolve_schedules(hp.ppo_kwargs)
     accepted = set(inspect.signature(PPO.__init__).parameters)
     assert set(kwargs) <= accepted, set(kwargs) - accepted
@@ -64,6 +64,83 @@ def test_config_errors(tmp_path):
         parse_policy_kwargs("dict(activation_fn=nn.__class__)")
     pk = parse_policy_kwargs("dict(net_arch=[8], activation_fn=nn.Tanh)")
     assert pk["net_arch"] == [8] and pk["activation_fn"].__name__ == "Tanh"
+
+
+def test_config_typo_is_one_line_naming_the_key(tmp_path, capsys):
+    from mf_envs.cli import main
+
+    cfg = tmp_path / "typo.yml"
+    cfg.write_text("GOWEC-v0:\n  n_timesteps: 64\n  learning_rat: 0.001\n")
+    before = sorted(tmp_path.rglob("*"))
+    assert main(["train", "GOWEC-v0", "--config", str(cfg), "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "'learning_rat'" in err[0] and "'learning_rate'" in err[0], err
+    assert sorted(tmp_path.rglob("*")) == before  # refused before any folder is made
+    cfg.write_text("GOWEC-v0:\n  n_timesteps: 64\n  eval_episodes: 2\n")
+    with pytest.raises(ValueError, match="--eval-episodes"):
+        load_hyperparams("GOWEC-v0", cfg)
+    cfg.write_text("GOWEC-v0:\n  n_timesteps: lots\n")
+    with pytest.raises(ValueError, match="n_timesteps"):
+        load_hyperparams("GOWEC-v0", cfg)
+
+
+def test_timesteps_option_replaces_a_missing_n_timesteps(tmp_path):
+    from mf_envs.train.trainer import train
+
+    cfg = tmp_path / "c.yml"
+    cfg.write_text("GOWEC-v0:\n  n_envs: 1\n")
+    assert load_hyperparams("GOWEC-v0", cfg).n_timesteps is None
+    with pytest.raises(ValueError, match="--timesteps"):
+        train("GOWEC-v0", config=cfg, out=tmp_path / "a", progress_bar=False)
+    res = train(
+        "GOWEC-v0",
+        timesteps=64,
+        config=cfg,
+        out=tmp_path / "b",
+        progress_bar=False,
+        eval_episodes=1,
+        final_eval_seeds=(),
+        overrides=TINY,
+    )
+    assert res.meta["hyperparams"]["n_timesteps"] == 64  # the budget run, not the config's
+
+
+@pytest.mark.parametrize("env_id", ["Pendulum-v1", *ENV_SPECS])
+def test_shipped_configs_train_in_rl_zoo3_unchanged(env_id, tmp_path, monkeypatch):
+    """rl-zoo3's own ExperimentManager reads the shipped ppo.yml and trains a few hundred steps
+    (its --hyperparams shrink the rollout only; the file is read as shipped)."""
+    pytest.importorskip("rl_zoo3", reason="needs the zoo extra: pip install -e '.[zoo]'")
+    import argparse
+
+    from rl_zoo3.exp_manager import ExperimentManager
+
+    from mf_envs.train.config import DEFAULT_CONFIG
+
+    monkeypatch.chdir(tmp_path)
+    args = argparse.Namespace(
+        algo="ppo", env=env_id, gym_packages=["mf_envs"], conf_file=str(DEFAULT_CONFIG)
+    )
+    exp = ExperimentManager(
+        args,
+        "ppo",
+        env_id,
+        str(tmp_path / "logs"),
+        n_timesteps=256,
+        eval_freq=-1,
+        hyperparams={"n_steps": 128, "batch_size": 64, "n_epochs": 1},
+        config=str(DEFAULT_CONFIG),
+        n_eval_envs=1,
+        vec_env_type="dummy",
+        device="cpu",
+        log_interval=-1,
+        verbose=0,
+    )
+    results = exp.setup_experiment()
+    assert results is not None
+    model, saved_hyperparams = results
+    assert saved_hyperparams["policy"] == "MlpPolicy" and exp.n_timesteps == 256
+    exp.learn(model)
+    assert model.num_timesteps >= 256
 
 
 # --------------------------------------------------------------------------- vector envs

@@ -28,6 +28,8 @@ def train_command(args: argparse.Namespace) -> list[Path]:
         out=args.out,
         tensorboard=args.tensorboard,
         force=args.force,
+        eval_episodes=args.eval_episodes,
+        vec_env=args.vec_env,
     )
     m = res.meta
     print(

@@ -13,17 +13,22 @@ One top-level key per env id. Recognised keys, as in rl-zoo3:
   nothing else is imported, so a config cannot run code;
 - `env_kwargs`: `gym.make` kwargs (the zoo takes these on its command line; here they may live
   in the file so a config alone reproduces a run);
-- `eval_episodes`: episodes per EvalCallback check (the zoo's `--eval-episodes`; default 5);
-- `vec_env`: `auto` (default: the env's native vector env if it has one, else `DummyVecEnv`) or
-  `dummy` (the zoo's `--vec-env dummy`);
 - `learning_rate`/`clip_range` as numbers or the zoo's linear schedules `lin_3e-4`;
-- every other key is passed to `stable_baselines3.PPO` unchanged.
+- every other key is passed to `stable_baselines3.PPO` unchanged (a key PPO does not take is
+  refused naming it, `check_algo_kwargs`).
+
+The files load unchanged in rl-zoo3 (`python -m rl_zoo3.train --algo ppo --env ENV_ID
+--gym-packages mf_envs -conf FILE`): mf-envs' own options (`--eval-episodes`, `--vec-env`) are
+command-line options, as they are the zoo's.
 """
 
 from __future__ import annotations
 
 import ast
+import difflib
 import importlib
+import inspect
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -40,9 +45,10 @@ _ZOO_KEYS = (
     "normalize",
     "env_wrapper",
     "env_kwargs",
-    "eval_episodes",
-    "vec_env",
 )
+# mf-envs options that earlier configs held: rl-zoo3 would pass them to PPO, so they are
+# command-line options now (as the zoo's own --eval-episodes and --vec-env)
+_MOVED = {"eval_episodes": "--eval-episodes", "vec_env": "--vec-env"}
 _UNSUPPORTED = ("frame_stack", "callback", "vec_env_wrapper", "normalize_kwargs")
 
 
@@ -51,14 +57,12 @@ class Hyperparams:
     """Parsed hyperparameters of one env id (see the module docstring for the YAML keys)."""
 
     env_id: str
-    n_timesteps: int
+    n_timesteps: int | None  # None: the config leaves it to --timesteps
     n_envs: int = 1
     policy: str = "MlpPolicy"
     normalize: dict[str, Any] | None = None  # VecNormalize kwargs, None = no normalisation
     env_wrappers: tuple[tuple[str, dict[str, Any]], ...] = ()
     env_kwargs: dict[str, Any] = field(default_factory=dict)
-    eval_episodes: int = 5
-    vec_env: str = "auto"  # "auto" (native vector env if any) | "dummy"
     ppo_kwargs: dict[str, Any] = field(default_factory=dict)  # raw, schedules unresolved
 
 
@@ -80,23 +84,50 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
     bad = [k for k in _UNSUPPORTED if k in raw]
     if bad:
         raise ValueError(f"config: rl-zoo3 keys {bad} are not supported by mf-envs train")
-    if "n_timesteps" not in raw:
-        raise ValueError(f"config: {env_id} needs n_timesteps")
+    moved = sorted(set(raw) & set(_MOVED))
+    if moved:
+        k = moved[0]
+        raise ValueError(
+            f"config: {env_id}: {k} is not an rl-zoo3 key (the zoo would pass it to PPO); "
+            f"give it on the command line: mf-envs train {_MOVED[k]}"
+        )
     ppo = {k: v for k, v in raw.items() if k not in _ZOO_KEYS}
     if "policy_kwargs" in ppo:
         ppo["policy_kwargs"] = parse_policy_kwargs(ppo["policy_kwargs"])
     return Hyperparams(
         env_id=env_id,
-        n_timesteps=int(float(raw["n_timesteps"])),
-        n_envs=int(raw.get("n_envs", 1)),
+        n_timesteps=_count(env_id, "n_timesteps", raw["n_timesteps"])
+        if "n_timesteps" in raw
+        else None,
+        n_envs=_count(env_id, "n_envs", raw.get("n_envs", 1)),
         policy=str(raw.get("policy", "MlpPolicy")),
         normalize=_parse_normalize(raw.get("normalize", False)),
         env_wrappers=_parse_wrappers(raw.get("env_wrapper")),
         env_kwargs=dict(raw.get("env_kwargs") or {}),
-        eval_episodes=int(raw.get("eval_episodes", 5)),
-        vec_env=_parse_vec_env(raw.get("vec_env", "auto")),
         ppo_kwargs=ppo,
     )
+
+
+def _count(env_id: str, key: str, value: Any) -> int:
+    """A positive whole number (`!!float 3e5` included), ValueError naming the key otherwise."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError, OverflowError):
+        x = math.nan
+    if isinstance(value, bool) or not (math.isfinite(x) and x >= 1 and x.is_integer()):
+        raise ValueError(f"config: {env_id}: {key} must be a whole number >= 1, got {value!r}")
+    return int(x)
+
+
+def check_algo_kwargs(algo: Any, kwargs: dict[str, Any], env_id: str) -> None:
+    """ValueError naming a config key that `algo` (an SB3 class) does not take, with the
+    closest parameter name: a typo (`learning_rat`) is one line, not a traceback."""
+    params = set(inspect.signature(algo.__init__).parameters) - {"self", "policy", "env"}
+    for key in kwargs:
+        if key not in params:
+            close = difflib.get_close_matches(key, sorted(params), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise ValueError(f"config: {env_id}: {key!r} is not a {algo.__name__} parameter{hint}")
 
 
 def parse_policy_kwargs(text: str | dict[str, Any]) -> dict[str, Any]:
@@ -125,12 +156,6 @@ class _linear:  # a picklable linear schedule, as rl-zoo3's linear_schedule
 
     def __call__(self, progress_remaining: float) -> float:
         return progress_remaining * self.initial
-
-
-def _parse_vec_env(value: Any) -> str:
-    if value not in ("auto", "dummy"):
-        raise ValueError(f"vec_env: expected 'auto' or 'dummy', got {value!r}")
-    return str(value)
 
 
 def _parse_normalize(value: Any) -> dict[str, Any] | None:

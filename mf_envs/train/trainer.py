@@ -22,7 +22,13 @@ import gymnasium as gym
 
 from mf_envs._files import inside
 from mf_envs._staging import moved, staged_dir
-from mf_envs.train.config import Hyperparams, load_hyperparams, resolve_schedules, wrapper_class
+from mf_envs.train.config import (
+    Hyperparams,
+    check_algo_kwargs,
+    load_hyperparams,
+    resolve_schedules,
+    wrapper_class,
+)
 from mf_envs.train.evaluate import baseline_factories, evaluate_controllers, primary_metric, score
 from mf_envs.train.policy import (
     POLICY_FILE,
@@ -72,7 +78,8 @@ def train(
     out: str | Path = "runs",
     tensorboard: bool = False,
     progress_bar: bool = True,
-    eval_episodes: int | None = None,
+    eval_episodes: int = 5,
+    vec_env: str = "auto",
     final_eval_seeds: tuple[int, ...] = EVAL_SEEDS,
     command: str | None = None,
     overrides: dict[str, Any] | None = None,
@@ -81,7 +88,9 @@ def train(
     """Train PPO on `env_id` with the YAML hyperparameters; returns the run folder and files.
 
     `overrides`: PPO kwargs replacing the config's (tests use a tiny `policy_kwargs`).
-    `eval_episodes`: per EvalCallback check (default: the config's `eval_episodes`).
+    `eval_episodes`: per EvalCallback check (rl-zoo3's default, 5).
+    `vec_env`: "auto" (the env's native vector env where it has one, else `DummyVecEnv`) or
+    "dummy" (the zoo's `--vec-env dummy`).
     `final_eval_seeds`: episodes scored after training for meta.json (empty: skip).
     The run is written into a temporary folder beside `<out>/<env_id>/seed<S>/` and moved there
     when complete; an existing run folder is replaced only with `force` (ValueError otherwise).
@@ -92,6 +101,13 @@ def train(
 
     check_env_id(env_id)
     hp = load_hyperparams(env_id, config)
+    check_algo_kwargs(PPO, {**hp.ppo_kwargs, **(overrides or {})}, env_id)
+    if vec_env not in ("auto", "dummy"):
+        raise ValueError(f"vec-env: 'auto' or 'dummy', got {vec_env!r}")
+    if eval_episodes < 1:
+        raise ValueError(f"eval-episodes: must be >= 1, got {eval_episodes}")
+    if timesteps is None and hp.n_timesteps is None:
+        raise ValueError(f"config: {env_id} has no n_timesteps; give --timesteps")
     total = int(timesteps if timesteps is not None else hp.n_timesteps)
     if total <= 0:
         raise ValueError(f"timesteps: must be positive, got {total}")
@@ -104,14 +120,14 @@ def train(
     with staged_dir(final, replace=True, force=force) as run_dir:
         torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
-        venv, vec_kind, eval_env = _make_envs(hp, seed)
+        venv, vec_kind, eval_env = _make_envs(hp, seed, prefer_native=vec_env == "auto")
         ppo_kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
         model = PPO(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **ppo_kwargs)
         n_steps = int(model.n_steps)
         on_best = _SaveNormalization(run_dir / "best")
         eval_cb = EvalCallback(
             eval_env,
-            n_eval_episodes=eval_episodes or hp.eval_episodes,
+            n_eval_episodes=eval_episodes,
             eval_freq=max(total // (EVALS_PER_RUN * hp.n_envs), n_steps),
             log_path=str(run_dir),
             callback_on_new_best=on_best,
@@ -123,14 +139,14 @@ def train(
         wall = time.perf_counter() - t0
         meta = {
             "env_id": env_id,
-            "command": command or _command(env_id, timesteps, seed, config),
+            "command": command or _command(env_id, timesteps, seed, config, eval_episodes, vec_env),
             "seed": seed,
             "timesteps": int(model.num_timesteps),
             "wall_time_s": round(wall, 2),
             "steps_per_s": round(model.num_timesteps / wall, 1),
             "vectorization": f"{vec_kind} x{hp.n_envs}",
             "selected": "final",
-            "hyperparams": _jsonable_hp(hp, overrides),
+            "hyperparams": _jsonable_hp(hp, overrides, total),
             "versions": _versions(),
         }
         vecnorm = venv if hp.normalize is not None else None
@@ -202,7 +218,7 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
     return out
 
 
-def _make_envs(hp: Hyperparams, seed: int) -> tuple[Any, str, Any]:
+def _make_envs(hp: Hyperparams, seed: int, prefer_native: bool) -> tuple[Any, str, Any]:
     """(training VecEnv, its vectorisation label, 1-env evaluation VecEnv on default parameters)."""
     from mf_envs.train.vec import make_train_env
 
@@ -217,7 +233,7 @@ def _make_envs(hp: Hyperparams, seed: int) -> tuple[Any, str, Any]:
         hp.env_kwargs,
         wrappers=wrappers,
         normalize=hp.normalize,
-        prefer_native=hp.vec_env == "auto",
+        prefer_native=prefer_native,
     )
     norm_eval = None if hp.normalize is None else {**hp.normalize, "norm_reward": False}
     # the same wrapper layout as training (SB3 syncs the VecNormalize stats layer by layer)
@@ -263,17 +279,24 @@ def _tensorboard_dir(out: str | Path, env_id: str) -> str:
     return str(Path(out) / env_id / "tensorboard")
 
 
-def _command(env_id: str, timesteps: int | None, seed: int, config: Any) -> str:
+def _command(
+    env_id: str, timesteps: int | None, seed: int, config: Any, eval_episodes: int, vec_env: str
+) -> str:
     parts = ["mf-envs", "train", env_id, "--seed", str(seed)]
     if timesteps is not None:
         parts += ["--timesteps", str(timesteps)]
     if config is not None:
         parts += ["--config", str(config)]
+    if eval_episodes != 5:
+        parts += ["--eval-episodes", str(eval_episodes)]
+    if vec_env != "auto":
+        parts += ["--vec-env", vec_env]
     return " ".join(parts)
 
 
-def _jsonable_hp(hp: Hyperparams, overrides: dict[str, Any] | None) -> dict[str, Any]:
-    d = asdict(hp)
+def _jsonable_hp(hp: Hyperparams, overrides: dict[str, Any] | None, total: int) -> dict[str, Any]:
+    """The hyperparameters as run: n_timesteps is the budget trained (--timesteps wins)."""
+    d = {**asdict(hp), "n_timesteps": total}
     d["ppo_kwargs"] = {**d["ppo_kwargs"], **(overrides or {})}
     return json.loads(json.dumps(d, default=repr))
 
