@@ -658,3 +658,37 @@ def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
     for pa, pb in zip(a.policy.parameters(), b.policy.parameters()):
         assert torch.equal(pa, pb)
     np.testing.assert_array_equal(a.normalization.var, b.normalization.var)
+
+
+@pytest.mark.parametrize("env_id", ["GOWEC-v0", "GyroStabilizer-v0"])
+def test_to_sb3_acts_as_the_loaded_policy_and_fine_tunes(env_id):
+    """`load_policy(...).to_sb3()`: an SB3 PPO built from the safetensors weights (no pickle)
+    gives the loaded policy's actions on 500 observations (normalised by its VecNormalize), and
+    trains on."""
+    policy = load_policy(env_id)
+    model = policy.to_sb3(n_steps=64, batch_size=64, n_epochs=1)
+    venv = model.get_env()
+    env = gym.make(env_id)
+    obs, _ = env.reset(seed=7)
+    rng = np.random.default_rng(7)
+    observations = []
+    for _ in range(500):
+        observations.append(obs)
+        obs, _, term, trunc, _ = env.step(rng.uniform(-1, 1, env.action_space.shape))
+        if term or trunc:
+            obs, _ = env.reset()
+    batch = np.array(observations, dtype=np.float32)
+    ours, _ = policy.predict(batch)
+    x = venv.normalize_obs(batch) if policy.normalization is not None else batch
+    theirs, _ = model.predict(x, deterministic=True)
+    np.testing.assert_array_equal(ours, theirs)
+    before = {k: v.clone() for k, v in model.policy.state_dict().items()}
+    model.learn(64)
+    after = model.policy.state_dict()
+    assert any(not torch_equal(before[k], after[k]) for k in before)
+
+
+def torch_equal(a, b) -> bool:
+    import torch
+
+    return bool(torch.equal(a, b))

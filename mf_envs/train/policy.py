@@ -100,10 +100,17 @@ class PPOPolicy:
     `policy` is the rebuilt SB3 `ActorCriticPolicy` (torch module, eval mode).
     """
 
-    def __init__(self, policy: Any, normalization: ObsNormalization | None, meta: dict) -> None:
+    def __init__(
+        self,
+        policy: Any,
+        normalization: ObsNormalization | None,
+        meta: dict,
+        policy_kwargs: dict[str, Any] | None = None,
+    ) -> None:
         self.policy = policy
         self.normalization = normalization
         self.meta = meta
+        self.policy_kwargs = resolve_activation(policy_kwargs or {})  # as PPO takes them
 
     def reset(self) -> None:
         """Stateless (MLP) policy: nothing to reset."""
@@ -112,6 +119,49 @@ class PPOPolicy:
         x = self.normalization.apply(obs) if self.normalization is not None else obs
         action, _ = self.policy.predict(x, deterministic=deterministic)
         return action, None
+
+    def to_sb3(self, env: Any = None, **ppo_kwargs: Any) -> Any:
+        """An SB3 `PPO` model holding these weights, to fine-tune with `learn()` (or save to the
+        Hub with SB3's own tools), built without unpickling anything.
+
+        `env`: an SB3 `VecEnv` of this policy's env; default a `DummyVecEnv` of `gym.make(
+        meta["env_id"])`. When the policy was trained on normalised observations the env is
+        wrapped in `VecNormalize` carrying the saved statistics (observations only; training
+        updates them, as in SB3), so `model.predict(model.get_env().normalize_obs(obs))` acts as
+        `predict(obs)`. `ppo_kwargs` go to `PPO` (learning rate, n_steps, ...).
+        """
+        from stable_baselines3 import PPO
+        from stable_baselines3.common.env_util import make_vec_env
+        from stable_baselines3.common.vec_env import VecNormalize
+
+        if env is None:
+            if "env_id" not in self.meta:
+                raise ValueError("env: this policy's meta.json names no env_id; pass env=")
+            env = make_vec_env(self.meta["env_id"], n_envs=1)
+        if self.normalization is not None:
+            n = self.normalization
+            env = VecNormalize(env, norm_obs=True, norm_reward=False, clip_obs=n.clip_obs,
+                               epsilon=n.epsilon)  # fmt: skip
+            env.obs_rms.mean, env.obs_rms.var = n.mean.copy(), n.var.copy()
+        model = PPO(
+            "MlpPolicy",
+            env,
+            policy_kwargs=dict(self.policy_kwargs),
+            use_sde=self.policy.use_sde,
+            device="cpu",
+            **ppo_kwargs,
+        )
+        # the network needs the observation's shape and the action space (its clip); the
+        # observation bounds may have been widened since the policy was trained
+        ours, theirs = self.policy, model
+        if (theirs.observation_space.shape != ours.observation_space.shape
+                or theirs.action_space != ours.action_space):  # fmt: skip
+            raise ValueError(
+                f"env: spaces {theirs.observation_space}, {theirs.action_space} do not fit the "
+                f"policy's {ours.observation_space}, {ours.action_space}"
+            )
+        model.policy.load_state_dict(self.policy.state_dict(), strict=True)
+        return model
 
 
 def policy_dir(env_id: str) -> Path:
@@ -147,7 +197,7 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
             norm = ObsNormalization.from_json(_read_json(norm_path), obs_dim)
         except ValueError as exc:
             raise ValueError(f"policy: {norm_path}: {exc}") from exc
-    return PPOPolicy(_rebuild(folder, desc), norm, meta)
+    return PPOPolicy(_rebuild(folder, desc), norm, meta, desc["policy_kwargs"])
 
 
 def _refuse_pickles(folder: Path, path: str | Path | None) -> None:
