@@ -80,13 +80,20 @@ def env_class(env_id: str) -> type:
     return getattr(importlib.import_module(module), name)
 
 
+# gym.make's own parameters: gym.make consumes them, they never reach an env's constructor
+MAKE_PARAMS = set(inspect.signature(gym.make).parameters)
+
+
 def kwarg_defaults(env_id: str) -> dict[str, Any]:
-    """The constructor's kwargs and their defaults (render_mode left out)."""
+    """The constructor's kwargs and their defaults (render_mode and the names gym.make keeps
+    for itself, such as max_episode_steps, left out)."""
     params = list(inspect.signature(env_class(env_id).__init__).parameters.values())[1:]
     return {
         p.name: p.default
         for p in params
-        if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD) and p.name != "render_mode"
+        if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)
+        and p.name != "render_mode"
+        and p.name not in MAKE_PARAMS
     }
 
 

@@ -28,7 +28,7 @@ of SB3's `VecNormalize`), `env_kwargs`. Discounts and GAE follow the SB3 configs
 from __future__ import annotations
 
 import argparse
-import json
+import math
 import time
 from pathlib import Path
 from typing import Any
@@ -198,12 +198,21 @@ def train(
 ) -> tuple[Path, list[dict[str, float]]]:
     """Train RLlib PPO until `timesteps` env steps (or `iterations`); (run dir, history).
 
-    Writes `<out>/<env_id>_rllib_seed<seed>/checkpoint/` (`Algorithm.save_to_path`) and
-    `meta.json` (settings, Ray version, per-iteration steps and mean episode return, wall time).
+    Writes `<out>/<env_id>_rllib_seed<seed>/`: the policy in the project's format
+    (`policy.json`, `policy.safetensors`, `obs_normalization.json`; `train.rllib_export`), which
+    `evaluate`, `render` and `load_policy` read, `checkpoint/` (`Algorithm.save_to_path`, RLlib's
+    own, pickle-based) and `meta.json` (settings, Ray version, per-iteration steps and mean
+    episode return, wall time). A budget below one training batch trains one batch of that size.
     """
     ray = require_ray()
     settings = ppo_settings(env_id, {**_read_overrides(env_id, config), **overrides})
     budget = int(timesteps if timesteps is not None else settings["timesteps"])
+    if budget < 1:
+        raise ValueError(f"timesteps: must be >= 1, got {budget}")
+    # a budget below one training batch runs one batch of the budget's size (not a whole batch)
+    batch = min(int(settings["train_batch_size_per_learner"]), budget)
+    settings["train_batch_size_per_learner"] = batch
+    settings["minibatch_size"] = min(int(settings["minibatch_size"]), batch)
     started = init_ray(num_cpus=max(2, settings["num_env_runners"]))
     history: list[dict[str, float]] = []
     t0 = time.perf_counter()
@@ -224,13 +233,17 @@ def train(
         run_dir = Path(out) / f"{env_id}_rllib_seed{seed}"
         run_dir.mkdir(parents=True, exist_ok=True)
         algo.save_to_path(str((run_dir / "checkpoint").resolve()))
+        meta = {"env_id": env_id, "backend": "rllib", "ray": ray.__version__, "seed": seed}
+        meta |= {"timesteps_asked": budget, "settings": settings, "history": history}
+        from mf_envs.train.rllib_export import export_policy
+
+        env = gym.make(env_id, **settings["env_kwargs"])
+        export_policy(algo, env, run_dir, meta)  # the safe policy format evaluate/render read
+        env.close()
     finally:
         algo.stop()
         if started:
             ray.shutdown()
-    meta = {"env_id": env_id, "backend": "rllib", "ray": ray.__version__, "seed": seed}
-    meta |= {"settings": settings, "history": history}
-    (run_dir / "meta.json").write_text(json.dumps(meta, indent=1, default=str))
     return run_dir, history
 
 
@@ -248,10 +261,21 @@ def train_command(args: argparse.Namespace) -> list[Path]:
 
     check_env_id(args.env_id)
     run_dir, hist = train(args.env_id, args.timesteps, args.seed, args.out, args.config)
-    last = hist[-1]
-    print(
-        f"{args.env_id} (RLlib PPO): {last['steps']:.0f} steps in {last['wall_s']:.0f} s, "
-        f"{len(hist)} iterations, mean episode return {last['episode_return_mean']:.4g}; "
-        f"checkpoint in {run_dir / 'checkpoint'}"
-    )
+    print(summary(args.env_id, hist, run_dir))
     return [run_dir / "meta.json"]
+
+
+def summary(env_id: str, hist: list[dict[str, float]], run_dir: Path) -> str:
+    """One line: steps, time, iterations and the last mean episode return that RLlib measured
+    (or that no episode ended yet: RLlib reports nan then)."""
+    last = hist[-1]
+    returns = [h["episode_return_mean"] for h in hist if math.isfinite(h["episode_return_mean"])]
+    ret = (
+        f"mean episode return {returns[-1]:.4g}"
+        if returns
+        else "no episode ended yet (no return to report)"
+    )
+    return (
+        f"{env_id} (RLlib PPO): {last['steps']:.0f} steps in {last['wall_s']:.0f} s, "
+        f"{len(hist)} iteration(s), {ret}; policy (mf-envs format) and checkpoint in {run_dir}"
+    )

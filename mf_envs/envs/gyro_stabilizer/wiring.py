@@ -40,6 +40,7 @@ from mf_envs._validate import (
     positive_scalar,
 )
 from mf_envs.effects import resolve_effects
+from mf_envs.envs.base import MAX_SUBSTEPS
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DriveParams, RollGimbal, electric_drive, stable_physics_dt
 from mf_envs.physics.ship.hulls import Hull
@@ -185,15 +186,17 @@ def stable_step(env: Any, effects: Any) -> float:
 
 def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: float) -> float:
     """Kinematic servo: min(0.05, tau); torque drives: min(control_dt, RK4 limit) / 2. A drive so
-    stiff against its gimbal that the limit is below 1e-6 s is refused naming its arguments."""
+    stiff against its gimbal that this step needs more than `MAX_SUBSTEPS` per control step (or
+    is below 1e-6 s) is refused naming the drive's arguments, not the physics_dt nobody gave."""
     cdt = check_range("control_dt", control_dt, 1e-9, 60.0)
     if machine is None:
         return min(0.05, tau_s)
-    if dt_max < 2e-6:
+    if dt_max < 2e-6 or cdt / (0.5 * min(cdt, dt_max)) > MAX_SUBSTEPS:
         raise ValueError(
             f"gimbal_damping, gimbal_stiffness, gimbal_loop_gain, drive_bandwidth, ship_inertia, "
             f"gimbal_inertia: this drive needs physics steps below {dt_max:.3g} s (RK4 limit, "
-            "`ship.drive.stable_physics_dt`); soften the drive or enlarge the inertias"
+            f"`ship.drive.stable_physics_dt`), more than {MAX_SUBSTEPS} per control step; "
+            "soften the drive or enlarge the inertias"
         )
     return 0.5 * min(cdt, dt_max)
 
