@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import functools
 import json
-import os
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -21,11 +20,12 @@ from typing import Any
 
 import gymnasium as gym
 
+from mf_envs._ray import init_local_ray
+from mf_envs._ray import require_ray as _require_ray
 from mf_envs.sweep.config import SweepConfig, Trial
 from mf_envs.sweep.store import ResultStore
 
 FIRST_COLUMNS = ("trial_id", "env_id", "scene", "controller", "seed", "kwargs")
-RAY_INSTALL = 'Ray is not installed; pip install "mf-envs[ray]" (or run the sweep with --serial)'
 
 
 class _ResetOptions(gym.Wrapper):
@@ -145,34 +145,9 @@ def run_ray(
             ray.shutdown()
 
 
-def init_local_ray(num_cpus: int | None = 2) -> None:
-    """`ray.init` of a small local Ray: `num_cpus`, 100 MB object store, no dashboard.
-
-    Ray runs its workers at niceness 15 by default (`RAY_worker_niceness`), which on a machine
-    shared with other jobs starves them; here they are the foreground job (niceness 0) unless
-    the variable is set. With `RAY_ADDRESS` set, joins that cluster instead.
-    """
-    ray = require_ray()
-    if os.environ.get("RAY_ADDRESS"):  # Ray's own variable: join that cluster instead
-        ray.init(log_to_driver=False)
-        return
-    os.environ.setdefault("RAY_worker_niceness", "0")
-    ray.init(
-        address="local",  # a new instance, never a cluster left behind by `ray start`
-        num_cpus=num_cpus,
-        object_store_memory=100 * 1024**2,
-        include_dashboard=False,
-        log_to_driver=False,
-    )
-
-
 def require_ray() -> Any:
-    """The `ray` module, or a ValueError whose one line says what to install."""
-    try:
-        import ray
-    except ImportError as exc:
-        raise ValueError(RAY_INSTALL) from exc
-    return ray
+    """The `ray` module, or a ValueError: install the extra, or run the sweep with --serial."""
+    return _require_ray(hint=" (or run the sweep with --serial)")
 
 
 def run_sweep(

@@ -90,12 +90,10 @@ def episode_metrics(
 
 
 def _stabilizer_settle() -> float:
-    """Seconds skipped before the stabilizer's RMS roll (the env's own controllers benchmark)."""
-    try:
-        from mf_envs.benchmarks.controllers.stabilizer import SETTLE
-    except ImportError:  # benchmarks not installed: the same 10 s
-        return 10.0
-    return float(SETTLE)
+    """Seconds skipped before the stabilizer's RMS roll (`envs.gyro_stabilizer.spec.SETTLE`)."""
+    from mf_envs.envs.gyro_stabilizer.spec import SETTLE
+
+    return SETTLE
 
 
 def run_episode(env_id: str, env: gym.Env, controller: Any, seed: int) -> dict[str, float]:

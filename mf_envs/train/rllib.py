@@ -35,7 +35,7 @@ from typing import Any
 
 import gymnasium as gym
 
-RAY_INSTALL = 'RLlib needs Ray; pip install "mf-envs[ray]"'
+from mf_envs import _ray
 
 _BASE: dict[str, Any] = {
     "timesteps": 200_000,
@@ -70,12 +70,7 @@ PPO_CONFIGS: dict[str, dict[str, Any]] = {
 
 def require_ray() -> Any:
     """The `ray` module with RLlib, or a ValueError whose one line says what to install."""
-    try:
-        import ray
-        import ray.rllib  # noqa: F401
-    except ImportError as exc:
-        raise ValueError(RAY_INSTALL) from exc
-    return ray
+    return _ray.require_ray(rllib=True)
 
 
 def has_native_vector_env(env_id: str, env_kwargs: dict[str, Any] | None = None) -> bool:
@@ -169,14 +164,12 @@ def _mean_std_filter(cls: Any) -> Any:
 
 
 def init_ray(num_cpus: int = 2) -> bool:
-    """Start a small local Ray (`sweep.run.init_local_ray`) unless one is running; True if
+    """Start a small local Ray (`mf_envs._ray.init_local_ray`) unless one is running; True if
     this call started it."""
-    from mf_envs.sweep.run import init_local_ray
-
     ray = require_ray()
     if ray.is_initialized():
         return False
-    init_local_ray(num_cpus)
+    _ray.init_local_ray(num_cpus)
     return True
 
 

@@ -33,8 +33,9 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs.envs.gyro_stabilizer.spec import SETTLE
+
 ENV_ID = "GyroStabilizer-v0"
-SETTLE = 10.0
 # (name, baseline kind, open-loop phase): the seed's open-loop excitations are scored
 # phase-locked to the wave moment (their best case) and at the env's random wave phase
 CONTROLLERS = (
