@@ -1,4 +1,8 @@
-"""Record env trajectories (default baseline + fixed random actions) to an npz; compare two records.
+"""Record env trajectories to an npz; compare two records.
+
+Every env's default baseline and a fixed random action sequence on the single env, and the native
+vector env under fixed random actions, each on a few scenes (regular and irregular seas, drives,
+the inchworm's seed scene).
 
 Used to prove a refactor bit-identical: `python tools/record_trajectories.py before.npz` on the old
 commit, again on the new one, then
@@ -16,16 +20,26 @@ try:
     from mf_envs.controllers import make_baseline
 except ImportError:  # before the namespace move
     from controllers import make_baseline
+from mf_envs.envs.gyro_stabilizer.env import GyroStabilizerEnv
 
-STEPS = {"GOWEC-v0": 300, "GyroStabilizer-v0": 300, "Inchworm-v0": 40}
+SHIP_IRREGULAR = (*GyroStabilizerEnv.DEFAULT_EFFECTS, "irregular_waves")
+
+STEPS = {"GOWEC-v0": 300, "GyroStabilizer-v0": 300, "Inchworm-v0": 40, "GOWEC-v1": 300}
 VARIANTS = {
     "GOWEC-v0": [
         {},
         {"effects": ("gyroscopic", "gimbal_inertia", "buoy_rocking", "wave_2d", "irregular_waves")},
     ],
-    "GyroStabilizer-v0": [{}, {"n_gyros": 1}, {"gimbal_drive": "torque"}],
+    "GyroStabilizer-v0": [
+        {},
+        {"n_gyros": 1},
+        {"gimbal_drive": "torque"},
+        {"effects": SHIP_IRREGULAR},
+    ],
     "Inchworm-v0": [{}, {"effects": ("gravity", "inertia", "anchor_switching")}],
+    "GOWEC-v1": [{}, {"significant_wave_height": 1.5}],
 }
+VECTOR_STEPS = 120  # native vector env, 3 rows, fixed random actions, NEXT_STEP autoreset
 
 
 def numeric_info(info):
@@ -76,6 +90,32 @@ def run(env_id, kw, mode):
     return out
 
 
+def run_vector(env_id, kw):
+    """The native vector env (3 rows, seeds 11, 3, 7) under fixed random actions: obs, rewards,
+    terminations and every numeric info column (masked-out rows as NaN)."""
+    env = gym.make_vec(env_id, num_envs=3, vectorization_mode="vector_entry_point", **kw)
+    obs, info = env.reset(seed=[11, 3, 7])
+    rng = np.random.default_rng(5)
+    out = {"obs": [obs.copy()], "rew": [], "term": []}
+    cols = {}
+    for _ in range(VECTOR_STEPS):
+        a = rng.uniform(-1.2, 1.2, env.action_space.shape).astype(np.float32)
+        obs, r, te, tr, info = env.step(a)
+        out["obs"].append(obs.copy())
+        out["rew"].append(r.copy())
+        out["term"].append((te | tr).astype(float))
+        for k, v in info.items():
+            if k.startswith("_") or not isinstance(v, np.ndarray) or v.dtype.kind not in "fiub":
+                continue
+            col = v.astype(float).reshape(3, -1).copy()
+            col[~info[f"_{k}"]] = np.nan
+            cols.setdefault(k, []).append(col)
+    env.close()
+    rec = {k: np.array(v) for k, v in out.items()}
+    rec.update({f"info_{k}": np.array(v) for k, v in cols.items() if len(v) == VECTOR_STEPS})
+    return rec
+
+
 def compare(a_path, b_path):
     a, b = np.load(a_path), np.load(b_path)
     worst = {}
@@ -103,4 +143,9 @@ if __name__ == "__main__":
                 for k, v in r.items():
                     res[f"{env_id}|{vi}|{mode}|{k}"] = v
                 print(env_id, vi, mode, r["rew"].sum(), flush=True)
+            if gym.spec(env_id).vector_entry_point and (env_id != "Inchworm-v0" or not kw):
+                r = run_vector(env_id, kw)
+                for k, v in r.items():
+                    res[f"{env_id}|{vi}|vector|{k}"] = v
+                print(env_id, vi, "vector", r["rew"].sum(), flush=True)
     np.savez(sys.argv[1], **res)
