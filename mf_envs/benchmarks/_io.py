@@ -67,6 +67,29 @@ def observed_order(h: Sequence[float], err: Sequence[float]) -> float:
     return float(np.polyfit(np.log(h[ok]), np.log(e[ok]), 1)[0])
 
 
+def _sparse_log_ticks(axis: Any, limits: tuple[float, float]) -> None:
+    """Readable ticks on a log axis whose range lies inside about one decade (matplotlib then
+    labels every 1..9 x 10^k and the labels run into each other): labelled ticks at 1, 2 and
+    5 x 10^k only (1, 2, 3, 5 if that gives fewer than two), no minor labels."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+    lo, hi = sorted(limits)  # get_xlim/get_ylim: autoscaled to the data
+    if not (lo > 0 and hi / lo < 20.0):
+        return
+    for mantissas in ((1, 2, 5), (1, 2, 3, 5), (1, 1.5, 2, 3, 4, 5, 7)):
+        ticks = [
+            m * 10.0**k
+            for k in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1)
+            for m in mantissas
+            if lo <= m * 10.0**k <= hi
+        ]
+        if len(ticks) >= 2:
+            break
+    axis.set_major_locator(FixedLocator(ticks))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
 def work_precision_plot(path: Path, rows: Sequence[dict[str, Any]], title: str) -> Path:
     """Log-log error vs seconds, one line per (method, quantity), observed order in the legend.
 
@@ -101,6 +124,8 @@ def work_precision_plot(path: Path, rows: Sequence[dict[str, Any]], title: str) 
         ax.set_ylabel(f"max error: {quantity}")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
+        _sparse_log_ticks(ax.xaxis, ax.get_xlim())
+        _sparse_log_ticks(ax.yaxis, ax.get_ylim())
     fig.suptitle(title)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)

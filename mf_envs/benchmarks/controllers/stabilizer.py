@@ -36,6 +36,7 @@ import numpy as np
 from mf_envs.envs.gyro_stabilizer.spec import SETTLE
 
 ENV_ID = "GyroStabilizer-v0"
+FLOOR = -2.0  # lowest RR drawn: a controller that doubles the roll is off the chart
 # (name, baseline kind, open-loop phase): the seed's open-loop excitations are scored
 # phase-locked to the wave moment (their best case) and at the env's random wave phase
 CONTROLLERS = (
@@ -199,7 +200,12 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
             )
             for s in scenes
         ]
-        ax.bar(np.arange(len(scenes)) + i * width, vals, width, label=kind)
+        x = np.arange(len(scenes)) + i * width
+        ax.bar(x, np.maximum(vals, FLOOR), width, label=kind)
+        for xi, v in zip(x, vals):  # a bar below the axis floor is cut there and labelled
+            if v < FLOOR:
+                ax.annotate(f"{v:.2f}", (xi, FLOOR), xytext=(0, 3), textcoords="offset points",
+                            ha="center", fontsize=7, rotation=90)  # fmt: skip
     ceil = [
         next(
             (r["mean"] for r in rows if r["scene"] == s and r["metric"] == "rr_bound_sinusoidal"),
@@ -217,11 +223,15 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
     )
     ax.set_xticks(np.arange(len(scenes)) + 0.4 - width / 2, scenes, fontsize=8)
     ax.set_ylabel("RMS roll reduction RR")
-    ax.set_ylim(-1.0, 1.05)
+    low = min([0.0, *[r["mean"] for r in rows if r["metric"] == "rr"]])
+    ax.set_ylim(max(FLOOR, low - 0.05), 1.05)
     ax.axhline(0, color="0.5", lw=0.8)
     ax.grid(alpha=0.3, axis="y")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title("GyroStabilizer-v0 baselines (18 t yacht, Seakeeper 9)")
+    if low < FLOOR:
+        ax.set_xlabel(f"bars below {FLOOR:g} are cut at the axis and labelled with their value",
+                      fontsize=7)  # fmt: skip
     fig.tight_layout()
     p = out / "controllers_stabilizer.png"
     fig.savefig(p, dpi=100)

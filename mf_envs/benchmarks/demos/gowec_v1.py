@@ -33,7 +33,10 @@ def _episode(kind: str, rotor: bool, seconds: float, frames: int = 0):
     ctrl = make_baseline(env, kind)
     obs, info = env.reset(seed=0)
     ctrl.reset()
-    keys = ("time", "buoy_pitch", "gimbal_angle", "power_mechanical", "power", "wave_elevation")
+    keys = (
+        "time", "buoy_pitch", "gimbal_angle", "gimbal_rate", "power_mechanical", "power",
+        "wave_elevation",
+    )  # fmt: skip
     rec: dict[str, list] = {k: [] for k in keys}
     shots, every, done = [], max(1, int(round(0.2 / env.unwrapped.control_dt))), False
     while not done:
@@ -44,7 +47,15 @@ def _episode(kind: str, rotor: bool, seconds: float, frames: int = 0):
             shots.append(env.render())
         done = term or trunc
     u = env.unwrapped
-    extra = {"J": u.wave_power_flux(), "Tn": u.natural_period()}
+    extra = {"J": u.wave_power_flux(), "Tn": u.natural_period(), "units": u.model.p.gyro[5]}
+    # the linear PTO's torque c phi' + k phi against the generator's torque and power limits
+    rec_rate, rec_phi = np.asarray(rec["gimbal_rate"]), np.asarray(rec["gimbal_angle"])
+    m = ctrl.c * rec_rate + ctrl.k * rec_phi if hasattr(ctrl, "c") else np.zeros_like(rec_rate)
+    lim = np.minimum(
+        u.max_generator_torque, u.max_generator_power / np.maximum(np.abs(rec_rate), 1e-12)
+    )
+    extra["saturated"] = np.abs(m) >= lim
+    extra["torque_limit"] = u.max_generator_torque
     env.close()
     return {k: np.asarray(v) for k, v in rec.items()}, extra, shots
 
@@ -69,8 +80,19 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
     ax[2].plot(pto["time"], np.degrees(pto["gimbal_angle"]))
     ax[2].set_ylabel("gimbal angle (deg)")
     ax[3].plot(pto["time"], pto["power_mechanical"])
-    ax[3].set_ylabel("PTO power (W)")
+    ax[3].set_ylabel(f"PTO power, {ex['units']:.0f} units (W)")
     ax[3].set_xlabel("time (s)")
+    sat = ex["saturated"]
+    if sat.any():  # where the matched c phi' + k phi asks for more than the generator's rating
+        t = pto["time"]
+        for a in ax[2:]:
+            a.fill_between(t, 0, 1, where=sat, color="tab:red", alpha=0.15, lw=0,
+                           transform=a.get_xaxis_transform(), step="mid")  # fmt: skip
+        ax[3].plot([], [], color="tab:red", alpha=0.3, lw=6, label=(
+            f"shaded: the matched c phi' + k phi asks for more than the generator's "
+            f"{ex['torque_limit'] / 1e3:.0f} kN m (per unit); the torque clips and power peaks"
+        ))  # fmt: skip
+        ax[3].legend(loc="upper left", fontsize=8)
     fig.suptitle("GOWEC-v1 on a regular wave a = 1 m, T = 6 s (matched linear PTO)")
     fig.tight_layout()
     files = [out / "gowec_v1_episode.png"]

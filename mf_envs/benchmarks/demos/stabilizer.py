@@ -102,8 +102,13 @@ def fig_3_10_11(out: Path, quick: bool) -> tuple[Path, str]:
     w = 2 * math.pi / T_SEED
     H = gyro.angular_momentum
     off, _, _ = _run("sinusoidal", 0.0, moment=M_E, gyro=GyroParams(50.0, 10.0, 0.0))
+    # with the rotor off pitch and yaw stay at rest: w2 and w3 lie on top of each other at 0,
+    # so they get their own line styles and their peak in the legend
+    styles = (("-", 1.5), ("--", 3.0), (":", 1.5))
     for k, lab in enumerate(("ω1 (roll)", "ω2 (pitch)", "ω3 (yaw)")):
-        ax[0].plot(off.t, off.omega[:, k], label=lab)
+        peak = np.abs(off.omega[:, k]).max()
+        ls, lw = styles[k]
+        ax[0].plot(off.t, off.omega[:, k], ls, lw=lw, label=f"{lab}, peak {peak:.3g} rad/s")
     base = np.abs(off.omega[:, 0]).max()
     ax[1].plot(off.t, off.omega[:, 0], "k", label="rotor off")
     lines = []

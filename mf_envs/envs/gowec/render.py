@@ -20,14 +20,15 @@ def wave_frame(
     spin: float,
     buoy_radius: float,
     text: str,
+    half_width: float | None = None,
 ) -> np.ndarray:
     """One frame (H, W, 3) uint8 of `mf_envs.render.draw_gowec`: the elevation profile of `wave`
-    at time t (s) over +-1 wavelength of `wave_period` along `wave_direction` (rad), the buoy at
-    attitude buoy_R (3, 3), gimbal angle (rad), rotor angle spin t (spin rad/s), buoy radius (m,
-    0 = the renderer's default)."""
+    at time t (s) over +-`half_width` m (default: one wavelength of `wave_period`) along
+    `wave_direction` (rad), the buoy at attitude buoy_R (3, 3), gimbal angle (rad), rotor angle
+    spin t (spin rad/s), buoy radius (m, 0 = the renderer's default)."""
     from mf_envs.render import draw_gowec
 
-    lam = float(waves.wavelength(wave_period))
+    lam = float(waves.wavelength(wave_period)) if half_width is None else half_width
     x = np.linspace(-lam, lam, 121)
     c, s = math.cos(wave_direction), math.sin(wave_direction)
     return draw_gowec(

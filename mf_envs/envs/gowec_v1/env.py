@@ -135,6 +135,7 @@ class GOWECV1Env(MFEnv):
         )
         self.max_generator_torque = check_range("max_generator_torque", max_generator_torque, 0.0)
         p_max = check_range("max_generator_power", max_generator_power, 0.0)
+        self.max_generator_power = p_max  # W, per unit (the drive's limit, set in the model)
         self.rotor_loss = check_range("rotor_loss", rotor_loss, 0.0, 1e7)
         self.max_gimbal_rate = check_range("max_gimbal_rate", max_gimbal_rate, 1e-6)
         self.episode_seconds = check_range("episode_seconds", episode_seconds, 1e-3, 1e6)

@@ -18,7 +18,11 @@ def draw_frame(env: Any) -> np.ndarray:
     phi = math.remainder(float(y[2]), 2 * math.pi)
     text = f"t = {env._t:5.1f} s  pitch = {y[0]:+.2f} rad  phi = {phi:+.2f} rad"
     text += f"  P = {env._last_power / 1e3:.2f} kW"
+    # the real hull to scale: a window of a quarter wavelength (at least 5 radii) each side,
+    # so the 5 m buoy is not a few pixels on a 110 m strip of a 6 s wave
+    r = env.buoy_radius or 0.0
+    half = max(0.25 * float(waves.wavelength(env.wave_period)), 5.0 * r) if r > 0 else None
     return wave_frame(
         env.wave, env._t, env.wave_period, env.wave_direction, R, float(y[2]), env.model.psid,
-        env.buoy_radius or 0.0, text,
+        r, text, half_width=half,
     )  # fmt: skip
