@@ -11,6 +11,7 @@ from mf_envs.physics.beam import (
     BeamModel,
     BeamParams,
     NewmarkState,
+    banded,
     clamp_dofs,
     initial_acceleration,
     newmark_step,
@@ -41,7 +42,7 @@ def test_tangent_matches_finite_differences(seed):
     d = model.straight() + 0.3 * rng.standard_normal(model.n_dof)
     kap = rng.standard_normal((3, el.N_GAUSS))
     _, ab = model.internal(d, kap)
-    k = el.band_to_dense(ab)
+    k = banded.band_to_dense(ab)
     k_fd = _fd_tangent(model, d, kap)
     assert np.max(np.abs(k - k_fd)) / np.max(np.abs(k)) < 1e-6
     assert np.allclose(k, k.T, rtol=0, atol=1e-10 * np.max(np.abs(k)))  # conservative: symmetric
@@ -126,7 +127,7 @@ def test_mass_matrix_matches_seed_appendix():
     """Gauss-integrated consistent mass vs the closed forms of Eqs. 105-106."""
     le, m_a, j3 = 0.7, 2.0, 0.3
     model = BeamModel(BeamParams(le, 1.0, 1.0, 1.0, 1, mass_per_length=m_a, rotary_inertia=j3))
-    m = el.band_to_dense(model.mass)
+    m = banded.band_to_dense(model.mass)
     loc = el.element_dofs(1)[0]
     me = m[np.ix_(loc, loc)]
     L = le

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam import banded
 from mf_envs.physics.inchworm import (
     Inchworm,
     InchwormParams,
@@ -38,7 +38,7 @@ def test_terrain_load_derivative_matches_finite_differences():
     d = sim.state.d.copy()
     d[0::6] += 1e-4 * np.linspace(0, 1, len(d[0::6]))  # some slip
     f, ab, _ = sim.terrain.loads(d, np.zeros_like(d))
-    k = el.band_to_dense(ab)
+    k = banded.band_to_dense(ab)
     h = 1e-8
     k_fd = np.zeros_like(k)
     for j in range(len(d)):

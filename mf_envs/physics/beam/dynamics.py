@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mf_envs._validate import check_choice, finite_scalar
-from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam import banded
 from mf_envs.physics.beam.algorithmic import assemble_algorithmic
 from mf_envs.physics.beam.solver import (
     BeamModel,
@@ -179,7 +179,7 @@ def time_step(
     v_pred[fixed] = 0.0
     f = f_end
     if af != 0.0 or am != 0.0:
-        f = (1.0 - af) * f_end + af * f0 - am * el.band_matvec(model.mass, state.a)
+        f = (1.0 - af) * f_end + af * f0 - am * banded.band_matvec(model.mass, state.a)
     if af != 0.0 and scheme.name == "generalized_alpha":
         f = f - af * model.internal(state.d, k0, tangent=False)[0]
     if af != 0.0 and extra is not None:
@@ -249,5 +249,5 @@ def initial_acceleration(
     f_int, _ = model.internal(d, kappa_sharp, tangent=False)
     r = f_ext - f_int
     m = model.mass.copy()
-    el.constrain_band(m, r, fixed)
+    banded.constrain_band(m, r, fixed)
     return _solve(m, r)

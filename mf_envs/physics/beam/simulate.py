@@ -19,6 +19,7 @@ import numpy as np
 from scipy.linalg import eigh
 
 from mf_envs._validate import check_choice, check_int, check_positive, check_shape
+from mf_envs.physics.beam import banded
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.dynamics import (
     SCHEMES,
@@ -139,7 +140,7 @@ def simulate_clamped(
         )
         states.append(st)
     tip = np.array([[s.d[model.dof(-1, "z1")], s.d[model.dof(-1, "z2")]] for s in states])
-    ke = np.array([0.5 * s.v @ el.band_matvec(model.mass, s.v) for s in states])
+    ke = np.array([0.5 * s.v @ banded.band_matvec(model.mass, s.v) for s in states])
     se = np.array([model.elastic_energy(s.d, kap) for s in states])
     return CantileverHistory(
         t=dt * np.arange(n + 1),
@@ -157,8 +158,8 @@ def linear_modes(model: BeamModel) -> tuple[np.ndarray, np.ndarray]:
     """Natural angular frequencies (n_free,) [rad/s] and mode shapes (n_dof, n_free) of the
     root-clamped beam linearised about the straight state (scipy.linalg.eigh, dense)."""
     free = ~clamped_root(model)
-    k = el.band_to_dense(model.internal(model.straight(), np.zeros(model.gauss_S.shape))[1])
-    m = el.band_to_dense(model.mass)
+    k = banded.band_to_dense(model.internal(model.straight(), np.zeros(model.gauss_S.shape))[1])
+    m = banded.band_to_dense(model.mass)
     w2, vec = eigh(k[np.ix_(free, free)], m[np.ix_(free, free)])
     modes = np.zeros((model.n_dof, free.sum()))
     modes[free] = vec

@@ -24,6 +24,7 @@ import numpy as np
 from scipy.linalg import get_lapack_funcs
 
 from mf_envs._validate import check_int, check_nonnegative, check_positive
+from mf_envs.physics.beam import banded
 from mf_envs.physics.beam import element as el
 
 DOF_NAMES = ("z1", "dz1", "z2", "dz2", "psi")
@@ -240,7 +241,7 @@ def newton(
     reach = max(reach, float(np.max(np.abs(d[2::6]), initial=0.0)) / p.length)
     tol_r = max(settings.rtol, 256 * eps * max(p.EA, p.GAs) * p.length * reach / f_ref)
     if dyn is not None:  # a = c_a (d - d_pred) loses digits in the difference
-        md = el.band_matvec(model.mass, np.abs(d) + np.abs(dyn.d_pred))
+        md = banded.band_matvec(model.mass, np.abs(d) + np.abs(dyn.d_pred))
         tol_r = max(tol_r, 256 * eps * dyn.c_a * float(np.max(np.abs(md * model.u_scale))) / f_ref)
     res = np.inf
     for it in range(1, settings.max_iter + 1):
@@ -248,7 +249,7 @@ def newton(
         r = f_ext - f_int
         if dyn is not None:
             acc = dyn.c_a * (d - dyn.d_pred)
-            r -= el.band_matvec(model.mass, acc)
+            r -= banded.band_matvec(model.mass, acc)
             ab += dyn.c_a * model.mass
         if extra is not None:
             vel = dyn.v_pred + dyn.c_v * (d - dyn.d_pred) if dyn is not None else np.zeros_like(d)
@@ -258,7 +259,7 @@ def newton(
                 ab -= dfdd
             if dfdv is not None and dyn is not None:
                 ab -= dyn.c_v * dfdv
-        el.constrain_band(ab, r, fixed)
+        banded.constrain_band(ab, r, fixed)
         res = float(np.max(np.abs(r * model.u_scale))) / f_ref
         if it == 1:
             res_first = res

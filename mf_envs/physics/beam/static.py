@@ -12,8 +12,8 @@ onset search, every friction solve), so nothing here allocates: the caller passe
 as flags (no exceptions inside compiled code); the Python wrappers raise.
 
 Hand-written: no library solves the nonlinear banded equilibrium of this element from compiled
-code; the linear solves are `element.band_spd_solve_into` (banded LDL^T, the tangent of a stable
-configuration is positive definite) with `element.band_solve_into` (pivoting LU) as fallback.
+code; the linear solves are `banded.band_spd_solve_into` (banded LDL^T, the tangent of a stable
+configuration is positive definite) with `banded.band_solve_into` (pivoting LU) as fallback.
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
+from mf_envs.physics.beam import banded
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.solver import NewtonDivergence
 
@@ -119,7 +120,7 @@ def newton(d, kap, f, fixed, bc, sc):
         el.assemble_into(d, le, kap, qxi, qw, stiff, True, p, ab)
         for i in range(nd):
             r[i] = f[i] - p[i]
-        el.constrain_band(ab, r, fixed)
+        banded.constrain_band(ab, r, fixed)
         res = 0.0
         for i in range(nd):
             res = max(res, abs(r[i] * u_scale[i]))
@@ -131,8 +132,8 @@ def newton(d, kap, f, fixed, bc, sc):
         if res < 1e-2 * tol_r:  # converged whatever the step (the test below): skip the solve
             return True, it
         # LDL^T for the (usual) positive definite tangent, else the pivoting LU
-        if el.band_spd_solve_into(ab, r, work, delta) != 0:
-            if el.band_solve_into(ab, r, work, piv, delta) != 0:
+        if banded.band_spd_solve_into(ab, r, work, delta) != 0:
+            if banded.band_solve_into(ab, r, work, piv, delta) != 0:
                 return False, it
         step = 0.0
         for i in range(nd):

@@ -19,8 +19,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from mf_envs.physics.beam import banded, static
 from mf_envs.physics.beam import element as el
-from mf_envs.physics.beam import static
 
 OK, NEWTON_FAILED, NO_EQUILIBRIUM = 0, 1, 2
 FORWARD, BACKWARD = 1, -1
@@ -197,14 +197,14 @@ def _onset_bordered(lam, d, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc,
             r[j] = f_ext[j] - p[j]
             if fixed[j]:
                 c[j] = 0.0
-        el.constrain_band(ab, r, fixed)
+        banded.constrain_band(ab, r, fixed)
         for j in range(nd):
             res = max(res, abs(r[j] * u_scale[j]))
         res /= f_ref
-        if not (np.isfinite(res) and np.isfinite(e)) or el.band_ldl_factor(ab, work) != 0:
+        if not (np.isfinite(res) and np.isfinite(e)) or banded.band_ldl_factor(ab, work) != 0:
             return lam, False, it
-        el.band_ldl_solve(work, r, y)
-        el.band_ldl_solve(work, b, z)
+        banded.band_ldl_solve(work, r, y)
+        banded.band_ldl_solve(work, b, z)
         cy, cz = 0.0, 0.0
         for j in range(nd):
             cy += c[j] * y[j]
