@@ -1,6 +1,7 @@
 """The package as others cite and reuse it: one version everywhere (pyproject, `__version__`,
 CITATION.cff, CHANGELOG), a valid-looking citation of the package and of the dissertation, an
-MIT LICENSE, a docs page for every env id, and a wheel that carries `py.typed`."""
+MIT LICENSE, a docs page for every env id, a wheel that carries `py.typed`, and the README and
+docs/api.md naming every baseline controller."""
 
 from __future__ import annotations
 
@@ -75,3 +76,21 @@ def test_wheel_carries_py_typed_and_the_license(tmp_path):
     assert "mf_envs/py.typed" in names
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not [n for n in names if "__pycache__" in n or n.endswith((".nbi", ".nbc"))]
+
+
+@pytest.mark.parametrize("env_id", list(ENV_SPECS))
+def test_readme_and_api_list_every_baseline(env_id):
+    """The README's env table (default baseline column) and docs/api.md name every registered
+    baseline kind of each env (the stabilizer's "rate" was missing from both)."""
+    from mf_envs import controllers
+
+    kinds = controllers.baseline_kinds(env_id)
+    readme = (ROOT / "README.md").read_text().splitlines()
+    row = next(ln for ln in readme if ln.startswith(f"| `{env_id}` | "))  # the env table's
+    baselines = row.rstrip(" |").rsplit(" | ", 1)[1]
+    assert baselines.startswith(f'`"{kinds[0]}"`')  # the default first
+    assert [k for k in kinds if f'`"{k}"`' not in baselines] == []
+    api = (ROOT / "docs" / "api.md").read_text()
+    section = api[api.index("## Baseline controllers") :]
+    (item,) = [p for p in section.split("\n- ") if p.startswith(f"`{env_id}`:")]
+    assert [k for k in kinds if f'`"{k}"`' not in item] == []
