@@ -9,10 +9,13 @@ so `gym.register("GOWEC-v1", ...)` would bring that warning back for every `GOWE
 
 Instead, `register_aliases` stores under the key "GOWEC-v1" of `gym.registry` (the dict that
 `gym.make`, `gym.make_vec` and `gym.spec` look ids up in) a copy of the target's spec: its id is
-`FloatingGOWEC-v0`, so no spec of name GOWEC above v0 exists, and the env made through the alias
-reports the id that makes it. Only its entry points differ: the `DeprecatedId` objects below
-(string entry points, so the spec pickles and serialises like any other), which emit
-`DeprecatedIdWarning` naming the new id, then build the target's env or native vector env.
+`FloatingGOWEC-v0`, so no spec of name GOWEC above v0 exists, and an env made through the alias
+reports the new id as its `spec.id`. Only its entry points differ: the `DeprecatedId` objects
+below (string entry points, so the spec pickles and serialises like any other), which emit
+`DeprecatedIdWarning` naming the new id (shown once per calling line under Python's default
+filters), then build the target's env or native vector env. One visible trace: as
+`gym.pprint_registry()` prints each spec's id, it lists `FloatingGOWEC-v0` a second time (under
+`_alias`).
 """
 
 from __future__ import annotations
