@@ -17,13 +17,16 @@ from pathlib import Path
 
 def check_out(target: Path, *, folder: bool = True) -> Path:
     """`target` as an output folder (or file if not `folder`) that can be written: ValueError if
-    it is a file where a folder is expected (or the reverse), or its nearest existing parent is
-    not a writable folder."""
+    it is a file where a folder is expected (or the reverse), its nearest existing parent is not
+    a writable folder, or (a file) its folder does not exist: a file's folder is not created,
+    so a mistyped path is refused instead of growing a tree of folders."""
     target = Path(target)
     if target.exists() and folder and not target.is_dir():
         raise ValueError(f"out: {str(target)!r} is a file, expected a folder")
     if target.exists() and not folder and target.is_dir():
         raise ValueError(f"out: {str(target)!r} is a folder, expected a file path")
+    if not folder and not target.parent.exists():
+        raise ValueError(f"--out: no folder {str(target.parent)!r}; create it first")
     parent = target.parent
     while not parent.exists():
         parent = parent.parent

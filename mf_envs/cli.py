@@ -1,16 +1,18 @@
-"""`mf-envs` command line: demo, bench, render, train, evaluate (docs/api.md, "CLI").
+"""`mf-envs` command line: demo, bench, render, train, evaluate, sweep (docs/api.md, "CLI").
 
 User mistakes (bad ids, bad options, ValueError from the library, an output path that cannot be
 written, a missing optional extra) print one line on stderr and exit with status 2; Ctrl-C prints
 one line and exits with 130. Outputs are written into a temporary folder beside the target and
 moved into place when complete (`mf_envs._staging`), so an interrupted run leaves the previous
-outputs intact. Everything else is a real bug and keeps its traceback.
+outputs intact; the files written are named on stdout. A deprecated env id (`GOWEC-v1`) works
+and prints one note naming its new id. Everything else is a real bug and keeps its traceback.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
@@ -33,10 +35,23 @@ EXTRAS = {
 }
 
 
+# extras that pull torch: on Linux a plain `pip install torch` is the multi-GB CUDA build
+TORCH_EXTRAS = ("train", "ray")
+CPU_TORCH = "pip install torch==2.13.0 --index-url https://download.pytorch.org/whl/cpu"
+
+
 def missing_extra(exc: ImportError) -> str | None:
     """The extra whose install fixes `exc` (a ModuleNotFoundError), or None."""
     name = (getattr(exc, "name", None) or "").partition(".")[0]
     return EXTRAS.get(name)
+
+
+def install_hint(extra: str) -> str:
+    """How to install `extra`, on one line (CPU torch first for the extras that need torch)."""
+    cmd = f'pip install "mf-envs[{extra}]" (in a clone: pip install -e ".[{extra}]")'
+    if extra in TORCH_EXTRAS:
+        return f"install CPU torch first: {CPU_TORCH}, then {cmd}"
+    return cmd
 
 
 def _cmd_demo(args: argparse.Namespace) -> list[Path]:
@@ -94,10 +109,7 @@ class _OneLineParser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = _OneLineParser(
-        prog="mf-envs",
-        description="Moving-frame Gymnasium environments (Rios 2017): demo, bench, render, train.",
-    )
+    p = _OneLineParser(prog="mf-envs")
     sub = p.add_subparsers(
         dest="command", required=True, metavar="COMMAND", parser_class=_OneLineParser
     )
@@ -163,7 +175,31 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_arguments(s)
     s.set_defaults(func=_cmd_sweep)
+    p.description = (
+        f"Moving-frame Gymnasium environments (Rios 2017). Commands: {', '.join(sub.choices)}."
+    )
+    p.add_argument("--version", action="version", version=f"%(prog)s {package_version()}")
     return p
+
+
+def package_version() -> str:
+    """The installed distribution's version (`importlib.metadata`), else the package's own."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("mf-envs")
+    except PackageNotFoundError:  # run from a source tree that is not installed
+        from mf_envs import __version__
+
+        return __version__
+
+
+def _written(paths: list[Path]) -> str:
+    """The files a command wrote, named: one path, or a count and one path a line."""
+    names = [str(p) for p in paths]
+    if len(names) == 1:
+        return f"wrote {names[0]}"
+    return "\n  ".join([f"wrote {len(names)} files:", *names])
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -171,6 +207,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     func: Callable[[argparse.Namespace], list[Path]] = args.func
     who = f"mf-envs {args.command}"
+    with warnings.catch_warnings():
+        warnings.showwarning = _one_line_notes(who, warnings.showwarning)
+        return _run(func, args, who)
+
+
+def _one_line_notes(who: str, shown: Callable[..., None]) -> Callable[..., None]:
+    """A `warnings.showwarning` that prints a `DeprecatedIdWarning` (a renamed env id) as one
+    line `WHO: note: ...` on stderr and passes every other warning to `shown`."""
+    from mf_envs.envs import DeprecatedIdWarning
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, DeprecatedIdWarning):
+            print(f"{who}: note: {message}", file=sys.stderr)
+        else:
+            shown(message, category, filename, lineno, file, line)
+
+    return show
+
+
+def _run(
+    func: Callable[[argparse.Namespace], list[Path]], args: argparse.Namespace, who: str
+) -> int:
+    from mf_envs.envs import canonical_env_id
+
+    if isinstance(getattr(args, "env_id", None), str):  # a deprecated id: its new id, noted
+        args.env_id = canonical_env_id(args.env_id)
     try:
         written = func(args)
     except ValueError as exc:
@@ -180,10 +242,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         extra = missing_extra(exc)
         if extra is None:
             raise
-        print(
-            f'{who}: needs the {extra} extra: pip install "mf-envs[{extra}]" ({exc})',
-            file=sys.stderr,
-        )
+        print(f"{who}: needs the {extra} extra: {install_hint(extra)} ({exc})", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print(f"{who}: interrupted; previous outputs left unchanged", file=sys.stderr)
@@ -194,8 +253,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{who}: error: {exc.strerror}: {exc.filename}", file=sys.stderr)
         return 2
     if written:
-        folders = sorted({str(Path(w).parent) for w in written})
-        print(f"wrote {len(written)} file(s) into: {', '.join(folders)}")
+        print(_written(written))
     return 0
 
 

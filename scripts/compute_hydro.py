@@ -1,4 +1,4 @@
-"""Compute the GOWEC-v1 default hull's hydrodynamic coefficients with Capytaine (BEM).
+"""Compute the FloatingGOWEC-v0 default hull's hydrodynamic coefficients with Capytaine (BEM).
 
     pip install "mf-envs[hydro]"
     python scripts/compute_hydro.py                      # writes the shipped default hull

@@ -13,7 +13,7 @@ from PIL import Image
 from mf_envs.cli import build_parser, main
 from mf_envs.envs import available_env_ids
 
-COMMANDS = ("demo", "bench", "render", "train", "evaluate")
+COMMANDS = ("demo", "bench", "render", "train", "evaluate", "sweep")
 
 
 def _run(capsys, argv: list[str]) -> tuple[int, str, str]:
@@ -36,10 +36,19 @@ def _assert_one_line_error(code: int, err: str) -> None:
 def test_help_lists_every_command(capsys):
     code, out, _ = _run(capsys, ["--help"])
     assert code == 0
-    for cmd in COMMANDS:
-        assert cmd in out, cmd
     sub = next(a for a in build_parser()._actions if a.dest == "command")
     assert set(COMMANDS) <= set(sub.choices)
+    # the description names every command, as the listing below it does
+    assert f"Commands: {', '.join(sub.choices)}." in " ".join(out.split())
+    for cmd in sub.choices:
+        assert f"\n    {cmd} " in out, cmd
+
+
+def test_version_is_the_installed_distribution(capsys):
+    from importlib.metadata import version
+
+    code, out, _ = _run(capsys, ["--version"])
+    assert code == 0 and out.strip() == f"mf-envs {version('mf-envs')}"
 
 
 @pytest.mark.parametrize(
@@ -108,9 +117,10 @@ def test_render_writes_a_gif(capsys, tmp_path, env_id):
     except ModuleNotFoundError:
         pytest.skip(f"{env_id}: its baseline controllers have not landed yet")
     path = tmp_path / "gifs" / f"{env_id}.gif"
+    path.parent.mkdir()
     code, out, err = _run(capsys, ["render", env_id, "--out", str(path), "--steps", "6"])
     assert code == 0, err
-    assert str(path.parent) in out  # the output folder is named
+    assert out.strip() == f"wrote {path}"  # the file is named
     with Image.open(path) as im:
         assert im.n_frames >= 2
 
@@ -233,6 +243,40 @@ def _read_only_dir(tmp_path):
     return str(ro)
 
 
+def test_render_refuses_a_missing_output_folder(capsys, tmp_path):
+    out = tmp_path / "no_such_dir" / "x.gif"
+    code, _, err = _run(capsys, ["render", "GOWEC-v0", "--out", str(out), "--steps", "2"])
+    _assert_one_line_error(code, err)
+    assert "--out" in err and str(out.parent) in err
+    assert not out.parent.exists()  # nothing created
+
+
+def test_render_with_the_deprecated_id_notes_the_new_one(capsys, tmp_path):
+    out = tmp_path / "x.gif"
+    code, stdout, err = _run(capsys, ["render", "GOWEC-v1", "--out", str(out), "--steps", "2"])
+    assert code == 0, err
+    notes = [ln for ln in err.splitlines() if "GOWEC-v1" in ln]
+    assert notes == [
+        "mf-envs render: note: env id 'GOWEC-v1' is deprecated: use 'FloatingGOWEC-v0' "
+        "(the same env, renamed)"
+    ]
+    assert stdout.strip() == f"wrote {out}" and out.is_file()
+
+
+def test_several_files_are_each_named(capsys, tmp_path, monkeypatch):
+    from mf_envs.benchmarks import demos
+
+    monkeypatch.setattr(demos, "run", _fake_demo({"a.png": "a", "b.gif": "b"}))
+    code, out, err = _run(capsys, ["demo", "--out", str(tmp_path / "d")])
+    assert code == 0, err
+    lines = out.strip().splitlines()
+    assert lines[0] == "wrote 2 files:"
+    assert sorted(ln.strip() for ln in lines[1:]) == [
+        str(tmp_path / "d" / "a.png"),
+        str(tmp_path / "d" / "b.gif"),
+    ]
+
+
 @pytest.mark.parametrize(
     "argv",
     [
@@ -306,17 +350,20 @@ def test_run_folders_are_not_overwritten_without_force(capsys, tmp_path):
     [
         ["train", "GOWEC-v0", "--out", "OUT"],
         ["evaluate", "GOWEC-v0", "--out", "OUT"],
-        ["render", "GOWEC-v0", "--policy", "ppo", "--out", "OUT/a.gif", "--steps", "2"],
+        ["render", "GOWEC-v0", "--policy", "ppo", "--out", "TMP/a.gif", "--steps", "2"],
     ],
     ids=["train", "evaluate", "render-ppo"],
 )
 def test_missing_train_extra_is_one_line(capsys, tmp_path, monkeypatch, argv):
     for mod in ("stable_baselines3", "torch", "safetensors"):
         monkeypatch.setitem(sys.modules, mod, None)  # `import mod` now fails as if not installed
-    argv = [a.replace("OUT", str(tmp_path / "o")) for a in argv]
+    argv = [a.replace("OUT", str(tmp_path / "o")).replace("TMP", str(tmp_path)) for a in argv]
     code, _, err = _run(capsys, argv)
     _assert_one_line_error(code, err)
-    assert 'pip install "mf-envs[train]"' in err
+    assert "needs the train extra" in err
+    # CPU torch first (a plain `pip install torch` is the CUDA build), then the extra
+    cpu = err.index("pip install torch==2.13.0 --index-url https://download.pytorch.org/whl/cpu")
+    assert cpu < err.index('pip install "mf-envs[train]"') < err.index('pip install -e ".[train]"')
 
 
 def test_bench_speed_without_pyelastica_skips_that_case(capsys, tmp_path, monkeypatch):

@@ -36,7 +36,7 @@ INFO_KEYS: dict[str, tuple[str, ...]] = {
         "wave_moment",
     ),
     "Inchworm-v0": ("x_head", "x_tail", "centerline"),
-    "GOWEC-v1": (
+    "FloatingGOWEC-v0": (
         "power",
         "power_mechanical",
         "buoy_pitch",
@@ -68,7 +68,7 @@ INVALID_KWARGS: dict[str, list[tuple[str, Any]]] = {
         ("youngs_modulus", -1.0),
         ("mass_per_length", float("inf")),
     ],
-    "GOWEC-v1": [
+    "FloatingGOWEC-v0": [
         ("rotor_inertia", -1.0),
         ("wave_period", 0.0),
         ("generator_efficiency", 1.5),
@@ -84,7 +84,7 @@ SOAK_STEPS: dict[str, int] = {
     "GOWEC-v0": 100_000,
     "GyroStabilizer-v0": 100_000,
     "Inchworm-v0": 1_000,
-    "GOWEC-v1": 20_000,  # ~1 ms per step (Cummins + gyro, 4 RK4 substeps)
+    "FloatingGOWEC-v0": 20_000,  # ~1 ms per step (Cummins + gyro, 4 RK4 substeps)
 }
 
 # Random-action steps for the determinism/pickling checks ("a few hundred"); the quasi-static
@@ -97,7 +97,8 @@ POISON: dict[str, Any] = {
     "GOWEC-v0": lambda raw: raw.state.fill(np.nan),  # (phi, phi')
     "GyroStabilizer-v0": lambda raw: raw._y.fill(np.nan),  # ship rates, phi, phi', ...
     "Inchworm-v0": lambda raw: raw.sim.state.d.fill(np.nan),  # beam nodal dofs (Newmark d)
-    "GOWEC-v1": lambda raw: raw.state.fill(np.nan),  # buoy, gimbal, radiation states, energies
+    # buoy, gimbal, radiation states, energies
+    "FloatingGOWEC-v0": lambda raw: raw.state.fill(np.nan),
 }
 
 
@@ -314,7 +315,12 @@ def test_every_effect_set_runs_random_actions(env_id):
 RESET_OPTIONS: dict[str, dict[str, float]] = {
     "GOWEC-v0": {"gimbal_angle": 0.3, "gimbal_rate": -0.5},
     "GyroStabilizer-v0": {"roll": 0.1, "roll_rate": 0.05, "gimbal_angle": 0.2},
-    "GOWEC-v1": {"buoy_pitch": 0.1, "buoy_roll": -0.05, "gimbal_angle": 0.3, "gimbal_rate": -0.5},
+    "FloatingGOWEC-v0": {
+        "buoy_pitch": 0.1,
+        "buoy_roll": -0.05,
+        "gimbal_angle": 0.3,
+        "gimbal_rate": -0.5,
+    },
 }
 
 

@@ -27,7 +27,7 @@ BAD_OPTIONS = {
     "GOWEC-v0": [("gimbal_rate", 1e9), ("gimbal_angle", float("nan")), ("wave_phase", "1")],
     "GyroStabilizer-v0": [("roll", 10.0), ("roll_rate", True), ("gimbal_angle", 4.0)],
     "Inchworm-v0": [("x_tail", 1e17), ("kappa", [1.0, 2.0]), ("kappa", [0.0, 0.0, -14.0])],
-    "GOWEC-v1": [("buoy_pitch", 10.0), ("gimbal_rate", float("inf")), ("buoy_roll", "0.1")],
+    "FloatingGOWEC-v0": [("buoy_pitch", 10.0), ("gimbal_rate", float("inf")), ("buoy_roll", "0.1")],
 }
 
 
@@ -191,7 +191,7 @@ def _layout_names(env_id):
         return GOWEC_OBS.names
     if env_id == "GyroStabilizer-v0":
         return SHIP_OBS.names
-    if env_id == "GOWEC-v1":
+    if env_id == "FloatingGOWEC-v0":
         return FLOATING_OBS.names
     return observation_layout(3).names
 
@@ -218,7 +218,7 @@ def test_docstring_sections_and_observation_table_follow_the_layout(env_id):
     rows = [r.split("|")[2].strip() for r in section.splitlines() if r.strip().startswith("| ")]
     assert tuple(rows[1:]) == _layout_names(env_id)  # header row first
     if env_id != "Inchworm-v0":
-        layout = {"GOWEC-v0": GOWEC_OBS, "GOWEC-v1": FLOATING_OBS}.get(env_id, SHIP_OBS)
+        layout = {"GOWEC-v0": GOWEC_OBS, "FloatingGOWEC-v0": FLOATING_OBS}.get(env_id, SHIP_OBS)
         assert env.observation_space.shape == (layout.size,)
         assert layout.table() in "\n".join(line.strip() for line in doc.splitlines())
     else:

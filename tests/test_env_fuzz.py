@@ -148,7 +148,7 @@ def test_the_table_covers_the_kwargs_the_reviewers_named():
     assert {"gimbal_stiffness", "max_drive_power", "drive_bandwidth", "effort_weight"} <= set(
         real_kwargs("GyroStabilizer-v0")
     )
-    assert {"peak_period", "significant_wave_height"} <= set(real_kwargs("GOWEC-v1"))
+    assert {"peak_period", "significant_wave_height"} <= set(real_kwargs("FloatingGOWEC-v0"))
 
 
 @pytest.mark.parametrize("env_id", ENV_IDS)

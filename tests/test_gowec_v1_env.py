@@ -1,4 +1,5 @@
-"""GOWEC-v1 env: contract, energy balance, matched PTO, stiff-hull limit, radiation bound."""
+"""FloatingGOWEC-v0 env: contract, energy balance, matched PTO, stiff-hull limit, radiation
+bound."""
 
 import math
 
@@ -19,7 +20,7 @@ def _episode(env, kind, seed, **ctrl):
     if kind == "ppo":
         from mf_envs.train.policy import load_policy
 
-        c = load_policy("GOWEC-v1")
+        c = load_policy("FloatingGOWEC-v0")
     else:
         c = make_baseline(env, kind, **ctrl)
     obs, _ = env.reset(seed=seed)
@@ -34,7 +35,7 @@ def _episode(env, kind, seed, **ctrl):
 
 
 def test_api_contract():
-    env = gym.make("GOWEC-v1", episode_seconds=2.0)
+    env = gym.make("FloatingGOWEC-v0", episode_seconds=2.0)
     check_env(env.unwrapped)
     obs, info = env.reset(seed=0, options={"buoy_pitch": 0.05, "gimbal_rate": 1.0})
     assert set(spec.INFO_KEYS) <= set(info)  # the spec's declaration (docs/api.md keys and more)
@@ -42,9 +43,9 @@ def test_api_contract():
     with pytest.raises(ValueError, match="wave_phase"):
         env.reset(options={"wave_phase": 1.0})
     with pytest.raises(ValueError, match="generator_efficiency"):
-        gym.make("GOWEC-v1", generator_efficiency=1.5)
+        gym.make("FloatingGOWEC-v0", generator_efficiency=1.5)
     with pytest.raises(ValueError, match="hull"):
-        gym.make("GOWEC-v1", hull="/nonexistent/hull.npz")
+        gym.make("FloatingGOWEC-v0", hull="/nonexistent/hull.npz")
     u = env.unwrapped
     assert u.hydrostatic_stiffness() == load_hull().stiffness
     assert u.natural_period() == pytest.approx(5.475, rel=1e-3)
@@ -55,7 +56,9 @@ def test_api_contract():
 
 
 def test_energy_balance_irregular_pll():
-    env = gym.make("GOWEC-v1", significant_wave_height=1.5, peak_period=6.0, episode_seconds=300)
+    env = gym.make(
+        "FloatingGOWEC-v0", significant_wave_height=1.5, peak_period=6.0, episode_seconds=300
+    )
     _, info = _episode(env, "pll", seed=11)
     assert not info["overspeed"] and not info["out_of_range"]
     m = env.unwrapped.model
@@ -73,7 +76,7 @@ def test_gyro_moment_is_the_hull_pitch_balance():
     formulation of the moment, at states reached under random torque in an oblique sea."""
     from mf_envs.physics.gowec.hydro import floating as fl
 
-    env = gym.make("GOWEC-v1", wave_direction=0.7, wave_amplitude=1.0).unwrapped
+    env = gym.make("FloatingGOWEC-v0", wave_direction=0.7, wave_amplitude=1.0).unwrapped
     env.reset(seed=4)
     rng = np.random.default_rng(0)
     m, nr, checked = env.model, env.model.p.Ar.shape[0], 0
@@ -98,7 +101,7 @@ def test_matched_linear_pto_absorbs_the_optimum():
     """c*, k* (issue 14) on a small regular wave: mean PTO power = |M_ex|^2 / (8 R), R = B + b_v."""
     T, a = 6.5, 0.02
     env = gym.make(
-        "GOWEC-v1",
+        "FloatingGOWEC-v0",
         wave_amplitude=a,
         wave_period=T,
         episode_seconds=240.0,
@@ -142,7 +145,7 @@ def test_stiff_heavy_hull_returns_gowec_v0():
     (Eqs. 77-78) and the PLL's locked gimbal returns Eq. 95 (GOWEC-v0's number) per unit."""
     T, a, theta = 6.0, 1.0, 1.2
     env = gym.make(
-        "GOWEC-v1",
+        "FloatingGOWEC-v0",
         hull=_stiff_hull(),
         wave_amplitude=a,
         wave_period=T,
@@ -167,13 +170,13 @@ def test_no_controller_beats_the_radiation_bound(sea, kind):
     if kind == "ppo":
         pytest.importorskip("stable_baselines3", reason="the PPO policy needs the train extra")
     for seed in range(100, 105):
-        env = gym.make("GOWEC-v1", episode_seconds=30.0, **sea)
+        env = gym.make("FloatingGOWEC-v0", episode_seconds=30.0, **sea)
         P, _ = _episode(env, kind, seed)
         assert np.mean(P) < env.unwrapped.power_bound()
 
 
 def test_render_rgb_array():
-    env = gym.make("GOWEC-v1", render_mode="rgb_array", episode_seconds=1.0)
+    env = gym.make("FloatingGOWEC-v0", render_mode="rgb_array", episode_seconds=1.0)
     env.reset(seed=0)
     env.step(np.zeros(1, np.float32))
     img = env.render()

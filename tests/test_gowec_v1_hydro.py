@@ -1,4 +1,4 @@
-"""GOWEC-v1 hull coefficients: BEM table vs physics no solver run decides (issue 14)."""
+"""FloatingGOWEC-v0 hull coefficients: BEM table vs physics no solver run decides (issue 14)."""
 
 import math
 

@@ -1,5 +1,5 @@
-"""GOWEC-v1 floating buoy: Cummins equation against frequency-domain theory, and the fast path
-against the general B-matrix engine (issue 14)."""
+"""FloatingGOWEC-v0 floating buoy: Cummins equation against frequency-domain theory, and the
+fast path against the general B-matrix engine (issue 14)."""
 
 import dataclasses
 import math

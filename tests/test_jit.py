@@ -16,7 +16,7 @@ from numba.core.runtime import _nrt_python, rtsys
 import mf_envs  # noqa: F401  (registers the envs)
 from mf_envs import _jit
 
-KERNEL_ENVS = ("GyroStabilizer-v0", "GOWEC-v1")
+KERNEL_ENVS = ("GyroStabilizer-v0", "FloatingGOWEC-v0")
 
 
 def _run(env_id: str, steps: int) -> None:

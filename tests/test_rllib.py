@@ -18,9 +18,10 @@ from mf_envs.train import rllib  # noqa: E402
 ENV_IDS = [
     "GyroStabilizer-v0",
     pytest.param(
-        "GOWEC-v1",
+        "FloatingGOWEC-v0",
         marks=pytest.mark.skipif(
-            "GOWEC-v1" not in gym.registry, reason="GOWEC-v1 is not registered in this build yet"
+            "FloatingGOWEC-v0" not in gym.registry,
+            reason="FloatingGOWEC-v0 is not registered in this build yet",
         ),
     ),
 ]

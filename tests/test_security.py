@@ -338,4 +338,4 @@ def test_gowec_v1_hull_file_kwarg_is_checked_at_make(tmp_path):
     with zipfile.ZipFile(p, "w") as z:
         z.writestr("x.txt", "not an array")
     with pytest.raises(ValueError, match="bad.npz"):
-        gym.make("GOWEC-v1", hull=str(p))
+        gym.make("FloatingGOWEC-v0", hull=str(p))

@@ -392,7 +392,7 @@ def test_env_metrics_from_info(env_id):
     m = run_episode(env_id, env, _ZeroFor(env), seed=0)
     key = {
         "GOWEC-v0": "power_ratio",
-        "GOWEC-v1": "capture_width",
+        "FloatingGOWEC-v0": "capture_width",
         "GyroStabilizer-v0": "rms_roll",
         "Inchworm-v0": "tail_advance_per_step",
     }[env_id]
@@ -463,12 +463,12 @@ def test_domain_randomization_redraws_params_deterministically():
 
 
 def test_domain_randomization_choices_mix_regular_and_irregular_seas():
-    """GOWEC-v1's default choices: the env really runs the drawn sea (regular when
+    """FloatingGOWEC-v0's default choices: the env really runs the drawn sea (regular when
     significant_wave_height is None, JONSWAP of that Hs otherwise), reproducibly."""
     from mf_envs.train.randomize import DomainRandomization
 
     def draws(seed):
-        env = DomainRandomization(gym.make("GOWEC-v1", episode_seconds=1.0))
+        env = DomainRandomization(gym.make("FloatingGOWEC-v0", episode_seconds=1.0))
         out = [env.reset(seed=seed)[1]["randomized"]]
         out += [env.reset()[1]["randomized"] for _ in range(7)]
         seas = [(env.unwrapped.irregular, env.unwrapped.wave_period)]
@@ -483,7 +483,7 @@ def test_domain_randomization_choices_mix_regular_and_irregular_seas():
     assert irregular == (last["significant_wave_height"] is not None)
     assert period == (last["peak_period"] if irregular else last["wave_period"])
     with pytest.raises(ValueError, match="choices"):
-        DomainRandomization(gym.make("GOWEC-v1"), choices={"no_such_kwarg": (1, 2)})
+        DomainRandomization(gym.make("FloatingGOWEC-v0"), choices={"no_such_kwarg": (1, 2)})
 
 
 def test_shift_scenes_only_use_real_kwargs():
@@ -595,7 +595,8 @@ def test_domain_randomization_on_mf_envs(env_id):
         obs, info = env.reset(seed=seed)
         assert env.observation_space.contains(obs)
         for k, v in info["randomized"].items():
-            if k in env.choices:  # discrete draws (GOWEC-v1's sea): checked in their own test
+            # discrete draws (FloatingGOWEC-v0's sea): checked in their own test
+            if k in env.choices:
                 assert v in env.choices[k]
                 continue
             lo, hi = ranges[k]

@@ -25,7 +25,7 @@ VEC_IDS = [
 SHORT: dict[str, dict[str, Any]] = {
     "GOWEC-v0": {"n_periods": 1, "steps_per_period": 12},
     "GyroStabilizer-v0": {"episode_seconds": 0.6},
-    "GOWEC-v1": {"episode_seconds": 0.2},
+    "FloatingGOWEC-v0": {"episode_seconds": 0.2},
     "Inchworm-v0": {"max_episode_steps": 5},
 }
 # scenes with the most effects on (irregular seas draw per-env random components at reset)
@@ -50,7 +50,7 @@ FULL: dict[str, dict[str, Any]] = {
         "gimbal_drive": "torque",
         "gimbal_damping": 50.0,
     },
-    "GOWEC-v1": {"significant_wave_height": 2.0, "n_components": 8},
+    "FloatingGOWEC-v0": {"significant_wave_height": 2.0, "n_components": 8},
     "Inchworm-v0": {"n_control_points": 5, "n_elements": 8, "reset_noise_scale": 0.5},
 }
 # kwargs that blow the state up within a step (numerical-failure path)
@@ -61,7 +61,7 @@ BLOWUP: dict[str, dict[str, Any]] = {
         "effects": ("gyroscopic",),
         "gimbal_drive": "kinematic",  # the torque-limited default drive cannot blow up
     },
-    "GOWEC-v1": {"max_generator_torque": 1e300, "max_generator_power": 1e300},
+    "FloatingGOWEC-v0": {"max_generator_torque": 1e300, "max_generator_power": 1e300},
     "Inchworm-v0": {"friction_coefficients": (0.0, 0.0, 0.0, 0.0)},  # both feet slip
 }
 SEEDS = [11, 3, 7]
@@ -376,16 +376,16 @@ GOWEC_V1_SCENES = [{}, {"wave_direction": 0.4, "gyro_units": 1, "wave_amplitude"
 @pytest.mark.parametrize("scene", GOWEC_V1_SCENES)
 @pytest.mark.parametrize("mode", list(AutoresetMode))
 def test_gowec_v1_compiled_resets_equal_sync(mode: AutoresetMode, scene: dict) -> None:
-    """GOWEC-v1's compiled resets (regular seas: the phase and gimbal angle pre-drawn, the
+    """FloatingGOWEC-v0's compiled resets (regular seas: the phase and gimbal angle pre-drawn, the
     excitation coefficients from the single env's function) as GOWEC-v0's above, with template
     resets carrying an option (`buoy_pitch`) in between; also a wave off the pitch axis and
     one gyro unit. Irregular seas keep the template path."""
     from mf_envs.envs.gowec_v1.vector import GOWECV1VectorEnv as V
 
     kw = {"episode_seconds": 0.08, **scene}  # an episode every 4 steps
-    assert make_vec("GOWEC-v1", 2, **kw).unwrapped._fast  # the compiled path is taken
-    assert not make_vec("GOWEC-v1", 2, **FULL["GOWEC-v1"]).unwrapped._fast
-    _compiled_resets_match_sync("GOWEC-v1", kw, mode, {"buoy_pitch": 0.05}, V.DRAW_BUFFER)
+    assert make_vec("FloatingGOWEC-v0", 2, **kw).unwrapped._fast  # the compiled path is taken
+    assert not make_vec("FloatingGOWEC-v0", 2, **FULL["FloatingGOWEC-v0"]).unwrapped._fast
+    _compiled_resets_match_sync("FloatingGOWEC-v0", kw, mode, {"buoy_pitch": 0.05}, V.DRAW_BUFFER)
 
 
 STAB_SCENES = [

@@ -24,7 +24,9 @@ from mf_envs.envs.gyro_stabilizer.env import GyroStabilizerEnv
 
 SHIP_IRREGULAR = (*GyroStabilizerEnv.DEFAULT_EFFECTS, "irregular_waves")
 
-STEPS = {"GOWEC-v0": 300, "GyroStabilizer-v0": 300, "Inchworm-v0": 40, "GOWEC-v1": 300}
+# the floating GOWEC under its id (FloatingGOWEC-v0; GOWEC-v1 before it had its own id)
+FLOATING = "FloatingGOWEC-v0" if "FloatingGOWEC-v0" in gym.registry else "GOWEC-v1"
+STEPS = {"GOWEC-v0": 300, "GyroStabilizer-v0": 300, "Inchworm-v0": 40, "FloatingGOWEC-v0": 300}
 VARIANTS = {
     "GOWEC-v0": [
         {},
@@ -37,7 +39,7 @@ VARIANTS = {
         {"effects": SHIP_IRREGULAR},
     ],
     "Inchworm-v0": [{}, {"effects": ("gravity", "inertia", "anchor_switching")}],
-    "GOWEC-v1": [{}, {"significant_wave_height": 1.5}],
+    "FloatingGOWEC-v0": [{}, {"significant_wave_height": 1.5}],
 }
 VECTOR_STEPS = 120  # native vector env, 3 rows, fixed random actions, NEXT_STEP autoreset
 
@@ -56,7 +58,7 @@ def numeric_info(info):
 
 
 def run(env_id, kw, mode):
-    env = gym.make(env_id, **kw)
+    env = gym.make(FLOATING if env_id == "FloatingGOWEC-v0" else env_id, **kw)
     obs, info = env.reset(seed=123)
     rng = np.random.default_rng(7)
     ctrl = make_baseline(env) if mode == "baseline" else None
@@ -93,7 +95,8 @@ def run(env_id, kw, mode):
 def run_vector(env_id, kw):
     """The native vector env (3 rows, seeds 11, 3, 7) under fixed random actions: obs, rewards,
     terminations and every numeric info column (masked-out rows as NaN)."""
-    env = gym.make_vec(env_id, num_envs=3, vectorization_mode="vector_entry_point", **kw)
+    real = FLOATING if env_id == "FloatingGOWEC-v0" else env_id
+    env = gym.make_vec(real, num_envs=3, vectorization_mode="vector_entry_point", **kw)
     obs, info = env.reset(seed=[11, 3, 7])
     rng = np.random.default_rng(5)
     out = {"obs": [obs.copy()], "rew": [], "term": []}
@@ -143,7 +146,8 @@ if __name__ == "__main__":
                 for k, v in r.items():
                     res[f"{env_id}|{vi}|{mode}|{k}"] = v
                 print(env_id, vi, mode, r["rew"].sum(), flush=True)
-            if gym.spec(env_id).vector_entry_point and (env_id != "Inchworm-v0" or not kw):
+            real = FLOATING if env_id == "FloatingGOWEC-v0" else env_id
+            if gym.spec(real).vector_entry_point and (env_id != "Inchworm-v0" or not kw):
                 r = run_vector(env_id, kw)
                 for k, v in r.items():
                     res[f"{env_id}|{vi}|vector|{k}"] = v

@@ -22,7 +22,7 @@ _MODULES = {
     "GOWEC-v0": "mf_envs.controllers.gowec",
     "GyroStabilizer-v0": "mf_envs.controllers.stabilizer",
     "Inchworm-v0": "mf_envs.controllers.inchworm",
-    "GOWEC-v1": "mf_envs.controllers.gowec_v1",
+    "FloatingGOWEC-v0": "mf_envs.controllers.gowec_v1",
 }
 _REGISTRY: dict[str, dict[str, Callable[..., Any]]] = {}
 _DEFAULT: dict[str, str] = {}
@@ -50,6 +50,9 @@ def _env_id(env: Any) -> str:
 
 def baseline_kinds(env_id: str) -> list[str]:
     """The controller kinds available for `env_id`, default first."""
+    from mf_envs.envs import canonical_env_id
+
+    env_id = canonical_env_id(env_id)  # a deprecated id (GOWEC-v1): its new id, with a warning
     if env_id not in _MODULES:
         raise ValueError(f"env_id: no baselines for {env_id!r}; known: {sorted(_MODULES)}")
     importlib.import_module(_MODULES[env_id])

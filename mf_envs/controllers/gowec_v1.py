@@ -1,5 +1,5 @@
-"""Baselines for GOWEC-v1: PLL and square wave on the measured (floating) buoy motion, and the
-matched linear PTO.
+"""Baselines for FloatingGOWEC-v0: PLL and square wave on the measured (floating) buoy motion,
+and the matched linear PTO.
 
 - `pll`, `bang_bang`: GOWEC-v0's controllers (`controllers.gowec`) unchanged: they read the same
   observation slots (gimbal encoder, buoy IMU rate w1) and the device's own rotor and gimbal
@@ -57,6 +57,6 @@ class LinearPTOController:
         return np.zeros(1, dtype=np.float32), None
 
 
-register("GOWEC-v1", "pll", PLLController, default=True)
-register("GOWEC-v1", "bang_bang", SquareWaveController)
-register("GOWEC-v1", "linear_pto", LinearPTOController)
+register("FloatingGOWEC-v0", "pll", PLLController, default=True)
+register("FloatingGOWEC-v0", "bang_bang", SquareWaveController)
+register("FloatingGOWEC-v0", "linear_pto", LinearPTOController)

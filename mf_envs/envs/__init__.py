@@ -1,27 +1,38 @@
-"""Gymnasium wrappers. `register_envs()` registers every env id whose module is present."""
+"""Gymnasium wrappers. `register_envs()` registers every env id whose module is present.
+
+Deprecated ids (`ALIASES`) still make their env: `gym.make("GOWEC-v1")` builds
+`FloatingGOWEC-v0` and warns once (`mf_envs.envs._alias`).
+"""
 
 from __future__ import annotations
 
-import warnings
-
 import gymnasium as gym
 
-# GOWEC-v0 (the dissertation's prescribed buoy) stays supported next to GOWEC-v1 (the floating
-# buoy): silence gymnasium's "GOWEC-v0 is out of date, upgrade to v1" deprecation warning
-warnings.filterwarnings("ignore", message=r".*GOWEC-v0 is out of date")
+from mf_envs.envs._alias import ALIASES, DeprecatedIdWarning, canonical_env_id, register_aliases
+
+__all__ = [
+    "ALIASES",
+    "ENV_SPECS",
+    "VECTOR_SPECS",
+    "DeprecatedIdWarning",
+    "available_env_ids",
+    "canonical_env_id",
+    "native_vector_supported",
+    "register_envs",
+]
 
 # id -> (entry point, default max_episode_steps or None); each env module owns its episode length
 ENV_SPECS: dict[str, str] = {
     "GOWEC-v0": "mf_envs.envs.gowec.env:GOWECEnv",
     "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.env:GyroStabilizerEnv",
     "Inchworm-v0": "mf_envs.envs.inchworm.env:InchwormEnv",
-    "GOWEC-v1": "mf_envs.envs.gowec_v1.env:GOWECV1Env",
+    "FloatingGOWEC-v0": "mf_envs.envs.gowec_v1.env:GOWECV1Env",
 }
 # id -> native batched vector env (`gym.make_vec(id, vectorization_mode="vector_entry_point")`)
 VECTOR_SPECS: dict[str, str] = {
     "GOWEC-v0": "mf_envs.envs.gowec.vector:GOWECVectorEnv",
     "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.vector:GyroStabilizerVectorEnv",
-    "GOWEC-v1": "mf_envs.envs.gowec_v1.vector:GOWECV1VectorEnv",
+    "FloatingGOWEC-v0": "mf_envs.envs.gowec_v1.vector:GOWECV1VectorEnv",
     "Inchworm-v0": "mf_envs.envs.inchworm.vector:InchwormVectorEnv",
 }
 
@@ -47,6 +58,7 @@ def register_envs() -> None:
             if vec is not None and importlib.util.find_spec(vec.split(":")[0]) is None:
                 vec = None
             gym.register(id=env_id, entry_point=ENV_SPECS[env_id], vector_entry_point=vec)
+    register_aliases()
 
 
 def native_vector_supported(env_id: str, env_kwargs: dict | None = None) -> bool:
@@ -55,6 +67,7 @@ def native_vector_supported(env_id: str, env_kwargs: dict | None = None) -> bool
     that is not ours, whether its spec has a vector entry point."""
     import importlib
 
+    env_id = canonical_env_id(env_id, notice_alias=False)
     entry = VECTOR_SPECS.get(env_id)
     if entry is None:
         return gym.spec(env_id).vector_entry_point is not None

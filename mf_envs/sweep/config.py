@@ -141,7 +141,9 @@ def _env_id(value: Any) -> str:
     if value not in gym.registry:
         known = sorted(k for k in gym.registry if "-v" in k and k.split("-")[0][:1].isupper())
         raise _fail("env_id", f"{value!r} is not registered (mf_envs ids include {known[:8]})")
-    return value
+    from mf_envs.envs import canonical_env_id
+
+    return canonical_env_id(value)  # a deprecated id (GOWEC-v1): its new id, with a warning
 
 
 def _seeds(value: Any) -> tuple[int, ...]:

@@ -11,7 +11,7 @@ issue judges by, defined as in that env's own `benchmarks/controllers/<env>.py` 
 | env | primary metric | better | definition |
 |---|---|---|---|
 | GOWEC-v0 | `power_ratio` | higher | mean power after the first 1/4 episode / Eq. 95 (W/W) |
-| GOWEC-v1 | `capture_width` | higher | mean mechanical PTO power (last half) / wave power flux, m |
+| FloatingGOWEC-v0 | `capture_width` | higher | mean mech. PTO power (last half) / wave power flux |
 | GyroStabilizer-v0 | `rms_roll` | lower | sqrt(mean(info["roll"]^2)) after 10 s, rad |
 | Inchworm-v0 | `tail_advance_per_step` | higher | (x_tail(end) - x_tail(reset)) / steps, m |
 | (Inchworm-v0) | `tail_advance_per_cycle` | higher | same per head->tail grip switch (cycle) |
@@ -40,7 +40,7 @@ class Metric:
 
 PRIMARY: dict[str, Metric] = {
     "GOWEC-v0": Metric("power_ratio", True, "1"),
-    "GOWEC-v1": Metric("capture_width", True, "m"),
+    "FloatingGOWEC-v0": Metric("capture_width", True, "m"),
     "GyroStabilizer-v0": Metric("rms_roll", False, "rad"),
     "Inchworm-v0": Metric("tail_advance_per_step", True, "m"),
 }
@@ -64,7 +64,7 @@ def episode_metrics(
         out["mean_power"] = float(power.mean())
         out["power_ratio"] = float(power[len(power) // 4 :].mean()) / ref  # steady 3/4
         out["power_ratio_all"] = float(power.mean()) / ref
-    elif env_id == "GOWEC-v1":  # as benchmarks/controllers/gowec_v1.py: the last half
+    elif env_id == "FloatingGOWEC-v0":  # as benchmarks/controllers/gowec_v1.py: the last half
         half = len(steps) // 2
         p_mech = float(np.mean([i["power_mechanical"] for i in steps[half:]]))
         out["capture_width"] = p_mech / float(env.unwrapped.wave_power_flux())

@@ -178,6 +178,9 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     another env. ImportError if stable-baselines3/torch/safetensors (the `train` extra) are
     missing.
     """
+    from mf_envs.envs import canonical_env_id
+
+    env_id = canonical_env_id(env_id)  # a deprecated id (GOWEC-v1): its new id, with a warning
     folder = Path(path) if path is not None else policy_dir(env_id)
     if folder.name == POLICY_FILE:
         folder = folder.parent
@@ -186,7 +189,7 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
         where = "no shipped policy" if path is None else "no policy"
         raise ValueError(f"policy: {where} for {env_id} at {str(folder / POLICY_FILE)!r}")
     meta = read_meta(folder)
-    if meta.get("env_id", env_id) != env_id:
+    if canonical_env_id(meta.get("env_id", env_id), notice_alias=False) != env_id:
         raise ValueError(f"policy: {folder} was trained on {meta['env_id']}, not {env_id}")
     desc = read_description(folder)
     norm_path = folder / NORM_FILE

@@ -19,11 +19,11 @@ Default ranges (factors of the nominal value), per the issue's robustness item:
 | GyroStabilizer-v0 | `rotor_speed` | 0.9 - 1.1 | rotor speed |
 | Inchworm-v0 | soil kwargs the env has (see `SOIL_KWARGS`) | 0.5 - 1.5 | soil |
 | Inchworm-v0 | `youngs_modulus`, `mass_per_length` | 0.8 - 1.2 | material, payload |
-| GOWEC-v1 | `wave_period`, `peak_period` | 0.75 - 1.25 | sea period around the 6 s default |
-| GOWEC-v1 | `wave_amplitude` | 0.25 - 1.0 | regular sea height (nominal 1 m, down to 0.25 m) |
+| FloatingGOWEC-v0 | `wave_period`, `peak_period` | 0.75 - 1.25 | sea period around 6 s default |
+| FloatingGOWEC-v0 | `wave_amplitude` | 0.25 - 1.0 | regular sea height (1 m nominal, >= 0.25 m) |
 
 Discrete choices (`DEFAULT_CHOICES`, one value drawn uniformly per reset, after the ranges):
-GOWEC-v1's `significant_wave_height` from (None, 1.0, 2.0, 3.0) m, so half the episodes are
+FloatingGOWEC-v0's `significant_wave_height` from (None, 1.0, 2.0, 3.0) m, so half the episodes are
 regular waves (None) and half JONSWAP seas of Hs 1-3 m at the randomised `peak_period`.
 
 The inchworm's grip is the seed's kinematic anchor switching (Eq. 102), which has no soil
@@ -74,14 +74,14 @@ DEFAULT_RANGES: dict[str, Ranges] = {
         "youngs_modulus": (0.8, 1.2),
         "mass_per_length": (0.8, 1.2),
     },
-    "GOWEC-v1": {
+    "FloatingGOWEC-v0": {
         "wave_period": (0.75, 1.25),
         "peak_period": (0.75, 1.25),
         "wave_amplitude": (0.25, 1.0),
     },
 }
 DEFAULT_CHOICES: dict[str, Choices] = {
-    "GOWEC-v1": {"significant_wave_height": (None, 1.0, 2.0, 3.0)},
+    "FloatingGOWEC-v0": {"significant_wave_height": (None, 1.0, 2.0, 3.0)},
 }
 # robustness scenes: name -> factors applied to the nominal kwargs (those the env has)
 SHIFTS: dict[str, dict[str, dict[str, float]]] = {

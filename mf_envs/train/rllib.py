@@ -62,7 +62,12 @@ PPO_CONFIGS: dict[str, dict[str, Any]] = {
     # 6000-step episodes (20 wave periods x 300 steps): a horizon of a wave period, gamma 0.995
     "GOWEC-v0": {"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
     # the floating buoy: GOWEC-v0's settings as the starting point (untuned)
-    "GOWEC-v1": {"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
+    "FloatingGOWEC-v0": {
+        "gamma": 0.995,
+        "lambda_": 0.98,
+        "minibatch_size": 512,
+        "timesteps": 300_000,
+    },
     # slow steps (a Newton solve per actuation increment): small batches, one runner's worth
     "Inchworm-v0": {"num_envs_per_env_runner": 1, "train_batch_size_per_learner": 1000},
 }

@@ -1,4 +1,5 @@
-"""GOWEC-v1 baselines: capture width and share of the radiation bound, regular and irregular seas.
+"""FloatingGOWEC-v0 baselines: capture width and share of the radiation bound, regular and
+irregular seas.
 
 Rows: every controller on every scene, metrics `capture_width` (m) = mean mechanical PTO power
 over the last half of the episode / wave power flux J, `bound_ratio` = that power /
@@ -22,7 +23,7 @@ import mf_envs  # noqa: F401
 from mf_envs.benchmarks.controllers.ppo import make_controller, with_ppo
 from mf_envs.controllers import make_baseline
 
-ENV_ID = "GOWEC-v1"
+ENV_ID = "FloatingGOWEC-v0"
 KINDS = ("pll", "bang_bang", "linear_pto")
 SEEDS = tuple(range(2000, 2005))  # unseen by training (0..) and its evaluation (1000..)
 SCENES: dict[str, dict] = {
@@ -124,7 +125,7 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xticks(np.arange(len(scenes)), scenes)
     ax.set_ylabel("capture width P_mech / J (m)")
-    ax.set_title("GOWEC-v1 controllers (mean mechanical PTO power / wave power flux)")
+    ax.set_title("FloatingGOWEC-v0 controllers (mean mechanical PTO power / wave power flux)")
     ax.legend()
     fig.tight_layout()
     p = out / "gowec_v1_capture_width.png"

@@ -42,7 +42,7 @@ ALIASES = {
 
 def shipped_env_ids() -> list[str]:
     """Env ids with a shipped policy scored here (the others' own modules score theirs)."""
-    own = ("GOWEC-v1", "Inchworm-v0")  # scored beside their baselines by their own modules
+    own = ("FloatingGOWEC-v0", "Inchworm-v0")  # scored beside their baselines by their own modules
     return [e for e in _shipped_all() if e not in own]
 
 
@@ -86,9 +86,11 @@ def rows(quick: bool) -> list[dict[str, Any]]:
     """PPO rows; without the `train` extra they are skipped with one line on stderr."""
     missing = [m for m in ("stable_baselines3", "torch", "safetensors") if not _has(m)]
     if missing:
+        from mf_envs.cli import install_hint
+
         print(
             f"bench controllers: skipping the PPO rows (needs the train extra: "
-            f'pip install "mf-envs[train]"; missing {", ".join(missing)})',
+            f"{install_hint('train')}; missing {', '.join(missing)})",
             file=sys.stderr,
         )
         return []

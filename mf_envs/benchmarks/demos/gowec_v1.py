@@ -1,4 +1,4 @@
-"""GOWEC-v1 showcase: the floating buoy pitching in the wave with its gimbal and rotor.
+"""FloatingGOWEC-v0 showcase: the floating buoy pitching in the wave with its gimbal and rotor.
 
 Writes into `out`:
 - gowec_v1_episode.png  the default sea (regular, a = 1 m, T = 6 s) with the matched linear PTO
@@ -19,7 +19,7 @@ import mf_envs  # noqa: F401
 from mf_envs.controllers import make_baseline
 
 ORDER = 25
-TITLE = "GOWEC-v1: the floating buoy, Cummins equation + BEM coefficients"
+TITLE = "FloatingGOWEC-v0: the floating buoy, Cummins equation + BEM coefficients"
 SECONDS = 60.0
 
 
@@ -28,7 +28,10 @@ def _episode(kind: str, rotor: bool, seconds: float, frames: int = 0):
     wave periods (every ~0.2 s)."""
     kw = {} if rotor else {"rotor_speed": 0.0}
     env = gym.make(
-        "GOWEC-v1", episode_seconds=seconds, render_mode="rgb_array" if frames else None, **kw
+        "FloatingGOWEC-v0",
+        episode_seconds=seconds,
+        render_mode="rgb_array" if frames else None,
+        **kw,
     )
     ctrl = make_baseline(env, kind)
     obs, info = env.reset(seed=0)
@@ -93,7 +96,7 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
             f"{ex['torque_limit'] / 1e3:.0f} kN m (per unit); the torque clips and power peaks"
         ))  # fmt: skip
         ax[3].legend(loc="upper left", fontsize=8)
-    fig.suptitle("GOWEC-v1 on a regular wave a = 1 m, T = 6 s (matched linear PTO)")
+    fig.suptitle("FloatingGOWEC-v0 on a regular wave a = 1 m, T = 6 s (matched linear PTO)")
     fig.tight_layout()
     files = [out / "gowec_v1_episode.png"]
     fig.savefig(files[0], dpi=100)

@@ -55,10 +55,10 @@ TARGET_VECTOR = 1.0e6  # env-steps/s at N = 1024 (issue 6), the default target
 VECTOR_TARGETS = {
     "GOWEC-v0": (1024, 1.0e6),
     "GyroStabilizer-v0": (1024, 1.5e6),
-    "GOWEC-v1": (1024, 5.0e5),
+    "FloatingGOWEC-v0": (1024, 5.0e5),
     "Inchworm-v0": (64, 5.0e3),
 }
-SINGLE_TARGETS = {"GOWEC-v1": ("ratio", 1.0), "Inchworm-v0": ("steps_per_s", 1000.0)}
+SINGLE_TARGETS = {"FloatingGOWEC-v0": ("ratio", 1.0), "Inchworm-v0": ("steps_per_s", 1000.0)}
 N_LADDER = (1, 8, 64, 256, 1024, 4096, 8192)
 N_LADDER_QUICK = (1, 64, 1024, 8192)
 # the inchworm steps ~1 ms per worm: its ladder stops at N = 256 (8192 worms: seconds per step)

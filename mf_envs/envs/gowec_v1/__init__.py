@@ -1,1 +1,1 @@
-"""GOWEC-v1: the gyroscopic wave energy converter as it floats (`env.GOWECV1Env`)."""
+"""FloatingGOWEC-v0: the gyroscopic wave energy converter as it floats (`env.GOWECV1Env`)."""

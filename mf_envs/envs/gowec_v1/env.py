@@ -1,4 +1,5 @@
-"""GOWEC-v1: the gyroscopic wave energy converter as it floats (issue 14; Rios 2017 Sec. 3.2)."""
+"""FloatingGOWEC-v0: the gyroscopic wave energy converter as it floats (issue 14; Rios 2017
+Sec. 3.2)."""
 
 from __future__ import annotations
 

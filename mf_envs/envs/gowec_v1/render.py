@@ -1,4 +1,4 @@
-"""Frames of GOWEC-v1: the floating buoy pitching in the wave with its gimbal and rotor."""
+"""Frames of FloatingGOWEC-v0: the floating buoy pitching in the wave with its gimbal and rotor."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""GOWEC-v1's env concerns, declared once: observation layout, reward terms, info keys, options.
+"""FloatingGOWEC-v0's env concerns, declared once: observation layout, reward terms, info keys,
+options.
 
 The first six slots are GOWEC-v0's (gimbal encoder and buoy IMU), so v0's controllers read the
 same names; the inclinometer angles follow.

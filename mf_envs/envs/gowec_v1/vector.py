@@ -1,7 +1,8 @@
-"""GOWEC-v1 as a native batched vector env: N floating buoys stepped in one compiled call.
+"""FloatingGOWEC-v0 as a native batched vector env: N floating buoys stepped in one compiled call.
 
-`gym.make_vec("GOWEC-v1", num_envs=N, vectorization_mode="vector_entry_point", **kwargs)` builds
-it; `kwargs` are those of `gym.make("GOWEC-v1", ...)` plus `autoreset_mode` (default NEXT_STEP).
+`gym.make_vec("FloatingGOWEC-v0", num_envs=N, vectorization_mode="vector_entry_point",
+**kwargs)` builds it; `kwargs` are those of `gym.make("FloatingGOWEC-v0", ...)` plus
+`autoreset_mode` (default NEXT_STEP).
 Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `GOWECV1Env`s with the
 same seeds (`tests/test_vector_envs.py`): seeded resets, resets with options and resets in
 irregular seas go through a template single env (its state and sea are copied into the row), the
@@ -69,7 +70,7 @@ def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, amp, eps, vals, lo, hi
 
 
 class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
-    """N independent `GOWEC-v1` envs (same kwargs, own seeds) stepped in one numba call.
+    """N independent `FloatingGOWEC-v0` envs (same kwargs, own seeds) stepped in one numba call.
 
     Observations (N, 8) float32 (`spec.OBS`), actions (N, 1) in [-1, 1], rewards (N,) float64,
     infos batched as Gymnasium does with the single env's keys (`spec.INFO_KEYS`).
@@ -100,7 +101,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         row = (env.model._om, env.wave.amplitudes, env.wave.phases, env.model._cp, env.model._cr)
         for key, value in zip(("om", "amp", "eps", "cp", "cr"), row):
             if value.shape != sea[key].shape[1:]:
-                raise RuntimeError(f"GOWEC-v1 vector env: sea of {value.shape} components")
+                raise RuntimeError(f"FloatingGOWEC-v0 vector env: sea of {value.shape} components")
             sea[key][i] = value
         self._steps[i] = 0
 
