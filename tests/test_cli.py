@@ -130,7 +130,7 @@ def test_long_render_records_every_kth_step(capsys, tmp_path, monkeypatch):
     control steps long, so playback speed is kept."""
     import gymnasium as gym
 
-    import mf_envs.render.cli as rcli
+    import mf_envs.cli.render as rcli
 
     env_id = "GyroStabilizer-v0"
     if env_id not in available_env_ids():
@@ -152,7 +152,7 @@ def test_render_keeps_the_frames_before_a_numerical_failure(capsys, tmp_path, mo
     not drawn) and says so."""
     import numpy as np
 
-    import mf_envs.render.cli as rcli
+    import mf_envs.cli.render as rcli
 
     env_id = "GyroStabilizer-v0"
     if env_id not in available_env_ids():

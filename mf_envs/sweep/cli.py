@@ -21,7 +21,7 @@ def resolve_config(name: str) -> Path:
 
 
 def add_arguments(s: argparse.ArgumentParser) -> None:
-    """The `sweep` subcommand's options (the parser itself lives in `mf_envs/cli.py`)."""
+    """The `sweep` subcommand's options (the parser itself lives in `mf_envs/cli/__init__.py`)."""
     s.add_argument("config", help="sweep YAML, or the name of a shipped one (sweep/configs)")
     s.add_argument("--out", default=None, help="output folder (default: sweeps/<config name>)")
     s.add_argument("--serial", action="store_true", help="run in this process, without Ray")

@@ -1,4 +1,4 @@
-"""`mf-envs train` and `mf-envs evaluate` (parsers in `mf_envs/cli.py`): thin wrappers."""
+"""`mf-envs train` and `mf-envs evaluate` (parsers in `mf_envs/cli/__init__.py`): thin wrappers."""
 
 from __future__ import annotations
 

@@ -86,7 +86,7 @@ def rows(quick: bool) -> list[dict[str, Any]]:
     """PPO rows; without the `train` extra they are skipped with one line on stderr."""
     missing = [m for m in ("stable_baselines3", "torch", "safetensors") if not _has(m)]
     if missing:
-        from mf_envs.cli import install_hint
+        from mf_envs._extras import install_hint
 
         print(
             f"bench controllers: skipping the PPO rows (needs the train extra: "

@@ -16,42 +16,9 @@ import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
+from mf_envs._extras import install_hint, missing_extra
+
 BENCH_KINDS = ("accuracy", "speed", "controllers")
-
-
-# top-level module of an optional dependency -> the extra that installs it (pyproject.toml)
-EXTRAS = {
-    "stable_baselines3": "train",
-    "torch": "train",
-    "safetensors": "train",
-    "rich": "train",
-    "elastica": "compare",
-    "pygame": "render",
-    "mpmath": "dev",
-    "hypothesis": "dev",
-    "ray": "ray",
-    "capytaine": "hydro",
-    "xarray": "hydro",
-}
-
-
-# extras that pull torch: on Linux a plain `pip install torch` is the multi-GB CUDA build
-TORCH_EXTRAS = ("train", "ray")
-CPU_TORCH = "pip install torch==2.13.0 --index-url https://download.pytorch.org/whl/cpu"
-
-
-def missing_extra(exc: ImportError) -> str | None:
-    """The extra whose install fixes `exc` (a ModuleNotFoundError), or None."""
-    name = (getattr(exc, "name", None) or "").partition(".")[0]
-    return EXTRAS.get(name)
-
-
-def install_hint(extra: str) -> str:
-    """How to install `extra`, on one line (CPU torch first for the extras that need torch)."""
-    cmd = f'pip install "mf-envs[{extra}]" (in a clone: pip install -e ".[{extra}]")'
-    if extra in TORCH_EXTRAS:
-        return f"install CPU torch first: {CPU_TORCH}, then {cmd}"
-    return cmd
 
 
 def _cmd_demo(args: argparse.Namespace) -> list[Path]:
@@ -75,7 +42,7 @@ def _cmd_bench(args: argparse.Namespace) -> list[Path]:
 
 
 def _cmd_render(args: argparse.Namespace) -> list[Path]:
-    from mf_envs.render.cli import render_command
+    from mf_envs.cli.render import render_command
 
     return render_command(args)
 
@@ -255,7 +222,3 @@ def _run(
     if written:
         print(_written(written))
     return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
