@@ -62,46 +62,9 @@ def filter_statistics(algo: Any) -> tuple[np.ndarray, np.ndarray, float] | None:
 def export_policy(algo: Any, env: Any, folder: Path, meta: dict[str, Any]) -> list[Path]:
     """Write `algo`'s policy (see the module docstring) into `folder` as an mf-envs policy of
     `env`'s spaces; returns the files written."""
-    import torch
     from safetensors.torch import save_file
-    from stable_baselines3.common.policies import ActorCriticPolicy
 
-    module = algo.get_module()
-    cfg = module.model_config
-    hidden = [int(h) for h in cfg["fcnet_hiddens"]]
-    if cfg.get("fcnet_activation") != "tanh" or not cfg.get("vf_share_layers", False):
-        raise ValueError("rllib: export needs the default PPO module (tanh, shared encoder)")
-    sd = {k: v.detach().cpu() for k, v in module.state_dict().items()}
-    enc = sorted({k.rsplit(".", 2)[0] for k in sd if k.startswith("encoder.")})
-    if len(enc) != 1:
-        raise ValueError(f"rllib: unexpected encoder layout {enc}")
-    n_act = int(np.prod(env.action_space.shape))
-    kwargs = {"net_arch": {"pi": hidden, "vf": hidden}, "activation_fn": "Tanh"}
-    pol = ActorCriticPolicy(
-        env.observation_space,
-        env.action_space,
-        lambda _: 0.0,
-        net_arch=kwargs["net_arch"],
-        activation_fn=torch.nn.Tanh,
-    )
-    state = pol.state_dict()
-    for i in range(len(hidden)):
-        for part in ("weight", "bias"):
-            w = sd[f"{enc[0]}.{2 * i}.{part}"]
-            state[f"mlp_extractor.policy_net.{2 * i}.{part}"] = w.clone()
-            state[f"mlp_extractor.value_net.{2 * i}.{part}"] = w.clone()
-    head_w, head_b = sd["pi.net.mlp.0.weight"], sd["pi.net.mlp.0.bias"]
-    if head_w.shape[0] != 2 * n_act:
-        raise ValueError(f"rllib: the pi head has {head_w.shape[0]} outputs, not 2 x {n_act}")
-    state["action_net.weight"], state["action_net.bias"] = head_w[:n_act], head_b[:n_act]
-    state["log_std"] = head_b[n_act:].clone()
-    vf = [k for k in sd if k.startswith("vf.") and k.endswith(".weight")]
-    if len(vf) == 1:
-        state["value_net.weight"], state["value_net.bias"] = sd[vf[0]], sd[vf[0][:-6] + "bias"]
-    else:
-        state["value_net.weight"] = torch.zeros_like(state["value_net.weight"])
-        state["value_net.bias"] = torch.zeros_like(state["value_net.bias"])
-    pol.load_state_dict(state, strict=True)
+    state, kwargs = sb3_state(algo.get_module(), env)
     folder.mkdir(parents=True, exist_ok=True)
     desc = {
         "format": FORMAT,
@@ -114,7 +77,7 @@ def export_policy(algo: Any, env: Any, folder: Path, meta: dict[str, Any]) -> li
         "source": "rllib",
     }
     (folder / POLICY_FILE).write_text(json.dumps(desc, indent=1) + "\n")
-    save_file({k: v.contiguous() for k, v in pol.state_dict().items()}, folder / WEIGHTS_FILE)
+    save_file({k: v.contiguous() for k, v in state.items()}, folder / WEIGHTS_FILE)
     files = [folder / POLICY_FILE, folder / WEIGHTS_FILE]
     stats = filter_statistics(algo)
     if stats is not None:
@@ -129,3 +92,42 @@ def export_policy(algo: Any, env: Any, folder: Path, meta: dict[str, Any]) -> li
         files.append(folder / NORM_FILE)
     (folder / META_FILE).write_text(json.dumps(meta, indent=1, default=str) + "\n")
     return [*files, folder / META_FILE]
+
+
+def sb3_state(module: Any, env: Any) -> tuple[dict[str, Any], dict[str, Any]]:
+    """(state dict of an SB3 ActorCriticPolicy, its policy_kwargs) holding the RLlib module's
+    weights as the module docstring maps them; ValueError for another module layout."""
+    import torch
+    from stable_baselines3.common.policies import ActorCriticPolicy
+
+    cfg = module.model_config
+    hidden = [int(h) for h in cfg["fcnet_hiddens"]]
+    if cfg.get("fcnet_activation") != "tanh" or not cfg.get("vf_share_layers", False):
+        raise ValueError("rllib: export needs the default PPO module (tanh, shared encoder)")
+    sd = {k: v.detach().cpu() for k, v in module.state_dict().items()}
+    enc = sorted({k.rsplit(".", 2)[0] for k in sd if k.startswith("encoder.")})
+    if len(enc) != 1:
+        raise ValueError(f"rllib: unexpected encoder layout {enc}")
+    n_act = int(np.prod(env.action_space.shape))
+    kwargs = {"net_arch": {"pi": hidden, "vf": hidden}, "activation_fn": "Tanh"}
+    pol = ActorCriticPolicy(env.observation_space, env.action_space, lambda _: 0.0,
+                            net_arch=kwargs["net_arch"], activation_fn=torch.nn.Tanh)  # fmt: skip
+    state = pol.state_dict()
+    for i in range(len(hidden)):
+        for part in ("weight", "bias"):
+            w = sd[f"{enc[0]}.{2 * i}.{part}"]
+            state[f"mlp_extractor.policy_net.{2 * i}.{part}"] = w.clone()
+            state[f"mlp_extractor.value_net.{2 * i}.{part}"] = w.clone()
+    head_w, head_b = sd["pi.net.mlp.0.weight"], sd["pi.net.mlp.0.bias"]
+    if head_w.shape[0] != 2 * n_act:
+        raise ValueError(f"rllib: the pi head has {head_w.shape[0]} outputs, not 2 x {n_act}")
+    state["action_net.weight"], state["action_net.bias"] = head_w[:n_act], head_b[:n_act]
+    state["log_std"] = head_b[n_act:].clone()
+    vf = [k for k in sd if k.startswith("vf.") and k.endswith(".weight")]
+    if len(vf) == 1:
+        state["value_net.weight"], state["value_net.bias"] = sd[vf[0]], sd[vf[0][:-6] + "bias"]
+    else:  # an inference-only module has no value head; acting does not use it
+        state["value_net.weight"] = torch.zeros_like(state["value_net.weight"])
+        state["value_net.bias"] = torch.zeros_like(state["value_net.bias"])
+    pol.load_state_dict(state, strict=True)  # every key mapped, every shape right
+    return pol.state_dict(), kwargs
