@@ -102,15 +102,7 @@ def train(
     check_env_id(env_id)
     hp = load_hyperparams(env_id, config)
     check_algo_kwargs(PPO, {**hp.ppo_kwargs, **(overrides or {})}, env_id)
-    if vec_env not in ("auto", "dummy"):
-        raise ValueError(f"vec-env: 'auto' or 'dummy', got {vec_env!r}")
-    if eval_episodes < 1:
-        raise ValueError(f"eval-episodes: must be >= 1, got {eval_episodes}")
-    if timesteps is None and hp.n_timesteps is None:
-        raise ValueError(f"config: {env_id} has no n_timesteps; give --timesteps")
-    total = int(timesteps if timesteps is not None else hp.n_timesteps)
-    if total <= 0:
-        raise ValueError(f"timesteps: must be positive, got {total}")
+    total = _budget(hp, timesteps, eval_episodes, vec_env)
     tb_dir = _tensorboard_dir(out, env_id) if tensorboard else None
     if seed < 0:
         raise ValueError(f"seed: must be >= 0, got {seed}")
@@ -216,6 +208,21 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
         if (run_dir / name).is_file():
             out.append(Path(shutil.copy2(run_dir / name, dest / name)))
     return out
+
+
+def _budget(hp: Hyperparams, timesteps: int | None, eval_episodes: int, vec_env: str) -> int:
+    """The steps to train (`timesteps`, else the config's n_timesteps), after checking the
+    command-line options; ValueError naming the option."""
+    if vec_env not in ("auto", "dummy"):
+        raise ValueError(f"vec-env: 'auto' or 'dummy', got {vec_env!r}")
+    if eval_episodes < 1:
+        raise ValueError(f"eval-episodes: must be >= 1, got {eval_episodes}")
+    if timesteps is None and hp.n_timesteps is None:
+        raise ValueError(f"config: {hp.env_id} has no n_timesteps; give --timesteps")
+    total = int(timesteps if timesteps is not None else hp.n_timesteps)
+    if total <= 0:
+        raise ValueError(f"timesteps: must be positive, got {total}")
+    return total
 
 
 def _make_envs(hp: Hyperparams, seed: int, prefer_native: bool) -> tuple[Any, str, Any]:
