@@ -108,40 +108,98 @@ def test_timesteps_option_replaces_a_missing_n_timesteps(tmp_path):
 _ZOO_SCRIPT = """
 import argparse, importlib, json, sys
 from rl_zoo3.exp_manager import ExperimentManager
-env_id, conf, logs = sys.argv[1:4]
+algo, conf, logs, *env_ids = sys.argv[1:]
 importlib.import_module("mf_envs")  # what the zoo's --gym-packages mf_envs does
-args = argparse.Namespace(algo="ppo", env=env_id, gym_packages=["mf_envs"], conf_file=conf)
-exp = ExperimentManager(
-    args, "ppo", env_id, logs, n_timesteps=256, eval_freq=-1, config=conf, n_eval_envs=1,
-    hyperparams={"n_steps": 128, "batch_size": 64, "n_epochs": 1}, vec_env_type="dummy",
-    device="cpu", log_interval=-1, verbose=0,
-)
-model, saved = exp.setup_experiment()
-exp.learn(model)
-print(json.dumps({"steps": model.num_timesteps, "policy": saved["policy"], "n": exp.n_timesteps}))
+small = {"ppo": {"n_steps": 128, "batch_size": 64, "n_epochs": 1},
+         "sac": {"learning_starts": 64, "batch_size": 64},
+         "td3": {"learning_starts": 64, "batch_size": 64}}[algo]
+for env_id in env_ids:
+    args = argparse.Namespace(algo=algo, env=env_id, gym_packages=["mf_envs"], conf_file=conf)
+    exp = ExperimentManager(
+        args, algo, env_id, logs, n_timesteps=256, eval_freq=-1, config=conf, n_eval_envs=1,
+        hyperparams=small, vec_env_type="dummy", device="cpu", log_interval=-1, verbose=0,
+    )
+    model, saved = exp.setup_experiment()
+    exp.learn(model)
+    print(json.dumps({"env": env_id, "steps": model.num_timesteps, "n": exp.n_timesteps,
+                      "algo": type(model).__name__}))
 """
 
 
-@pytest.mark.parametrize("env_id", ["Pendulum-v1", *ENV_SPECS])
-def test_shipped_configs_train_in_rl_zoo3_unchanged(env_id, tmp_path):
-    """rl-zoo3's own ExperimentManager reads the shipped ppo.yml and trains a few hundred steps
-    (its hyperparams shrink the rollout only; the file is read as shipped). In a subprocess:
-    importing rl_zoo3 replaces gymnasium's TimeLimit process-wide (rl_zoo3.gym_patches)."""
+@pytest.mark.parametrize("algo", ["ppo", "sac", "td3"])
+def test_shipped_configs_train_in_rl_zoo3_unchanged(algo, tmp_path):
+    """rl-zoo3's own ExperimentManager reads the shipped configs/<algo>.yml and trains every env
+    a few hundred steps (its hyperparams shrink the rollout or the warm-up only; the file is read
+    as shipped). In a subprocess: importing rl_zoo3 replaces gymnasium's TimeLimit process-wide
+    (rl_zoo3.gym_patches)."""
     import importlib.util
     import subprocess
     import sys
 
-    from mf_envs.train.config import DEFAULT_CONFIG
+    from mf_envs.train.config import default_config
 
     if importlib.util.find_spec("rl_zoo3") is None:  # not importorskip: see the docstring
         pytest.skip("needs the zoo extra: pip install -e '.[zoo]'")
+    ids = ["Pendulum-v1", *ENV_SPECS]
+    conf = str(default_config(algo))
     out = subprocess.run(
-        [sys.executable, "-c", _ZOO_SCRIPT, env_id, str(DEFAULT_CONFIG), str(tmp_path / "logs")],
-        capture_output=True, text=True, cwd=tmp_path, timeout=600,
+        [sys.executable, "-c", _ZOO_SCRIPT, algo, conf, str(tmp_path / "logs"), *ids],
+        capture_output=True, text=True, cwd=tmp_path, timeout=900,
     )  # fmt: skip
     assert out.returncode == 0, out.stderr[-2000:]
-    res = json.loads(out.stdout.strip().splitlines()[-1])
-    assert res["steps"] >= 256 and res["n"] == 256 and res["policy"] == "MlpPolicy"
+    runs = [json.loads(line) for line in out.stdout.strip().splitlines() if line.startswith("{")]
+    assert [r["env"] for r in runs] == ids
+    assert all(r["steps"] >= 256 and r["n"] == 256 and r["algo"] == algo.upper() for r in runs)
+
+
+@pytest.mark.parametrize("algo", ["SAC", "TD3"])
+def test_off_policy_policies_save_and_load_without_pickle(algo, tmp_path):
+    """An SB3 SAC/TD3 model saved as JSON + safetensors loads with `load_policy` and acts as
+    SB3's own model on 500 observations (normalised by its VecNormalize); `to_sb3` rebuilds the
+    same algorithm, critics included."""
+    import stable_baselines3 as sb3
+    from stable_baselines3.common.env_util import make_vec_env
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from mf_envs.train.policy import save_policy_files
+
+    venv = VecNormalize(make_vec_env("Pendulum-v1", n_envs=1, seed=0), norm_reward=False)
+    model = getattr(sb3, algo)(
+        "MlpPolicy", venv, learning_starts=50, batch_size=32, seed=0,
+        policy_kwargs={"net_arch": [16, 16]}, device="cpu",
+    )  # fmt: skip
+    model.learn(200)
+    save_policy_files(tmp_path / "pol", model, venv)
+    (tmp_path / "pol" / "meta.json").write_text(json.dumps({"env_id": "Pendulum-v1"}))
+    policy = load_policy("Pendulum-v1", tmp_path / "pol")
+    assert policy.algo == algo
+    obs = np.random.default_rng(0).uniform(-1, 1, (500, 3)).astype(np.float32) * [1, 1, 8]
+    theirs, _ = model.predict(venv.normalize_obs(obs), deterministic=True)
+    ours, _ = policy.predict(obs)
+    np.testing.assert_allclose(ours, theirs, rtol=1e-6, atol=1e-6)
+    assert np.ptp(theirs) > 0
+    again = policy.to_sb3(learning_starts=10)
+    assert type(again).__name__ == algo
+    for key, value in model.policy.state_dict().items():
+        assert torch_equal(value, again.policy.state_dict()[key]), key
+
+
+def test_train_sac_smoke_and_summary_label(tmp_path):
+    from mf_envs.train.trainer import train
+
+    res = train(
+        "GyroStabilizer-v0", algo="sac", timesteps=200, seed=1, out=tmp_path,
+        progress_bar=False, eval_episodes=1, final_eval_seeds=(1000,),
+        overrides={"learning_starts": 50, "batch_size": 32, "policy_kwargs": {"net_arch": [8]}},
+    )  # fmt: skip
+    assert res.run_dir == tmp_path / "GyroStabilizer-v0" / "sac" / "seed1"
+    assert res.meta["algo"] == "sac" and "--algo sac" in res.meta["command"]
+    assert (
+        "sac" in res.meta["evaluation"]
+        and load_policy("GyroStabilizer-v0", res.run_dir).algo == "SAC"
+    )
+    with pytest.raises(ValueError, match="algo"):
+        train("GyroStabilizer-v0", algo="a2c", timesteps=10, out=tmp_path)
 
 
 # --------------------------------------------------------------------------- vector envs

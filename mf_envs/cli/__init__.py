@@ -104,6 +104,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     t = sub.add_parser("train", help="train a PPO agent (Stable-Baselines3) on an env")
     t.add_argument("env_id")
+    t.add_argument(
+        "--algo", choices=("ppo", "sac", "td3"), default="ppo",
+        help="Stable-Baselines3 algorithm (default: %(default)s); config: configs/ALGO.yml",
+    )  # fmt: skip
     t.add_argument("--timesteps", type=int, default=None, help="default: from the env's config")
     t.add_argument("--seed", type=int, default=0)
     t.add_argument("--config", default=None, help="YAML hyperparameters (rl-zoo3 format)")

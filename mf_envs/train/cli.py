@@ -30,6 +30,7 @@ def train_command(args: argparse.Namespace) -> list[Path]:
         force=args.force,
         eval_episodes=args.eval_episodes,
         vec_env=args.vec_env,
+        algo=args.algo,
     )
     m = res.meta
     print(

@@ -1,4 +1,5 @@
-"""Per-env PPO hyperparameters in the rl-baselines3-zoo YAML format (`hyperparams/ppo.yml`).
+"""Per-env hyperparameters in the rl-baselines3-zoo YAML format, one file per algorithm
+(`configs/ppo.yml`, `sac.yml`, `td3.yml`, as the zoo's `hyperparams/<algo>.yml`).
 
 One top-level key per env id. Recognised keys, as in rl-zoo3:
 
@@ -13,9 +14,10 @@ One top-level key per env id. Recognised keys, as in rl-zoo3:
   nothing else is imported, so a config cannot run code;
 - `env_kwargs`: `gym.make` kwargs (the zoo takes these on its command line; here they may live
   in the file so a config alone reproduces a run);
+- `noise_type`, `noise_std`: action noise of SAC/TD3 ('normal' or 'ornstein-uhlenbeck');
 - `learning_rate`/`clip_range` as numbers or the zoo's linear schedules `lin_3e-4`;
-- every other key is passed to `stable_baselines3.PPO` unchanged (a key PPO does not take is
-  refused naming it, `check_algo_kwargs`).
+- every other key is passed to the algorithm (`stable_baselines3.PPO`, `SAC`, `TD3`) unchanged
+  (a key it does not take is refused naming it, `check_algo_kwargs`).
 
 The files load unchanged in rl-zoo3 (`python -m rl_zoo3.train --algo ppo --env ENV_ID
 --gym-packages mf_envs -conf FILE`): mf-envs' own options (`--eval-episodes`, `--vec-env`) are
@@ -37,7 +39,18 @@ from mf_envs._files import load_yaml
 from mf_envs.train.kwargs import parse_policy_kwargs as whitelist_policy_kwargs
 from mf_envs.train.kwargs import resolve_activation
 
-DEFAULT_CONFIG = Path(__file__).parent / "configs" / "ppo.yml"
+CONFIG_DIR = Path(__file__).parent / "configs"
+DEFAULT_CONFIG = CONFIG_DIR / "ppo.yml"
+ALGOS = ("ppo", "sac", "td3")  # `mf-envs train --algo`; configs/<algo>.yml as rl-zoo3's files
+
+
+def default_config(algo: str = "ppo") -> Path:
+    """The shipped rl-zoo3 file of `algo` (`configs/ppo.yml`, `sac.yml`, `td3.yml`)."""
+    if algo not in ALGOS:
+        raise ValueError(f"algo: one of {ALGOS}, got {algo!r}")
+    return CONFIG_DIR / f"{algo}.yml"
+
+
 _ZOO_KEYS = (
     "n_timesteps",
     "n_envs",
@@ -45,6 +58,8 @@ _ZOO_KEYS = (
     "normalize",
     "env_wrapper",
     "env_kwargs",
+    "noise_type",
+    "noise_std",
 )
 # mf-envs options that earlier configs held: rl-zoo3 would pass them to PPO, so they are
 # command-line options now (as the zoo's own --eval-episodes and --vec-env)
@@ -63,6 +78,7 @@ class Hyperparams:
     normalize: dict[str, Any] | None = None  # VecNormalize kwargs, None = no normalisation
     env_wrappers: tuple[tuple[str, dict[str, Any]], ...] = ()
     env_kwargs: dict[str, Any] = field(default_factory=dict)
+    action_noise: tuple[str, float] | None = None  # the zoo's (noise_type, noise_std): SAC/TD3
     ppo_kwargs: dict[str, Any] = field(default_factory=dict)  # raw, schedules unresolved
 
 
@@ -76,7 +92,8 @@ def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
 
 
 def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
-    """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`)."""
+    """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`; the
+    other algorithms' files: `default_config(algo)`)."""
     data = read_config(path)
     if env_id not in data:
         raise ValueError(f"config: no entry for {env_id!r} in {path or DEFAULT_CONFIG}")
@@ -104,6 +121,7 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
         normalize=_parse_normalize(raw.get("normalize", False)),
         env_wrappers=_parse_wrappers(raw.get("env_wrapper")),
         env_kwargs=dict(raw.get("env_kwargs") or {}),
+        action_noise=_parse_noise(env_id, raw.get("noise_type"), raw.get("noise_std")),
         ppo_kwargs=ppo,
     )
 
@@ -156,6 +174,22 @@ class _linear:  # a picklable linear schedule, as rl-zoo3's linear_schedule
 
     def __call__(self, progress_remaining: float) -> float:
         return progress_remaining * self.initial
+
+
+def _parse_noise(env_id: str, kind: Any, std: Any) -> tuple[str, float] | None:
+    """The zoo's `noise_type` ('normal' or 'ornstein-uhlenbeck') and `noise_std` (action units,
+    the actions being in [-1, 1]) -> (kind, std); None without noise_type."""
+    if kind is None and std is None:
+        return None
+    if kind not in ("normal", "ornstein-uhlenbeck"):
+        raise ValueError(f"config: {env_id}: noise_type must be 'normal' or 'ornstein-uhlenbeck'")
+    try:
+        sigma = float(std)
+    except (TypeError, ValueError):
+        sigma = math.nan
+    if not (math.isfinite(sigma) and 0.0 < sigma <= 10.0):
+        raise ValueError(f"config: {env_id}: noise_std must be in (0, 10], got {std!r}")
+    return str(kind), sigma
 
 
 def _parse_normalize(value: Any) -> dict[str, Any] | None:

@@ -33,6 +33,8 @@ POLICY_KEYS = (
     "full_std",
     "use_expln",
     "share_features_extractor",
+    "n_critics",  # SAC, TD3
+    "clip_mean",  # SAC
 )
 
 
@@ -80,7 +82,11 @@ def _check_key(key: Any, value: Any) -> Any:
         return activation_name(name.rpartition(".")[2])
     if key == "net_arch":
         return _check_arch(value)
-    if isinstance(value, bool) or (isinstance(value, int | float) and key == "log_std_init"):
+    if isinstance(value, bool) or (
+        isinstance(value, int | float) and key in ("log_std_init", "clip_mean")
+    ):
+        return value
+    if key == "n_critics" and isinstance(value, int) and not isinstance(value, bool) and value > 0:
         return value
     return _bad(key, value)
 
@@ -89,7 +95,7 @@ def _check_arch(value: Any) -> Any:
     if isinstance(value, list | tuple):
         if all(isinstance(n, int) and not isinstance(n, bool) and n > 0 for n in value):
             return [int(n) for n in value]
-    if isinstance(value, dict) and set(value) <= {"pi", "vf"}:
+    if isinstance(value, dict) and set(value) <= {"pi", "vf", "qf"}:  # qf: SAC/TD3 critics
         return {k: _check_arch(v) for k, v in value.items()}
     return _bad("net_arch", value)
 

@@ -1,4 +1,5 @@
-"""Saved PPO policies: JSON + safetensors, and `load_policy` on raw env observations.
+"""Saved policies (SB3 PPO, SAC, TD3): JSON + safetensors, and `load_policy` on raw env
+observations.
 
 A policy folder (written by `mf-envs train`, shipped under `mf_envs/train/policies/<env_id>/`):
 
@@ -35,6 +36,12 @@ NORM_FILE = "obs_normalization.json"
 META_FILE = "meta.json"
 FORMAT = "mf-envs-policy/1"
 REFUSED_SUFFIXES = (".zip", ".pkl", ".pickle", ".pt", ".pth")
+# algorithm -> (SB3 module, model class, policy class): what policy.json's "algo" may name
+ALGOS = {
+    "PPO": ("stable_baselines3", "PPO", "stable_baselines3.common.policies", "ActorCriticPolicy"),
+    "SAC": ("stable_baselines3", "SAC", "stable_baselines3.sac.policies", "SACPolicy"),
+    "TD3": ("stable_baselines3", "TD3", "stable_baselines3.td3.policies", "TD3Policy"),
+}
 MAX_JSON_BYTES = 8 << 20  # a policy folder's JSON files are a few KB
 
 
@@ -93,11 +100,13 @@ class ObsNormalization:
 
 
 class PPOPolicy:
-    """A trained PPO policy acting on the RAW observations of `gym.make(env_id)`.
+    """A trained policy (PPO, SAC or TD3: `algo`) acting on the RAW observations of
+    `gym.make(env_id)`.
 
     Same call as a baseline controller: `reset()` and `predict(obs, deterministic=True) ->
     (action, None)`; actions are clipped to the action space as SB3's `predict` does.
-    `policy` is the rebuilt SB3 `ActorCriticPolicy` (torch module, eval mode).
+    `policy` is the rebuilt SB3 policy (`ActorCriticPolicy`, `SACPolicy` or `TD3Policy`; torch
+    module, eval mode).
     """
 
     def __init__(
@@ -106,7 +115,9 @@ class PPOPolicy:
         normalization: ObsNormalization | None,
         meta: dict,
         policy_kwargs: dict[str, Any] | None = None,
+        algo: str = "PPO",
     ) -> None:
+        self.algo = algo  # "PPO", "SAC" or "TD3" (ALGOS)
         self.policy = policy
         self.normalization = normalization
         self.meta = meta
@@ -121,16 +132,16 @@ class PPOPolicy:
         return action, None
 
     def to_sb3(self, env: Any = None, **ppo_kwargs: Any) -> Any:
-        """An SB3 `PPO` model holding these weights, to fine-tune with `learn()` (or save to the
+        """An SB3 model of this policy's algorithm (`PPO`, `SAC`, `TD3`) holding these weights
+        (actor and, for SAC/TD3, the critics), to fine-tune with `learn()` (or save to the
         Hub with SB3's own tools), built without unpickling anything.
 
         `env`: an SB3 `VecEnv` of this policy's env; default a `DummyVecEnv` of `gym.make(
         meta["env_id"])`. When the policy was trained on normalised observations the env is
         wrapped in `VecNormalize` carrying the saved statistics (observations only; training
         updates them, as in SB3), so `model.predict(model.get_env().normalize_obs(obs))` acts as
-        `predict(obs)`. `ppo_kwargs` go to `PPO` (learning rate, n_steps, ...).
+        `predict(obs)`. `ppo_kwargs` go to the algorithm (learning rate, n_steps, ...).
         """
-        from stable_baselines3 import PPO
         from stable_baselines3.common.env_util import make_vec_env
         from stable_baselines3.common.vec_env import VecNormalize
 
@@ -143,14 +154,11 @@ class PPOPolicy:
             env = VecNormalize(env, norm_obs=True, norm_reward=False, clip_obs=n.clip_obs,
                                epsilon=n.epsilon)  # fmt: skip
             env.obs_rms.mean, env.obs_rms.var = n.mean.copy(), n.var.copy()
-        model = PPO(
-            "MlpPolicy",
-            env,
-            policy_kwargs=dict(self.policy_kwargs),
-            use_sde=self.policy.use_sde,
-            device="cpu",
-            **ppo_kwargs,
-        )
+        sde = {} if self.algo == "TD3" else {"use_sde": bool(getattr(self.policy, "use_sde", 0))}
+        model = _class(self.algo, 0)(
+            "MlpPolicy", env, policy_kwargs=dict(self.policy_kwargs), device="cpu",
+            **sde, **ppo_kwargs,
+        )  # fmt: skip
         # the network needs the observation's shape and the action space (its clip); the
         # observation bounds may have been widened since the policy was trained
         ours, theirs = self.policy, model
@@ -200,7 +208,7 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
             norm = ObsNormalization.from_json(_read_json(norm_path), obs_dim)
         except ValueError as exc:
             raise ValueError(f"policy: {norm_path}: {exc}") from exc
-    return PPOPolicy(_rebuild(folder, desc), norm, meta, desc["policy_kwargs"])
+    return PPOPolicy(_rebuild(folder, desc), norm, meta, desc["policy_kwargs"], desc["algo"])
 
 
 def _refuse_pickles(folder: Path, path: str | Path | None) -> None:
@@ -223,6 +231,9 @@ def read_description(folder: Path) -> dict[str, Any]:
     desc = _read_json(p)
     if desc.get("format") != FORMAT or desc.get("policy") != "MlpPolicy":
         raise ValueError(f"policy: {p} is not an {FORMAT} MlpPolicy file")
+    desc.setdefault("algo", "PPO")
+    if desc["algo"] not in ALGOS:
+        raise ValueError(f"policy: {p}: algo {desc['algo']!r} is not one of {sorted(ALGOS)}")
     for key in ("observation_space", "action_space"):
         space = desc.get(key)
         if not isinstance(space, dict) or set(space) != {"shape", "low", "high"}:
@@ -250,20 +261,26 @@ def read_description(folder: Path) -> dict[str, Any]:
     return desc
 
 
+def _class(algo: str, which: int) -> Any:
+    """ALGOS[algo]'s model class (which=0) or policy class (which=1)."""
+    import importlib
+
+    module, name = ALGOS[algo][2 * which], ALGOS[algo][2 * which + 1]
+    return getattr(importlib.import_module(module), name)
+
+
 def _rebuild(folder: Path, desc: dict[str, Any]) -> Any:
-    """SB3 `ActorCriticPolicy` from `policy.json` (already checked) + `policy.safetensors`
-    (eval mode, CPU); ValueError naming the weights file if it is not safetensors or does not
-    fit the network (a pickle renamed `.safetensors` is refused by the format, never run)."""
+    """The SB3 policy of `desc["algo"]` (ActorCriticPolicy, SACPolicy, TD3Policy) from
+    `policy.json` (already checked) + `policy.safetensors` (eval mode, CPU); ValueError naming
+    the weights file if it is not safetensors or does not fit the network (a pickle renamed
+    `.safetensors` is refused by the format, never run)."""
     from safetensors.torch import load_file
-    from stable_baselines3.common.policies import ActorCriticPolicy
 
     kwargs = resolve_activation(desc["policy_kwargs"])
-    pol = ActorCriticPolicy(
-        _box(desc["observation_space"]),
-        _box(desc["action_space"]),
-        lambda _: 0.0,
-        use_sde=desc.get("use_sde", False),
-        **kwargs,
+    if desc["algo"] != "TD3":  # TD3's deterministic actor has no state-dependent exploration
+        kwargs["use_sde"] = desc.get("use_sde", False)
+    pol = _class(desc["algo"], 1)(
+        _box(desc["observation_space"]), _box(desc["action_space"]), lambda _: 0.0, **kwargs
     )
     weights = folder / WEIGHTS_FILE
     try:
@@ -317,21 +334,25 @@ def _read_json(p: Path) -> dict[str, Any]:
 
 
 def save_policy_files(folder: Path, model: Any, vecnorm: Any | None = None) -> list[Path]:
-    """Write `policy.json`, `policy.safetensors` (and the obs statistics) of an SB3 PPO model."""
+    """Write `policy.json`, `policy.safetensors` (and the obs statistics) of an SB3 PPO, SAC
+    or TD3 model (the policy's whole state: actor and critics, for fine-tuning)."""
     from safetensors.torch import save_file
 
     pk = dict(model.policy_kwargs)
+    pk.pop("use_sde", None)  # SAC keeps it among its policy kwargs; stored as "use_sde" below
     if "activation_fn" in pk:
         pk["activation_fn"] = activation_name(pk["activation_fn"])
     desc = {
         "format": FORMAT,
-        "algo": "PPO",
+        "algo": type(model).__name__,
         "policy": "MlpPolicy",
         "observation_space": _space_json(model.observation_space),
         "action_space": _space_json(model.action_space),
         "policy_kwargs": parse_policy_kwargs(pk),
-        "use_sde": bool(model.use_sde),
+        "use_sde": bool(getattr(model, "use_sde", False)),
     }
+    if desc["algo"] not in ALGOS:
+        raise ValueError(f"algo: {desc['algo']} policies are not saved; use one of {sorted(ALGOS)}")
     folder.mkdir(parents=True, exist_ok=True)
     (folder / POLICY_FILE).write_text(json.dumps(desc, indent=1) + "\n")
     state = {k: v.detach().cpu().contiguous() for k, v in model.policy.state_dict().items()}

@@ -257,6 +257,9 @@ def train_command(args: argparse.Namespace) -> list[Path]:
     require_ray()
     from mf_envs.train.trainer import check_env_id
 
+    if getattr(args, "algo", "ppo") != "ppo":
+        raise ValueError(f"algo: the RLlib backend trains PPO only, got {args.algo!r}")
+
     check_env_id(args.env_id)
     run_dir, hist = train(args.env_id, args.timesteps, args.seed, args.out, args.config)
     print(summary(args.env_id, hist, run_dir))

@@ -23,15 +23,16 @@ DOCS_IMG = Path(__file__).resolve().parents[2] / "docs" / "img"
 def verdict(meta: dict[str, Any]) -> tuple[bool, str]:
     """(PPO at least matches the default baseline?, one-line explanation) from meta.json."""
     ev = meta.get("evaluation")
-    if not ev or "ppo" not in ev:
+    algo = meta.get("algo", "ppo")  # the trained policy's rows: "ppo", "sac" or "td3"
+    if not ev or algo not in ev:
         return False, "meta.json has no evaluation"
     base = [k for k in ev if k.startswith("baseline:")]
-    ppo = ev["ppo"]["mean"]
+    ppo = ev[algo]["mean"]
     if not base:
-        return True, f"{ev['metric']}: ppo {ppo:.4g} (no baseline to compare with)"
+        return True, f"{ev['metric']}: {algo} {ppo:.4g} (no baseline to compare with)"
     b = ev[base[0]]["mean"]
     ok = ppo >= b if ev["higher_is_better"] else ppo <= b
-    return ok, f"{ev['metric']}: ppo {ppo:.4g} vs {base[0]} {b:.4g} on seeds {ev['seeds']}"
+    return ok, f"{ev['metric']}: {algo} {ppo:.4g} vs {base[0]} {b:.4g} on seeds {ev['seeds']}"
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -23,8 +23,10 @@ import gymnasium as gym
 from mf_envs._files import inside
 from mf_envs._staging import moved, staged_dir
 from mf_envs.train.config import (
+    ALGOS,
     Hyperparams,
     check_algo_kwargs,
+    default_config,
     load_hyperparams,
     resolve_schedules,
     wrapper_class,
@@ -84,38 +86,43 @@ def train(
     command: str | None = None,
     overrides: dict[str, Any] | None = None,
     force: bool = False,
+    algo: str = "ppo",
 ) -> TrainResult:
-    """Train PPO on `env_id` with the YAML hyperparameters; returns the run folder and files.
+    """Train `algo` (SB3 "ppo", "sac" or "td3") on `env_id` with the YAML hyperparameters
+    (default `configs/<algo>.yml`); returns the run folder and files.
 
-    `overrides`: PPO kwargs replacing the config's (tests use a tiny `policy_kwargs`).
+    `overrides`: algorithm kwargs replacing the config's (tests use a tiny `policy_kwargs`).
     `eval_episodes`: per EvalCallback check (rl-zoo3's default, 5).
     `vec_env`: "auto" (the env's native vector env where it has one, else `DummyVecEnv`) or
     "dummy" (the zoo's `--vec-env dummy`).
     `final_eval_seeds`: episodes scored after training for meta.json (empty: skip).
-    The run is written into a temporary folder beside `<out>/<env_id>/seed<S>/` and moved there
-    when complete; an existing run folder is replaced only with `force` (ValueError otherwise).
+    The run is written into a temporary folder beside `<out>/<env_id>/seed<S>/` (SAC and TD3:
+    `<out>/<env_id>/<algo>/seed<S>/`) and moved there when complete; an existing run folder is
+    replaced only with `force` (ValueError otherwise).
     """
     import torch
-    from stable_baselines3 import PPO
     from stable_baselines3.common.callbacks import EvalCallback
 
     check_env_id(env_id)
-    hp = load_hyperparams(env_id, config)
-    check_algo_kwargs(PPO, {**hp.ppo_kwargs, **(overrides or {})}, env_id)
+    Algo = _algorithm(algo)
+    hp = load_hyperparams(env_id, config if config is not None else default_config(algo))
+    check_algo_kwargs(Algo, {**hp.ppo_kwargs, **(overrides or {})}, env_id)
     total = _budget(hp, timesteps, eval_episodes, vec_env)
     tb_dir = _tensorboard_dir(out, env_id) if tensorboard else None
     if seed < 0:
         raise ValueError(f"seed: must be >= 0, got {seed}")
-    final = Path(out) / env_id / f"seed{seed}"
+    final = Path(out) / env_id / ("" if algo == "ppo" else algo) / f"seed{seed}"
     if progress_bar and importlib.util.find_spec("rich") is None:
         progress_bar = False  # SB3's bar needs tqdm and rich; train without it
     with staged_dir(final, replace=True, force=force) as run_dir:
         torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
         venv, vec_kind, eval_env = _make_envs(hp, seed, prefer_native=vec_env == "auto")
-        ppo_kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
-        model = PPO(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **ppo_kwargs)
-        n_steps = int(model.n_steps)
+        kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
+        if hp.action_noise is not None:
+            kwargs["action_noise"] = _action_noise(hp.action_noise, venv.action_space)
+        model = Algo(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **kwargs)
+        n_steps = int(getattr(model, "n_steps", 1))  # PPO: one rollout; SAC/TD3: any step
         on_best = _SaveNormalization(run_dir / "best")
         eval_cb = EvalCallback(
             eval_env,
@@ -131,7 +138,9 @@ def train(
         wall = time.perf_counter() - t0
         meta = {
             "env_id": env_id,
-            "command": command or _command(env_id, timesteps, seed, config, eval_episodes, vec_env),
+            "algo": algo,
+            "command": command
+            or _command(env_id, timesteps, seed, config, eval_episodes, vec_env, algo),
             "seed": seed,
             "timesteps": int(model.num_timesteps),
             "wall_time_s": round(wall, 2),
@@ -172,7 +181,9 @@ def _finish_run(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> list[Path
                 files.append(Path(shutil.copy2(run_dir / "evaluations.npz", folder)))
             ev = meta.get("evaluation", {})
             refs = {f"{k} (final eval)": v["return"] for k, v in ev.items() if isinstance(v, dict)}
-            label = f"ppo (EvalCallback); shipped: {meta['selected'].split()[0]}"
+            label = (
+                f"{meta.get('algo', 'ppo')} (EvalCallback); shipped: {meta['selected'].split()[0]}"
+            )
             path = folder / "learning_curve.png"
             files.append(plot_learning_curves([run_dir], path, env_id, [label], refs))
     return files
@@ -181,7 +192,8 @@ def _finish_run(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> list[Path
 def evaluation_summary(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> dict[str, Any]:
     """Primary metric of the run's policy and of the env's default baseline on `seeds`."""
     metric = primary_metric(env_id)
-    ctrls: dict[str, Any] = {"ppo": lambda env: load_policy(env_id, run_dir)}
+    algo = read_meta(run_dir).get("algo", "ppo")  # the label of the trained policy's rows
+    ctrls: dict[str, Any] = {algo: lambda env: load_policy(env_id, run_dir)}
     baselines = baseline_factories(env_id)
     if baselines:
         name = next(iter(baselines))
@@ -208,6 +220,26 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
         if (run_dir / name).is_file():
             out.append(Path(shutil.copy2(run_dir / name, dest / name)))
     return out
+
+
+def _algorithm(algo: str) -> Any:
+    """The SB3 class of `algo` ("ppo", "sac", "td3"); ValueError naming `algo` otherwise."""
+    import stable_baselines3
+
+    if algo not in ALGOS:
+        raise ValueError(f"algo: one of {ALGOS}, got {algo!r}")
+    return getattr(stable_baselines3, algo.upper())
+
+
+def _action_noise(noise: tuple[str, float], space: Any) -> Any:
+    """The zoo's action noise for SAC/TD3: zero mean, `std` in every action dimension."""
+    import numpy as np
+    from stable_baselines3.common.noise import NormalActionNoise, OrnsteinUhlenbeckActionNoise
+
+    kind, std = noise
+    n = int(np.prod(space.shape))
+    cls = NormalActionNoise if kind == "normal" else OrnsteinUhlenbeckActionNoise
+    return cls(mean=np.zeros(n), sigma=std * np.ones(n))
 
 
 def _budget(hp: Hyperparams, timesteps: int | None, eval_episodes: int, vec_env: str) -> int:
@@ -287,9 +319,17 @@ def _tensorboard_dir(out: str | Path, env_id: str) -> str:
 
 
 def _command(
-    env_id: str, timesteps: int | None, seed: int, config: Any, eval_episodes: int, vec_env: str
+    env_id: str,
+    timesteps: int | None,
+    seed: int,
+    config: Any,
+    eval_episodes: int,
+    vec_env: str,
+    algo: str = "ppo",
 ) -> str:
     parts = ["mf-envs", "train", env_id, "--seed", str(seed)]
+    if algo != "ppo":
+        parts += ["--algo", algo]
     if timesteps is not None:
         parts += ["--timesteps", str(timesteps)]
     if config is not None:
