@@ -100,12 +100,15 @@ def train(
     `<out>/<env_id>/<algo>/seed<S>/`) and moved there when complete; an existing run folder is
     replaced only with `force` (ValueError otherwise).
     """
+    check_env_id(env_id)
+    if algo not in ALGOS:
+        raise ValueError(f"algo: one of {ALGOS}, got {algo!r}")
+    # the config first: a bad file is refused before torch and SB3 are imported (seconds)
+    hp = load_hyperparams(env_id, config if config is not None else default_config(algo))
     import torch
     from stable_baselines3.common.callbacks import EvalCallback
 
-    check_env_id(env_id)
     Algo = _algorithm(algo)
-    hp = load_hyperparams(env_id, config if config is not None else default_config(algo))
     check_algo_kwargs(Algo, {**hp.ppo_kwargs, **(overrides or {})}, env_id)
     total = _budget(hp, timesteps, eval_episodes, vec_env)
     tb_dir = _tensorboard_dir(out, env_id) if tensorboard else None
