@@ -1,4 +1,5 @@
-"""Actuator dynamics and friction feet of the inchworm (issue 16).
+"""Actuator dynamics and friction feet of the inchworm (issue 16; the curvature actuator and the
+feet live in `mf_envs.physics.actuators` and `mf_envs.physics.beam.contact`).
 
 Independent truth: the analytic first-order response u + (k0 - u) exp(-t / tau) and a tight
 scipy ODE solution of the rate-saturated lag; the hand computation of the holding limit
@@ -11,28 +12,24 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from mf_envs.physics.beam import static
-from mf_envs.physics.inchworm import Inchworm, InchwormParams, run_gait, seed_uniform_kappa
-from mf_envs.physics.inchworm import quasistatic as qs
-from mf_envs.physics.inchworm.actuators import (
+from mf_envs.physics.actuators.curvature import (
     ActuatorParams,
     RateLimitedLag,
     actuation_power,
     increment_work,
     rate_limited_lag,
 )
+from mf_envs.physics.beam import static
+from mf_envs.physics.beam.contact import stick_slip as ss
+from mf_envs.physics.beam.contact.feet import FrictionFeet, grip_response
+from mf_envs.physics.beam.contact.friction import FORWARD, FrictionParams
+from mf_envs.physics.inchworm import Inchworm, InchwormParams, run_gait, seed_uniform_kappa
 from mf_envs.physics.inchworm.drive import (
     DrivenInchworm,
     cosine_gait,
     grip_for,
     run_open_loop,
     square_gait,
-)
-from mf_envs.physics.inchworm.feet import (
-    FORWARD,
-    FrictionFeet,
-    FrictionParams,
-    grip_response,
 )
 
 TAU, RATE = 0.3, 13.0
@@ -248,26 +245,26 @@ def test_bordered_onset_agrees_with_the_bracketing_search():
     both[xd], both[zd] = True, True
     d0 = sim.state.d.copy()
     d1, _, _ = static.solve_linear_path(m, d0, k0, k1, f, both, feet.settings)
-    sc = qs.scratch(m.n_elements)
+    sc = ss.scratch(m.n_elements)
     rx, nz = np.empty(2), np.empty(2)
-    qs._ground(d1, k1, f, xd, zd, bc, sc, rx, nz)
+    ss._ground(d1, k1, f, xd, zd, bc, sc, rx, nz)
     g = feet.g.copy()
     e1 = -FORWARD * rx[0] - feet.params.holding_limit(g[0], FORWARD, nz[0])
     assert e1 > 0.0  # the released tail, pulled forward, exceeds its limit at the end
     args = (d0, d1, k0, k1, f, g, g, 0, FORWARD, e1, 0, both, xd, zd, mu4, bc, sc)
-    lam_r, ok_r, it_r = qs._onset(*args, True)
-    d_r = sc.vec[qs.ROW_STAR].copy()
-    lam_b, ok_b, it_b = qs._onset(*args)
-    d_b = sc.vec[qs.ROW_STAR].copy()
+    lam_r, ok_r, it_r = ss._onset(*args, True)
+    d_r = sc.vec[ss.ROW_STAR].copy()
+    lam_b, ok_b, it_b = ss._onset(*args)
+    d_b = sc.vec[ss.ROW_STAR].copy()
     assert ok_r and ok_b and 0.0 < lam_b < 1.0
     assert lam_b == pytest.approx(lam_r, abs=1e-8)
     assert np.max(np.abs(d_b - d_r)) < 1e-10  # m, rad
     assert it_b < it_r
     guess = d0 + lam_r * (d1 - d0)  # the bordered Newton alone, from near the answer
-    lam_d, ok_d, _ = qs._onset_bordered(lam_r, guess, k0, k1, f, g, g, 0, FORWARD, both,
+    lam_d, ok_d, _ = ss._onset_bordered(lam_r, guess, k0, k1, f, g, g, 0, FORWARD, both,
                                         xd, zd, mu4, bc, sc)  # fmt: skip
     assert ok_d and lam_d == pytest.approx(lam_r, abs=1e-8)
-    qs._ground(d_b, k0 + lam_b * (k1 - k0), f, xd, zd, bc, sc, rx, nz)
+    ss._ground(d_b, k0 + lam_b * (k1 - k0), f, xd, zd, bc, sc, rx, nz)
     assert -rx[0] == pytest.approx(0.2 * nz[0], rel=1e-8)
 
 

@@ -30,7 +30,7 @@ from scipy.optimize import brute, minimize
 
 from mf_envs._validate import check_int, check_positive, positive_scalar
 from mf_envs.controllers import register
-from mf_envs.physics.inchworm.actuators import RateLimitedLag
+from mf_envs.physics.actuators.curvature import RateLimitedLag
 from mf_envs.physics.inchworm.drive import (
     CommandFn,
     cosine_gait,

@@ -14,6 +14,7 @@ import numpy as np
 
 from mf_envs.envs.inchworm.observe import observe_row
 from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam.contact import stick_slip as ss
 from mf_envs.physics.inchworm import quasistatic as qs
 
 
@@ -27,7 +28,7 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
     (N, n), head grips (N,) bool); work = (vec, ab, work, piv, kap) scratch with a leading N
     axis; cfg = (switching, max_curvature, control_dt, min_substeps, act, feet, S_ctrl,
     gauss_S, f_ext, beam constants, observation geometry, (length, max_curvature, weight),
-    centerline xis); out = (status (N,) int, report (N, qs.N_REPORT), tail before (N, 2) =
+    centerline xis); out = (status (N,) int, report (N, ss.N_REPORT), tail before (N, 2) =
     (x_origin, local x), obs (N, 2 n + 6) float32, elastic energy (N,), centerline (N, P, 2),
     kappa# at the Gauss points (N, n_el, 4))."""
     d_all, xo, lag, kc, g, slip, cmd_all, head = state
@@ -58,7 +59,7 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
             gauss_s, f_ext, bc, sc, rep[i],
         )  # fmt: skip
         status[i] = st
-        if st == qs.OK:
+        if st == ss.OK:
             cmd_all[i] = cmd
             head[i] = grips_head
             shift = d[0]

@@ -12,9 +12,9 @@ from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.inchworm import robot, spec
 from mf_envs.physics.beam import NewtonDivergence
+from mf_envs.physics.beam.contact.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS
 from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS, make_driven
-from mf_envs.physics.inchworm.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.terrain import SOILS
 
 # the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
@@ -37,9 +37,9 @@ class InchwormEnv(MFEnv):
     dynamics with the `inertia` effect). Both ends rest on the ground (z = 0, Eq. 100); with
     `anchor_switching` the agent chooses which foot grips. By default (issue 16) the command
     reaches the beam through the actuators' own dynamics (`actuator_dynamics`: a first-order
-    lag tau with a rate limit on kappa#, SMA-wire defaults, `mf_envs.physics.inchworm.actuators`)
+    lag tau with a rate limit on kappa#, SMA-wire defaults, `mf_envs.physics.actuators.curvature`)
     and the feet hold by anisotropic Coulomb friction with engage/release dynamics (`friction`,
-    `mf_envs.physics.inchworm.feet`): a foot slips when the pull exceeds mu N. Without them
+    `mf_envs.physics.beam.contact.feet`): a foot slips when the pull exceeds mu N. Without them
     (`SEED_SCENE_EFFECTS`, the seed's scene) kappa# is as commanded and the gripping foot's x is
     held kinematically (Eq. 102). With `terrain` the body instead rests on Bekker/Janosi soil
     (Eqs. 56-57):

@@ -3,7 +3,8 @@
 `beam_params`: the body (length, section, material, mesh). `robot_params` (issue 16): the
 actuator and feet kwargs `actuator_time_constant` [s], `actuator_rate_limit` [1/(m s)],
 `grip_time_constant` [s] and `friction_coefficients` become the physics' `ActuatorParams` and
-`FrictionParams` (`mf_envs.physics.inchworm.actuators`, `.feet`).
+`FrictionParams` (`mf_envs.physics.actuators.curvature`,
+`mf_envs.physics.beam.contact.friction`).
 """
 
 from __future__ import annotations
@@ -12,9 +13,9 @@ import dataclasses
 from typing import Any
 
 from mf_envs._validate import check_int, check_range
+from mf_envs.physics.actuators.curvature import SMA_RATE_LIMIT, SMA_TIME_CONSTANT, ActuatorParams
+from mf_envs.physics.beam.contact.friction import FrictionParams
 from mf_envs.physics.inchworm import InchwormParams
-from mf_envs.physics.inchworm.actuators import SMA_RATE_LIMIT, SMA_TIME_CONSTANT, ActuatorParams
-from mf_envs.physics.inchworm.feet import FrictionParams
 
 MAX_INCREMENTS = 200  # increments (or Newmark steps) of a full-range step: a step stays fast
 FRICTION_KEYS = ("grip_forward", "grip_backward", "slide_forward", "slide_backward")

@@ -23,7 +23,7 @@ import numpy as np
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.inchworm.batch import step_rows
 from mf_envs.envs.inchworm.env import InchwormEnv
-from mf_envs.physics.inchworm import quasistatic as qs
+from mf_envs.physics.beam.contact import stick_slip as ss
 
 CENTERLINE_PER_ELEMENT = 8  # points per element of info["centerline"] (Inchworm.centerline)
 
@@ -73,7 +73,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         )  # fmt: skip
         n_pts = CENTERLINE_PER_ELEMENT * ne + 1
         self._out = (
-            np.zeros(n, np.int64), np.zeros((n, qs.N_REPORT)), np.zeros((n, 2)),
+            np.zeros(n, np.int64), np.zeros((n, ss.N_REPORT)), np.zeros((n, 2)),
             np.zeros((n, 2 * nc + 6), np.float32), np.zeros(n), np.zeros((n, n_pts, 2)),
             np.zeros((n, ne, 4)),
         )  # fmt: skip
@@ -99,13 +99,13 @@ class InchwormVectorEnv(BatchedVectorEnv):
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         env = self.template
         status, rep, before, obs, energy_el, line, _ = self._out
-        status[~active] = qs.OK
+        status[~active] = ss.OK
         self.blocks.run(step_rows, active, actions, self._state, self._work, self._cfg, self._out)
         self._steps[active] += 1
         d, xo, _, kc, g, _, cmd, head = self._state
-        ok = status == qs.OK
+        ok = status == ss.OK
         eff = env.driven.meter.efficiency
-        energy = np.where(ok, rep[:, qs.REP_POS] / eff, 0.0)
+        energy = np.where(ok, rep[:, ss.REP_POS] / eff, 0.0)
         advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
         progress = advance / env.params.length
         effort = -env.effort_weight * energy
@@ -118,13 +118,13 @@ class InchwormVectorEnv(BatchedVectorEnv):
             "anchor": np.array(["head" if h else "tail" for h in head], dtype=object),
             "kappa_sharp": kc.copy(),
             "kappa_command": cmd.copy(),
-            "actuation_power": np.where(ok, rep[:, qs.REP_NET] / env.control_dt, 0.0),
+            "actuation_power": np.where(ok, rep[:, ss.REP_NET] / env.control_dt, 0.0),
             "actuation_energy": energy,
             "grip": g.copy(),
-            "foot_slip": np.where(ok[:, None], rep[:, qs.REP_SLIP : qs.REP_SLIP + 2], 0.0),
+            "foot_slip": np.where(ok[:, None], rep[:, ss.REP_SLIP : ss.REP_SLIP + 2], 0.0),
             "elastic_energy": energy_el.copy(),
-            "newton_iterations": np.where(ok, rep[:, qs.REP_ITER], 0).astype(np.int64),
-            "increments": np.where(ok, rep[:, qs.REP_INC], 0).astype(np.int64),
+            "newton_iterations": np.where(ok, rep[:, ss.REP_ITER], 0).astype(np.int64),
+            "increments": np.where(ok, rep[:, ss.REP_INC], 0).astype(np.int64),
             "time": self._steps * env.control_dt,
             "reward_terms": {"progress": progress, "effort": effort},
         }

@@ -1,16 +1,17 @@
 """The inchworm driven through its actuators and feet: one control step of the robot.
 
 `DrivenInchworm` wraps an `Inchworm` (the active beam, Rios 2017 §4.10) with
-* the actuator dynamics of `actuators` (effect `actuator_dynamics`): the commanded curvature at
-  the control points reaches the beam through the rate-limited lag (A1); without it kappa#
-  moves linearly from the old to the new command over the step (the seed's prescription);
-* the friction feet of `feet` (effect `friction`): the grip command engages one foot and
-  releases the other, each holds by Coulomb friction; without it the seed's kinematic anchors
-  of Eq. 102.
+* the curvature actuator of `mf_envs.physics.actuators` (effect `actuator_dynamics`): the
+  commanded curvature at the control points reaches the beam through the rate-limited lag
+  (A1); without it kappa# moves linearly from the old to the new command over the step (the
+  seed's prescription);
+* the friction feet of `mf_envs.physics.beam.contact.feet` (effect `friction`): the grip command
+  engages one foot and releases the other, each holds by Coulomb friction; without it the
+  seed's kinematic anchors of Eq. 102.
 Each control step is split into substeps of equal time such that no control point's kappa#
 changes by more than the increment limit in a substep (the lag is monotone within a step, so
 the largest rate is the initial one); each substep is one quasi-static increment whose
-actuation work is the trapezoid of (A2) (`actuators.increment_work`), accumulated by an
+actuation work is the trapezoid of (A2) (`curvature.increment_work`), accumulated by an
 `EnergyMeter` (no regeneration). Quasi-static with `friction` (Coulomb friction in Newmark
 dynamics would need a regularised or event-driven contact, not built).
 """
@@ -22,22 +23,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mf_envs.physics.beam import NewmarkState, static
-from mf_envs.physics.inchworm import Inchworm, InchwormParams, kappa_at_gauss
-from mf_envs.physics.inchworm import quasistatic as qs
-from mf_envs.physics.inchworm.actuators import (
+from mf_envs.physics.actuators.curvature import (
     ActuatorParams,
     EnergyMeter,
     RateLimitedLag,
     increment_work,
+    kappa_at_gauss,
 )
-from mf_envs.physics.inchworm.feet import (
+from mf_envs.physics.beam import NewmarkState, static
+from mf_envs.physics.beam.contact import stick_slip as ss
+from mf_envs.physics.beam.contact.feet import (
     FootReport,
     FrictionFeet,
-    FrictionParams,
     foot_report,
     raise_status,
 )
+from mf_envs.physics.beam.contact.friction import FrictionParams
+from mf_envs.physics.inchworm import quasistatic as qs
+from mf_envs.physics.inchworm.model import Inchworm, InchwormParams
 
 DRIVE_EFFECTS = {
     "actuator_dynamics": "actuator lag + rate limit on kappa# (off = kappa# as commanded)",
@@ -177,19 +180,19 @@ class DrivenInchworm:
         lag_k = self.lag.kappa if self.lag is not None else self.kappa_ctrl.copy()
         state = (d, lag_k, self.kappa_ctrl, feet.g, feet.slipping)
         grip = np.array(GRIP_COMMANDS[anchor])
-        rep = np.zeros(qs.N_REPORT)
+        rep = np.zeros(ss.N_REPORT)
         status = qs.drive_step(
             state, command, grip, dt, min_substeps, *self.kernel_args(), feet.scratch, rep
         )
         raise_status(status)
         if self.lag is not None:
             self.lag.command = command.copy()
-        self.meter.add_totals(rep[qs.REP_POS], rep[qs.REP_NET])
-        out = DriveReport(kappa_sharp=self.kappa_ctrl.copy(), increments=int(rep[qs.REP_INC]))
+        self.meter.add_totals(rep[ss.REP_POS], rep[ss.REP_NET])
+        out = DriveReport(kappa_sharp=self.kappa_ctrl.copy(), increments=int(rep[ss.REP_INC]))
         out.feet = foot_report(rep)
         out.iterations, out.slip = out.feet.iterations, out.feet.slip.copy()
-        out.energy = rep[qs.REP_POS] / self.meter.efficiency
-        out.net_work = float(rep[qs.REP_NET])
+        out.energy = rep[ss.REP_POS] / self.meter.efficiency
+        out.net_work = float(rep[ss.REP_NET])
         z = np.zeros_like(d)
         sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
         sim.kappa = self._gauss(self.kappa_ctrl)

@@ -1,4 +1,4 @@
-"""Bekker/Janosi ground contact for the inchworm beam (the `terrain` effect, Rios 2017 §4.5).
+"""Bekker/Janosi ground contact of a beam (Rios 2017 §4.5; the inchworm's `terrain` effect).
 
 The line loads of `mf_envs.physics.terrain.TerrainContact` (Eq. 56 pressure-sinkage, Eq. 57
 shear-slip) act at the Gauss points of the C1 beam. Approximation: the bottom surface point is
@@ -7,12 +7,15 @@ in the curled parts the contact is at the feet, which stay nearly flat); the loa
 curve of centroids (no distributed couple). The nodal force is Eq. 81b and its derivative enters
 the Newton tangent: dF/dd = int N_z^T (dn/dz) N_z dS.
 
-Grip: the seed's robot switches which foot holds by warping its leg sections (rough PI film vs
-smooth PDMS, §4.10). With `anchor_switching` + `terrain` the gripping half of the body (S >= L/2
-for the head, S < L/2 for the tail) has the soil's full shear strength, the other half slides on
-a slick surface (friction angle tan(phi) x `slick_factor`, no cohesion). Without switching the
-whole body has the soil's strength. So the grip comes out of the contact law, not a kinematic
-constraint.
+Grip: `anchor` picks which half of the body grips ("head": S >= L/2, "tail": S < L/2); that
+half has the soil's full shear strength, the other half slides on a slick surface (friction
+angle tan(phi) x `SLICK_FACTOR`, no cohesion). anchor None (the default): the whole body has
+the soil's strength. So the grip comes out of the contact law, not a kinematic constraint. (The
+seed's robot switches which foot holds by warping its leg sections, rough PI film vs smooth
+PDMS, §4.10: the inchworm sets `anchor` with `anchor_switching` + `terrain`.)
+
+The soil models themselves (`mf_envs.physics.terrain`) know nothing of beams; this module is
+their beam side, next to the beam's other ground contacts.
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""Actuator dynamics and actuation power of the active beam (Rios 2017 §4.4.3, Eqs. 53-55).
+"""Curvature actuator of the active beam: its dynamics and actuation power (Rios 2017 §4.4.3,
+Eqs. 53-55).
 
 The seed prescribes kappa#(S, t) directly (Eqs. 101, 103): any rate is allowed. A real actuator
 has its own dynamics between the commanded curvature u and the realised kappa#. Here, at every
@@ -22,6 +23,10 @@ still air. We read that as (i) the full actuation range kappa0# = 13 1/m swept i
 1 s: r = 13 1/(m s), and (ii) a 95 % settling time 3 tau of about 1 s: tau = 0.3 s (corner
 frequency 1 / (2 pi tau) = 0.53 Hz). These are order-of-magnitude figures for the actuator
 class, not a fit to one robot; pass your own through `ActuatorParams`.
+
+Generic in the robot: the actuated curvature lives at control points along any active beam
+(`kappa_at_gauss` carries it to the Gauss points); the inchworm's drive
+(`mf_envs.physics.inchworm.drive`) is one user. The compiled forms are in `kernels`.
 
 Power (sign convention): the stored energy U = int (N1^2/EA + N2^2/GA_s + M3^2/EI) / 2 dS with
 M3 = EI (kappa - kappa#) (Eq. 53) changes at the rate dU/dt = int (N1 g1' + N2 g2' + M3
@@ -49,8 +54,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from mf_envs._validate import check_positive
+from mf_envs.physics.actuators import kernels
 from mf_envs.physics.beam import GAUSS_W, BeamModel
-from mf_envs.physics.inchworm import quasistatic as qs
 
 SMA_TIME_CONSTANT = 0.3  # tau [s]: 3 tau ~ 1 s relaxation of a thin Flexinol wire in still air
 SMA_RATE_LIMIT = 13.0  # r [1/(m s)]: the seed's full range kappa0# = 13 1/m in ~1 s
@@ -92,13 +97,13 @@ def rate_limited_lag(
 ) -> np.ndarray:
     """Exact solution of (A1) from kappa (n,) under the held command u (n,) [1/m] at the time t
     [s] (-> (n,)) or the times t (m,) or (m, 1) (-> (m, n)), t >= 0: the compiled
-    `quasistatic.lag_at` (the linear phase lasts (|u - kappa| - r tau) / r, then the gap decays
+    `kernels.lag_at` (the linear phase lasts (|u - kappa| - r tau) / r, then the gap decays
     as exp(-t / tau))."""
     kappa, u = np.asarray(kappa, float).reshape(-1), np.asarray(u, float).reshape(-1)
     t = np.asarray(t, float)
     out = np.empty((t.size, kappa.size))
     for j, tj in enumerate(t.reshape(-1)):
-        qs.lag_at(kappa, u, float(tj), tau, rate, out[j])
+        kernels.lag_at(kappa, u, float(tj), tau, rate, out[j])
     return out[0] if t.ndim == 0 else out
 
 
@@ -137,6 +142,11 @@ class RateLimitedLag:
         return self.kappa.copy()
 
 
+def kappa_at_gauss(S_ctrl: np.ndarray, values: np.ndarray, gauss_S: np.ndarray) -> np.ndarray:
+    """Piecewise-linear interpolation of control-point curvatures (n_ctrl,) to the Gauss points."""
+    return np.interp(gauss_S, S_ctrl, values)
+
+
 def bending_moment(model: BeamModel, d: np.ndarray, kappa_sharp: np.ndarray) -> np.ndarray:
     """M3 = EI (kappa - kappa#) (Eq. 53) at the Gauss points (n_el, 4) [N m]."""
     return model.params.EI * (model.gauss_fields(d)["kappa"] - kappa_sharp)
@@ -161,9 +171,9 @@ def increment_work(
     """Actuation work [J] over one increment kappa# k0 -> k1 (n_el, 4), configuration d0 -> d1:
     the time integral of (A2) by the trapezoidal rule in the increment, -int M_mid (k1 - k0) dS
     with M_mid the mean of M3 at both ends (second order in the increment size); the compiled
-    `quasistatic.increment_work`."""
+    `kernels.increment_work`."""
     k0, k1 = np.ascontiguousarray(k0, float), np.ascontiguousarray(k1, float)
-    return float(qs.increment_work(d0, d1, k0, k1, model.params.EI, model.le))
+    return float(kernels.increment_work(d0, d1, k0, k1, model.params.EI, model.le))
 
 
 @dataclass

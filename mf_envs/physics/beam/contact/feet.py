@@ -1,33 +1,27 @@
-"""Feet that grip by friction: the inchworm's `friction` effect (Rios 2017 §4.5 III, §4.10).
+"""A beam on two feet that grip by friction: its tail (S = 0) and head (S = L) end nodes
+(Rios 2017 §4.5 III, §4.10; the inchworm's `friction` effect).
 
 The seed's scene holds the gripping foot kinematically (Eq. 102: its x-velocity is zero) and lets
-the other slide without friction. Here both end nodes (tail S = 0, head S = L) rest on the ground
-(z2 = 0, Eq. 100a, the vertical reaction N >= 0 is the foot's normal load, i.e. its share of the
-weight) and are held in x only by dry (Coulomb) friction:
-
-* engagement g in [0, 1] of each foot (0 released: the smooth PDMS face of the seed's robot,
-  1 gripping: its rough PI film) follows the command g_c in {0, 1} with first-order dynamics,
-  dg/dt = (g_c - g) / tau_g (tau_g = engage or release time constant), solved exactly; so
-  |dg/dt| <= 1 / tau_g at all times: gripping and releasing take time;
-* friction coefficient, anisotropic (different for slipping forward, +x, and backward, -x, like
-  the directional hooks of a caterpillar's prolegs):
-  mu(g, s) = mu_slide(s) + g (mu_grip(s) - mu_slide(s)), s = +1 forward, -1 backward;
-* holding limit F_hold = mu(g, s) N (Coulomb, equal static and kinetic coefficients), N the
-  normal load at the foot. A foot sticks (its x held) while the ground force R_x it needs stays
-  within the limit for the direction it is pulled in (s = -sign R_x); when |R_x| would exceed
-  it, the foot slips in the direction s with the ground force R_x = -s F_hold.
+the other slide without friction. Here both end nodes rest on the ground (z2 = 0, Eq. 100a, the
+vertical reaction N >= 0 is the foot's normal load, i.e. its share of the weight) and are held
+in x only by dry (Coulomb) friction with the law of `friction` (anisotropic coefficients,
+engagement dynamics, holding limit F_hold = mu(g, s) N). A foot sticks (its x held) while the
+ground force R_x it needs stays within the limit for the direction it is pulled in
+(s = -sign R_x); when |R_x| would exceed it, the foot slips in the direction s with the ground
+force R_x = -s F_hold. (Engagement 0: the smooth PDMS face of the seed's robot, 1: its rough PI
+film.)
 
 Quasi-static active set (hand-written; no library solves stick-slip on this beam): each
 actuation increment is first solved with both feet stuck; if a foot's force exceeds its
 holding limit, the onset lambda* inside the increment is located on the stuck path where
 |R_x| = F_hold exactly: Newton on the stuck configuration and lambda together (the equilibrium
 bordered by the onset condition, from regula falsi's first point), with regula falsi (Illinois)
-on stuck solutions as the fallback (`quasistatic._onset`), and the rest of the increment
+on stuck solutions as the fallback (`stick_slip._onset`), and the rest of the increment
 is solved with that foot free under its friction force (a dead load, refreshed once with the
 normal load at the end). With only the two feet carrying horizontal forces (gravity is vertical
 and the feet sit on the line z = 0, so the friction forces do not change N), the ground forces on
 the feet are equal and opposite, so at most one foot slips: the one whose limit is exceeded
-first.
+first. The compiled form is `stick_slip`.
 """
 
 from __future__ import annotations
@@ -36,59 +30,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mf_envs._validate import check_nonnegative, check_positive
 from mf_envs.physics.beam import BeamModel, NewtonDivergence, NewtonSettings, static
-from mf_envs.physics.inchworm import quasistatic as qs
-
-FORWARD, BACKWARD = qs.FORWARD, qs.BACKWARD
-TIE_TOLERANCE = qs.TIE_TOLERANCE  # accepted relative excess of the other foot in a near tie
+from mf_envs.physics.beam.contact import friction
+from mf_envs.physics.beam.contact import stick_slip as ss
+from mf_envs.physics.beam.contact.friction import FrictionParams
 
 
 class NoQuasiStaticEquilibrium(RuntimeError):
     """Both feet would slip: the quasi-static model has no equilibrium (the body would
     accelerate)."""
-
-
-@dataclass(frozen=True)
-class FrictionParams:
-    """Coulomb coefficients (dimensionless) of a gripping (g = 1) and a released (g = 0) foot for
-    slipping forward (+x) and backward (-x); engage/release time constants [s].
-
-    Defaults (our choice, order of magnitude of polymer films on a dry surface): gripping foot
-    0.6 forward / 1.0 backward (a directional pad that resists being pushed back), released
-    smooth foot 0.1 / 0.15. Time constants 0.2 s: the seed's robot switches feet by warping the
-    foot sections with transverse SMA wires, the same ~1 s-class wires as the body (3 tau ~ the
-    0.5-1 s wire response, see `actuators`).
-    """
-
-    grip_forward: float = 0.6
-    grip_backward: float = 1.0
-    slide_forward: float = 0.1
-    slide_backward: float = 0.15
-    engage_time: float = 0.2
-    release_time: float = 0.2
-
-    def __post_init__(self) -> None:
-        for name in ("grip_forward", "grip_backward", "slide_forward", "slide_backward"):
-            check_nonnegative(f"friction_coefficients['{name}']", getattr(self, name))
-        check_positive("grip_time_constant", self.engage_time)
-        check_positive("grip_time_constant", self.release_time)
-
-    @property
-    def coefficients(self) -> np.ndarray:
-        """(grip_forward, grip_backward, slide_forward, slide_backward), the compiled layout."""
-        return np.array(
-            [self.grip_forward, self.grip_backward, self.slide_forward, self.slide_backward]
-        )
-
-    def mu(self, g: float, direction: int) -> float:
-        """Friction coefficient of a foot with engagement g slipping in `direction` (+1/-1):
-        mu_slide + g (mu_grip - mu_slide)."""
-        return qs.friction_coefficient(self.coefficients, float(g), int(direction))
-
-    def holding_limit(self, g: float, direction: int, normal: float) -> float:
-        """F_hold = mu(g, direction) max(N, 0) [N] (normal load N [N], positive pressing)."""
-        return qs.holding_limit(self.coefficients, float(g), int(direction), float(normal))
 
 
 def grip_response(g: np.ndarray, command: np.ndarray, t, params: FrictionParams) -> np.ndarray:
@@ -98,7 +48,7 @@ def grip_response(g: np.ndarray, command: np.ndarray, t, params: FrictionParams)
     t = np.asarray(t, float)
     out = np.empty((t.size, 2))
     for k, tk in enumerate(t.reshape(-1)):
-        qs.grip_response(g, command, tk, params.engage_time, params.release_time, out[k])
+        friction.grip_response(g, command, tk, params.engage_time, params.release_time, out[k])
     return out[0] if t.ndim == 0 else out
 
 
@@ -118,7 +68,7 @@ class FootReport:
 
 class FrictionFeet:
     """Tail and head feet of `model` holding by friction (module docstring); the increments
-    run in the compiled `quasistatic` kernels."""
+    run in the compiled `stick_slip` kernels."""
 
     def __init__(
         self, model: BeamModel, params: FrictionParams, settings: NewtonSettings | None = None
@@ -128,7 +78,7 @@ class FrictionFeet:
         self.nodes = (0, model.n_elements)
         self.x_dofs = np.array([model.dof(n, "z1") for n in self.nodes])
         self.z_dofs = np.array([model.dof(n, "z2") for n in self.nodes])
-        self.scratch = qs.scratch(model.n_elements)
+        self.scratch = ss.scratch(model.n_elements)
         self.reset()
 
     def reset(self, engagement: tuple[float, float] = (0.0, 1.0)) -> None:
@@ -138,7 +88,7 @@ class FrictionFeet:
         self.iterations = 0
 
     def kernel_args(self) -> tuple:
-        """(x dofs, z dofs, coefficients, engage, release): the feet of `quasistatic`."""
+        """(x dofs, z dofs, coefficients, engage, release): the feet of `stick_slip`."""
         p = self.params
         return (self.x_dofs, self.z_dofs, p.coefficients, p.engage_time, p.release_time)
 
@@ -158,11 +108,11 @@ class FrictionFeet:
         n = kg.shape[0] - 1
         times = dt * np.arange(n + 1)[:, None] / n
         gs = grip_response(self.g, np.asarray(command, float), times, self.params)
-        rep = np.zeros(qs.N_REPORT + n)
+        rep = np.zeros(ss.N_REPORT + n)
         ds = np.empty((n, self.model.n_dof))
         bc = static.constants(self.model, self.settings)
         xd, zd, mu4 = self.kernel_args()[:3]
-        status = qs.feet_step(
+        status = ss.feet_step(
             np.asarray(d, float),
             kg,
             f_ext,
@@ -178,27 +128,27 @@ class FrictionFeet:
         )
         raise_status(status)
         self.g = gs[-1].copy()
-        self.iterations = int(rep[qs.REP_ITER])
+        self.iterations = int(rep[ss.REP_ITER])
         return list(ds), foot_report(rep)
 
 
 def foot_report(rep: np.ndarray) -> FootReport:
-    """The FootReport of a `quasistatic` report array."""
-    n_on = int(rep[qs.REP_ONSETS])
+    """The FootReport of a `stick_slip` report array."""
+    n_on = int(rep[ss.REP_ONSETS])
     return FootReport(
-        slip=rep[qs.REP_SLIP : qs.REP_SLIP + 2].copy(),
-        friction_work=float(rep[qs.REP_FWORK]),
-        ground_x=rep[qs.REP_GX : qs.REP_GX + 2].copy(),
-        normal=rep[qs.REP_N : qs.REP_N + 2].copy(),
-        slipping=rep[qs.REP_SLIPPING : qs.REP_SLIPPING + 2].astype(int),
-        onsets=[float(x) for x in rep[qs.N_REPORT : qs.N_REPORT + n_on]],
-        iterations=int(rep[qs.REP_ITER]),
+        slip=rep[ss.REP_SLIP : ss.REP_SLIP + 2].copy(),
+        friction_work=float(rep[ss.REP_FWORK]),
+        ground_x=rep[ss.REP_GX : ss.REP_GX + 2].copy(),
+        normal=rep[ss.REP_N : ss.REP_N + 2].copy(),
+        slipping=rep[ss.REP_SLIPPING : ss.REP_SLIPPING + 2].astype(int),
+        onsets=[float(x) for x in rep[ss.N_REPORT : ss.N_REPORT + n_on]],
+        iterations=int(rep[ss.REP_ITER]),
     )
 
 
 def raise_status(status: int) -> None:
-    """The exception of a `quasistatic` status code (none for OK)."""
-    if status == qs.NEWTON_FAILED:
+    """The exception of a `stick_slip` status code (none for OK)."""
+    if status == ss.NEWTON_FAILED:
         raise NewtonDivergence("Newton failed even after step halving")
-    if status == qs.NO_EQUILIBRIUM:
+    if status == ss.NO_EQUILIBRIUM:
         raise NoQuasiStaticEquilibrium("both feet exceed their holding limits")
