@@ -15,7 +15,7 @@ Scenes (error = max over the run of |x - x_ref| / max |x_ref|):
 - `stabilizer_rotor_speed`: the stiff case. One FREE gimbal (passive, no torque) on the seed hull,
   hull released at 0.005 rad/s roll rate; rotor 1000 ... 10000 rpm; the nutation frequency
   H / sqrt(J_gimbal J_roll) grows with the speed (0.9 rad/s at 1000 rpm, 8.9 rad/s at 10 000);
-  methods `engine_<rpm>rpm` and `fast_<rpm>rpm` (the torque drive of `ship_kernels` with zero
+  methods `engine_<rpm>rpm` and `fast_<rpm>rpm` (the torque drive of `ship.kernels` with zero
   torque), reference the engine at dt_min / 4 for each speed.
 Extra columns: `rpm`, `form`.
 """

@@ -9,7 +9,7 @@ Kinematic tree (Fig. 3-7)::
 The engine (`mf_envs.physics.multibody`) assembles B(t) (Eq. 120), M (Eq. 121), D (Eq. 122) and
 solves Eq. 74 for the hull's free velocities with the gimbal and rotor prescribed (Eq. 115), or
 with a free gimbal driven by a torque. Rotors turn about their gimbal's e_3 (the seed's Eqs.
-106-107 write R_2). This is the general model the fast paths of `ship_kernels` are checked
+106-107 write R_2). This is the general model the fast paths of `ship.kernels` are checked
 against; it is slower (Python per step) and used by tests and benchmarks, not by the env.
 
 Loads: the engine holds applied wrenches constant over a step, so the time-dependent wave moment
@@ -148,7 +148,7 @@ def simulate_engine(
 
     heave0: initial hull CM height (m, `translation` only).
 
-    External moments are those of the fast path (`ship_kernels.external_moment`, the same packed
+    External moments are those of the fast path (`ship.loads.external_moment`, the same packed
     parameters), applied to the hull as a body-frame moment.
     """
     eff = resolve_effects(effects, SHIP_EFFECTS, SEED_EFFECTS)

@@ -1,6 +1,6 @@
 """Ship + gyro roll stabilizer model: effects, packing, simulation and named quantities.
 
-The equations are in `ship_kernels` (module doc there: total angular-momentum balance, which is
+The equations are in `ship.kernels` (module doc there: total angular-momentum balance, which is
 the B-matrix result of ch. 3 Eqs. 74-75 with prescribed gimbal and rotor, and the seed's Eqs.
 123-128 as the `form="seed"` fast path). `ship_engine` builds the same ship on the general
 multibody engine (`mf_envs.physics.multibody`) for cross-checks.
@@ -16,7 +16,7 @@ Effects (names from `mf_envs.effects`; all off costs nothing: a zero coefficient
 | roll_damping           | -B44 w1, -B55 w2, -B66 w3 (linear)                               |
 | quadratic_roll_damping | -B44q abs(w1) w1 (MSS's K_abs(p)p; Ikeda's eddy/viscous part)    |
 | wave_moment            | regular M0 cos(2 pi t / T + phase)                               |
-| irregular_waves        | roll moment from an irregular sea (`ship_waves`), replaces regular |
+| irregular_waves        | roll moment from an irregular sea (`ship.waves`), replaces regular |
 | gimbal_limits          | precession-rate limit and end stops on the servo                 |
 | gimbal_damping         | bearing friction c phi' of an active torque drive (passive drives |
 |                        | always brake with their own c)                                   |
@@ -144,9 +144,9 @@ def pack_params(
     coupling: SwayRollYaw | None = None,
     speed: float = 0.0,
 ) -> NDArray[np.float64]:
-    """The packed float64 parameter vector P of `ship_kernels` for this scene.
+    """The packed float64 parameter vector P of `ship.kernels` for this scene.
 
-    `irregular_waves` needs a moment table (see `ship_waves.wave_table`) passed to the kernels
+    `irregular_waves` needs a moment table (see `ship.waves.wave_table`) passed to the kernels
     with its sampling step `table_dt` (s). ship_gz_cubic: the cubic GZ term over GM (1/rad^2,
     `ship.hulls.Hull.gz_cubic`). coupling: sway-roll-yaw coefficients (`ship.coupling`): with
     them the sway equation and the coupling terms are on, at ship speed `speed` (m/s); they
@@ -259,7 +259,7 @@ def initial_state(
     gimbal_angle: float = 0.0,
     gimbal_rate: float = 0.0,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """(y, R): state vector (see `ship_kernels`) and attitude rot_x(roll) (inertial <- ship)."""
+    """(y, R): state vector (see `ship.kernels`) and attitude rot_x(roll) (inertial <- ship)."""
     y = np.zeros(K.N_STATE)
     y[0:3] = check_finite("omega", omega)
     y[3] = finite_scalar("gimbal_angle", gimbal_angle)
