@@ -19,6 +19,9 @@ The steppers are templates specialised per model right-hand side (`make_rk4`, `m
 numba cannot cache a function that receives another jitted function as an argument, so the
 template's code object is re-bound to the model's `rhs` and `inputs` as globals and compiled
 with `cache=True` under a name derived from the model function (cached in the model's folder).
+A step returns the stage inputs at t + dt and leaves its increment in its scratch (`work[0]`,
+the RKMK4's new attitude in `Rwork[1]`), so that it returns no array and can be a
+`mf_envs._jit.kernel` that LLVM inlines into its caller (`inline=True`, see `_jit`).
 Hand-written (no library offers numba-compiled Lie-group Runge-Kutta): the tableau is the
 classical RK4 one, the Munthe-Kaas form is Iserles et al., Acta Numerica 9 (2000), Sec. 5.
 """
@@ -32,6 +35,8 @@ from collections.abc import Callable
 
 import numba
 import numpy as np
+
+from mf_envs._jit import kernel
 
 # Below x^2 = 0.01 (x < 0.1) the Taylor series of a, b and c to x^8 are used: their truncation is
 # < 3e-18, as accurate as libm sin/cos/tan and free of the cancellation of the closed forms.
@@ -334,8 +339,8 @@ def _rk4_template(t, x, dt, args, work):
     x: (n,) state; `rhs(t, x, inp, args, out)` writes x' into out (n,); `inputs(t, args)`
     (exogenous, state-free: waves, prescribed motions) is evaluated once at each of t, t + dt/2,
     t + dt. work: (5, n) scratch (`rk4_work(n)`; reuse it across steps: no allocation).
-    Returns (dx (a view into work), inputs at t + dt): the caller forms x + dx (the increment
-    itself is what energy bookkeeping needs)."""
+    Writes the increment dx into work[0] (the caller forms x + dx; the increment itself is
+    what energy bookkeeping needs) and returns the inputs at t + dt."""
     h = 0.5 * dt
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
     k1, k2, k3, k4, xs = work[0], work[1], work[2], work[3], work[4]
@@ -343,7 +348,8 @@ def _rk4_template(t, x, dt, args, work):
     _rhs(t + h, _stage_point(xs, x, h, k1), ih, args, k2)  # noqa: F821
     _rhs(t + h, _stage_point(xs, x, h, k2), ih, args, k3)  # noqa: F821
     _rhs(t + dt, _stage_point(xs, x, dt, k3), i1, args, k4)  # noqa: F821
-    return _rk4_combine(dt, k1, k2, k3, k4), i1
+    _rk4_combine(dt, k1, k2, k3, k4)
+    return i1
 
 
 def _rkmk4_template(t, y, R, dt, args, work, Rwork):
@@ -353,8 +359,8 @@ def _rkmk4_template(t, y, R, dt, args, work, Rwork):
     omega as a 3-tuple (rad/s). The attitude is carried in the Lie algebra: R_s = R exp(hat(
     theta_s)), theta' = dexpinv_right(theta, omega); the new attitude is R exp(hat(theta_new))
     (4th order in y and R, R orthogonal to round-off). work (5, n), Rwork (2, 3, 3): scratch
-    (`rk4_work(n)`, `rkmk4_rwork()`; reuse across steps). Returns (dy, R_new, inputs at t + dt),
-    dy and R_new views into the scratch."""
+    (`rk4_work(n)`, `rkmk4_rwork()`; reuse across steps). Writes the increment dy into work[0]
+    and the new attitude R_new into Rwork[1]; returns the inputs at t + dt."""
     h = 0.5 * dt
     i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
     k1, k2, k3, k4, ys = work[0], work[1], work[2], work[3], work[4]
@@ -370,7 +376,8 @@ def _rkmk4_template(t, y, R, dt, args, work, Rwork):
     times_exp_into(Rs, R, th)
     q4 = dexpinv_right3(th, _rhs(t + dt, _stage_point(ys, y, dt, k3), Rs, i1, args, k4))  # noqa: F821
     times_exp_into(R1, R, _rk4_combine3(dt, q1, q2, q3, q4))
-    return _rk4_combine(dt, k1, k2, k3, k4), R1, i1
+    _rk4_combine(dt, k1, k2, k3, k4)
+    return i1
 
 
 @numba.njit(cache=True)
@@ -385,9 +392,10 @@ def rkmk4_rwork() -> np.ndarray:
     return np.empty((2, 3, 3))
 
 
-def _specialise(template: Callable, rhs, inputs, prefix: str, inline: str = "never"):
+def _specialise(template: Callable, rhs, inputs, prefix: str, inline: bool = False):
     """Compile `template` with `_rhs`/`_inputs` bound to the model's jitted functions (module doc);
-    inline="always" inlines it into its callers (numba IR inlining).
+    inline=True makes it a `mf_envs._jit.kernel` that LLVM inlines into its callers
+    (`forceinline`; numba's IR inlining, `inline="always"`, cost minutes of compilation here).
 
     The result is cached beside the model's module (its file stamps the cache) under a name that
     also carries a checksum of this file, so editing either invalidates it."""
@@ -400,21 +408,24 @@ def _specialise(template: Callable, rhs, inputs, prefix: str, inline: str = "nev
     glb = dict(template.__globals__, _rhs=rhs, _inputs=inputs)
     fn = types.FunctionType(code, glb, name)
     fn.__module__, fn.__doc__ = py.__module__, template.__doc__
-    return numba.njit(cache=True, inline=inline)(fn)
+    if inline:
+        return kernel(fn, forceinline=True)
+    return numba.njit(cache=True)(fn)
 
 
-def make_rk4(rhs, inputs, inline: str = "never"):
-    """The RK4 step `step(t, x, dt, args, work) -> (dx, inputs(t + dt))` for one model (numba).
+def make_rk4(rhs, inputs, inline: bool = False):
+    """The RK4 step `step(t, x, dt, args, work) -> inputs(t + dt)` for one model (numba); the
+    increment dx is left in work[0].
 
     rhs(t, x, inp, args, out) (writes x' (n,) into out) and inputs(t, args) -> inp must be
     `numba.njit` functions;
-    `step` is itself jitted and callable from the model's kernels; inline="always" inlines it
-    into them instead of calling it."""
+    `step` is itself jitted and callable from the model's kernels; inline=True makes it a
+    kernel that LLVM inlines into them (`_specialise`)."""
     return _specialise(_rk4_template, rhs, inputs, "rk4", inline)
 
 
-def make_rkmk4(rhs, inputs, inline: str = "never"):
-    """The RKMK4 step `step(t, y, R, dt, args, work, Rwork) -> (dy, R_new, inputs(t + dt))`;
-    rhs(t, y, R, inp, args, out) -> omega and inputs(t, args) jitted (see `_rkmk4_template`);
-    inline as `make_rk4`."""
+def make_rkmk4(rhs, inputs, inline: bool = False):
+    """The RKMK4 step `step(t, y, R, dt, args, work, Rwork) -> inputs(t + dt)`, the increment dy
+    left in work[0] and the new attitude in Rwork[1]; rhs(t, y, R, inp, args, out) -> omega and
+    inputs(t, args) jitted (see `_rkmk4_template`); inline as `make_rk4`."""
     return _specialise(_rkmk4_template, rhs, inputs, "rkmk4", inline)

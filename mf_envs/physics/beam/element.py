@@ -56,6 +56,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs.physics.beam.banded import HALF_BW, N_BAND  # noqa: F401  (the band layout)
 
 N_GAUSS = 4
@@ -123,7 +124,7 @@ def _shape(xi: float, le: float):
     return nz, dnz, npsi, dnpsi
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _shape_into(xi, le, nz, dnz, npsi, dnpsi):
     """`_shape` into caller arrays (no allocation in the assembly loops)."""
     nz[0] = 1.0 - 3.0 * xi**2 + 2.0 * xi**3
@@ -156,7 +157,7 @@ LOC = (0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5)
 LOC_INV = (0, 1, 4, 5, 8, 10, 2, 3, 6, 7, 9)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _shape_row(xi, le, sh):
     """`_shape` into a row sh (SH_LEN,) at the SH_* offsets (no allocation)."""
     _shape_into(
@@ -165,7 +166,7 @@ def _shape_row(xi, le, sh):
     )  # fmt: skip
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _shape_table(xis, le, shp, le_tab):
     """Rows of shape functions (`_shape_row`) at the local points xis (n,) into shp (n, SH_LEN)
     for an element of length le, unless the table already holds them (le == le_tab: they
@@ -177,7 +178,7 @@ def _shape_table(xis, le, shp, le_tab):
     return le
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _point_strains(de, sh):
     """psi, kappa, cos psi, sin psi, gamma_1, gamma_2 at a point from the 11 element dofs and
     the shape functions there (a `_shape_row`) (Eqs. 74, 75)."""
@@ -193,7 +194,7 @@ def _point_strains(de, sh):
     return psi, kap, c, s, g1, g2
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def kappa_at(d, base, le, xi):
     """kappa = psi' [1/m] at local xi of the element of length le whose first global dof is
     `base` (the expression of `_point_strains` with the psi shape functions of `_shape`,
@@ -223,7 +224,7 @@ def assemble_internal(d, le, kappa_sharp, qxi, qw, stiff, with_tangent):
     return p, ab, energy
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _element_point(de, sh, w, ea, gas, ei, ksh, fe, ke, with_tangent, u, v):
     """Add one quadrature point's force and tangent to the element's fe (11,), ke (11, 11)
     (upper triangle), exploiting the structure of B_T: with u = (c Nz', s Nz') and
@@ -277,7 +278,7 @@ def _element_point(de, sh, w, ea, gas, ei, ksh, fe, ke, with_tangent, u, v):
     return 0.5 * w * (n1 * (g1 - 1.0) + n2 * g2 + m3 * (kap - ksh))
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _element(d, e, le_e, kappa_sharp, qw, stiff, shp, de, fe, ke, uv, with_tangent, energy):
     """Element e's force into fe (11,) and, with_tangent, its upper-triangle tangent into ke
     (11, 11), its dofs into de (11,); shp: the shape table of its quadrature at its length.

@@ -113,7 +113,8 @@ def fast_step_into(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, s
     x = work[5]
     x[0], x[1] = phi, phid
     for _ in range(n):
-        dx, _ = _rk4(t, x, dt, args, work)
+        _rk4(t, x, dt, args, work)
+        dx = work[0]
         energy += Mg * dx[0]  # = M_g (change of phi), exact for the held torque
         x[0] += dx[0]
         x[1] += dx[1]

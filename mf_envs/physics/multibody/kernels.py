@@ -310,7 +310,9 @@ def rkmk4_step(q, u, dt, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau):
     x = np.zeros(2 * nu)
     x[nu:] = u
     args = (dt, q, qP, uP, udP, qmask, umask, topo, wrench, gravity, tau)
-    dx, _ = _rk4(0.0, x, dt, args, rk4_work(2 * nu))
+    work = rk4_work(2 * nu)
+    _rk4(0.0, x, dt, args, work)
+    dx = work[0]
     q1 = _overlay(retract(q, dx[:nu], jtype, qoff, uoff, free_joint), qP[2], qmask)
     u1 = _overlay(u + dx[nu:], uP[2], umask)
     return q1, u1

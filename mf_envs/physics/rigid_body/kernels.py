@@ -58,7 +58,9 @@ _rk4 = make_rk4(_euler_stage, _no_inputs)
 @numba.njit(cache=True)
 def rk4_momentum_step(H: np.ndarray, Jinv: np.ndarray, dt: float) -> np.ndarray:
     """One classical RK4 step of Eq. 22 from H(t) to H(t + dt) (body components, kg m^2/s)."""
-    return H + _rk4(0.0, H, dt, Jinv, rk4_work(3))[0]
+    work = rk4_work(3)
+    _rk4(0.0, H, dt, Jinv, work)
+    return H + work[0]
 
 
 @numba.njit(cache=True)

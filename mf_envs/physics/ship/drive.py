@@ -64,6 +64,7 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs._jit import kernel
 from mf_envs._validate import (
     check_choice,
     check_nonnegative,
@@ -151,12 +152,12 @@ def electric_drive(angular_momentum: float, **over: float) -> DriveParams:
     return DriveParams("electric", **kw)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _clip(x: float, lo: float, hi: float) -> float:
     return min(max(x, lo), hi)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def rate_command(u: float, phi: float, D: np.ndarray, o: int = 0) -> float:
     """The command u (rad/s) clipped to +-max_rate and the end-stop envelope (module doc).
     D[o:] is the packed drive vector (o > 0: read in place from a longer vector, no slice)."""
@@ -165,7 +166,7 @@ def rate_command(u: float, phi: float, D: np.ndarray, o: int = 0) -> float:
     return _clip(ue, lo, (D[o + DPHIMAX] - phi) / D[o + DTSTOP])
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def machine_limit(tau: float, phid: float, D: np.ndarray, o: int = 0) -> float:
     """tau (N m) saturated to the machine envelope at gimbal rate phid (rad/s), module doc;
     D[o:] the packed drive vector."""
@@ -180,7 +181,7 @@ def machine_limit(tau: float, phid: float, D: np.ndarray, o: int = 0) -> float:
     return t
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def pendulum_torque(phi: float, r20: float, r22: float, mgl: float, n_gyros: int) -> float:
     """Gravity torque (N m) on a gimbal whose CG lies l below its axis, mgl = m g l (N m).
 
@@ -194,7 +195,7 @@ def pendulum_torque(phi: float, r20: float, r22: float, mgl: float, n_gyros: int
     return mgl * (math.cos(phi) * r20 - math.sin(phi) * r22)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def drive_torque(phi, phid, z, u, gyro_torque, r20, r22, n_gyros, D, o=0):
     """(tau in N m, z' in rad/s) of the drive on gyro 1's gimbal (module doc).
 

@@ -77,7 +77,7 @@ N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt 
 Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=0.0, roll=0.0):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
     at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame), gimbal
@@ -149,7 +149,7 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
     return a1, a2, a3, -n * H * phid * c, phidd, dv
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
     """(w1', w2', w3', phi', phi'', z', drive power n |tau phi'|, v') of the rotational state, the
     drive-loop integral z and the sway velocity v (`ship.coupling`) at attitude third row
@@ -182,14 +182,14 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _trans_rates(x3, v1, v2, v3, fw, P):
     """Hull CM acceleration (m/s^2, inertial): surge/sway damping, heave spring-damper + force."""
     m = P[S.MASS]
     return -P[S.CSS] * v1 / m, -P[S.CSS] * v2 / m, (fw - P[S.KH] * x3 - P[S.CH] * v3) / m
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def stage_inputs(t, args):
     """The state-free inputs at time t: (wave moment N m, heave force N, prescribed gimbal
     (phi, phi', phi'') of gyro 1; unused by the servo and torque drives). args = (u, P, tab,
@@ -202,7 +202,7 @@ def stage_inputs(t, args):
     return mw, fw, (0.0, 0.0, 0.0)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def stage_rhs(t, y, R, inp, args, dy):
     """y' (n,) of the state y at attitude R (module doc) into dy; returns the body rate omega
     (3-tuple, rad/s): the right-hand side of the RKMK4 step. The gimbal is prescribed by inp in
@@ -227,7 +227,7 @@ def stage_rhs(t, y, R, inp, args, dy):
     return y[0], y[1], y[2]
 
 
-_rkmk4 = make_rkmk4(stage_rhs, stage_inputs, inline="always")
+_rkmk4 = make_rkmk4(stage_rhs, stage_inputs, inline=True)
 
 
 @kernel
@@ -238,7 +238,8 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     `gimbal_limits` then meets its inelastic end stops (`_stop_gimbal`). work (5, n),
     Rwork (2, 3, 3): the stepper's scratch (`frames.kernels.rk4_work`, `rkmk4_rwork`).
     Returns the wave moment (N m) at t + dt."""
-    dy, R1, inp = _rkmk4(t, y, R, dt, (u, P, tab, _near(t, y[3], P)), work, Rwork)
+    inp = _rkmk4(t, y, R, dt, (u, P, tab, _near(t, y[3], P)), work, Rwork)
+    dy, R1 = work[0], Rwork[1]
     for i in range(y.shape[0]):
         y[i] += dy[i]
     for i in range(3):
@@ -251,7 +252,7 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     return inp[0]
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _near(t, phi, P):
     """(phi, cos phi, sin phi, t, cos a, sin a) at a step's start: gimbal angle phi (rad) of the
     servo and torque drives and the regular wave's phase a = omega t + eps (rad), from which

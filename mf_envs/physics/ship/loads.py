@@ -10,6 +10,7 @@ import math
 import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
 from mf_envs.physics.ship.drive import drive_torque
 from mf_envs.physics.ship.layout import (
@@ -49,7 +50,7 @@ def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
     return phi, phid, (ue - phid) / P[S.TAU]
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def gyro_gimbal_torque(w1, w3, phi, P, c=math.nan, s=math.nan):
     """H w_g1 (N m): the gyroscopic torque on gyro 1's gimbal, H (cos phi w1 - sin phi w3) for
     one gyro, H cos(phi) w1 on the common coordinate of the mirrored pair. c, s: cos(phi),
@@ -60,7 +61,7 @@ def gyro_gimbal_torque(w1, w3, phi, P, c=math.nan, s=math.nan):
     return h * (c * w1 - s * w3) if int(P[S.NGYRO]) == 1 else h * c * w1
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c=math.nan, s=math.nan):
     """(tau in N m, z' in rad/s) of the torque drive (`ship.drive.drive_torque`) on gyro 1's
     gimbal; the gyroscopic torque it feeds forward is H w_g1 (one gyro) or H cos(phi) w1 (pair).
@@ -72,7 +73,7 @@ def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c=math.nan, s=math.nan):
 _TAN14_SQ = math.tan(1.4) ** 2  # the wall-sided GZ's tan(r) is clipped to |r| <= 1.4 rad
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _asin(x: float) -> float:
     """asin(x); for |x| < 0.05 (pitch below 2.9 deg) its Taylor series to x^11 (truncation
     < 2e-19 |x|, as accurate as libm asin, and a few times cheaper)."""
@@ -85,7 +86,7 @@ def _asin(x: float) -> float:
     return math.asin(x)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def hull_moment(w1, w2, w3, r20, r21, r22, P):
     """Hydrostatic and damping moments (N m, ship frame) from the body rates (rad/s) and the
     third row (r20, r21, r22) of the attitude R; see `external_moment`.
@@ -115,7 +116,7 @@ def hull_moment(w1, w2, w3, r20, r21, r22, P):
     return m1, m2, -P[S.B66] * w3
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def wave_loads(t: float, P: np.ndarray, tab: np.ndarray):
     """(wave roll moment M_e in N m, heave force in N; the force only with `translation`) at t."""
     mode = int(P[S.WMODE])
@@ -133,7 +134,7 @@ def wave_loads(t: float, P: np.ndarray, tab: np.ndarray):
     return mw, fw
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def wave_loads_near(t: float, P: np.ndarray, tab: np.ndarray, t0: float, c0: float, s0: float):
     """`wave_loads` at t from the regular wave's cos and sin at t0 (c0, s0) by
     `frames.kernels.sincos_near` (a Runge-Kutta step's stages: one libm sincos per step);
@@ -158,7 +159,7 @@ def external_moment(t: float, w: np.ndarray, R: np.ndarray, P: np.ndarray, tab: 
     return m1 + mw, m2, m3, mw
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def table_value(t: float, tab: np.ndarray, col: int, h: float) -> float:
     """Linear interpolation of column `col` of a table sampled every h seconds from t = 0."""
     s = t / h

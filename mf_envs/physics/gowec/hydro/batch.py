@@ -39,7 +39,7 @@ def step_work(n_state):
     return np.zeros(6 * n_state)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def state_values_into(t, y, tau, args, amp, eps, vals):
     """Slots 2-10 of `step_row`'s values (its docstring) at (t, y) with the PTO command tau:
     the buoy and gimbal state, the excitation moment, the gyro moment (`_gyro_pitch`) and
@@ -58,7 +58,7 @@ def state_values(t, y, tau, args, amp, eps, vals):
     state_values_into(t, y, tau, args, amp, eps, vals)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _gyro_pitch(mech):
     """Moment (N m) of the gyro units on the hull about the pitch axis e1 from
     `floating.mechanics`' result at a state: minus the theta row of the gyro's

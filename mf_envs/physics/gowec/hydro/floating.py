@@ -84,7 +84,7 @@ def excitation_coefficients(
     return -math.sin(direction) * c, math.cos(direction) * c
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def excitation(t, om, cp, cr):
     """(M_x, M_y) (N m) at time t: sum Re(c e^{-i w t}) (cp, cr complex (n,))."""
     mx = 0.0
@@ -96,7 +96,7 @@ def excitation(t, om, cp, cr):
     return mx, my
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def pto_torque(phi, phid, tau, pto):
     """M_g (N m): tau + c phi' + k phi, clipped to the torque limit and to |M_g phi'| <= P_max."""
     m = tau + pto[0] * phid + pto[1] * phi
@@ -118,7 +118,7 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
     return M, np.array([m[4], m[5], m[6]]), m[10], np.array([m[7], m[8], m[9]])
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid):
     """`mass_and_rhs` on scalars (the RK4 stages call it 4 times per substep; no arrays, so no
     reference counting): returns (M00, M11, M12 = M21, M22 (M01 = M02 = 0: w_1 of every body
@@ -166,7 +166,7 @@ def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid):
     return (m00, m11, m12, m22, v0, v1, v2, gy0, gy1, gy2, spin, hull00, c1, s1, c2, s2)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _solve3(a, b):
     """x with A x = b for A = a (9-tuple, row-major) and b (3-tuple): Gaussian elimination with
     partial pivoting on scalars (LAPACK's call overhead dominates a 3 x 3 solve in the RK4
@@ -196,7 +196,7 @@ def _solve3(a, b):
     return x0, x1, x2
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def mechanics(t, y, tau, args, mx, my):
     """The mechanical part of `deriv` at (t, y) with the excitation (mx, my) (N m) at t:
     (u' (3), the mass terms of `_mass_terms`, radiation moments mu_t, mu_r (N m), M_g (N m))."""
@@ -224,7 +224,7 @@ def deriv(t, y, tau, args):
     return dy
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def deriv_into(t, y, tau, args, mx, my, dy):
     """`deriv` into dy (n_state,) with the excitation (mx, my) (N m) at t given (the RK4 step
     evaluates it once per stage time: `excitation`); no allocation, no temporaries."""
@@ -260,14 +260,14 @@ def deriv_into(t, y, tau, args, mx, my, dy):
     dy[k + 5] = p_gy[0] * pm * psid
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _stage_rhs(t, x, inp, args, out):
     """`deriv_into` in the RK4 template's form; inp = the excitation (mx, my) at t, args =
     (tau, deriv args)."""
     deriv_into(t, x, args[0], args[1], inp[0], inp[1], out)
 
 
-@numba.njit(cache=True, inline="always")
+@kernel(forceinline=True)
 def _stage_excitation(t, args):
     """The wave excitation (mx, my) at t: the template evaluates it once at each of t, t + dt/2
     and t + dt (the two middle stages share it)."""
@@ -275,7 +275,7 @@ def _stage_excitation(t, args):
     return excitation(t, a[9], a[10], a[11])
 
 
-_rk4 = make_rk4(_stage_rhs, _stage_excitation, inline="always")
+_rk4 = make_rk4(_stage_rhs, _stage_excitation, inline=True)
 
 
 @numba.njit(cache=True)
@@ -294,7 +294,8 @@ def rk4_steps_into(t, y, tau, dt, n, args, work):
     allocation: the env's step calls it every control step)."""
     full = (tau, args)
     for _ in range(n):
-        dy, _ = _rk4(t, y, dt, full, work)
+        _rk4(t, y, dt, full, work)
+        dy = work[0]
         for i in range(y.shape[0]):
             y[i] += dy[i]
         t += dt
