@@ -700,12 +700,13 @@ def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
     policies = {}
     for mode in ("auto", "dummy"):
         cfg = tmp_path / f"{mode}.yml"
-        cfg.write_text(yaml.safe_dump({env_id: {**base, "vec_env": mode}}))
+        cfg.write_text(yaml.safe_dump({env_id: base}))
         res = train(
             env_id,
             timesteps=256,
             seed=2,
             config=cfg,
+            vec_env=mode,
             out=tmp_path / mode,
             progress_bar=False,
             eval_episodes=1,
