@@ -13,6 +13,7 @@ from mf_envs.physics.beam import (
     NewmarkState,
     banded,
     clamp_dofs,
+    fields,
     initial_acceleration,
     newmark_step,
     solve_cantilever,
@@ -83,7 +84,7 @@ def test_forces_at_dofs_equal_the_assembled_force():
     assert np.array_equal(out, p[dofs])
     assert np.all(out != 0.0)
     xis = np.array([0.0, 0.37, 1.0])
-    kap_fields = el.evaluate_fields(d, le, xis)[2]
+    kap_fields = fields.evaluate_fields(d, le, xis)[2]
     for e in range(le.size):
         for q, xi in enumerate(xis):
             assert el.kappa_at(d, 6 * e, le[e], xi) == kap_fields[e, q]

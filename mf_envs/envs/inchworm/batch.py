@@ -14,6 +14,7 @@ import numpy as np
 
 from mf_envs.envs.inchworm.observe import observe_row
 from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam import fields
 from mf_envs.physics.beam.contact import stick_slip as ss
 from mf_envs.physics.inchworm import quasistatic as qs
 
@@ -73,4 +74,4 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
         observe_row(
             d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales, obs[i],
         )  # fmt: skip
-        el.centerline_into(d, xo[i], le, xis, line[i])
+        fields.centerline_into(d, xo[i], le, xis, line[i])

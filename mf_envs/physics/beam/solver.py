@@ -24,7 +24,7 @@ import numpy as np
 from scipy.linalg import get_lapack_funcs
 
 from mf_envs._validate import check_int, check_nonnegative, check_positive
-from mf_envs.physics.beam import banded
+from mf_envs.physics.beam import banded, fields
 from mf_envs.physics.beam import element as el
 
 DOF_NAMES = ("z1", "dz1", "z2", "dz2", "psi")
@@ -129,7 +129,7 @@ class BeamModel:
         """Consistent mass matrix, banded (21, n_dof) (Eqs. 104-106)."""
         if self._mass is None:
             p = self.params
-            self._mass = el.assemble_mass(self.le, p.mass_per_length, p.rotary_inertia)
+            self._mass = fields.assemble_mass(self.le, p.mass_per_length, p.rotary_inertia)
         return self._mass
 
     # ---------------------------------------------------------------- physics
@@ -149,7 +149,7 @@ class BeamModel:
         couple m_gp (n_el, 4) [N] at the Gauss points (Eq. 81b)."""
         if m_gp is None:
             m_gp = np.zeros(self.gauss_S.shape)
-        return el.assemble_distributed(self.le, np.ascontiguousarray(n_gp, float), m_gp)
+        return fields.assemble_distributed(self.le, np.ascontiguousarray(n_gp, float), m_gp)
 
     def uniform_load(self, q: tuple[float, float] | np.ndarray) -> np.ndarray:
         """Nodal force (n_dof,) of a uniform dead line load q = (q1, q2) [N/m]."""
@@ -159,11 +159,11 @@ class BeamModel:
     def fields(self, d: np.ndarray, per_element: int = 8) -> dict[str, np.ndarray]:
         """Fields sampled along S: S, position (N, 2), psi, kappa, gamma1, gamma2 (N,)."""
         xis = np.linspace(0.0, 1.0, per_element + 1)[:-1]
-        pos, psi, kap, g1, g2 = el.evaluate_fields(d, self.le, xis)
+        pos, psi, kap, g1, g2 = fields.evaluate_fields(d, self.le, xis)
         s = (self.node_S[:-1, None] + xis[None, :] * self.le[:, None]).ravel()
         out = {"S": np.append(s, self.params.length)}
         # the last element at xi = 1 (the last node)
-        last = el.evaluate_fields(d[-11:], self.le[-1:], np.array([1.0]))
+        last = fields.evaluate_fields(d[-11:], self.le[-1:], np.array([1.0]))
         out["position"] = np.vstack([pos.reshape(-1, 2), last[0].reshape(1, 2)])
         for name, arr, tail in (("psi", psi, last[1]), ("kappa", kap, last[2])):
             out[name] = np.append(arr.ravel(), tail.ravel())
@@ -177,7 +177,7 @@ class BeamModel:
 
     def gauss_fields(self, d: np.ndarray) -> dict[str, np.ndarray]:
         """At the Gauss points: position (n_el, 4, 2); psi, kappa, gamma1, gamma2 (n_el, 4)."""
-        pos, psi, kap, g1, g2 = el.evaluate_fields(d, self.le, el.GAUSS_XI)
+        pos, psi, kap, g1, g2 = fields.evaluate_fields(d, self.le, el.GAUSS_XI)
         return {"position": pos, "psi": psi, "kappa": kap, "gamma1": g1, "gamma2": g2}
 
     def node_positions(self, d: np.ndarray) -> np.ndarray:

@@ -25,7 +25,7 @@ from mf_envs.physics.beam import (
     support_dofs,
     time_step,
 )
-from mf_envs.physics.beam.element import centerline_into
+from mf_envs.physics.beam.fields import centerline_into
 from mf_envs.physics.beam.static import scratch as static_scratch
 from mf_envs.physics.beam.static import solve_linear_path
 from mf_envs.physics.constants import G as STANDARD_GRAVITY

@@ -24,7 +24,7 @@ import dataclasses
 
 import numpy as np
 
-from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam import fields
 from mf_envs.physics.beam.solver import BeamModel
 from mf_envs.physics.terrain import SlipState, TerrainContact, soil
 
@@ -89,7 +89,7 @@ class BeamTerrain:
         dn[..., 0, 1] = pick["dfx_dz"].reshape(shape)
         dn[..., 1, 1] = pick["dfz_dz"].reshape(shape)
         f = self.model.distributed(n_gp)
-        return f, el.assemble_line_stiffness(self.model.le, dn), None
+        return f, fields.assemble_line_stiffness(self.model.le, dn), None
 
     def commit(self, d: np.ndarray) -> None:
         """Accept the slip history of the converged configuration d."""
