@@ -226,11 +226,9 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
 
 
 def _algorithm(algo: str) -> Any:
-    """The SB3 class of `algo` ("ppo", "sac", "td3"); ValueError naming `algo` otherwise."""
+    """The SB3 class of `algo` (one of ALGOS, checked by the caller)."""
     import stable_baselines3
 
-    if algo not in ALGOS:
-        raise ValueError(f"algo: one of {ALGOS}, got {algo!r}")
     return getattr(stable_baselines3, algo.upper())
 
 

@@ -36,8 +36,6 @@ import numpy as np
 from mf_envs._validate import (
     check_range,
     check_shape,
-    nonnegative_scalar,
-    positive_scalar,
 )
 from mf_envs.effects import resolve_effects
 from mf_envs.envs.base import MAX_SUBSTEPS
@@ -109,6 +107,14 @@ MAX_DRIVE_GAIN = 1e12  # SI (N m, W, N m s/rad, N m/rad): far above any gimbal d
 MAX_BANDWIDTH = 1e5  # rad/s: a rate loop's w_b (w_b^2 J_g must stay a finite stiffness)
 
 
+def _positive(name: str, value: Any, high: float) -> float:
+    """A finite number in (0, high]; ValueError naming `name` (None too)."""
+    x = check_range(name, value, 0.0, high)
+    if x <= 0.0:
+        raise ValueError(f"{name}: must be > 0, got {value!r}")
+    return x
+
+
 def _optional(name: str, value: Any, high: float, positive: bool = False) -> float | None:
     """None, or a finite number in [0, high] (> 0 when `positive`); ValueError naming `name`."""
     if value is None:
@@ -134,8 +140,8 @@ def build_machine(
     where the drive ignores it)."""
     loop_gain = _optional("gimbal_loop_gain", loop_gain, MAX_DRIVE_GAIN, positive=True)
     max_torque = _optional("max_gimbal_torque", max_torque, MAX_DRIVE_GAIN, positive=True)
-    max_power = _optional("max_drive_power", max_power, MAX_DRIVE_GAIN, positive=True)
-    bandwidth = _optional("drive_bandwidth", bandwidth, MAX_BANDWIDTH, positive=True)
+    max_power = _positive("max_drive_power", max_power, MAX_DRIVE_GAIN)
+    bandwidth = _positive("drive_bandwidth", bandwidth, MAX_BANDWIDTH)
     damping = _optional("gimbal_damping", damping, MAX_DRIVE_GAIN)
     stiffness = _optional("gimbal_stiffness", stiffness, MAX_DRIVE_GAIN)
     if kind == "kinematic":
@@ -145,26 +151,26 @@ def build_machine(
     j = hull.inertia[0] + hull.added_roll_inertia + n * jg
     wn = math.sqrt(hull.roll_stiffness / j) if hull.roll_stiffness > 0 else 2 * math.pi / 10.0
     if loop_gain is not None:  # v0 name: the proportional gain K_p = 2 w_b J_g (zeta = 1)
-        bandwidth = positive_scalar("gimbal_loop_gain", loop_gain) / (2.0 * jg)
+        bandwidth = loop_gain / (2.0 * jg)
     kw: dict[str, Any] = {
         "max_rate": env.max_precession_rate,
         "max_angle": env.max_gimbal_angle,
-        "max_power": positive_scalar("max_drive_power", max_power),
-        "bandwidth": positive_scalar("drive_bandwidth", bandwidth),
+        "max_power": max_power,
+        "bandwidth": bandwidth,
     }
     if max_torque is not None:
-        kw["max_torque"] = positive_scalar("max_gimbal_torque", max_torque)
+        kw["max_torque"] = max_torque
     elif gyro.angular_momentum == 0.0:  # rotor stopped: enough to reach max_rate in 1/w_b
         kw["max_torque"] = jg * kw["bandwidth"] * kw["max_rate"]
     if kind in ("electric", "brake"):
-        kw["damping"] = nonnegative_scalar("gimbal_damping", damping or 0.0)
+        kw["damping"] = damping or 0.0
         return dataclasses.replace(electric_drive(abs(gyro.angular_momentum), **kw), kind=kind)
     h = abs(gyro.angular_momentum)
     stiff = math.sqrt(max(hull.roll_stiffness, 1.0) * j)
     c = n * h * h / stiff if damping is None else damping  # gyro roll damping ratio 0.5
     k = jg * wn * wn if stiffness is None else stiffness  # gimbal pendulum tuned to the roll
-    kw["damping"] = nonnegative_scalar("gimbal_damping", c)
-    kw["stiffness"] = nonnegative_scalar("gimbal_stiffness", k if kind != "damper" else 0.0)
+    kw["damping"] = c  # validated above when given, >= 0 by construction otherwise
+    kw["stiffness"] = k if kind != "damper" else 0.0
     return DriveParams(kind, **kw)
 
 

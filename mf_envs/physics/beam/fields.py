@@ -35,7 +35,6 @@ def assemble_mass(le, m_a, j3):
     ne = le.shape[0]
     nd = 6 * ne + 5
     ab = np.zeros((N_BAND, nd))
-    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
     for e in range(ne):
         base = 6 * e
         me = np.zeros((11, 11))
@@ -51,8 +50,8 @@ def assemble_mass(le, m_a, j3):
                     me[8 + i, 8 + j] += w * j3 * npsi[i] * npsi[j]
         for i in range(11):
             for j in range(11):
-                gi = base + loc[i]
-                gj = base + loc[j]
+                gi = base + LOC[i]
+                gj = base + LOC[j]
                 ab[HALF_BW + gi - gj, gj] += me[i, j]
     return ab
 
@@ -64,17 +63,16 @@ def assemble_distributed(le, n_gp, m_gp):
     ne = le.shape[0]
     nd = 6 * ne + 5
     f = np.zeros(nd)
-    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
     for e in range(ne):
         base = 6 * e
         for g in range(N_GAUSS):
             nz, dnz, npsi, dnpsi = _shape(GAUSS_XI[g], le[e])
             w = GAUSS_W[g] * le[e]
             for k in range(4):
-                f[base + loc[k]] += w * nz[k] * n_gp[e, g, 0]
-                f[base + loc[4 + k]] += w * nz[k] * n_gp[e, g, 1]
+                f[base + LOC[k]] += w * nz[k] * n_gp[e, g, 0]
+                f[base + LOC[4 + k]] += w * nz[k] * n_gp[e, g, 1]
             for k in range(3):
-                f[base + loc[8 + k]] += w * npsi[k] * m_gp[e, g]
+                f[base + LOC[8 + k]] += w * npsi[k] * m_gp[e, g]
     return f
 
 
@@ -115,7 +113,6 @@ def assemble_line_stiffness(le, dn_gp):
     ne = le.shape[0]
     nd = 6 * ne + 5
     ab = np.zeros((N_BAND, nd))
-    loc = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])
     for e in range(ne):
         base = 6 * e
         for g in range(N_GAUSS):
@@ -127,9 +124,9 @@ def assemble_line_stiffness(le, dn_gp):
                     if c == 0.0:
                         continue
                     for i in range(4):
-                        gi = base + loc[4 * ci + i]
+                        gi = base + LOC[4 * ci + i]
                         for j in range(4):
-                            gj = base + loc[4 * cj + j]
+                            gj = base + LOC[4 * cj + j]
                             ab[HALF_BW + gi - gj, gj] += c * nz[i] * nz[j]
     return ab
 
