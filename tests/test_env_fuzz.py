@@ -108,9 +108,8 @@ def real_kwargs(env_id: str) -> list[str]:
 
 
 def reset_options(env_id: str) -> tuple[str, ...]:
-    """The env's documented reset option keys (`envs.<env>.spec.RESET_OPTIONS`)."""
-    package = env_class(env_id).__module__.rpartition(".")[0]
-    return tuple(importlib.import_module(f"{package}.spec").RESET_OPTIONS)
+    """The env's documented reset option keys (its class's `RESET_OPTIONS`)."""
+    return tuple(env_class(env_id).RESET_OPTIONS)
 
 
 def message(exc: BaseException) -> str:

@@ -4,8 +4,9 @@
 `reset()` and `predict(obs, deterministic=True) -> (action, None)`, the same call as an SB3
 policy. Controllers read only the observation (what a real device measures) unless documented.
 
-Each env's controllers live in their own module (`controllers/<module>.py`) and register with
-`register(env_id, kind, factory, default=...)` at import; `make_baseline` imports that module.
+Each env's controllers live in their own module (`controllers/<module>.py`, named by the env's
+declaration, `EnvDeclaration.baselines`) and register with `register(env_id, kind, factory,
+default=...)` at import; `make_baseline` imports that module.
 """
 
 from __future__ import annotations
@@ -17,13 +18,6 @@ from typing import Any, Protocol
 
 import numpy as np
 
-# env id -> module that registers its controllers
-_MODULES = {
-    "GOWEC-v0": "mf_envs.controllers.gowec",
-    "GyroStabilizer-v0": "mf_envs.controllers.stabilizer",
-    "Inchworm-v0": "mf_envs.controllers.inchworm",
-    "FloatingGOWEC-v0": "mf_envs.controllers.gowec_v1",
-}
 _REGISTRY: dict[str, dict[str, Callable[..., Any]]] = {}
 _DEFAULT: dict[str, str] = {}
 
@@ -50,12 +44,13 @@ def _env_id(env: Any) -> str:
 
 def baseline_kinds(env_id: str) -> list[str]:
     """The controller kinds available for `env_id`, default first."""
-    from mf_envs.envs import canonical_env_id
+    from mf_envs.envs import canonical_env_id, declarations
 
     env_id = canonical_env_id(env_id)  # a deprecated id (GOWEC-v1): its new id, with a warning
-    if env_id not in _MODULES:
-        raise ValueError(f"env_id: no baselines for {env_id!r}; known: {sorted(_MODULES)}")
-    importlib.import_module(_MODULES[env_id])
+    modules = {i: d.baselines for i, d in declarations().items() if d.baselines}
+    if env_id not in modules:
+        raise ValueError(f"env_id: no baselines for {env_id!r}; known: {sorted(modules)}")
+    importlib.import_module(modules[env_id])
     kinds = list(_REGISTRY.get(env_id, {}))
     default = _DEFAULT.get(env_id)
     return sorted(kinds, key=lambda k: (k != default, k))

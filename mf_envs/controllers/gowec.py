@@ -41,7 +41,10 @@ import numpy as np
 
 from mf_envs.controllers import register
 from mf_envs.envs.gowec.spec import OBS
+from mf_envs.envs.gowec.task import DECLARATION
 from mf_envs.physics.waves import G, disk_average_factor
+
+ENV_ID = DECLARATION.env_id
 
 SOGI_GAIN = math.sqrt(2.0)
 _SIN, _COS = OBS.index("sin_gimbal_angle"), OBS.index("cos_gimbal_angle")
@@ -252,6 +255,6 @@ class SquareWaveController(_GimbalTracker):
         )
 
 
-register("GOWEC-v0", "pll", PLLController, default=True)
-register("GOWEC-v0", "fixed_rate", FixedRateController)
-register("GOWEC-v0", "bang_bang", SquareWaveController)
+register(ENV_ID, "pll", PLLController, default=True)
+register(ENV_ID, "fixed_rate", FixedRateController)
+register(ENV_ID, "bang_bang", SquareWaveController)

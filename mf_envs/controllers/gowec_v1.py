@@ -25,6 +25,9 @@ import numpy as np
 
 from mf_envs.controllers import register
 from mf_envs.controllers.gowec import PLLController, SquareWaveController
+from mf_envs.envs.gowec_v1.task import DECLARATION
+
+ENV_ID = DECLARATION.env_id
 
 
 def matched_pto(env: Any, period: float | None = None) -> tuple[float, float]:
@@ -57,6 +60,6 @@ class LinearPTOController:
         return np.zeros(1, dtype=np.float32), None
 
 
-register("FloatingGOWEC-v0", "pll", PLLController, default=True)
-register("FloatingGOWEC-v0", "bang_bang", SquareWaveController)
-register("FloatingGOWEC-v0", "linear_pto", LinearPTOController)
+register(ENV_ID, "pll", PLLController, default=True)
+register(ENV_ID, "bang_bang", SquareWaveController)
+register(ENV_ID, "linear_pto", LinearPTOController)

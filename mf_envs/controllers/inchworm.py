@@ -30,6 +30,7 @@ from scipy.optimize import brute, minimize
 
 from mf_envs._validate import check_int, check_positive, positive_scalar
 from mf_envs.controllers import register
+from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.actuators.curvature import RateLimitedLag
 from mf_envs.physics.inchworm.drive import (
     CommandFn,
@@ -38,6 +39,8 @@ from mf_envs.physics.inchworm.drive import (
     run_open_loop,
     square_gait,
 )
+
+ENV_ID = DECLARATION.env_id
 
 SEED_STEPS_PER_CYCLE = 40  # the seed's scene (no actuator dynamics)
 WARMUP_SECONDS = 1.5  # the tuning's warm-up: the actuator's full range takes 1 s (rate limit)
@@ -195,6 +198,6 @@ def tuned(
     return gait
 
 
-register("Inchworm-v0", "seed_uniform", seed_uniform, default=True)
-register("Inchworm-v0", "seed_linear", seed_linear)
-register("Inchworm-v0", "tuned", tuned)
+register(ENV_ID, "seed_uniform", seed_uniform, default=True)
+register(ENV_ID, "seed_linear", seed_linear)
+register(ENV_ID, "tuned", tuned)

@@ -39,12 +39,13 @@ import numpy as np
 
 from mf_envs.controllers import register
 from mf_envs.envs.gyro_stabilizer.spec import OBS
+from mf_envs.envs.gyro_stabilizer.task import DECLARATION
 from mf_envs.physics.ship import gyro_roll_moment
 
 _ROLL, _ROLL_RATE = OBS.index("roll"), OBS.index("roll_rate")
 _PHI, _PHI_RATE = OBS.index("gimbal_angle"), OBS.index("gimbal_rate")
 
-ENV_ID = "GyroStabilizer-v0"
+ENV_ID = DECLARATION.env_id
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,8 @@
-"""Gymnasium wrappers. `register_envs()` registers every env id whose module is present.
+"""Gymnasium wrappers. `register_envs()` registers every declared env id whose module is present.
+
+Each env declares itself once, in its package's `task.py` (`DECLARATION`, see
+`mf_envs.envs.declaration`); a package outside mf_envs does so through the `mf_envs.envs`
+entry-point group. `ENV_SPECS` and `VECTOR_SPECS` are views of the declarations.
 
 Deprecated ids (`ALIASES`) still make their env: `gym.make("GOWEC-v1")` builds
 `FloatingGOWEC-v0` and warns once (`mf_envs.envs._alias`).
@@ -9,55 +13,48 @@ from __future__ import annotations
 import gymnasium as gym
 
 from mf_envs.envs._alias import ALIASES, DeprecatedIdWarning, canonical_env_id, register_aliases
+from mf_envs.envs.declaration import EnvDeclaration, declaration, declarations, load, refresh
 
 __all__ = [
     "ALIASES",
     "ENV_SPECS",
     "VECTOR_SPECS",
     "DeprecatedIdWarning",
+    "EnvDeclaration",
     "available_env_ids",
     "canonical_env_id",
+    "declaration",
+    "declarations",
     "native_vector_supported",
     "register_envs",
 ]
 
-# id -> (entry point, default max_episode_steps or None); each env module owns its episode length
-ENV_SPECS: dict[str, str] = {
-    "GOWEC-v0": "mf_envs.envs.gowec.env:GOWECEnv",
-    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.env:GyroStabilizerEnv",
-    "Inchworm-v0": "mf_envs.envs.inchworm.env:InchwormEnv",
-    "FloatingGOWEC-v0": "mf_envs.envs.gowec_v1.env:GOWECV1Env",
-}
-# id -> native batched vector env (`gym.make_vec(id, vectorization_mode="vector_entry_point")`)
-VECTOR_SPECS: dict[str, str] = {
-    "GOWEC-v0": "mf_envs.envs.gowec.vector:GOWECVectorEnv",
-    "GyroStabilizer-v0": "mf_envs.envs.gyro_stabilizer.vector:GyroStabilizerVectorEnv",
-    "FloatingGOWEC-v0": "mf_envs.envs.gowec_v1.vector:GOWECV1VectorEnv",
-    "Inchworm-v0": "mf_envs.envs.inchworm.vector:InchwormVectorEnv",
-}
+# id -> "module:Class" of the single env; id -> native batched vector env
+# (`gym.make_vec(id, vectorization_mode="vector_entry_point")`); both filled from the declarations
+ENV_SPECS: dict[str, str] = {}
+VECTOR_SPECS: dict[str, str] = {}
+
+
+def _views() -> None:
+    found = refresh()
+    ENV_SPECS.clear()
+    ENV_SPECS.update({i: d.entry_point for i, d in found.items()})
+    VECTOR_SPECS.clear()
+    VECTOR_SPECS.update({i: d.vector_entry_point for i, d in found.items() if d.vector_entry_point})
 
 
 def available_env_ids() -> list[str]:
-    """The env ids whose implementation module exists in this install."""
-    import importlib.util
-
-    return [
-        env_id
-        for env_id, entry in ENV_SPECS.items()
-        if importlib.util.find_spec(entry.split(":")[0]) is not None
-    ]
+    """The declared env ids whose implementation module exists in this install."""
+    return [env_id for env_id, d in declarations().items() if d.installed()]
 
 
 def register_envs() -> None:
-    """Register the available env ids with Gymnasium (idempotent)."""
-    import importlib.util
-
-    for env_id in available_env_ids():
-        if env_id not in gym.registry:
-            vec = VECTOR_SPECS.get(env_id)
-            if vec is not None and importlib.util.find_spec(vec.split(":")[0]) is None:
-                vec = None
-            gym.register(id=env_id, entry_point=ENV_SPECS[env_id], vector_entry_point=vec)
+    """Collect the declarations (again) and register their ids with Gymnasium (idempotent)."""
+    _views()
+    for env_id, decl in declarations().items():
+        if decl.installed() and env_id not in gym.registry:
+            vec = decl.vector_entry_point if decl.vector_installed() else None
+            gym.register(id=env_id, entry_point=decl.entry_point, vector_entry_point=vec)
     register_aliases()
 
 
@@ -65,13 +62,14 @@ def native_vector_supported(env_id: str, env_kwargs: dict | None = None) -> bool
     """Whether `env_id` has a native vector env that runs the single env of `env_kwargs` (the
     inchworm's compiles the friction scene only): our vector env class's `supports`; for an id
     that is not ours, whether its spec has a vector entry point."""
-    import importlib
-
-    env_id = canonical_env_id(env_id, notice_alias=False)
-    entry = VECTOR_SPECS.get(env_id)
-    if entry is None:
+    decl = declaration(env_id)
+    if decl is None:
         return gym.spec(env_id).vector_entry_point is not None
-    if importlib.util.find_spec(entry.split(":")[0]) is None:
+    if not decl.vector_installed():
         return False
-    module, name = entry.split(":")
-    return bool(getattr(importlib.import_module(module), name).supports(**(env_kwargs or {})))
+    cls = load(decl.vector_entry_point)
+    supports = getattr(cls, "supports", None)
+    return True if supports is None else bool(supports(**(env_kwargs or {})))
+
+
+_views()

@@ -93,11 +93,15 @@ def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
 
 def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
     """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`; the
-    other algorithms' files: `default_config(algo)`)."""
+    other algorithms' files: `default_config(algo)`). An env the shipped file has no entry for
+    takes its declaration's `hyperparams[algo]` (an env added as a plugin brings its own)."""
     data = read_config(path)
-    if env_id not in data:
+    raw = data.get(env_id)
+    if raw is None:
+        raw = _declared(env_id, Path(path) if path is not None else DEFAULT_CONFIG)
+    if raw is None:
         raise ValueError(f"config: no entry for {env_id!r} in {path or DEFAULT_CONFIG}")
-    raw = dict(data[env_id])
+    raw = dict(raw)
     bad = [k for k in _UNSUPPORTED if k in raw]
     if bad:
         raise ValueError(f"config: rl-zoo3 keys {bad} are not supported by mf-envs train")
@@ -124,6 +128,17 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
         action_noise=_parse_noise(env_id, raw.get("noise_type"), raw.get("noise_std")),
         ppo_kwargs=ppo,
     )
+
+
+def _declared(env_id: str, path: Path) -> dict[str, Any] | None:
+    """The declaration's hyperparameters of `env_id` for a shipped file's algorithm, else None."""
+    from mf_envs.envs import declaration
+
+    decl = declaration(env_id)
+    shipped = path.resolve().parent == CONFIG_DIR.resolve() and path.stem in ALGOS
+    if decl is None or not shipped or path.stem not in decl.hyperparams:
+        return None
+    return dict(decl.hyperparams[path.stem])
 
 
 def _count(env_id: str, key: str, value: Any) -> int:

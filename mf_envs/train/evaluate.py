@@ -3,19 +3,10 @@
 Every controller (an SB3-like object with `reset()` and `predict(obs, deterministic=True)`) runs
 full episodes of `gym.make(env_id, **env_kwargs)` from `reset(seed=s)` for each seed; per
 episode the env's metrics are computed from the SI quantities in `info` (docs/api.md keys), then
-summarised as mean and sample std over seeds. The primary metric of each env is the one its
-issue judges by, defined as in that env's own `benchmarks/controllers/<env>.py` (GOWEC:
-`episode_ratio`, the last three quarters of the episode; stabilizer: RMS after its `SETTLE` =
-10 s transient):
-
-| env | primary metric | better | definition |
-|---|---|---|---|
-| GOWEC-v0 | `power_ratio` | higher | mean power after the first 1/4 episode / Eq. 95 (W/W) |
-| FloatingGOWEC-v0 | `capture_width` | higher | mean mech. PTO power (last half) / wave power flux |
-| GyroStabilizer-v0 | `rms_roll` | lower | sqrt(mean(info["roll"]^2)) after 10 s, rad |
-| Inchworm-v0 | `tail_advance_per_step` | higher | (x_tail(end) - x_tail(reset)) / steps, m |
-| (Inchworm-v0) | `tail_advance_per_cycle` | higher | same per head->tail grip switch (cycle) |
-| anything else | `return` | higher | undiscounted episode return |
+summarised as mean and sample std over seeds. Each env's metrics, and the primary one its issue
+judges it by, are its declaration's (`episode_metrics` and `metric` in `envs/<env>/task.py`, the
+same definitions as its own `benchmarks/controllers/<env>.py`); an id without a declaration
+(e.g. Pendulum-v1) is judged by the undiscounted episode return.
 """
 
 from __future__ import annotations
@@ -23,77 +14,29 @@ from __future__ import annotations
 import csv
 import math
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import gymnasium as gym
 import numpy as np
 
-
-@dataclass(frozen=True)
-class Metric:
-    name: str
-    higher_is_better: bool
-    unit: str
-
-
-PRIMARY: dict[str, Metric] = {
-    "GOWEC-v0": Metric("power_ratio", True, "1"),
-    "FloatingGOWEC-v0": Metric("capture_width", True, "m"),
-    "GyroStabilizer-v0": Metric("rms_roll", False, "rad"),
-    "Inchworm-v0": Metric("tail_advance_per_step", True, "m"),
-}
-RETURN = Metric("return", True, "1")
+from mf_envs.envs.declaration import RETURN, Metric, base_metrics, declaration
 
 
 def primary_metric(env_id: str) -> Metric:
-    """The metric the issue's acceptance line judges `env_id` by (episode return otherwise)."""
-    return PRIMARY.get(env_id, RETURN)
+    """The metric the issue's acceptance line judges `env_id` by (its declaration's; the episode
+    return for an id without one)."""
+    decl = declaration(env_id)
+    return RETURN if decl is None else decl.metric
 
 
 def episode_metrics(
     env_id: str, env: gym.Env, rewards: Sequence[float], infos: Sequence[dict[str, Any]]
 ) -> dict[str, float]:
-    """Metrics of one finished episode. `infos[0]` is the reset info, `infos[1:]` the step infos."""
-    steps = infos[1:]
-    out = {"return": float(np.sum(rewards)), "steps": float(len(rewards))}
-    if env_id == "GOWEC-v0":
-        power = np.array([i["power"] for i in steps])
-        ref = float(env.unwrapped.analytic_max_power())
-        out["mean_power"] = float(power.mean())
-        out["power_ratio"] = float(power[len(power) // 4 :].mean()) / ref  # steady 3/4
-        out["power_ratio_all"] = float(power.mean()) / ref
-    elif env_id == "FloatingGOWEC-v0":  # as benchmarks/controllers/gowec_v1.py: the last half
-        half = len(steps) // 2
-        p_mech = float(np.mean([i["power_mechanical"] for i in steps[half:]]))
-        out["capture_width"] = p_mech / float(env.unwrapped.wave_power_flux())
-        out["bound_ratio"] = p_mech / float(env.unwrapped.power_bound())
-        out["net_power"] = float(np.mean([i["power"] for i in steps[half:]]))
-    elif env_id == "GyroStabilizer-v0":
-        roll = np.array([i["roll"] for i in steps])
-        settled = roll[np.array([i["time"] for i in steps]) > _stabilizer_settle()]
-        out["rms_roll"] = float(np.sqrt(np.mean(settled**2)))
-        out["rms_roll_all"] = float(np.sqrt(np.mean(roll**2)))
-        out["max_abs_roll"] = float(np.max(np.abs(roll)))
-    elif env_id == "Inchworm-v0":
-        advance = float(steps[-1]["x_tail"] - infos[0]["x_tail"])
-        out["tail_advance"] = advance
-        out["tail_advance_per_step"] = advance / len(steps)
-        # a gait cycle = one head-grip phase then one tail-grip phase (Eq. 102 anchor switching)
-        anchors = [i.get("anchor") for i in infos]
-        cycles = sum(a == "head" and b == "tail" for a, b in zip(anchors, anchors[1:]))
-        out["gait_cycles"] = float(cycles)
-        out["tail_advance_per_cycle"] = advance / cycles if cycles else math.nan
-    out["numerical_failure"] = float(any(i.get("numerical_failure", False) for i in steps))
-    return out
-
-
-def _stabilizer_settle() -> float:
-    """Seconds skipped before the stabilizer's RMS roll (`envs.gyro_stabilizer.spec.SETTLE`)."""
-    from mf_envs.envs.gyro_stabilizer.spec import SETTLE
-
-    return SETTLE
+    """Metrics of one finished episode (the env declaration's `metrics`). `infos[0]` is the reset
+    info, `infos[1:]` the step infos."""
+    decl = declaration(env_id)
+    return base_metrics(rewards, infos) if decl is None else decl.metrics(env, rewards, infos)
 
 
 def run_episode(env_id: str, env: gym.Env, controller: Any, seed: int) -> dict[str, float]:

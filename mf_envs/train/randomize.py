@@ -6,28 +6,11 @@ made with, else the constructor default). Only kwargs the env's constructor real
 randomised; the draws come from the wrapper's own seeded generator, so `reset(seed=s)` is
 deterministic. The env's own validation still applies to every draw.
 
-Default ranges (factors of the nominal value), per the issue's robustness item:
-
-| env | kwarg | range | meaning |
-|---|---|---|---|
-| GOWEC-v0 | `wave_period` | 0.8 - 1.2 | wave period +-20 % |
-| GOWEC-v0 | `wave_amplitude` | 0.5 - 1.5 | sea state |
-| GOWEC-v0 | `rotor_speed` | 0.9 - 1.1 | rotor speed |
-| GyroStabilizer-v0 | `wave_period` | 0.8 - 1.2 | wave period +-20 % |
-| GyroStabilizer-v0 | `wave_moment_amplitude` | 0.5 - 1.5 | sea state (regular waves) |
-| GyroStabilizer-v0 | `significant_wave_height` | 0.5 - 1.5 | sea state (irregular_waves) |
-| GyroStabilizer-v0 | `rotor_speed` | 0.9 - 1.1 | rotor speed |
-| Inchworm-v0 | soil kwargs the env has (see `SOIL_KWARGS`) | 0.5 - 1.5 | soil |
-| Inchworm-v0 | `youngs_modulus`, `mass_per_length` | 0.8 - 1.2 | material, payload |
-| FloatingGOWEC-v0 | `wave_period`, `peak_period` | 0.75 - 1.25 | sea period around 6 s default |
-| FloatingGOWEC-v0 | `wave_amplitude` | 0.25 - 1.0 | regular sea height (1 m nominal, >= 0.25 m) |
-
-Discrete choices (`DEFAULT_CHOICES`, one value drawn uniformly per reset, after the ranges):
-FloatingGOWEC-v0's `significant_wave_height` from (None, 1.0, 2.0, 3.0) m, so half the episodes are
-regular waves (None) and half JONSWAP seas of Hs 1-3 m at the randomised `peak_period`.
-
-The inchworm's grip is the seed's kinematic anchor switching (Eq. 102), which has no soil
-parameter; soil randomisation applies only if the env grows friction kwargs (`SOIL_KWARGS`).
+Default ranges (factors of the nominal value), discrete choices (one value drawn uniformly per
+reset, after the ranges) and robustness scenes are each env's declaration's
+(`randomize`, `choices`, `shifts` in `envs/<env>/task.py`; docs/<env> pages list them), e.g.
+GOWEC-v0's wave period +-20 %, FloatingGOWEC-v0's regular or JONSWAP seas of Hs 1-3 m, the
+inchworm's soil and material. An env without a declaration has none.
 
 Use it in training through the YAML `env_wrapper: train.randomize.DomainRandomization`; it must
 be the first wrapper (it is applied to the bare `gym.make` env, below SB3's Monitor).
@@ -46,61 +29,27 @@ from gymnasium.utils import seeding
 Ranges = dict[str, tuple[float, float]]
 Choices = dict[str, tuple[Any, ...]]
 
-SOIL_KWARGS = (
-    "friction_coefficient",
-    "static_friction",
-    "kinetic_friction",
-    "friction_forward",
-    "friction_backward",
-    "mu_forward",
-    "mu_backward",
-    "ground_stiffness",
-    "ground_damping",
-)
-DEFAULT_RANGES: dict[str, Ranges] = {
-    "GOWEC-v0": {
-        "wave_period": (0.8, 1.2),
-        "wave_amplitude": (0.5, 1.5),
-        "rotor_speed": (0.9, 1.1),
-    },
-    "GyroStabilizer-v0": {
-        "wave_period": (0.8, 1.2),
-        "wave_moment_amplitude": (0.5, 1.5),
-        "significant_wave_height": (0.5, 1.5),
-        "rotor_speed": (0.9, 1.1),
-    },
-    "Inchworm-v0": {
-        **{k: (0.5, 1.5) for k in SOIL_KWARGS},
-        "youngs_modulus": (0.8, 1.2),
-        "mass_per_length": (0.8, 1.2),
-    },
-    "FloatingGOWEC-v0": {
-        "wave_period": (0.75, 1.25),
-        "peak_period": (0.75, 1.25),
-        "wave_amplitude": (0.25, 1.0),
-    },
-}
-DEFAULT_CHOICES: dict[str, Choices] = {
-    "FloatingGOWEC-v0": {"significant_wave_height": (None, 1.0, 2.0, 3.0)},
-}
-# robustness scenes: name -> factors applied to the nominal kwargs (those the env has)
-SHIFTS: dict[str, dict[str, dict[str, float]]] = {
-    "GOWEC-v0": {
-        "wave_period x0.8": {"wave_period": 0.8},
-        "wave_period x1.2": {"wave_period": 1.2},
-        "rotor_speed x0.9": {"rotor_speed": 0.9},
-    },
-    "GyroStabilizer-v0": {
-        "wave_period x0.8": {"wave_period": 0.8},
-        "wave_period x1.2": {"wave_period": 1.2},
-        "sea x1.5": {"wave_moment_amplitude": 1.5},
-    },
-    "Inchworm-v0": {
-        "soil x0.5": {k: 0.5 for k in SOIL_KWARGS},
-        "youngs_modulus x0.8": {"youngs_modulus": 0.8},
-        "mass_per_length x1.2": {"mass_per_length": 1.2},
-    },
-}
+
+def _declared(env_id: str, what: str) -> dict[str, Any]:
+    from mf_envs.envs import declaration
+
+    decl = declaration(env_id)
+    return {} if decl is None else dict(getattr(decl, what))
+
+
+def default_ranges(env_id: str) -> Ranges:
+    """The declared randomisation ranges of `env_id` (kwarg -> (lo, hi) factors)."""
+    return _declared(env_id, "randomize")
+
+
+def default_choices(env_id: str) -> Choices:
+    """The declared discrete choices of `env_id` (kwarg -> candidate values)."""
+    return _declared(env_id, "choices")
+
+
+def shifts(env_id: str) -> dict[str, dict[str, float]]:
+    """The declared robustness scenes of `env_id`: name -> {kwarg: factor}."""
+    return {k: dict(v) for k, v in _declared(env_id, "shifts").items()}
 
 
 def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dict[str, float]:
@@ -143,8 +92,9 @@ def _is_real(value: Any) -> bool:
 
 
 def applicable_ranges(env_id: str, ranges: Ranges | None = None) -> Ranges:
-    """The subset of `ranges` (default `DEFAULT_RANGES[env_id]`) that are real kwargs of the env."""
-    ranges = DEFAULT_RANGES.get(env_id, {}) if ranges is None else ranges
+    """The subset of `ranges` (default the env's declared `randomize`) that are real kwargs of
+    the env."""
+    ranges = default_ranges(env_id) if ranges is None else ranges
     nominal = nominal_kwargs(env_id)
     for name, (lo, hi) in ranges.items():
         if not 0 < lo <= hi:
@@ -160,7 +110,7 @@ def shifted_kwargs(env_id: str, factors: dict[str, float]) -> dict[str, float]:
 
 def shift_scenes(env_id: str) -> dict[str, dict[str, float]]:
     """Robustness scenes of `env_id`: name -> absolute gym.make kwargs (empty ones dropped)."""
-    scenes = {name: shifted_kwargs(env_id, f) for name, f in SHIFTS.get(env_id, {}).items()}
+    scenes = {name: shifted_kwargs(env_id, f) for name, f in shifts(env_id).items()}
     return {name: kw for name, kw in scenes.items() if kw}
 
 
@@ -169,10 +119,11 @@ class DomainRandomization(gym.Wrapper):
 
     Args:
         env: an env made with `gym.make(env_id, **kwargs)` (its spec names the id and kwargs).
-        ranges: kwarg -> (lo, hi) factors of the nominal value; default `DEFAULT_RANGES[env_id]`.
+        ranges: kwarg -> (lo, hi) factors of the nominal value; default the env's declared
+            `randomize`.
             Names the env does not take are ignored; ValueError if none is left.
         choices: kwarg -> candidate values, one drawn uniformly at every reset (None allowed,
-            e.g. regular vs irregular sea); default `DEFAULT_CHOICES.get(env_id, {})`; names the
+            e.g. regular vs irregular sea); default the declared `choices`; names the
             env does not take -> ValueError naming `choices`.
 
     `info["randomized"]` at reset holds the drawn kwargs (SI units); `self.current` too.
@@ -189,7 +140,7 @@ class DomainRandomization(gym.Wrapper):
         self.ranges = applicable_ranges(self.env_id, ranges)
         if not self.ranges:
             raise ValueError(
-                f"ranges: none of {list(ranges or DEFAULT_RANGES.get(self.env_id, {}))}"
+                f"ranges: none of {list(ranges or default_ranges(self.env_id))}"
                 f" is a real-valued kwarg of {self.env_id}"
             )
         self.nominal = {
@@ -197,7 +148,7 @@ class DomainRandomization(gym.Wrapper):
             for k, v in nominal_kwargs(self.env_id, self.base_kwargs).items()
             if k in self.ranges
         }
-        self.choices = dict(DEFAULT_CHOICES.get(self.env_id, {}) if choices is None else choices)
+        self.choices = dict(default_choices(self.env_id) if choices is None else choices)
         unknown = sorted(set(self.choices) - set(_constructor_params(self.env_id)))
         if unknown:
             raise ValueError(f"choices: {unknown} are not kwargs of {self.env_id}")

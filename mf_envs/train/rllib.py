@@ -13,9 +13,10 @@ observation), and batched dict infos, which the runner's `DictInfoToList` unpack
 a native vector env (Inchworm-v0 without `friction`) run with RLlib's SYNC vectorisation of
 single envs.
 
-`PPO_CONFIGS` is the documented per-env starting point. Its keys (all optional except those
-`_BASE` supplies): `timesteps` (training budget), `num_env_runners` (Ray actors sampling in
-parallel), `num_envs_per_env_runner` (sub-envs per runner, batched in one native call),
+`_BASE` with the env declaration's `rllib` overrides (`env_overrides`) is the documented per-env
+starting point. Its keys (all optional except those `_BASE` supplies): `timesteps` (training
+budget), `num_env_runners` (Ray actors sampling in parallel), `num_envs_per_env_runner`
+(sub-envs per runner, batched in one native call),
 `train_batch_size_per_learner`, `minibatch_size`, `num_epochs`, `lr`, `gamma`, `lambda_`,
 `clip_param`, `entropy_coeff`, `vf_clip_param`, `fcnet_hiddens`, `sample_timeout_s`,
 `mean_std_filter` (observation normalisation, RLlib's `MeanStdFilter` connector, the counterpart
@@ -56,21 +57,14 @@ _BASE: dict[str, Any] = {
     # a fresh install compiles the numba kernels in each runner on its first step (minutes)
     "sample_timeout_s": 900.0,
 }
-PPO_CONFIGS: dict[str, dict[str, Any]] = {
-    # 600-step episodes (30 s at 0.05 s); SB3 tuning: gamma 0.98, lr 1e-3 (train/configs/ppo.yml)
-    "GyroStabilizer-v0": {"gamma": 0.98, "lr": 1e-3, "minibatch_size": 128},
-    # 6000-step episodes (20 wave periods x 300 steps): a horizon of a wave period, gamma 0.995
-    "GOWEC-v0": {"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
-    # the floating buoy: GOWEC-v0's settings as the starting point (untuned)
-    "FloatingGOWEC-v0": {
-        "gamma": 0.995,
-        "lambda_": 0.98,
-        "minibatch_size": 512,
-        "timesteps": 300_000,
-    },
-    # slow steps (a Newton solve per actuation increment): small batches, one runner's worth
-    "Inchworm-v0": {"num_envs_per_env_runner": 1, "train_batch_size_per_learner": 1000},
-}
+
+
+def env_overrides(env_id: str) -> dict[str, Any]:
+    """The env's documented starting point: its declaration's `rllib` overrides of `_BASE`."""
+    from mf_envs.envs import declaration
+
+    decl = declaration(env_id)
+    return {} if decl is None else dict(decl.rllib)
 
 
 def require_ray() -> Any:
@@ -113,8 +107,8 @@ def register_rllib_envs() -> list[str]:
 
 
 def ppo_settings(env_id: str, overrides: dict[str, Any] | None = None) -> dict[str, Any]:
-    """`_BASE | PPO_CONFIGS[env_id] | overrides` (ValueError on an unknown key)."""
-    out = {**_BASE, **PPO_CONFIGS.get(env_id, {})}
+    """`_BASE | env_overrides(env_id) | overrides` (ValueError on an unknown key)."""
+    out = {**_BASE, **env_overrides(env_id)}
     bad = sorted(set(overrides or {}) - set(_BASE))
     if bad:
         raise ValueError(f"config: unknown RLlib PPO key(s) {bad}; known: {sorted(_BASE)}")

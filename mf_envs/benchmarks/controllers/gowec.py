@@ -18,10 +18,11 @@ import numpy as np
 
 import mf_envs  # noqa: F401
 from mf_envs.controllers import make_baseline
+from mf_envs.envs.gowec.task import DECLARATION
 from mf_envs.physics.gowec import SEAKEEPER, detuned_mean_power
 from mf_envs.physics.waves import G
 
-ENV_ID = "GOWEC-v0"
+ENV_ID = DECLARATION.env_id
 KINDS = ("pll", "fixed_rate", "bang_bang")
 T0 = 6.0
 HA = SEAKEEPER["26"][1] * (2 * math.pi / T0) ** 3 / G  # peak gyroscopic moment, a = 1 m

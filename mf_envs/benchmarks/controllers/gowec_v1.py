@@ -22,8 +22,10 @@ import numpy as np
 import mf_envs  # noqa: F401
 from mf_envs.benchmarks.controllers.ppo import make_controller, with_ppo
 from mf_envs.controllers import make_baseline
+from mf_envs.envs.gowec_v1.task import DECLARATION
 
-ENV_ID = "FloatingGOWEC-v0"
+ENV_ID = DECLARATION.env_id
+SCORES_PPO = True  # PPO rows beside the baselines here, not in ppo.py
 KINDS = ("pll", "bang_bang", "linear_pto")
 SEEDS = tuple(range(2000, 2005))  # unseen by training (0..) and its evaluation (1000..)
 SCENES: dict[str, dict] = {

@@ -24,8 +24,10 @@ import mf_envs  # noqa: F401
 from mf_envs.benchmarks.controllers.ppo import make_controller, with_ppo
 from mf_envs.controllers.inchworm import WARMUP_SECONDS
 from mf_envs.envs.inchworm import SEED_SCENE_EFFECTS
+from mf_envs.envs.inchworm.task import DECLARATION
 
-ENV_ID = "Inchworm-v0"
+ENV_ID = DECLARATION.env_id
+SCORES_PPO = True  # PPO rows beside the baselines here, not in ppo.py
 SCENES = {"seed_section": {}, "seed_scene": {"effects": SEED_SCENE_EFFECTS}}
 KINDS = ("seed_uniform", "seed_linear", "tuned")
 SEEDS = tuple(range(1000, 1005))

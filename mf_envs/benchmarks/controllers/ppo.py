@@ -6,15 +6,18 @@ the baselines' rows of the same scene in `controllers.csv`:
 - GOWEC-v0: the `SCENES` of `gowec.py`, metric `power_ratio` (mean power over the last three
   quarters of the episode / Eq. 95; ceiling 4/pi for regular seas);
 - GyroStabilizer-v0: the scenes of `stabilizer.py`, `rms_roll` after its `SETTLE` and `rr`, the
-  RMS roll reduction against the rotor off on the same seeds (computed with its `_episode`);
-- Inchworm-v0: scene `seed_section` (the defaults), `tail_advance_per_step` (m) and, named as in
-  `inchworm.py`, `tail_advance_per_step_m` and `tail_advance_per_cycle_L` (body lengths per
-  head->tail grip switch); any other env: scene `default`, its primary metric.
+  RMS roll reduction against the rotor off on the same seeds (the module's `ppo_extra_rows`);
+- FloatingGOWEC-v0 and Inchworm-v0: scored beside their baselines by their own modules
+  (`SCORES_PPO = True`); any other env: scene `default`, its primary metric.
+
+An env's bench module is its declaration's `bench`; it may define `SCENES` (or `_scenes()`),
+`SCORES_PPO` and `ppo_extra_rows(scene, kwargs, per_seed, seeds)`.
 
 The policies were trained on default parameters only: the other scenes measure generalisation.
 Robustness (issue 7 item 4): scenes `shift: ...` run PPO and every classical baseline on shifted
-physical parameters (`train.randomize.SHIFTS`, e.g. wave period x0.8 / x1.2); baselines are made
-for the shifted env (`make_baseline(env)`), i.e. they know whatever they read from it.
+physical parameters (the declaration's `shifts`, `train.randomize.shift_scenes`, e.g. wave period
+x0.8 / x1.2); baselines are made for the shifted env (`make_baseline(env)`), i.e. they know
+whatever they read from it.
 PPO is evaluated on unseen seeds 2000.. (training used 0.., `train`'s own evaluation 1000..).
 `plot` draws each shipped policy's learning curve (its EvalCallback log).
 """
@@ -29,21 +32,12 @@ from typing import Any
 
 ORDER = 900  # after the env helpers' own baseline modules
 SEEDS = tuple(range(2000, 2005))
-_BENCH = {"GOWEC-v0": "gowec", "GyroStabilizer-v0": "stabilizer", "Inchworm-v0": "inchworm"}
-DEFAULT_SCENE = {"Inchworm-v0": "seed_section"}  # inchworm.py's name for the defaults
-# train.evaluate metric -> (the env benchmark's metric name, factor): same quantity, their unit
-ALIASES = {
-    "Inchworm-v0": {
-        "tail_advance_per_step": ("tail_advance_per_step_m", 1.0),
-        "tail_advance_per_cycle": ("tail_advance_per_cycle_L", None),  # None: 1 / body length
-    }
-}
 
 
 def shipped_env_ids() -> list[str]:
-    """Env ids with a shipped policy scored here (the others' own modules score theirs)."""
-    own = ("FloatingGOWEC-v0", "Inchworm-v0")  # scored beside their baselines by their own modules
-    return [e for e in _shipped_all() if e not in own]
+    """Env ids with a shipped policy scored here (a bench module with `SCORES_PPO = True` scores
+    its env's beside its baselines)."""
+    return [e for e in _shipped_all() if not getattr(_bench_module(e), "SCORES_PPO", False)]
 
 
 def with_ppo(env_id: str, kinds: tuple[str, ...]) -> tuple[str, ...]:
@@ -79,7 +73,7 @@ def env_scenes(env_id: str) -> dict[str, dict[str, Any]]:
         return dict(mod.SCENES)
     if mod is not None and hasattr(mod, "_scenes"):
         return dict(mod._scenes())
-    return {DEFAULT_SCENE.get(env_id, "default"): {}}
+    return {"default": {}}
 
 
 def rows(quick: bool) -> list[dict[str, Any]]:
@@ -118,8 +112,8 @@ def _rows(quick: bool) -> list[dict[str, Any]]:
             per_seed = episodes(env_id, lambda env, p=policy: p, SEEDS, kwargs)
             r = summarize(env_id, scene, "ppo", per_seed)
             out += [dict(x, seeds=_span(SEEDS)) for x in r if x["metric"] in keep]
-            out += _alias_rows(env_id, r)
-            out += _reduction_rows(env_id, scene, kwargs, per_seed)
+            if hasattr(mod := _bench_module(env_id), "ppo_extra_rows"):
+                out += mod.ppo_extra_rows(scene, kwargs, per_seed, SEEDS)
         ctrls = {"ppo": lambda env, p=policy: p, **baseline_factories(env_id)}
         for name, kwargs in shifts.items():
             for ctrl, factory in ctrls.items():
@@ -132,53 +126,6 @@ def _rows(quick: bool) -> list[dict[str, Any]]:
                     if x["metric"] in keep
                 ]
     return out
-
-
-def _alias_rows(env_id: str, rows_: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """The same rows under the env benchmark's metric names and units (see ALIASES)."""
-    out = []
-    for r in rows_:
-        if r["metric"] in ALIASES.get(env_id, {}):
-            name, f = ALIASES[env_id][r["metric"]]
-            f = 1.0 / _body_length(env_id) if f is None else f
-            out.append(
-                dict(r, metric=name, mean=r["mean"] * f, std=r["std"] * f, seeds=_span(SEEDS))
-            )
-    return out
-
-
-def _body_length(env_id: str) -> float:
-    import gymnasium as gym
-
-    env = gym.make(env_id)
-    length = float(env.unwrapped.params.length)
-    env.close()
-    return length
-
-
-def _reduction_rows(
-    env_id: str, scene: str, kwargs: dict[str, Any], per_seed: list[dict[str, float]]
-) -> list[dict[str, Any]]:
-    """Stabilizer: RR = 1 - RMS_ppo / RMS_rotor_off per seed (the stabilizer benchmark's `rr`,
-    rotor-off episodes from its own `_episode`)."""
-    mod = _bench_module(env_id)
-    if env_id != "GyroStabilizer-v0" or mod is None:
-        return []
-    import numpy as np
-
-    on = np.array([m["rms_roll"] for m in per_seed])
-    off = np.array([mod._episode(mod._rotor_off(kwargs), None, s)["rms_roll"] for s in SEEDS])
-    rr = 1.0 - on / off
-    base = {"env_id": env_id, "scene": scene, "n_seeds": len(SEEDS), "seeds": _span(SEEDS)}
-    return [
-        {
-            **base,
-            "controller": "ppo",
-            "metric": "rr",
-            "mean": float(rr.mean()),
-            "std": float(rr.std(ddof=1)),
-        },
-    ]
 
 
 def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
@@ -195,13 +142,13 @@ def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
 
 
 def _bench_module(env_id: str) -> Any:
-    name = _BENCH.get(env_id)
-    if name is None:
+    """The env's controllers benchmark module (its declaration's `bench`), or None."""
+    from mf_envs.envs import declaration
+
+    decl = declaration(env_id)
+    if decl is None or decl.bench is None or importlib.util.find_spec(decl.bench) is None:
         return None
-    try:
-        return importlib.import_module(f"mf_envs.benchmarks.controllers.{name}")
-    except ModuleNotFoundError:
-        return None
+    return importlib.import_module(decl.bench)
 
 
 def _span(seeds: tuple[int, ...]) -> str:

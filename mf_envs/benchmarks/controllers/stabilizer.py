@@ -33,9 +33,9 @@ from pathlib import Path
 
 import numpy as np
 
-from mf_envs.envs.gyro_stabilizer.spec import SETTLE
+from mf_envs.envs.gyro_stabilizer.task import DECLARATION, SETTLE
 
-ENV_ID = "GyroStabilizer-v0"
+ENV_ID = DECLARATION.env_id
 FLOOR = -2.0  # lowest RR drawn: a controller that doubles the roll is off the chart
 # (name, baseline kind, open-loop phase): the seed's open-loop excitations are scored
 # phase-locked to the wave moment (their best case) and at the env's random wave phase
@@ -176,6 +176,21 @@ def rows(quick: bool) -> list[dict]:
             for m in METRICS:
                 out.append(_row(base, name, m, [r[m] for r in res]))
     return out
+
+
+def ppo_extra_rows(
+    scene: str, kwargs: dict, per_seed: list[dict[str, float]], seeds: tuple[int, ...]
+) -> list[dict]:
+    """For `ppo.py`'s rows: RR = 1 - RMS_ppo / RMS_rotor_off per seed (this module's `rr`, the
+    rotor-off episodes from `_episode`)."""
+    on = np.array([m["rms_roll"] for m in per_seed])
+    off = np.array([_episode(_rotor_off(kwargs), None, s)["rms_roll"] for s in seeds])
+    rr = 1.0 - on / off
+    base = {"env_id": ENV_ID, "scene": scene, "n_seeds": len(seeds)}
+    return [
+        {**base, "seeds": f"{seeds[0]}-{seeds[-1]}", "controller": "ppo", "metric": "rr",
+         "mean": float(rr.mean()), "std": float(rr.std(ddof=1))}
+    ]  # fmt: skip
 
 
 def plot(out: Path, rows: list[dict]) -> list[Path]:

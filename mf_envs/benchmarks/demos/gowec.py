@@ -20,15 +20,18 @@ import numpy as np
 
 import mf_envs  # noqa: F401
 from mf_envs.controllers import make_baseline
+from mf_envs.envs.gowec.task import DECLARATION
 from mf_envs.physics import gowec as gw
 from mf_envs.physics.waves import BREAKING_STEEPNESS, G
+
+ENV_ID = DECLARATION.env_id
 
 ORDER = 20
 TITLE = "GOWEC: gyroscopic wave energy converter (ch. 3.2)"
 
 
 def _episode(kind: str, render: bool = False, n_frames: int = 0, **kw):
-    env = gym.make("GOWEC-v0", render_mode="rgb_array" if render else None, **kw)
+    env = gym.make(ENV_ID, render_mode="rgb_array" if render else None, **kw)
     ctrl = make_baseline(env, kind)
     obs, info = env.reset(seed=0, options=dict(wave_phase=0.0, gimbal_angle=0.0))
     ctrl.reset()

@@ -17,6 +17,9 @@ import numpy as np
 
 import mf_envs  # noqa: F401
 from mf_envs.controllers import make_baseline
+from mf_envs.envs.gowec_v1.task import DECLARATION
+
+ENV_ID = DECLARATION.env_id
 
 ORDER = 25
 TITLE = "FloatingGOWEC-v0: the floating buoy, Cummins equation + BEM coefficients"
@@ -28,7 +31,7 @@ def _episode(kind: str, rotor: bool, seconds: float, frames: int = 0):
     wave periods (every ~0.2 s)."""
     kw = {} if rotor else {"rotor_speed": 0.0}
     env = gym.make(
-        "FloatingGOWEC-v0",
+        ENV_ID,
         episode_seconds=seconds,
         render_mode="rgb_array" if frames else None,
         **kw,

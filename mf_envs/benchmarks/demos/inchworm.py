@@ -1,5 +1,7 @@
 """Inchworm showcase (Rios 2017 §4.6-4.10): the active beam, the seed gaits, Inchworm-v0.
 
+ENV_ID = DECLARATION.env_id
+
 Writes into `out`:
 - beam_fig4_5.png          linear active cantilever (seed numbers, Eqs. 65-67, in m and mm; the
                            seed's inches on the second axes): Eq. 65/67 lines
@@ -20,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.beam import solve_cantilever, timoshenko_cantilever_uniform
 from mf_envs.physics.inchworm import (
     Inchworm,
@@ -29,8 +32,9 @@ from mf_envs.physics.inchworm import (
     seed_uniform_kappa,
 )
 
+ENV_ID = DECLARATION.env_id
 ORDER = 40
-TITLE = "Inchworm (ch. 4): active C1 beam, seed Figs. 4-5, 4-8..4-10, Inchworm-v0"
+TITLE = f"Inchworm (ch. 4): active C1 beam, seed Figs. 4-5, 4-8..4-10, {ENV_ID}"
 KAPPA0 = 13.0
 P = InchwormParams()
 GAITS = {
@@ -147,7 +151,7 @@ def _gif(out: Path, quick: bool) -> Path | None:
     import mf_envs  # noqa: F401
     from mf_envs.controllers import make_baseline
 
-    env = gym.make("Inchworm-v0", render_mode="rgb_array")
+    env = gym.make(ENV_ID, render_mode="rgb_array")
     ctrl = make_baseline(env, "seed_uniform")
     obs, _ = env.reset(seed=0, options={"kappa": np.zeros(3)})
     frames = [env.render()]

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs.envs.gyro_stabilizer.task import DECLARATION
 from mf_envs.physics.ship import (
     SEED_EFFECTS,
     GimbalDrive,
@@ -29,6 +30,8 @@ from mf_envs.physics.ship import (
     simulate,
     simulate_engine,
 )
+
+ENV_ID = DECLARATION.env_id
 
 ORDER = 30
 TITLE = "Gyro roll stabilizer (ch. 3.3): seed Figs. 3-9..3-15 and GyroStabilizer-v0 with PID/LQR"
@@ -225,7 +228,7 @@ def env_episode(kind: str | None, frames: bool = False, seed: int = 0, seconds: 
 
     eff = DEFAULT_EFFECTS if kind else tuple(e for e in DEFAULT_EFFECTS if e != "gyroscopic")
     env = gym.make(
-        "GyroStabilizer-v0",
+        ENV_ID,
         effects=eff,
         episode_seconds=seconds,
         render_mode="rgb_array" if frames else None,

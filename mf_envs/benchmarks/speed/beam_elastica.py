@@ -28,7 +28,10 @@ from pathlib import Path
 import numpy as np
 
 from mf_envs.benchmarks._io import timed
+from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.beam import solve_cantilever
+
+ENV_ID = DECLARATION.env_id
 
 L, R, E, RHO, ALPHA = 1.0, 0.02, 1e6, 1000.0, 2.0
 G = E / 3.0
@@ -173,7 +176,7 @@ def _inchworm_vs_pendulum(quick: bool) -> list[dict]:
     from mf_envs.controllers import make_baseline
 
     n = 80 if quick else 400
-    env = gym.make("Inchworm-v0")
+    env = gym.make(ENV_ID)
     ctrl = make_baseline(env)
     obs, _ = env.reset(seed=0)
     env.step(ctrl.predict(obs)[0])

@@ -14,7 +14,7 @@ Cases (columns `case, variant, steps_per_s, reference, reference_steps_per_s, ra
 - `vector_env`: `gym.make_vec(id, N, "vector_entry_point")` env-steps/s at N = 1, 64, 1024,
   8192 vs Pendulum-v1 through gym.make (a SyncVectorEnv of it runs at about its single-env rate);
   `bytes_per_env` = batch state bytes / N; `target`, `meets_target`: issue 17's goal of each id
-  (`VECTOR_TARGETS`; single env: `SINGLE_TARGETS`).
+  (the env declaration's `vector_target`; single env: `single_target`).
 - `effects`: the native vector env at N = 1024 (256 with --quick; single env for ids without
   one) with no effect, each effect alone, the default and every effect, each timed alternating
   with the no-effect env (the reference): `ratio` < 1 is the cost of the effect; an effect
@@ -42,7 +42,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401  (registers the envs)
-from mf_envs.envs import VECTOR_SPECS, available_env_ids
+from mf_envs.envs import VECTOR_SPECS, available_env_ids, declaration
 
 ORDER = 20
 PENDULUM, ACROBOT = "Pendulum-v1", "Acrobot-v1"
@@ -50,19 +50,21 @@ PENDULUM, ACROBOT = "Pendulum-v1", "Acrobot-v1"
 # scheduler; the thread's CPU time measures the env (numba kernels run in the calling thread)
 CLOCK = time.thread_time
 TARGET_VECTOR = 1.0e6  # env-steps/s at N = 1024 (issue 6), the default target
-# issue 17's goals: native vector env-steps/s at N (random actions, autoreset included), and
-# single-env steps/s as a multiple of Pendulum-v1 in the same run (Inchworm-v0: absolute, 1000/s)
-VECTOR_TARGETS = {
-    "GOWEC-v0": (1024, 1.0e6),
-    "GyroStabilizer-v0": (1024, 1.5e6),
-    "FloatingGOWEC-v0": (1024, 5.0e5),
-    "Inchworm-v0": (64, 5.0e3),
-}
-SINGLE_TARGETS = {"FloatingGOWEC-v0": ("ratio", 1.0), "Inchworm-v0": ("steps_per_s", 1000.0)}
+# issue 17's goals come from each env's declaration: `vector_target` (N, native vector env-steps/s,
+# random actions, autoreset included; default TARGET_VECTOR at N = 1024), `single_target`
+# (a multiple of Pendulum-v1 in the same run, or absolute steps/s), `vector_n_max` (the ladder's
+# largest N for envs whose steps take ~1 ms: 8192 of them take seconds per step)
 N_LADDER = (1, 8, 64, 256, 1024, 4096, 8192)
 N_LADDER_QUICK = (1, 64, 1024, 8192)
-# the inchworm steps ~1 ms per worm: its ladder stops at N = 256 (8192 worms: seconds per step)
-N_MAX = {"Inchworm-v0": 256}
+
+
+def _decl(env_id: str) -> Any:
+    return declaration(env_id)
+
+
+def vector_targets() -> dict[str, tuple[int, float]]:
+    """env id -> (N, goal) of every available env with a native vector env."""
+    return {i: _decl(i).vector_target or (1024, TARGET_VECTOR) for i in _vector_ids()}
 
 
 def _vector_ids() -> list[str]:
@@ -78,12 +80,7 @@ def _effect_sets(env_id: str) -> dict[str, tuple[str, ...]]:
     import importlib
 
     mod = importlib.import_module(gym.spec(env_id).entry_point.split(":")[0])
-    avail = getattr(mod, "AVAILABLE_EFFECTS", None)
-    if avail is None:
-        from mf_envs.physics.inchworm import INCHWORM_EFFECTS
-        from mf_envs.physics.ship.model import SHIP_EFFECTS
-
-        avail = SHIP_EFFECTS if env_id == "GyroStabilizer-v0" else INCHWORM_EFFECTS
+    avail = mod.AVAILABLE_EFFECTS
     sets = {"none": ()}
     sets.update({f"+{e}": (e,) for e in avail})
     sets["default"] = tuple(mod.DEFAULT_EFFECTS)
@@ -171,13 +168,14 @@ def single_rows(quick: bool) -> list[dict[str, Any]]:
     out = []
     for env_id in [PENDULUM, ACROBOT, *available_env_ids()]:
         env = gym.make(env_id)
-        s = sec * (4 if env_id == "Inchworm-v0" else 1)
+        decl = _decl(env_id)
+        s = sec * (4 if decl is not None and decl.slow else 1)
         rate, (rp, ra) = side_by_side(partial(single_rate, env, s), refs, rounds)
         row = _row("single_env", f"{env_id} gym.make", rate, PENDULUM, rp,
                    ratio_acrobot=rate / ra, acrobot_steps_per_s=ra, n_envs=1,
                    bytes_per_env=make_bytes(env_id), load=os.getloadavg()[0])  # fmt: skip
-        if env_id in SINGLE_TARGETS:
-            key, goal = SINGLE_TARGETS[env_id]
+        if decl is not None and decl.single_target is not None:
+            key, goal = decl.single_target
             row.update(target=f"{key} >= {goal:g}", meets_target=bool(row[key] >= goal))
         out.append(row)
         env.close()
@@ -191,13 +189,13 @@ def vector_rows(quick: bool) -> list[dict[str, Any]]:
     out = []
     for n in N_LADDER_QUICK if quick else N_LADDER:
         for env_id in _vector_ids():
-            if n > N_MAX.get(env_id, n):
+            if n > (_decl(env_id).vector_n_max or n):
                 continue
             venv = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point")
             rate, (rp,) = side_by_side(partial(vector_rate, venv, sec), ref, rounds)
             nbytes = venv.unwrapped.state_nbytes() / n
             extra: dict[str, Any] = {"n_envs": n, "bytes_per_env": nbytes}
-            at, goal = VECTOR_TARGETS.get(env_id, (1024, TARGET_VECTOR))
+            at, goal = vector_targets()[env_id]
             if n == at:
                 extra.update(target=goal, meets_target=bool(rate >= goal))
             out.append(_row("vector_env", f"{env_id} native N={n}", rate,
@@ -219,7 +217,7 @@ def effect_rows(quick: bool) -> list[dict[str, Any]]:
     sec, n_vec = (0.12, 256) if quick else (0.4, 1024)
     out = []
     for env_id in available_env_ids():
-        slow = env_id == "Inchworm-v0"  # its native vector env runs the friction scene only
+        slow = _decl(env_id).slow  # its native vector env may run some scenes only
         native = env_id in _vector_ids() and not slow
         rounds = 1 if slow else (3 if quick else 4)
         make = partial(_effect_timer, env_id, n_vec if native else 0, sec)
@@ -297,7 +295,7 @@ def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
         rr = [r for r in vec if r["variant"].startswith(vec[0]["variant"].split()[0])]
         ax[0].loglog([r["n_envs"] for r in rr], [r["reference_steps_per_s"] for r in rr],
                      "s--", color="0.5", label=f"{PENDULUM} gym.make")  # fmt: skip
-    for k, (env_id, (at, goal)) in enumerate(VECTOR_TARGETS.items()):
+    for k, (env_id, (at, goal)) in enumerate(vector_targets().items()):
         ax[0].plot([at], [goal], marker="*", ms=11, ls="none", color=f"C{k}", mec="r",
                    label=f"{env_id} goal ({goal:.2g} at N = {at})")  # fmt: skip
     ax[0].set(xlabel="N envs", ylabel="env-steps/s", title="native vector envs")

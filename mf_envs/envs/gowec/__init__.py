@@ -1,7 +1,22 @@
-"""GOWEC-v0: `env.GOWECEnv` (single), `vector.GOWECVectorEnv` (native batched), `spec` (the
-observation layout `OBS`, reward, info keys and failure contract both use)."""
+"""GOWEC-v0: `env.py` the Gymnasium class, `task.py` its declaration (`DECLARATION`), the
+package's other modules as docs/adding_an_env.md lists them. Names below import on first use, so
+reading the declaration (`import mf_envs`) does not load the physics."""
 
-from mf_envs.envs.gowec.env import AVAILABLE_EFFECTS, DEFAULT_EFFECTS, GOWECEnv
-from mf_envs.envs.gowec.spec import OBS
+from __future__ import annotations
 
-__all__ = ["AVAILABLE_EFFECTS", "DEFAULT_EFFECTS", "OBS", "GOWECEnv"]
+import importlib
+from typing import Any
+
+_LAZY = {
+    "AVAILABLE_EFFECTS": "env",
+    "DEFAULT_EFFECTS": "env",
+    "GOWECEnv": "env",
+    "OBS": "spec",
+}
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)

@@ -117,6 +117,9 @@ class GOWECEnv(MFEnv):
       `episode_seconds`, strict reset options.
     """
 
+    obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
+    RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
+
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 30}
 
     def __init__(

@@ -86,6 +86,9 @@ class GOWECV1Env(MFEnv):
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency (issue 14).
     """
 
+    obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
+    RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
+
     def __init__(
         self,
         wave_amplitude: float = 1.0,

@@ -1,8 +1,22 @@
-"""GyroStabilizer-v0: `env.GyroStabilizerEnv` (single), `vector.GyroStabilizerVectorEnv` (native
-batched), `spec` (observation layout `OBS`, reward terms, info keys, failure contract), `wiring`
-(the ship physics parameters from the env arguments)."""
+"""GyroStabilizer-v0: `env.py` the Gymnasium class, `task.py` its declaration (`DECLARATION`), the
+package's other modules as docs/adding_an_env.md lists them. Names below import on first use, so
+reading the declaration (`import mf_envs`) does not load the physics."""
 
-from mf_envs.envs.gyro_stabilizer.env import DEFAULT_EFFECTS, GyroStabilizerEnv
-from mf_envs.envs.gyro_stabilizer.spec import OBS
+from __future__ import annotations
 
-__all__ = ["DEFAULT_EFFECTS", "OBS", "GyroStabilizerEnv"]
+import importlib
+from typing import Any
+
+_LAZY = {
+    "AVAILABLE_EFFECTS": "env",
+    "DEFAULT_EFFECTS": "env",
+    "GyroStabilizerEnv": "env",
+    "OBS": "spec",
+}
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)

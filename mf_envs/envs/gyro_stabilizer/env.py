@@ -19,6 +19,7 @@ from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.model import SHIP_EFFECTS, GimbalDrive, initial_state
 from mf_envs.physics.ship.params import GyroParams, seakeeper_gyro
 
+AVAILABLE_EFFECTS = SHIP_EFFECTS
 DEFAULT_EFFECTS = (
     "gyroscopic",
     "gimbal_inertia",
@@ -123,6 +124,9 @@ class GyroStabilizerEnv(MFEnv):
       heading, speed, short-crested seas, the Hull dataclass and the energy effort term.
     """
 
+    obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
+    RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
+
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 20}
     DEFAULT_EFFECTS = DEFAULT_EFFECTS
 
@@ -197,7 +201,7 @@ class GyroStabilizerEnv(MFEnv):
             physics_dt = wiring.default_physics_dt(machine, tau_s, control_dt, dt_max)
         super().__init__(
             effects=effects,
-            available_effects=SHIP_EFFECTS,
+            available_effects=AVAILABLE_EFFECTS,
             default_effects=DEFAULT_EFFECTS,
             control_dt=control_dt,
             physics_dt=physics_dt,

@@ -23,7 +23,6 @@ OBS = ObsLayout(
     Field("gimbal_rate", "rad/s", 20.0, "gimbal rate phi'"),
 )
 REWARD_TERMS = ("roll", "effort")
-SETTLE = 10.0  # s: metrics (RMS roll) skip the start-up transient, benches and evaluate alike
 RESET_OPTIONS = ("roll", "roll_rate", "gimbal_angle", "wave_phase")
 # step and reset info, SI; the state is reported as is, also after a numerical failure
 INFO_KEYS = (

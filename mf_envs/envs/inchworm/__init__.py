@@ -1,7 +1,23 @@
-"""Inchworm-v0: `env.InchwormEnv` and `spec` (observation layout `observation_layout(n)`, reward
-terms, info keys, failure contract)."""
+"""Inchworm-v0: `env.py` the Gymnasium class, `task.py` its declaration (`DECLARATION`), the
+package's other modules as docs/adding_an_env.md lists them. Names below import on first use, so
+reading the declaration (`import mf_envs`) does not load the physics."""
 
-from mf_envs.envs.inchworm.env import DEFAULT_EFFECTS, SEED_SCENE_EFFECTS, InchwormEnv
-from mf_envs.envs.inchworm.spec import observation_layout
+from __future__ import annotations
 
-__all__ = ["DEFAULT_EFFECTS", "SEED_SCENE_EFFECTS", "InchwormEnv", "observation_layout"]
+import importlib
+from typing import Any
+
+_LAZY = {
+    "AVAILABLE_EFFECTS": "env",
+    "DEFAULT_EFFECTS": "env",
+    "SEED_SCENE_EFFECTS": "env",
+    "InchwormEnv": "env",
+    "observation_layout": "spec",
+}
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)

@@ -10,7 +10,7 @@ from gymnasium import spaces
 from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
-from mf_envs.envs.inchworm import robot, spec
+from mf_envs.envs.inchworm import render, robot, spec
 from mf_envs.physics.beam import NewtonDivergence
 from mf_envs.physics.beam.contact.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS
@@ -19,6 +19,7 @@ from mf_envs.physics.terrain import SOILS
 
 # the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
 SEED_SCENE_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
+AVAILABLE_EFFECTS = {**INCHWORM_EFFECTS, **DRIVE_EFFECTS}
 DEFAULT_EFFECTS = (*SEED_SCENE_EFFECTS, "actuator_dynamics", "friction")
 CURVATURE_OBS_LIMIT = spec.CURVATURE_OBS_LIMIT
 REACTION_OBS_LIMIT = spec.REACTION_OBS_LIMIT
@@ -137,6 +138,8 @@ class InchwormEnv(MFEnv):
       actuator dynamics, friction feet and the energy effort term by default.
     """
 
+    RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
+
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 10}
     exclusive_effects = (("friction", "inertia"), ("friction", "terrain"))  # ValueError
 
@@ -168,7 +171,7 @@ class InchwormEnv(MFEnv):
     ) -> None:
         super().__init__(
             effects=effects,
-            available_effects={**INCHWORM_EFFECTS, **DRIVE_EFFECTS},
+            available_effects=AVAILABLE_EFFECTS,
             default_effects=DEFAULT_EFFECTS,
             control_dt=control_dt,
             physics_dt=physics_dt,
@@ -207,9 +210,14 @@ class InchwormEnv(MFEnv):
         )
         self.actuator_rate_limit = act.rate_limit  # 1/(m s), with `actuator_dynamics`
         self.actuator = act if "actuator_dynamics" in self.effects else None
-        self._drive = dict(params=self.params, effects=self.effects, n_control_points=self.n_ctrl)
-        self._drive.update(
-            actuator=act, friction=feet, increment_factor=increment_factor, soil=soil
+        self._drive = dict(
+            params=self.params,
+            effects=self.effects,
+            n_control_points=self.n_ctrl,
+            actuator=act,
+            friction=feet,
+            increment_factor=increment_factor,
+            soil=soil,
         )
         try:
             self.driven = make_driven(**self._drive)
@@ -326,25 +334,12 @@ class InchwormEnv(MFEnv):
 
     # ------------------------------------------------------------------ rendering
     def _remember_frame(self, info: dict[str, Any]) -> None:
-        """Keep the drawable state if it is finite (after a numerical failure the physics state
-        may be NaN; render() then shows the last finite one)."""
-        keys = ("centerline", "x_head", "x_tail")
-        if np.isfinite(info["x_head"] + info["x_tail"]) and np.isfinite(info["centerline"]).all():
-            self._frame_state = {k: info[k] for k in (*keys, "anchor")}
-            self._frame_state["step"] = self._steps
+        """Keep the drawable state if it is finite (`render.frame_state`)."""
+        fs = render.frame_state(info, self._steps)
+        if fs is not None:
+            self._frame_state = fs
 
     def _draw_frame(self) -> np.ndarray:
-        from mf_envs.render import draw_inchworm
-
         if self._frame_state is None:  # before the first reset: the constructed state
-            sim = self.sim
-            info = {"centerline": sim.centerline(), "x_head": sim.x_head, "x_tail": sim.x_tail}
-            self._remember_frame({**info, "anchor": sim.anchor})
-        fs = self._frame_state
-        note = "" if fs["step"] == self._steps else "  (last finite state)"
-        return draw_inchworm(
-            centerline=fs["centerline"],
-            x_head=fs["x_head"],
-            x_tail=fs["x_tail"],
-            text=f"step {fs['step']}  tail x = {fs['x_tail']:+.3f} m  grip: {fs['anchor']}{note}",
-        )
+            self._remember_frame(render.sim_state(self.sim))
+        return render.draw(self._frame_state, self._steps)

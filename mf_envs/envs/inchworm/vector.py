@@ -41,12 +41,9 @@ class InchwormVectorEnv(BatchedVectorEnv):
     def supports(cls, **env_kwargs: Any) -> bool:
         """Only the friction scene (the default effects include it) is compiled."""
         from mf_envs.effects import resolve_effects
-        from mf_envs.envs.inchworm.env import DEFAULT_EFFECTS
-        from mf_envs.physics.inchworm import INCHWORM_EFFECTS
-        from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS
+        from mf_envs.envs.inchworm.env import AVAILABLE_EFFECTS, DEFAULT_EFFECTS
 
-        avail = {**INCHWORM_EFFECTS, **DRIVE_EFFECTS}
-        effects = resolve_effects(env_kwargs.get("effects"), avail, DEFAULT_EFFECTS)
+        effects = resolve_effects(env_kwargs.get("effects"), AVAILABLE_EFFECTS, DEFAULT_EFFECTS)
         return "friction" in effects
 
     def _alloc(self, n: int) -> None:

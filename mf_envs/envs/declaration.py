@@ -1,0 +1,202 @@
+"""One declaration per env: everything the layers above the env need to know about it.
+
+Each env package `mf_envs/envs/<env>/task.py` defines `DECLARATION = EnvDeclaration(...)`; a
+package outside mf_envs declares its env the same way and names it in the `mf_envs.envs`
+entry-point group of its distribution (`[project.entry-points."mf_envs.envs"]`
+`my_env = "my_pkg.task:DECLARATION"`). `declarations()` collects both; Gymnasium registration,
+`make_vec`'s native entry point, the baselines (`controllers.make_baseline`), the evaluation
+metric (`train.evaluate`), domain randomisation (`train.randomize`), the RLlib and SB3 starting
+hyperparameters, the throughput goals and the contract tests read it from there, so no layer
+above `envs/` holds a per-env branch (docs/adding_an_env.md).
+
+A declaration holds strings for everything in a higher layer (the baselines module, the bench
+and demo modules): reading a declaration imports nothing heavy, and nothing points upward.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.metadata
+import importlib.util
+import pkgutil
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+__all__ = [
+    "EnvDeclaration",
+    "Metric",
+    "RETURN",
+    "base_metrics",
+    "declaration",
+    "declarations",
+    "refresh",
+]
+
+ENTRY_POINT_GROUP = "mf_envs.envs"
+
+
+@dataclass(frozen=True)
+class Metric:
+    """The quantity an env is judged by: name (a key of its episode metrics), direction, unit."""
+
+    name: str
+    higher_is_better: bool
+    unit: str
+
+
+RETURN = Metric("return", True, "1")
+# (env, rewards, infos) -> extra per-episode metrics; infos[0] is the reset info
+EpisodeMetrics = Callable[[Any, Sequence[float], Sequence[Mapping[str, Any]]], dict[str, float]]
+
+
+def _frozen(mapping: Mapping[str, Any] | None) -> Mapping[str, Any]:
+    return MappingProxyType(dict(mapping or {}))
+
+
+@dataclass(frozen=True)
+class EnvDeclaration:
+    """What the upper layers know of one env id (all optional except the id and entry point).
+
+    - `entry_point`, `vector_entry_point`: "module:Class" (the vector class has `supports(**kw)`).
+    - `baselines`: the module that registers the env's classical controllers on import
+      (`controllers.register(env_id, kind, factory)`).
+    - `metric`, `episode_metrics`: the primary metric and the function computing it (with any
+      companions) from one episode's rewards and infos; without it, the episode return.
+    - `info_keys`: info keys reported at reset and every step (docs/api.md); `bad_reset_options`:
+      (key, value) pairs `reset(options=...)` must reject naming the key (contract tests).
+    - `randomize`, `choices`, `shifts`: domain randomisation factors (lo, hi) of nominal kwargs,
+      discrete kwarg choices, robustness scenes {name: {kwarg: factor}} (`train.randomize`).
+    - `rllib`: RLlib PPO overrides of `train.rllib`'s base config; `hyperparams`: per algorithm
+      ("ppo", "sac", "td3") rl-zoo3 keys used when the training YAML has no entry for the id.
+    - `vector_target`: (N, env-steps/s goal) of the native vector env; `single_target`:
+      ("ratio", x Pendulum-v1) or ("steps_per_s", goal); `vector_n_max`: largest N benched.
+    - `bench`, `demo`: modules of the controllers benchmark and the demo (optional).
+    - `slow`: steps take about a millisecond (benchmarks time it longer; its native vector env
+      may support only some scenes: the vector class's `supports`).
+    """
+
+    env_id: str
+    entry_point: str
+    vector_entry_point: str | None = None
+    baselines: str | None = None
+    metric: Metric = RETURN
+    episode_metrics: EpisodeMetrics | None = None
+    info_keys: tuple[str, ...] = ()
+    bad_reset_options: tuple[tuple[str, Any], ...] = ()
+    randomize: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    choices: Mapping[str, tuple[Any, ...]] = field(default_factory=dict)
+    shifts: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
+    rllib: Mapping[str, Any] = field(default_factory=dict)
+    hyperparams: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    vector_target: tuple[int, float] | None = None
+    single_target: tuple[str, float] | None = None
+    vector_n_max: int | None = None
+    bench: str | None = None
+    demo: str | None = None
+    slow: bool = False
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.env_id, str) or "-v" not in self.env_id:
+            raise ValueError(f"env_id: {self.env_id!r} is not a Gymnasium id like 'Name-v0'")
+        for name in ("entry_point", "vector_entry_point"):
+            value = getattr(self, name)
+            if value is not None and ":" not in value:
+                raise ValueError(f"{name}: {value!r} is not 'module:Class'")
+        for name in ("randomize", "choices", "shifts", "rllib", "hyperparams"):
+            object.__setattr__(self, name, _frozen(getattr(self, name)))
+
+    def metrics(self, env: Any, rewards: Sequence[float], infos: Sequence[Mapping[str, Any]]):
+        """The episode's metrics: `base_metrics` and the env's own."""
+        extra = {} if self.episode_metrics is None else self.episode_metrics(env, rewards, infos)
+        return base_metrics(rewards, infos, extra)
+
+    def installed(self) -> bool:
+        """Whether the env's module is importable in this install."""
+        return _module_exists(self.entry_point.split(":")[0])
+
+    def vector_installed(self) -> bool:
+        entry = self.vector_entry_point
+        return entry is not None and _module_exists(entry.split(":")[0])
+
+
+def base_metrics(
+    rewards: Sequence[float],
+    infos: Sequence[Mapping[str, Any]],
+    extra: Mapping[str, float] | None = None,
+) -> dict[str, float]:
+    """Every episode's metrics: `return` (undiscounted), `steps`, then `extra`, then
+    `numerical_failure` (1.0 if any step reported one). `infos[0]` is the reset info."""
+    out = {"return": float(sum(float(r) for r in rewards)), "steps": float(len(rewards))}
+    out.update(extra or {})
+    out["numerical_failure"] = float(any(i.get("numerical_failure", False) for i in infos[1:]))
+    return out
+
+
+def _module_exists(module: str) -> bool:
+    try:
+        return importlib.util.find_spec(module) is not None
+    except ModuleNotFoundError:
+        return False
+
+
+_CACHE: dict[str, EnvDeclaration] = {}
+
+
+def _own() -> list[EnvDeclaration]:
+    """The declarations of the env packages shipped in mf_envs.envs (their `task.DECLARATION`)."""
+    import mf_envs.envs as pkg
+
+    out = []
+    for info in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda m: m.name):
+        if info.ispkg and not info.name.startswith("_"):
+            name = f"{pkg.__name__}.{info.name}.task"
+            if _module_exists(name):
+                decl = getattr(importlib.import_module(name), "DECLARATION", None)
+                if isinstance(decl, EnvDeclaration):
+                    out.append(decl)
+    return out
+
+
+def _plugins() -> list[EnvDeclaration]:
+    """Declarations named in the `mf_envs.envs` entry-point group of installed distributions."""
+    out = []
+    for ep in importlib.metadata.entry_points(group=ENTRY_POINT_GROUP):
+        decl = ep.load()
+        if not isinstance(decl, EnvDeclaration):
+            raise ValueError(f"entry point {ep.name!r} ({ep.value}) is not an EnvDeclaration")
+        out.append(decl)
+    return out
+
+
+def refresh() -> dict[str, EnvDeclaration]:
+    """Collect the declarations again (the shipped envs first, then plugins in name order)."""
+    found: dict[str, EnvDeclaration] = {}
+    for decl in _own() + _plugins():
+        if decl.env_id in found and found[decl.env_id] != decl:
+            raise ValueError(f"env_id: {decl.env_id!r} is declared twice")
+        found[decl.env_id] = decl
+    _CACHE.clear()
+    _CACHE.update(found)
+    return dict(found)
+
+
+def declarations() -> dict[str, EnvDeclaration]:
+    """env id -> its declaration (collected once; `refresh()` collects again)."""
+    if not _CACHE:
+        refresh()
+    return dict(_CACHE)
+
+
+def declaration(env_id: str) -> EnvDeclaration | None:
+    """The declaration of `env_id` (a deprecated alias resolves to its env), or None."""
+    from mf_envs.envs._alias import canonical_env_id
+
+    return declarations().get(canonical_env_id(env_id, notice_alias=False))
+
+
+def load(entry: str) -> Any:
+    """The object named by "module:attribute"."""
+    module, _, name = entry.partition(":")
+    return getattr(importlib.import_module(module), name)

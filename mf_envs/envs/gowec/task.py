@@ -1,0 +1,47 @@
+"""GOWEC-v0's declaration: what the layers above the env read of it (`envs.declaration`)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from mf_envs.envs.declaration import EnvDeclaration, Metric
+
+
+def episode_metrics(
+    env: Any, rewards: Sequence[float], infos: Sequence[Mapping[str, Any]]
+) -> dict[str, float]:
+    """`power_ratio`: mean power after the first quarter of the episode / Eq. 95 (as the
+    controllers benchmark's `episode_ratio`); `power_ratio_all` over the whole episode."""
+    power = np.array([i["power"] for i in infos[1:]])
+    ref = float(env.unwrapped.analytic_max_power())
+    return {
+        "mean_power": float(power.mean()),
+        "power_ratio": float(power[len(power) // 4 :].mean()) / ref,
+        "power_ratio_all": float(power.mean()) / ref,
+    }
+
+
+DECLARATION = EnvDeclaration(
+    env_id="GOWEC-v0",
+    entry_point="mf_envs.envs.gowec.env:GOWECEnv",
+    vector_entry_point="mf_envs.envs.gowec.vector:GOWECVectorEnv",
+    baselines="mf_envs.controllers.gowec",
+    metric=Metric("power_ratio", True, "1"),
+    episode_metrics=episode_metrics,
+    info_keys=("power", "gimbal_angle", "gimbal_rate", "buoy_rate", "wave_elevation"),
+    bad_reset_options=(("gimbal_rate", 1e9), ("gimbal_angle", float("nan")), ("wave_phase", "1")),
+    randomize={"wave_period": (0.8, 1.2), "wave_amplitude": (0.5, 1.5), "rotor_speed": (0.9, 1.1)},
+    shifts={
+        "wave_period x0.8": {"wave_period": 0.8},
+        "wave_period x1.2": {"wave_period": 1.2},
+        "rotor_speed x0.9": {"rotor_speed": 0.9},
+    },
+    # 6000-step episodes (20 wave periods x 300 steps): a horizon of a wave period, gamma 0.995
+    rllib={"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
+    vector_target=(1024, 1.0e6),
+    bench="mf_envs.benchmarks.controllers.gowec",
+    demo="mf_envs.benchmarks.demos.gowec",
+)

@@ -1,0 +1,69 @@
+"""Inchworm-v0's declaration: what the layers above the env read of it (`envs.declaration`)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from mf_envs.envs.declaration import EnvDeclaration, Metric
+
+# soil kwargs randomised if the env has them (`train.randomize` keeps only real kwargs)
+SOIL_KWARGS = (
+    "friction_coefficient",
+    "static_friction",
+    "kinetic_friction",
+    "friction_forward",
+    "friction_backward",
+    "mu_forward",
+    "mu_backward",
+    "ground_stiffness",
+    "ground_damping",
+)
+
+
+def episode_metrics(
+    env: Any, rewards: Sequence[float], infos: Sequence[Mapping[str, Any]]
+) -> dict[str, float]:
+    """`tail_advance_per_step` = (x_tail(end) - x_tail(reset)) / steps (m); per gait cycle, a
+    cycle being one head-grip phase then one tail-grip phase (Eq. 102 anchor switching)."""
+    steps = infos[1:]
+    advance = float(steps[-1]["x_tail"] - infos[0]["x_tail"])
+    anchors = [i.get("anchor") for i in infos]
+    cycles = sum(a == "head" and b == "tail" for a, b in zip(anchors, anchors[1:]))
+    return {
+        "tail_advance": advance,
+        "tail_advance_per_step": advance / len(steps),
+        "gait_cycles": float(cycles),
+        "tail_advance_per_cycle": advance / cycles if cycles else math.nan,
+    }
+
+
+DECLARATION = EnvDeclaration(
+    env_id="Inchworm-v0",
+    entry_point="mf_envs.envs.inchworm.env:InchwormEnv",
+    vector_entry_point="mf_envs.envs.inchworm.vector:InchwormVectorEnv",
+    baselines="mf_envs.controllers.inchworm",
+    metric=Metric("tail_advance_per_step", True, "m"),
+    episode_metrics=episode_metrics,
+    info_keys=("x_head", "x_tail", "centerline"),
+    bad_reset_options=(("x_tail", 1e17), ("kappa", [1.0, 2.0]), ("kappa", [0.0, 0.0, -14.0])),
+    randomize={
+        **{k: (0.5, 1.5) for k in SOIL_KWARGS},
+        "youngs_modulus": (0.8, 1.2),
+        "mass_per_length": (0.8, 1.2),
+    },
+    shifts={
+        "soil x0.5": {k: 0.5 for k in SOIL_KWARGS},
+        "youngs_modulus x0.8": {"youngs_modulus": 0.8},
+        "mass_per_length x1.2": {"mass_per_length": 1.2},
+    },
+    # slow steps (a Newton solve per actuation increment): small batches, one runner's worth
+    rllib={"num_envs_per_env_runner": 1, "train_batch_size_per_learner": 1000},
+    vector_target=(64, 5.0e3),
+    single_target=("steps_per_s", 1000.0),
+    vector_n_max=256,  # ~1 ms per worm step: 8192 worms take seconds per step
+    bench="mf_envs.benchmarks.controllers.inchworm",
+    demo="mf_envs.benchmarks.demos.inchworm",
+    slow=True,
+)
