@@ -1,6 +1,6 @@
 """Seakeeper unit presets and the capacity bound (ship.seakeeper) against independent truth.
 
-Truths: the numbers as published (issue 30's H = 7,015 N m s of the Model 7000; the seed's
+Truths: the numbers as published (H = 7015 N m s of the Model 7000, Seakeeper's theory page; the seed's
 Table 3-1), the exact cancelling gimbal motion beta(t) = asin(s sin w t) evaluated on a grid
 (its peak angle and rate), Froude similarity of the scaled hull, and the maker's stated boat
 range for one Model 7000 (seakeeper.com/products_sizing.php; 60,000 lb quoted elsewhere).
@@ -21,12 +21,12 @@ from mf_envs.physics.ship.params import seakeeper_gyro
 
 def test_model_7000_matches_published_numbers():
     u = SK.SEAKEEPER_7000
-    assert u.angular_momentum == pytest.approx(7015.0, rel=2e-4)  # issue 30: 7,015 N m s
+    assert u.angular_momentum == pytest.approx(7015.0, rel=2e-4)  # theory page: 7015 N m s
     assert u.rotor_inertia == pytest.approx(6.7, rel=1e-12)
     assert math.degrees(u.max_precession) == pytest.approx(60.0)
     lo, hi = u.displacement_range
     assert lo == pytest.approx(15_876.0, abs=1.0) and hi == pytest.approx(24_948.0, abs=1.0)
-    assert "90021" in u.source and "products_sizing" in u.source
+    assert "90021" in u.source and "products_sizing" in u.source and "theory" in u.source
 
 
 def test_seed_table_units_kept_as_printed():

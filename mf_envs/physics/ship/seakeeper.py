@@ -8,8 +8,8 @@ source was verified (nothing is filled in). Every preset names its sources in `s
   hydraulic brake: Seakeeper Model 7000 Gyro Operation Manual, doc. 90021 rev 4 (Mar 2009),
   §1.1 and §4.2. Boat range 35,000-55,000 lb full-load displacement (15.9-24.9 t) for a
   single gyro: seakeeper.com/products_sizing.php (the M7000-era sizing page). Flywheel
-  J = 6.7 kg m^2 at 10,000 rpm (H = 7,016 N m s): Seakeeper's theory page as quoted in
-  issue 30 (that page was not retrieved here).
+  J = 6.7 kg m^2 at 10,000 rpm = 1047 rad/s, L = 7015 N m s: seakeeper.com/
+  design_theoryofoperation.php (7,016 N m s with 10,000 rpm exactly).
 - `SEED_TABLE_3_1`: the six units of Rios 2017, Table 3-1 (rpm, H, spool-up power), kept as
   the seed prints them (`mf_envs.physics.gyros.SEAKEEPER`); the seed gives no boat range,
   precession limit or torque rating.
@@ -107,8 +107,8 @@ SEAKEEPER_7000 = GyroUnit(
     source=(
         "precession +-60 deg and hydraulic brake: Seakeeper Model 7000 Gyro Operation Manual, "
         "doc. 90021 rev 4 (Mar 2009) §1.1, §4.2; one gyro for 35,000-55,000 lb full-load "
-        "displacement: seakeeper.com/products_sizing.php; J = 6.7 kg m^2 at 10,000 rpm: "
-        "Seakeeper theory page as quoted in issue 30 (not retrieved)"
+        "displacement: seakeeper.com/products_sizing.php; J = 6.7 kg m^2 at 10,000 rpm "
+        "(L = 7015 N m s): seakeeper.com/design_theoryofoperation.php"
     ),
 )
 
