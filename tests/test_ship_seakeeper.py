@@ -1,9 +1,10 @@
 """Seakeeper unit presets and the capacity bound (ship.seakeeper) against independent truth.
 
-Truths: the numbers as published (H = 7015 N m s of the Model 7000, Seakeeper's theory page; the seed's
-Table 3-1), the exact cancelling gimbal motion beta(t) = asin(s sin w t) evaluated on a grid
-(its peak angle and rate), Froude similarity of the scaled hull, and the maker's stated boat
-range for one Model 7000 (seakeeper.com/products_sizing.php; 60,000 lb quoted elsewhere).
+Truths: the numbers as published (H = 7015 N m s of the Model 7000, Seakeeper's theory
+page; the seed's Table 3-1), the exact cancelling gimbal motion beta(t) = asin(s sin w t)
+evaluated on a grid (its peak angle and rate), Froude similarity of the scaled hull, and the
+maker's stated boat range for one Model 7000 (seakeeper.com/products_sizing.php; 60,000 lb
+quoted elsewhere).
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ with T_r the relief-valve torque. Every term opposes a', so tau_b a' <= 0 for ev
 (it cannot motor). The rate cap is a flow-limiting valve: above r_cap the resistance rises
 steeply (k_cap), whatever u is: the precession-rate cap that bounds the gyro's roll moment
 H a' cos(a) on the structure (the purpose of precession braking that limits the precession
-rate "so that the gyro torque created is effectively capped", module doc of the docs page).
+rate "so that the gyro torque created is effectively capped"; docs/stabilizer_physics.md §3).
 
 End stops: a cushion (spring-damper) engaging at +-a_s (60 deg, the Model 7000's precession
 range), pushing only (never pulling the gimbal back into the stop):
