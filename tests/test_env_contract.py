@@ -220,3 +220,15 @@ def test_env_files_are_short():
     for path in (ROOT / "mf_envs/envs").rglob("*.py"):
         n = len(path.read_text().splitlines())
         assert n <= 350, f"{path.relative_to(ROOT)} has {n} lines"
+
+
+ENV_FILES = {"__init__.py", "env.py", "task.py", "spec.py", "build.py", "rows.py", "vector.py",
+             "render.py"}  # fmt: skip
+
+
+def test_every_env_package_has_the_same_files():
+    """One env shape (docs/adding_an_env.md): the same modules with the same roles in every
+    `mf_envs/envs/<env>/`."""
+    for pkg in sorted(p for p in (ROOT / "mf_envs/envs").iterdir() if (p / "env.py").is_file()):
+        files = {p.name for p in pkg.glob("*.py")}
+        assert files == ENV_FILES, f"{pkg.name}: {sorted(files ^ ENV_FILES)}"

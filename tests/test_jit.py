@@ -20,7 +20,7 @@ from mf_envs import _jit
 KERNEL_ENVS = ("GyroStabilizer-v0", "FloatingGOWEC-v0")
 ENTRY = {  # each env's vector step (a numba dispatcher called from Python)
     "GyroStabilizer-v0": ("mf_envs.envs.gyro_stabilizer.vector", "step_rows"),
-    "FloatingGOWEC-v0": ("mf_envs.envs.gowec_v1.observe", "step_rows"),
+    "FloatingGOWEC-v0": ("mf_envs.envs.gowec_v1.rows", "step_rows"),
 }
 
 

@@ -13,7 +13,7 @@ rewards, flags and batched infos, bit for bit) for the same seeds:
   `_batch_reset`) that draws the same numbers from the same generators (GOWEC-v0);
 - steps (hot) call a batched numba kernel that calls the single env's scalar physics kernel for
   every active row (`physics.gowec.batch.batch_fast_step`, `gyro_stabilizer.vector.step_rows`,
-  `gowec_v1.observe.step_rows`, `inchworm.batch.step_rows`), in blocks on threads
+  `gowec_v1.rows.step_rows`, `inchworm.rows.step_rows`), in blocks on threads
   (`_rows.RowBlocks`);
 - autoreset: `AutoresetMode.NEXT_STEP` (Gymnasium's default: the step after a done one resets that
   sub-env, ignores its action, returns reward 0 and flags False), `SAME_STEP` (reset in the same

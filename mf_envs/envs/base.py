@@ -29,17 +29,25 @@ class MFEnv(gym.Env):
     """Base class: subclasses set `action_space`/`observation_space` and call the helpers."""
 
     metadata: dict[str, Any] = {"render_modes": ["rgb_array", "human"], "render_fps": 30}
+    AVAILABLE_EFFECTS: Mapping[str, str] = {}  # a subclass's effects: name -> meaning
+    DEFAULT_EFFECTS: tuple[str, ...] = ()
 
     def __init__(
         self,
         *,
         effects: str | Iterable[str] | None,
-        available_effects: Mapping[str, str],
-        default_effects: Iterable[str],
         control_dt: float,
         physics_dt: float,
         render_mode: str | None = None,
+        available_effects: Mapping[str, str] | None = None,
+        default_effects: Iterable[str] | None = None,
     ) -> None:
+        """`available_effects`, `default_effects`: the class's `AVAILABLE_EFFECTS` and
+        `DEFAULT_EFFECTS` unless given."""
+        if available_effects is None:
+            available_effects = type(self).AVAILABLE_EFFECTS
+        if default_effects is None:
+            default_effects = type(self).DEFAULT_EFFECTS
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(
                 f"render_mode: must be one of {self.metadata['render_modes']} or None, "
@@ -74,6 +82,14 @@ class MFEnv(gym.Env):
                 f"{MAX_EPISODE_STEPS}; shorten the episode or raise control_dt"
             )
         return max(1, math.ceil(ratio - 1e-9))
+
+    def __getattr__(self, name: str) -> Any:
+        """An env's physical parameters live in `self.scene` (its `build.py`'s typed params);
+        `env.name` reads `env.scene.name` when the env itself has no such attribute."""
+        scene = self.__dict__.get("scene")
+        if scene is not None and not name.startswith("__") and hasattr(scene, name):
+            return getattr(scene, name)
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     @property
     def dt(self) -> float:

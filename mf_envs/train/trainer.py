@@ -91,26 +91,17 @@ def train(
     """Train `algo` (SB3 "ppo", "sac" or "td3") on `env_id` with the YAML hyperparameters
     (default `configs/<algo>.yml`); returns the run folder and files.
 
-    `overrides`: algorithm kwargs replacing the config's (tests use a tiny `policy_kwargs`).
-    `eval_episodes`: per EvalCallback check (rl-zoo3's default, 5).
-    `vec_env`: "auto" (the env's native vector env where it has one, else `DummyVecEnv`) or
-    "dummy" (the zoo's `--vec-env dummy`).
-    `final_eval_seeds`: episodes scored after training for meta.json (empty: skip).
+    `overrides`: algorithm kwargs replacing the config's (tests use a tiny `policy_kwargs`);
+    `eval_episodes`: per EvalCallback check (rl-zoo3's default, 5); `vec_env`: "auto" (the env's
+    native vector env where it has one, else `DummyVecEnv`) or "dummy" (the zoo's `--vec-env
+    dummy`); `final_eval_seeds`: episodes scored after training for meta.json (empty: skip).
     The run is written into a temporary folder beside `<out>/<env_id>/seed<S>/` (SAC and TD3:
     `<out>/<env_id>/<algo>/seed<S>/`) and moved there when complete; an existing run folder is
     replaced only with `force` (ValueError otherwise).
     """
-    check_env_id(env_id)
-    if algo not in ALGOS:
-        raise ValueError(f"algo: one of {ALGOS}, got {algo!r}")
-    # the config first: a bad file is refused before torch and SB3 are imported (seconds)
-    hp = load_hyperparams(env_id, config if config is not None else default_config(algo))
+    hp, Algo, total = _prepare(env_id, algo, config, overrides, timesteps, eval_episodes, vec_env)
     import torch
-    from stable_baselines3.common.callbacks import EvalCallback
 
-    Algo = _algorithm(algo)
-    check_algo_kwargs(Algo, {**hp.ppo_kwargs, **(overrides or {})}, env_id)
-    total = _budget(hp, timesteps, eval_episodes, vec_env)
     tb_dir = _tensorboard_dir(out, env_id) if tensorboard else None
     if seed < 0:
         raise ValueError(f"seed: must be >= 0, got {seed}")
@@ -121,50 +112,89 @@ def train(
         torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
         venv, vec_kind, eval_env = _make_envs(hp, seed, prefer_native=vec_env == "auto")
-        kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
-        if hp.action_noise is not None:
-            kwargs["action_noise"] = _action_noise(hp.action_noise, venv.action_space)
-        model = Algo(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **kwargs)
-        n_steps = int(getattr(model, "n_steps", 1))  # PPO: one rollout; SAC/TD3: any step
-        on_best = _SaveNormalization(run_dir / "best")
-        eval_cb = EvalCallback(
-            eval_env,
-            n_eval_episodes=eval_episodes,
-            eval_freq=max(total // (EVALS_PER_RUN * hp.n_envs), n_steps),
-            log_path=str(run_dir),
-            callback_on_new_best=on_best,
-            deterministic=True,
-            verbose=0,
-        )
-        t0 = time.perf_counter()
-        model.learn(total_timesteps=total, callback=eval_cb, progress_bar=progress_bar)
-        wall = time.perf_counter() - t0
-        meta = {
-            "env_id": env_id,
-            "algo": algo,
-            "command": command
-            or _command(env_id, timesteps, seed, config, eval_episodes, vec_env, algo),
-            "seed": seed,
-            "timesteps": int(model.num_timesteps),
-            "wall_time_s": round(wall, 2),
-            "steps_per_s": round(model.num_timesteps / wall, 1),
-            "vectorization": f"{vec_kind} x{hp.n_envs}",
-            "selected": "final",
-            "hyperparams": _jsonable_hp(hp, overrides, total),
-            "versions": _versions(),
-        }
+        model = _model(Algo, hp, venv, seed, tb_dir, overrides)
+        meta_run = _learn(model, eval_env, run_dir, hp, total, eval_episodes, progress_bar)
+        command = command or _command(env_id, timesteps, seed, config, eval_episodes, vec_env, algo)
+        meta = {"env_id": env_id, "algo": algo, "command": command, "seed": seed,
+                **meta_run.pop("run"), "vectorization": f"{vec_kind} x{hp.n_envs}",
+                "selected": "final", "hyperparams": _jsonable_hp(hp, overrides, total),
+                "versions": _versions()}  # fmt: skip
         vecnorm = venv if hp.normalize is not None else None
         files = save_policy(run_dir, model, vecnorm, meta)
         venv.close()
         eval_env.close()
-        best = run_dir / "best"
-        if (best / POLICY_FILE).is_file():
+        if (run_dir / "best" / POLICY_FILE).is_file():
             best_meta = {**meta, "selected": "best (EvalCallback return, seeds 10000+)"}
-            best_meta["best_timestep"] = getattr(on_best, "best_timestep", None)
-            best_meta["best_eval_return"] = float(eval_cb.best_mean_reward)
-            files.append(write_meta(best, best_meta))
+            files.append(write_meta(run_dir / "best", {**best_meta, **meta_run}))
         files += _finish_run(env_id, run_dir, final_eval_seeds)
     return TrainResult(final, moved(files, run_dir, final), read_meta(final))
+
+
+def _model(Algo: Any, hp: Any, venv: Any, seed: int, tb_dir: Any, overrides: Any) -> Any:
+    """The SB3 model on `venv` with the config's kwargs (schedules resolved, `overrides` last)
+    and, for SAC/TD3, the zoo's action noise."""
+    kwargs = resolve_schedules({**hp.ppo_kwargs, **(overrides or {})})
+    if hp.action_noise is not None:
+        kwargs["action_noise"] = _action_noise(hp.action_noise, venv.action_space)
+    return Algo(hp.policy, venv, seed=seed, device="cpu", tensorboard_log=tb_dir, **kwargs)
+
+
+def _prepare(
+    env_id: str,
+    algo: str,
+    config: str | Path | None,
+    overrides: dict[str, Any] | None,
+    timesteps: int | None,
+    eval_episodes: int,
+    vec_env: str,
+) -> tuple[Any, Any, int]:
+    """(hyperparameters, SB3 algorithm class, step budget), every argument checked. The config
+    first: a bad file is refused before torch and SB3 are imported (seconds)."""
+    check_env_id(env_id)
+    if algo not in ALGOS:
+        raise ValueError(f"algo: one of {ALGOS}, got {algo!r}")
+    hp = load_hyperparams(env_id, config if config is not None else default_config(algo))
+    Algo = _algorithm(algo)
+    check_algo_kwargs(Algo, {**hp.ppo_kwargs, **(overrides or {})}, env_id)
+    return hp, Algo, _budget(hp, timesteps, eval_episodes, vec_env)
+
+
+def _learn(
+    model: Any,
+    eval_env: Any,
+    run_dir: Path,
+    hp: Any,
+    total: int,
+    eval_episodes: int,
+    progress_bar: bool,
+) -> dict[str, Any]:
+    """`model.learn` for `total` steps with an EvalCallback (EVALS_PER_RUN checks, the best
+    policy saved to run_dir/best); {"run": timesteps, wall time, steps/s} plus the best
+    checkpoint's step and return."""
+    from stable_baselines3.common.callbacks import EvalCallback
+
+    n_steps = int(getattr(model, "n_steps", 1))  # PPO: one rollout; SAC/TD3: any step
+    on_best = _SaveNormalization(run_dir / "best")
+    eval_cb = EvalCallback(
+        eval_env,
+        n_eval_episodes=eval_episodes,
+        eval_freq=max(total // (EVALS_PER_RUN * hp.n_envs), n_steps),
+        log_path=str(run_dir),
+        callback_on_new_best=on_best,
+        deterministic=True,
+        verbose=0,
+    )
+    t0 = time.perf_counter()
+    model.learn(total_timesteps=total, callback=eval_cb, progress_bar=progress_bar)
+    wall = time.perf_counter() - t0
+    run = {
+        "timesteps": int(model.num_timesteps),
+        "wall_time_s": round(wall, 2),
+        "steps_per_s": round(model.num_timesteps / wall, 1),
+    }
+    best = {"best_timestep": getattr(on_best, "best_timestep", None),
+            "best_eval_return": float(eval_cb.best_mean_reward)}  # fmt: skip
+    return {"run": run, **best}
 
 
 def _finish_run(env_id: str, run_dir: Path, seeds: tuple[int, ...]) -> list[Path]:

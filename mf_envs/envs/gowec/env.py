@@ -9,14 +9,11 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import (
-    check_int,
-    check_nonnegative,
     check_range,
-    check_shape,
 )
 from mf_envs.envs._spec import check_options
-from mf_envs.envs.base import MAX_EPISODE_STEPS, MIN_DT, MFEnv
-from mf_envs.envs.gowec import spec
+from mf_envs.envs.base import MFEnv
+from mf_envs.envs.gowec import build, rows, spec
 from mf_envs.envs.gowec.render import wave_frame
 from mf_envs.physics import gowec as gw
 from mf_envs.physics import waves
@@ -119,6 +116,7 @@ class GOWECEnv(MFEnv):
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
     RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
+    AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
 
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 30}
 
@@ -143,59 +141,16 @@ class GOWECEnv(MFEnv):
         episode_seconds: float | None = None,
         render_mode: str | None = None,
     ) -> None:
-        self.wave_amplitude = check_range("wave_amplitude", wave_amplitude, 1e-6, 30.0)
-        self.wave_period = check_range("wave_period", wave_period, 0.5, 60.0)
-        self.wave_direction = check_range(
-            "wave_direction", wave_direction, -2 * math.pi, 2 * math.pi
-        )
-        self.max_generator_torque = check_range("max_generator_torque", max_generator_torque, 0.0)
-        if self.max_generator_torque == 0.0:
-            raise ValueError("max_generator_torque: must be > 0, got 0")
-        self.max_gimbal_rate = check_range("max_gimbal_rate", max_gimbal_rate, 1e-6)
-        spp = check_int("steps_per_period", steps_per_period, low=4, high=10**6)
-        self.n_components = check_int("n_components", n_components, low=1, high=4096)
-        self.gamma = check_range("gamma", gamma, 1.0, 20.0)
-        if rotor_transverse_inertia is not None:
-            rotor_transverse_inertia = check_range(
-                "rotor_transverse_inertia", rotor_transverse_inertia, 1e-9, 1e6
-            )
-        gimbal = check_nonnegative(
-            "gimbal_inertia", check_shape("gimbal_inertia", gimbal_inertia, (3,))
-        )
-        self.params = gw.GOWECParams(
-            check_range("rotor_inertia", rotor_inertia, 1e-9, 1e6),
-            check_range("rotor_speed", rotor_speed, -1e4, 1e4),
-            rotor_transverse_inertia,
-            tuple(float(v) for v in gimbal),
-        )
-        if self.wave_period / spp < MIN_DT:
-            raise ValueError(f"steps_per_period: wave_period / steps_per_period < {MIN_DT:g} s")
-        super().__init__(
-            effects=effects,
-            available_effects=AVAILABLE_EFFECTS,
-            default_effects=DEFAULT_EFFECTS,
-            control_dt=self.wave_period / spp,
-            physics_dt=physics_dt,
-            render_mode=render_mode,
-        )
+        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        self.scene = build.build(kw)  # the kwargs, validated, as physics parameters
+        super().__init__(effects=effects, control_dt=self.wave_period / self.steps_per_period,
+                         physics_dt=physics_dt, render_mode=render_mode)  # fmt: skip
         if buoy_radius is None:
             buoy_radius = BUOY_RADIUS if "irregular_waves" in self.effects else 0.0
         self.buoy_radius = check_range("buoy_radius", buoy_radius, 0.0, 100.0)
-        if episode_seconds is not None and n_periods is not None:
-            raise ValueError("episode_seconds: give either episode_seconds or n_periods, not both")
-        if episode_seconds is None:
-            self.n_periods = check_int(
-                "n_periods", 20 if n_periods is None else n_periods, 1, 10**6
-            )
-            self.max_steps = self.n_periods * spp
-            if self.max_steps > MAX_EPISODE_STEPS:
-                raise ValueError(
-                    f"n_periods: n_periods * steps_per_period = {self.max_steps} control steps "
-                    f"exceeds {MAX_EPISODE_STEPS}"
-                )
-        else:
-            self.max_steps = self._episode_steps(episode_seconds)
-            self.n_periods = self.max_steps / spp
+        spp = self.steps_per_period
+        self.max_steps = build.episode_steps(n_periods, episode_seconds, spp, self._episode_steps)
+        self.n_periods = self.max_steps // spp if episode_seconds is None else self.max_steps / spp
         self.episode_seconds = self.max_steps * self.control_dt
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         hi = spec.OBS.high({"max_gimbal_rate": self.max_gimbal_rate})
@@ -256,7 +211,7 @@ class GOWECEnv(MFEnv):
         self._w, self._eta = (w1, w2, w3), eta
         reward = energy * self.reward_scale
         truncated = self._steps >= self.max_steps
-        ok, overspeed = spec.observe(phi, phid, energy, w1, w2, w3, self.max_gimbal_rate, self._obs)
+        ok, overspeed = rows.observe(phi, phid, energy, w1, w2, w3, self.max_gimbal_rate, self._obs)
         if not ok:
             info = {"power": 0.0, "reward_terms": {"energy": reward}, "overspeed": False}
             return self._finish_step(self._obs, reward, False, truncated, info, False)
@@ -306,7 +261,7 @@ class GOWECEnv(MFEnv):
         self._w = tuple(w)
         self._eta = float(self.wave.elevation(0.0))
         self._last_power = 0.0
-        spec.observe(phi, phid, 0.0, w[0], w[1], w[2], self.max_gimbal_rate, self._obs)
+        rows.observe(phi, phid, 0.0, w[0], w[1], w[2], self.max_gimbal_rate, self._obs)
         info = spec.step_info(0.0, phi, phid, float(w[0]), self._eta, 0.0, 0.0)
         info["overspeed"] = False
         return self._finish_reset(self._obs.copy()), info

@@ -1,16 +1,14 @@
 """GOWEC-v0's env concerns, declared once: observation layout, reward, info keys, failure contract.
 
 Used by both `GOWECEnv` (env.py) and the native `GOWECVectorEnv` (vector.py); the observation
-and the step flags come from one numba function, `observe`, which the vector env calls row by row
-(`observe_rows`), so the two agree bit for bit.
+and the step flags come from one numba function, `rows.observe`, which the vector env calls row
+by row (`rows.observe_rows`), so the two agree bit for bit.
 """
 
 from __future__ import annotations
 
 import math
 from typing import Any
-
-import numba
 
 from mf_envs.envs._spec import Field, ObsLayout
 from mf_envs.physics import gowec as gw
@@ -78,32 +76,6 @@ def reference_power(
     spin = max(abs(rotor_speed), 10.0 * w)
     floor = REFERENCE_FLOOR * 0.5 * rotor_inertia * spin * wave_amplitude * w**4 / G
     return max(abs(eq95), floor)
-
-
-@numba.njit(cache=True)
-def observe(phi, phid, energy, w1, w2, w3, max_rate, out):
-    """The observation (OBS order) into the float32 row `out`, rates clipped to their bounds;
-    returns (state finite, overspeed |phi'| > max_rate). `out` is untouched if not finite."""
-    if not (math.isfinite(phi) and math.isfinite(phid) and math.isfinite(energy)):
-        return False, False
-    b = MAX_BUOY_RATE
-    out[0] = math.sin(phi)
-    out[1] = math.cos(phi)
-    out[2] = min(max(phid, -max_rate), max_rate)
-    out[3] = min(max(w1, -b), b)
-    out[4] = min(max(w2, -b), b)
-    out[5] = min(max(w3, -b), b)
-    return True, abs(phid) > max_rate
-
-
-@numba.njit(cache=True)
-def observe_rows(active, phi, phid, energy, w, max_rate, out, ok, overspeed):
-    """`observe` for every active row i (arrays (N,), w (N, 3), out (N, 6)); ok/overspeed (N,)."""
-    for i in range(phi.shape[0]):
-        if active[i]:
-            ok[i], overspeed[i] = observe(
-                phi[i], phid[i], energy[i], w[i, 0], w[i, 1], w[i, 2], max_rate, out[i]
-            )
 
 
 def step_info(power, phi, phid, w1, eta, time, reward) -> dict[str, Any]:

@@ -20,45 +20,15 @@ Irregular seas (many draws per reset) keep the template path.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
-import numba
 import numpy as np
 
 from mf_envs.envs._predraw import PredrawnResets
 from mf_envs.envs._vector import BatchedVectorEnv
-from mf_envs.envs.gowec import spec
+from mf_envs.envs.gowec import rows, spec
 from mf_envs.envs.gowec.env import GOWECEnv
-from mf_envs.physics.gowec import buoy_rates_into
 from mf_envs.physics.gowec.batch import alloc_batch, batch_fast_step
-
-PHI0, PHASE0 = (-0.1, 0.1), (0.0, 2.0 * math.pi)  # GOWECEnv.reset's U(low, high) draws
-
-
-@numba.njit(cache=True)
-def reset_rows(idx, draws, ptr, phi, phid, t, steps, amp, om, eps, k, cth, sth, two_d, w, eta,
-               max_rate, obs):  # fmt: skip
-    """GOWECEnv.reset() (regular wave, no options) for the rows idx, from pre-drawn doubles.
-
-    draws (N, 2K) next_double()s of each row's generator, ptr (N,) the next unused one (the
-    caller refills rows with ptr == 2K first). Writes phi ~ U(-0.1, 0.1) rad, phi' = 0, the
-    phase eps[:, 0] ~ U(0, 2 pi), t = 0, steps = 0, the buoy rates w (N, 3) at t = 0, eta (N,)
-    m and the float32 observation rows, with the single env's own kernels and expressions.
-    """
-    wv = np.empty(3)
-    wd = np.empty(3)
-    for j in range(idx.shape[0]):
-        i = idx[j]
-        p = ptr[i]
-        phi[i] = PHI0[0] + (PHI0[1] - PHI0[0]) * draws[i, p]
-        eps[i, 0] = PHASE0[0] + (PHASE0[1] - PHASE0[0]) * draws[i, p + 1]
-        ptr[i] = p + 2
-        phid[i], t[i], steps[i] = 0.0, 0.0, 0
-        buoy_rates_into(0.0, amp[i], om[i], eps[i], k[i], cth, sth, two_d, wv, wd)
-        w[i, 0], w[i, 1], w[i, 2] = wv[0], wv[1], wv[2]
-        eta[i] = amp[i, 0] * math.cos(eps[i, 0])
-        spec.observe(phi[i], 0.0, 0.0, wv[0], wv[1], wv[2], max_rate, obs[i])
 
 
 class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
@@ -86,7 +56,7 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         if not self._predrawn(idx):
             return None
         b, kn, env = self.b, self._kernel, self.template
-        reset_rows(
+        rows.reset_rows(
             idx, self._draws, self._ptr, b["phi"], b["phid"], b["t"], self._steps, b["amp"],
             b["om"], b["eps"], b["k"], kn["cth"], kn["sth"], kn["two_d"], b["w"], b["eta"],
             env.max_gimbal_rate, self._obs,
@@ -135,7 +105,7 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         trunc = self._steps >= env.max_steps
         obs, ok, overspeed = self._fresh, self._ok, self._overspeed
         ok[~active], overspeed[~active] = True, False
-        spec.observe_rows(
+        rows.observe_rows(
             active, b["phi"], b["phid"], energy, b["w"], env.max_gimbal_rate, obs, ok, overspeed
         )
         info = spec.step_info(

@@ -9,16 +9,15 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_choice, check_int, check_range
+from mf_envs._validate import check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
-from mf_envs.envs.gowec_v1 import spec
-from mf_envs.envs.gowec_v1.observe import observe_one, step_one
+from mf_envs.envs.gowec_v1 import build, spec
+from mf_envs.envs.gowec_v1.rows import observe_one, step_one
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import batch as hb
-from mf_envs.physics.gowec.hydro import load_hull
-from mf_envs.physics.gowec.hydro.model import FloatingModel, radiation_bound, wave_power_flux
+from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
     "gyroscopic": "rotor spin coupling (off: rotor stopped)",
@@ -28,7 +27,7 @@ AVAILABLE_EFFECTS = {
 }
 DEFAULT_EFFECTS = ("gyroscopic", "radiation", "viscous_damping")
 _P = GOWECParams()
-SPECTRA = {"jonswap": waves.jonswap_spectrum, "pierson_moskowitz": waves.pierson_moskowitz_spectrum}
+SPECTRA = build.SPECTRA
 
 
 class GOWECV1Env(MFEnv):
@@ -88,6 +87,7 @@ class GOWECV1Env(MFEnv):
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
     RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
+    AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
 
     def __init__(
         self,
@@ -116,66 +116,14 @@ class GOWECV1Env(MFEnv):
         effects: Any = None,
         render_mode: str | None = None,
     ) -> None:
-        self.wave_amplitude = check_range("wave_amplitude", wave_amplitude, 1e-6, 30.0)
-        self.wave_direction = check_range("wave_direction", wave_direction, -10.0, 10.0)
-        self.irregular = significant_wave_height is not None
-        if self.irregular:
-            hs = check_range("significant_wave_height", significant_wave_height, 1e-6, 30.0)
-            self.wave_amplitude = hs / (2.0 * math.sqrt(2.0))
-        # both periods are checked whichever sea is used (a bad one is an error either way)
-        periods = {
-            name: check_range(name, value, 0.5, 60.0)
-            for name, value in (("wave_period", wave_period), ("peak_period", peak_period))
-        }
-        self.wave_period = periods["peak_period" if self.irregular else "wave_period"]
-        check_choice("spectrum", spectrum, SPECTRA)
-        self.spectrum, self.gamma = spectrum, check_range("gamma", gamma, 1.0, 20.0)
-        self.n_components = check_int("n_components", n_components, low=1, high=4096)
-        self.eta_g = check_range("generator_efficiency", generator_efficiency, 1e-3, 1.0)
-        self.eta_m = (
-            self.eta_g
-            if motor_efficiency is None
-            else check_range("motor_efficiency", motor_efficiency, 1e-3, 1.0)
-        )
-        self.max_generator_torque = check_range("max_generator_torque", max_generator_torque, 0.0)
-        p_max = check_range("max_generator_power", max_generator_power, 0.0)
-        self.max_generator_power = p_max  # W, per unit (the drive's limit, set in the model)
-        self.rotor_loss = check_range("rotor_loss", rotor_loss, 0.0, 1e7)
-        self.max_gimbal_rate = check_range("max_gimbal_rate", max_gimbal_rate, 1e-6)
-        self.episode_seconds = check_range("episode_seconds", episode_seconds, 1e-3, 1e6)
-        super().__init__(
-            effects=effects,
-            available_effects=AVAILABLE_EFFECTS,
-            default_effects=DEFAULT_EFFECTS,
-            control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
-            physics_dt=check_range("physics_dt", physics_dt, 1e-5, 1.0),
-            render_mode=render_mode,
-        )
-        self.irregular = self.irregular or "irregular_waves" in self.effects
+        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        self.scene = build.build(kw)  # the kwargs, validated, as physics parameters
+        super().__init__(effects=effects, render_mode=render_mode,
+                         control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
+                         physics_dt=check_range("physics_dt", physics_dt, 1e-5, 1.0))  # fmt: skip
+        self.irregular = self.scene.hs_given or "irregular_waves" in self.effects
         self._base_substeps = self.n_substeps
-        self.hull = load_hull(hull)
-        gyro = GOWECParams(
-            check_range("rotor_inertia", rotor_inertia, 1e-9, 1e6),
-            check_range("rotor_speed", rotor_speed, -1e4, 1e4),
-        )
-        pto = dict(
-            damping=0.0,
-            stiffness=0.0,
-            max_torque=self.max_generator_torque,
-            max_power=p_max,
-            eta_generator=self.eta_g,
-            eta_motor=self.eta_m,
-        )
-        units = check_int("gyro_units", gyro_units, low=1, high=2)
-        self.model = FloatingModel(
-            self.hull, gyro, pto, gyroscopic="gyroscopic" in self.effects, units=units
-        )
-        crit = 2.0 * math.sqrt(self.hull.stiffness * (self.model.p.inertia[0]))
-        bv = 0.05 * crit if viscous_damping is None else viscous_damping
-        bv = check_range("viscous_damping", bv, 0.0, 1e12)
-        self.model.set_viscous(bv if "viscous_damping" in self.effects else 0.0)
-        if "radiation" not in self.effects:
-            self.model.set_radiation(False)
+        self.hull, self.model = build.floating_model(self.scene, kw, self.effects)
         self.buoy_radius = self.hull.radius if math.isfinite(self.hull.radius) else 0.0
         self.max_steps = max(1, int(round(self.episode_seconds / self.control_dt)))
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)

@@ -38,7 +38,7 @@ from mf_envs.envs._predraw import PredrawnResets
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
-from mf_envs.envs.gowec_v1.observe import observe_one, step_rows
+from mf_envs.envs.gowec_v1.rows import observe_one, step_rows
 from mf_envs.physics.gowec.hydro.batch import N_VALS, state_values_into
 from mf_envs.physics.gowec.hydro.floating import excitation_coefficients
 

@@ -9,15 +9,15 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_choice, check_int, check_range
+from mf_envs._validate import check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
-from mf_envs.envs.gyro_stabilizer import spec, wiring
+from mf_envs.envs.gyro_stabilizer import build, render, rows, spec
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.hulls import Hull
-from mf_envs.physics.ship.model import SHIP_EFFECTS, GimbalDrive, initial_state
-from mf_envs.physics.ship.params import GyroParams, seakeeper_gyro
+from mf_envs.physics.ship.model import SHIP_EFFECTS, initial_state
+from mf_envs.physics.ship.params import seakeeper_gyro
 
 AVAILABLE_EFFECTS = SHIP_EFFECTS
 DEFAULT_EFFECTS = (
@@ -91,7 +91,7 @@ class GyroStabilizerEnv(MFEnv):
     ## Arguments
     | Argument | default | meaning |
     |---|---|---|
-    | hull, coupling | None | the hull and its sway-roll-yaw coupling: `wiring` module doc |
+    | hull, coupling | None | the hull and its sway-roll-yaw coupling: `build` module doc |
     | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 (overrides hull) |
     | n_gyros | 1 | 1 or 2 (counter-rotating pair) |
     | rotor_inertia | 9.549 | rotor polar J3^(3), kg m^2 (Seakeeper 9) |
@@ -109,8 +109,8 @@ class GyroStabilizerEnv(MFEnv):
     | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |
     | form | "exact" | "seed": Eqs. 123-128 as printed |
     | servo_time_constant | 0.05 | s |
-    | gimbal_drive | "electric" | and the drive arguments: `wiring` module doc |
-    | heading, ship_speed, wave_spreading | pi/2, 0, None | seas: `wiring` module doc |
+    | gimbal_drive | "electric" | and the drive arguments: `build` module doc |
+    | heading, ship_speed, wave_spreading | pi/2, 0, None | seas: `build` module doc |
     | significant_wave_height | 0.6 | m (irregular_waves, JONSWAP, peak period = wave_period) |
     | effective_slope | None | r_eff of the wave roll moment (hull field; yacht 0.7) |
     | roll_scale, effort_weight | 0.1745, 1e-3 | reward terms (effort per J) |
@@ -128,7 +128,7 @@ class GyroStabilizerEnv(MFEnv):
     RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
 
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 20}
-    DEFAULT_EFFECTS = DEFAULT_EFFECTS
+    AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
 
     def __init__(
         self,
@@ -167,79 +167,19 @@ class GyroStabilizerEnv(MFEnv):
         effort_weight: float = 1.0e-3,
         render_mode: str | None = None,
     ) -> None:
-        kind = check_choice("gimbal_drive", gimbal_drive, wiring.GIMBAL_DRIVES)
-        self.gimbal_drive = wiring.DRIVE_ALIASES.get(kind, kind)
-        tau_s = check_range("servo_time_constant", servo_time_constant, 1e-3, 10.0)
-        self.hull = wiring.build_hull(
-            hull, ship_inertia, roll_stiffness, roll_damping, effective_slope
-        )
-        self.coupling = wiring.build_coupling(coupling, hull)
-        self.heading = check_range("heading", heading, -4.0 * math.pi, 4.0 * math.pi)
-        self.ship_speed = check_range("ship_speed", ship_speed, 0.0, 50.0)
-        self.ship = wiring.build_ship_params(self.hull, self.ship_speed)
-        self.gyro = GyroParams(
-            check_range("rotor_inertia", rotor_inertia, 1e-6, 1e6),
-            check_range("gimbal_inertia", gimbal_inertia, 1e-6, 1e6),
-            check_range("rotor_speed", rotor_speed, -1e4, 1e4),
-        )
-        self.n_gyros = check_int("n_gyros", n_gyros, 1, 2)
-        self.max_precession_rate = check_range("max_precession_rate", max_precession_rate, 1e-9)
-        self.max_gimbal_angle = check_range("max_gimbal_angle", max_gimbal_angle, 1e-6, math.pi)
-        machine = wiring.build_machine(
-            self.gimbal_drive, self, gimbal_loop_gain, max_gimbal_torque, max_drive_power,
-            drive_bandwidth, gimbal_damping, gimbal_stiffness,
-        )  # fmt: skip
-        self.drive = GimbalDrive(
-            "servo" if machine is None else "torque",
-            servo_time_constant=tau_s,
-            max_rate=self.max_precession_rate,
-            max_angle=self.max_gimbal_angle,
-            machine=machine,
-        )
-        dt_max = wiring.stable_step(self, effects)
-        if physics_dt is None:  # see spec.PHYSICS_DT_NOTE for the accuracy of these defaults
-            physics_dt = wiring.default_physics_dt(machine, tau_s, control_dt, dt_max)
-        super().__init__(
-            effects=effects,
-            available_effects=AVAILABLE_EFFECTS,
-            default_effects=DEFAULT_EFFECTS,
-            control_dt=control_dt,
-            physics_dt=physics_dt,
-            render_mode=render_mode,
-        )
-        wiring.check_step(self.physics_dt, dt_max)
+        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        scene = build.build(kw, DEFAULT_EFFECTS)  # the kwargs, validated, as physics parameters
+        super().__init__(effects=scene.effects, control_dt=control_dt,
+                         physics_dt=scene.physics_dt, render_mode=render_mode)  # fmt: skip
+        build.check_step(self.physics_dt, scene.dt_max)
         self.max_steps = self._episode_steps(
             check_range("episode_seconds", episode_seconds, 0, 1e9)
         )
         self.episode_seconds = float(episode_seconds)
-        self.form = check_choice("form", form, ("exact", "seed"))
-        self.wave_moment_amplitude = check_range(
-            "wave_moment_amplitude", wave_moment_amplitude, -1e9, 1e9
-        )
-        if wave_period is None:
-            wave_period = self.ship.natural_roll_period("added_inertia" in self.effects)
-            if "hydrostatic_restoring" not in self.effects or not math.isfinite(wave_period):
-                wave_period = 10.0  # no restoring, no resonance: the seed's cases use T = 10 s
-            elif not 0.5 <= wave_period <= 60.0:
-                raise ValueError(
-                    f"wave_period: None (roll resonance) gives {wave_period:.3g} s from "
-                    "roll_stiffness and ship_inertia, outside [0.5, 60] s; pass wave_period"
-                )
-        self.wave_period = check_range("wave_period", wave_period, 0.5, 60.0)
-        self.significant_wave_height = check_range(
-            "significant_wave_height", significant_wave_height, 1e-6, 30.0
-        )
-        self.wave_spreading = wave_spreading
-        if wave_spreading is not None:
-            self.wave_spreading = check_range("wave_spreading", wave_spreading, 1e-3, 1e3)
-        self.effective_slope = self.hull.effective_slope
-        self.roll_scale = check_range("roll_scale", roll_scale, 1e-6, 10.0)
-        self.effort_weight = check_range("effort_weight", effort_weight, 0.0, 1e6)  # >= 0: a
-        # negative weight would pay for drive energy
+        self.scene = build.timed(scene, self.physics_dt)
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
-        self.table_dt = min(0.5 * self.physics_dt, 0.01)
-        self._P = wiring.pack(self, 0.0)
+        self._P = rows.pack(self.scene, 0.0)
         self._tab = np.zeros((1, 2))
         self._out = np.zeros(4)
         self._energy = 0.0
@@ -259,7 +199,7 @@ class GyroStabilizerEnv(MFEnv):
 
     def capacity(self) -> float:
         """M0 / (n H w sin(max_gimbal_angle)) for the regular wave (docs/design.md bound)."""
-        return wiring.capacity(self)
+        return build.capacity(self.scene)
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         a0 = self._scalar_action(action)
@@ -271,7 +211,7 @@ class GyroStabilizerEnv(MFEnv):
         )
         self._steps += 1
         roll = K.roll_of(R)
-        ok = spec.observe(roll, y, R, self._obs)
+        ok = rows.observe(roll, y, R, self._obs)
         obs = self._obs.copy()  # clipped to the observation bounds
         self._energy = float(y[K.E_STATE] - e0)
         terms = spec.reward_terms(
@@ -305,16 +245,18 @@ class GyroStabilizerEnv(MFEnv):
         roll_rate = float(opts.get("roll_rate", rng.uniform(-0.02, 0.02)))
         gimbal = float(opts.get("gimbal_angle", 0.0))
         phase = float(opts.get("wave_phase", rng.uniform(0.0, 2.0 * math.pi)))
-        self._P = wiring.pack(self, phase)
+        self._P = rows.pack(self.scene, phase)
         self._tab = (
-            wiring.irregular_table(self) if "irregular_waves" in self.effects else np.zeros((1, 2))
+            rows.irregular_table(self.scene, self.np_random, self.episode_seconds)
+            if "irregular_waves" in self.effects
+            else np.zeros((1, 2))
         )
         self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
         self._t, self._steps, self._energy = 0.0, 0, 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
         self._out[:] = (0.0, mw, *K.drive_output(0.0, self._y, self._R, 0.0, self._P))
         roll0 = K.roll_of(self._R)
-        spec.observe(roll0, self._y, self._R, self._obs)
+        rows.observe(roll0, self._y, self._R, self._obs)
         terms0 = {"roll": 0.0, "effort": 0.0}
         info = spec.step_info(roll0, self._y, self._out, 0.0, terms0, 0.0)
         self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
@@ -327,21 +269,9 @@ class GyroStabilizerEnv(MFEnv):
                 "out": self._out}  # fmt: skip
 
     def _draw_frame(self) -> np.ndarray:
-        from mf_envs.render import draw_ship
-
         R, phi, t = self._R, float(self._y[3]), self._t
         note = ""
         if not (np.all(np.isfinite(R)) and math.isfinite(phi)):  # after a numerical failure
             R, phi, t = self._frame_state
             note = "  (last finite state)"
-        psi = math.fmod(self.gyro.rotor_speed * t, 2.0 * math.pi)
-        angles = (phi,) if self.n_gyros == 1 else (phi, -phi)
-        rotors = (psi,) if self.n_gyros == 1 else (psi, -psi)
-        roll = math.degrees(K.roll_of(R))
-        return draw_ship(
-            ship_R=R.copy(),
-            gimbal_angles=angles,
-            rotor_angles=rotors,
-            text=f"t = {t:5.2f} s  roll = {roll:+5.1f} deg  "
-            f"gimbal = {math.degrees(phi):+5.1f} deg{note}",
-        )
+        return render.draw(R, phi, t, self.gyro.rotor_speed, self.n_gyros, note)

@@ -11,7 +11,6 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs._jit import kernel
 from mf_envs.envs._spec import Field, ObsLayout
 
 OBS = ObsLayout(
@@ -54,26 +53,6 @@ stable_physics_dt`, 0.139 s for the electric drive on the default yacht): agains
 step): saturations and the inelastic end stops are not smooth, so RK4 loses its order there.
 A physics_dt beyond the RK4 limit is refused (ValueError naming physics_dt).
 """
-_HIGH = tuple(float(v) for v in OBS.high())
-
-
-@kernel
-def observe(roll, y, R, out):
-    """The observation (OBS order) of ship state y (N_STATE,), attitude R (3, 3) and its roll
-    angle (rad) into the float32 row `out`, clipped to the bounds; returns False (out untouched)
-    if the state is not finite (the failure contract)."""
-    for i in range(y.shape[0]):
-        if not math.isfinite(y[i]):
-            return False
-    for i in range(3):
-        for j in range(3):
-            if not math.isfinite(R[i, j]):
-                return False
-    phi = (y[3] + math.pi) % (2.0 * math.pi) - math.pi
-    vals = (roll, y[0], y[1], y[2], phi, y[4])
-    for i in range(6):
-        out[i] = min(max(vals[i], -_HIGH[i]), _HIGH[i])
-    return True
 
 
 def reward_terms(roll_obs, energy, roll_scale: float, effort_weight: float) -> dict[str, Any]:

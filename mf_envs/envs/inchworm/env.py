@@ -7,15 +7,14 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_choice, check_int, check_range
+from mf_envs._validate import check_range
 from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
-from mf_envs.envs.inchworm import render, robot, spec
+from mf_envs.envs.inchworm import build, render, spec
 from mf_envs.physics.beam import NewtonDivergence
 from mf_envs.physics.beam.contact.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS
 from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS, make_driven
-from mf_envs.physics.terrain import SOILS
 
 # the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
 SEED_SCENE_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
@@ -139,6 +138,7 @@ class InchwormEnv(MFEnv):
     """
 
     RESET_OPTIONS = spec.RESET_OPTIONS  # the keys reset(options=...) takes
+    AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
 
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 10}
     exclusive_effects = (("friction", "inertia"), ("friction", "terrain"))  # ValueError
@@ -163,62 +163,23 @@ class InchwormEnv(MFEnv):
         reset_noise_scale: float = 0.05,
         soil: str = "dry_sand",
         episode_seconds: float | None = None,
-        actuator_time_constant: float = robot.SMA_TIME_CONSTANT,
-        actuator_rate_limit: float = robot.SMA_RATE_LIMIT,
-        grip_time_constant: float = robot.GRIP_TIME_CONSTANT,
+        actuator_time_constant: float = build.SMA_TIME_CONSTANT,
+        actuator_rate_limit: float = build.SMA_RATE_LIMIT,
+        grip_time_constant: float = build.GRIP_TIME_CONSTANT,
         friction_coefficients: Any = None,
         render_mode: str | None = None,
     ) -> None:
-        super().__init__(
-            effects=effects,
-            available_effects=AVAILABLE_EFFECTS,
-            default_effects=DEFAULT_EFFECTS,
-            control_dt=control_dt,
-            physics_dt=physics_dt,
-            render_mode=render_mode,
+        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
+                         render_mode=render_mode)  # fmt: skip
+        self.scene = build.build(kw, self.effects, self.n_substeps)  # kwargs as physics params
+        self._weight = self.scene.weight
+        self.max_episode_steps = build.episode_steps(
+            max_episode_steps, episode_seconds, self._episode_steps
         )
-        self.params = robot.beam_params(
-            length, width, height, youngs_modulus, shear_modulus, mass_per_length, n_elements
-        )
-        L = self.params.length
-        self.max_curvature = check_range("max_curvature", max_curvature, 1e-9)
-        if self.max_curvature * L > CURVATURE_OBS_LIMIT:
-            raise ValueError(
-                f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
-                f"curvature observation bound), got {self.max_curvature:g} 1/m x {L:g} m"
-            )
-        self._weight = self.params.mass_per_length * self.params.gravity * L
-        if effort_weight is None:
-            effort_weight = 1.0 / (self._weight * L)
-        self.effort_weight = check_range("effort_weight", effort_weight, 0.0, 1e6)
-        self.reset_noise_scale = check_range("reset_noise_scale", reset_noise_scale, 0.0, 1.0)
-        increment_factor = robot.step_budget(
-            increment_factor, self.max_curvature, self.params, self.n_substeps, self.effects
-        )
-        self.n_ctrl = check_int("n_control_points", n_control_points, low=2, high=64)
-        if episode_seconds is not None and max_episode_steps is not None:
-            raise ValueError("episode_seconds: give episode_seconds or max_episode_steps, not both")
-        if episode_seconds is None:
-            steps = 400 if max_episode_steps is None else max_episode_steps
-            self.max_episode_steps = check_int("max_episode_steps", steps, 1, 10**7)
-        else:
-            self.max_episode_steps = self._episode_steps(episode_seconds)
         self.episode_seconds = self.max_episode_steps * self.control_dt
-        check_choice("soil", soil, tuple(SOILS))
-        act, feet = robot.robot_params(
-            actuator_time_constant, actuator_rate_limit, grip_time_constant, friction_coefficients
-        )
-        self.actuator_rate_limit = act.rate_limit  # 1/(m s), with `actuator_dynamics`
-        self.actuator = act if "actuator_dynamics" in self.effects else None
-        self._drive = dict(
-            params=self.params,
-            effects=self.effects,
-            n_control_points=self.n_ctrl,
-            actuator=act,
-            friction=feet,
-            increment_factor=increment_factor,
-            soil=soil,
-        )
+        self.actuator = self.actuator_params if "actuator_dynamics" in self.effects else None
+        self._drive = build.drive_kwargs(self.scene, self.effects)
         try:
             self.driven = make_driven(**self._drive)
         except SOLVER_ERRORS as exc:

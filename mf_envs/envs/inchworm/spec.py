@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from mf_envs.envs._spec import Field, ObsLayout
-from mf_envs.envs.inchworm.observe import observe_row, sample_points
+from mf_envs.envs.inchworm.rows import observe_row, sample_points
 
 CURVATURE_OBS_LIMIT = 20.0  # |kappa L| bound of the observation (also caps max_curvature * L)
 REACTION_OBS_LIMIT = 20.0  # |ground reaction| / body weight bound

@@ -9,7 +9,7 @@ naming `effects` (use `vectorization_mode="sync"` for them).
 
 Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `InchwormEnv`s with
 the same seeds (`tests/test_vector_envs.py`): resets go through a template single env whose
-state is copied into the row; steps through `envs.inchworm.batch.step_rows`, which runs the
+state is copied into the row; steps through `envs.inchworm.rows.step_rows`, which runs the
 single env's own compiled step (`quasistatic.drive_step`) and observation for every row.
 See `mf_envs.envs._vector`.
 """
@@ -21,8 +21,8 @@ from typing import Any
 import numpy as np
 
 from mf_envs.envs._vector import BatchedVectorEnv
-from mf_envs.envs.inchworm.batch import step_rows
 from mf_envs.envs.inchworm.env import InchwormEnv
+from mf_envs.envs.inchworm.rows import step_rows
 from mf_envs.physics.beam.contact import stick_slip as ss
 
 CENTERLINE_PER_ELEMENT = 8  # points per element of info["centerline"] (Inchworm.centerline)

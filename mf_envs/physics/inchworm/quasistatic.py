@@ -7,7 +7,7 @@ first-order response, and every substep is one actuation increment of the beam o
 friction feet (`mf_envs.physics.beam.contact.stick_slip.increment`) whose actuation work is
 the trapezoid of (A2) (`mf_envs.physics.actuators.kernels`). This module wires them into the
 inchworm's step; used by `DrivenInchworm.step` and the batched vector env
-(`mf_envs.envs.inchworm.batch`, one worm per row). Status codes and report slots are those of
+(`mf_envs.envs.inchworm.rows`, one worm per row). Status codes and report slots are those of
 `stick_slip`.
 """
 

@@ -57,8 +57,10 @@ Hand-written (numba, no library): these run inside the ship kernel's RK stages.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numba
 import numpy as np
@@ -300,3 +302,69 @@ def stable_physics_dt(D: NDArray[np.float64], plant: RollGimbal) -> float:
         for lam in np.linalg.eigvals(roll_gimbal_matrix(D, plant, sat)):
             h = min(h, _rk4_max_step(complex(lam)))
     return h
+
+
+def drive_machine(
+    kind: str,
+    gyro: Any,
+    hull: Any,
+    n: int,
+    max_rate: float,
+    max_angle: float,
+    loop_gain: float | None,
+    max_torque: float | None,
+    max_power: float,
+    bandwidth: float,
+    damping: float | None,
+    stiffness: float | None,
+) -> DriveParams:
+    """The `DriveParams` of a drive `kind` (not "kinematic") for `n` gyros `gyro`
+    (`ship.params.GyroParams`) on `hull` (`ship.hulls.Hull`), from validated values; None
+    values take the documented defaults: the torque limit 0.1 H (`electric_drive`; a stopped
+    rotor: J_g w_b max_rate), `loop_gain` K_p = 2 w_b J_g setting the bandwidth, the passive
+    brake c = n H^2 / sqrt(C44 J) and the pendulum/spring k = J_g w_n^2 tuned to the roll."""
+    jg = gyro.gimbal_inertia + gyro.rotor_j1
+    j = hull.inertia[0] + hull.added_roll_inertia + n * jg
+    wn = math.sqrt(hull.roll_stiffness / j) if hull.roll_stiffness > 0 else 2 * math.pi / 10.0
+    if loop_gain is not None:  # v0 name: the proportional gain K_p = 2 w_b J_g (zeta = 1)
+        bandwidth = loop_gain / (2.0 * jg)
+    kw = {"max_rate": max_rate, "max_angle": max_angle, "max_power": max_power,
+          "bandwidth": bandwidth}  # fmt: skip
+    if max_torque is not None:
+        kw["max_torque"] = max_torque
+    elif gyro.angular_momentum == 0.0:  # rotor stopped: enough to reach max_rate in 1/w_b
+        kw["max_torque"] = jg * kw["bandwidth"] * kw["max_rate"]
+    if kind in ("electric", "brake"):
+        kw["damping"] = damping or 0.0
+        return dataclasses.replace(electric_drive(abs(gyro.angular_momentum), **kw), kind=kind)
+    h = abs(gyro.angular_momentum)
+    stiff = math.sqrt(max(hull.roll_stiffness, 1.0) * j)
+    c = n * h * h / stiff if damping is None else damping  # gyro roll damping ratio 0.5
+    k = jg * wn * wn if stiffness is None else stiffness  # gimbal pendulum tuned to the roll
+    kw["damping"] = c  # validated above when given, >= 0 by construction otherwise
+    kw["stiffness"] = k if kind != "damper" else 0.0
+    return DriveParams(kind, **kw)
+
+
+def drive_stable_step(
+    drive: Any,
+    gyro: Any,
+    roll_inertia: float,
+    added_roll_inertia: float,
+    roll_stiffness: float,
+    roll_damping: float,
+    n: int,
+    eff: Any,
+) -> float:
+    """Largest stable RK4 physics step (s) of a `model.GimbalDrive` on its roll-gimbal
+    linearisation (`stable_physics_dt`) with the effects `eff`; the kinematic servo: 2.78 tau
+    (RK4 on -1/tau)."""
+    if drive.machine is None:
+        return 2.785 * drive.servo_time_constant
+    jg = gyro.gimbal_inertia + gyro.rotor_j1
+    j = roll_inertia + (added_roll_inertia if "added_inertia" in eff else 0.0)
+    h = abs(gyro.angular_momentum) if "gyroscopic" in eff else 0.0
+    c44 = roll_stiffness if "hydrostatic_restoring" in eff else 0.0
+    b44 = roll_damping if "roll_damping" in eff else 0.0
+    D = drive.machine.pack(jg)
+    return stable_physics_dt(D, RollGimbal(jg, j + n * jg, h, n, c44, b44))

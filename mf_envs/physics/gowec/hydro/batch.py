@@ -4,8 +4,8 @@
 equation with the gyro's B-matrix coupling, `floating` module doc) plus what the env reports at
 the end of the step: PTO powers from the integrated energies, the excitation moment, the gyro's
 moment on the hull (`_gyro_pitch`, the compiled twin of `floating.gyro_moment`) and the wave
-elevation (Eq. 89 at the origin). The single env (`envs.gowec_v1.observe.step_one`) calls it for
-its one row and the native vector env (`envs.gowec_v1.observe.step_rows`) for each of its N rows,
+elevation (Eq. 89 at the origin). The single env (`envs.gowec_v1.rows.step_one`) calls it for
+its one row and the native vector env (`envs.gowec_v1.rows.step_rows`) for each of its N rows,
 so the two agree bit for bit. Arrays float64, SI units.
 """
 

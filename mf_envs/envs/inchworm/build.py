@@ -1,4 +1,8 @@
-"""Inchworm-v0's robot parameters from the public kwargs, validated (errors name the kwarg).
+"""Inchworm-v0's kwargs -> typed physics parameters, never the env (errors name the kwarg).
+
+`build(kw)`: the `Scene` (body, actuation range, reward weight, start noise, control points,
+soil, actuator and feet); `drive_kwargs`: `make_driven`'s arguments once the effects and the
+physics step are known; `episode_steps`: the episode length.
 
 `beam_params`: the body (length, section, material, mesh). `robot_params` (issue 16): the
 actuator and feet kwargs `actuator_time_constant` [s], `actuator_rate_limit` [1/(m s)],
@@ -12,22 +16,100 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
-from mf_envs._validate import check_int, check_range
+from mf_envs._validate import check_choice, check_int, check_range
+from mf_envs.envs.inchworm.spec import CURVATURE_OBS_LIMIT
 from mf_envs.physics.actuators.curvature import SMA_RATE_LIMIT, SMA_TIME_CONSTANT, ActuatorParams
 from mf_envs.physics.beam.contact.friction import FrictionParams
 from mf_envs.physics.inchworm import InchwormParams
+from mf_envs.physics.terrain import SOILS
 
 MAX_INCREMENTS = 200  # increments (or Newmark steps) of a full-range step: a step stays fast
 FRICTION_KEYS = ("grip_forward", "grip_backward", "slide_forward", "slide_backward")
 GRIP_TIME_CONSTANT = 0.2  # s, FrictionParams' default engage/release time
+DEFAULT_EPISODE_STEPS = 400
 __all__ = [
     "GRIP_TIME_CONSTANT",
     "SMA_RATE_LIMIT",
     "SMA_TIME_CONSTANT",
+    "Scene",
     "beam_params",
+    "build",
+    "drive_kwargs",
+    "episode_steps",
     "robot_params",
     "step_budget",
 ]
+
+
+@dataclasses.dataclass(frozen=True)
+class Scene:
+    """What the env's kwargs become (SI units), validated; the env reads its parameters here."""
+
+    params: InchwormParams
+    max_curvature: float  # 1/m, the actuation range kappa0#
+    effort_weight: float  # 1 / (J) per step: default 1 / (body weight x length)
+    reset_noise_scale: float
+    increment_factor: float  # quasi-static increments of increment_factor x 2 h / L^2
+    n_ctrl: int  # control points
+    soil: str
+    actuator_rate_limit: float  # 1/(m s), with `actuator_dynamics`
+    actuator_params: ActuatorParams
+    feet: FrictionParams
+
+    @property
+    def weight(self) -> float:
+        """Body weight m_A g L (N)."""
+        p = self.params
+        return p.mass_per_length * p.gravity * p.length
+
+
+def build(kw: dict[str, Any], effects: frozenset, n_substeps: int) -> Scene:
+    """The `Scene` of the env's kwargs `kw` under these effects and physics substeps per control
+    step; ValueError names the kwarg."""
+    params = beam_params(kw["length"], kw["width"], kw["height"], kw["youngs_modulus"],
+                         kw["shear_modulus"], kw["mass_per_length"], kw["n_elements"])  # fmt: skip
+    L = params.length
+    max_curvature = check_range("max_curvature", kw["max_curvature"], 1e-9)
+    if max_curvature * L > CURVATURE_OBS_LIMIT:
+        raise ValueError(
+            f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
+            f"curvature observation bound), got {max_curvature:g} 1/m x {L:g} m"
+        )
+    effort = kw["effort_weight"]
+    if effort is None:
+        effort = 1.0 / (params.mass_per_length * params.gravity * L * L)
+    head = dict(
+        params=params,
+        max_curvature=max_curvature,
+        effort_weight=check_range("effort_weight", effort, 0.0, 1e6),
+        reset_noise_scale=check_range("reset_noise_scale", kw["reset_noise_scale"], 0.0, 1.0),
+        increment_factor=step_budget(
+            kw["increment_factor"], max_curvature, params, n_substeps, effects
+        ),  # fmt: skip
+        n_ctrl=check_int("n_control_points", kw["n_control_points"], low=2, high=64),
+        soil=check_choice("soil", kw["soil"], tuple(SOILS)),
+    )
+    act, feet = robot_params(kw["actuator_time_constant"], kw["actuator_rate_limit"],
+                             kw["grip_time_constant"], kw["friction_coefficients"])  # fmt: skip
+    return Scene(**head, actuator_rate_limit=act.rate_limit, actuator_params=act, feet=feet)
+
+
+def episode_steps(max_episode_steps: Any, episode_seconds: Any, seconds_to_steps) -> int:
+    """Control steps per episode: `seconds_to_steps(episode_seconds)` (`MFEnv._episode_steps`)
+    or `max_episode_steps` (default 400); not both."""
+    if episode_seconds is not None and max_episode_steps is not None:
+        raise ValueError("episode_seconds: give episode_seconds or max_episode_steps, not both")
+    if episode_seconds is not None:
+        return seconds_to_steps(episode_seconds)
+    steps = DEFAULT_EPISODE_STEPS if max_episode_steps is None else max_episode_steps
+    return check_int("max_episode_steps", steps, 1, 10**7)
+
+
+def drive_kwargs(scene: Scene, effects: frozenset) -> dict[str, Any]:
+    """`make_driven`'s arguments: the scene's robot with these effects."""
+    return dict(params=scene.params, effects=effects, n_control_points=scene.n_ctrl,
+                actuator=scene.actuator_params, friction=scene.feet,
+                increment_factor=scene.increment_factor, soil=scene.soil)  # fmt: skip
 
 
 def step_budget(

@@ -1,0 +1,90 @@
+"""FloatingGOWEC-v0's kwargs -> typed physics parameters, never the env: `build(kw)` validates the
+sea, the power take-off and the limits into a `Scene`; `floating_model` makes the buoy's
+`FloatingModel` (hull, gyroscope pair, PTO, radiation and viscous damping per the effects)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+from mf_envs._validate import check_choice, check_int, check_range
+from mf_envs.physics import waves
+from mf_envs.physics.gowec import GOWECParams
+from mf_envs.physics.gowec.hydro import HullCoefficients, load_hull
+from mf_envs.physics.gowec.hydro.model import FloatingModel
+
+SPECTRA = {"jonswap": waves.jonswap_spectrum, "pierson_moskowitz": waves.pierson_moskowitz_spectrum}
+VISCOUS_FRACTION = 0.05  # default linear viscous damping, fraction of critical
+
+
+@dataclasses.dataclass(frozen=True)
+class Scene:
+    """What the env's kwargs become (SI units), validated; the env reads its parameters here."""
+
+    wave_amplitude: float  # m (irregular sea: Hs / (2 sqrt 2), the equivalent regular wave)
+    wave_direction: float  # rad
+    hs_given: bool  # significant_wave_height was given (an irregular sea)
+    wave_period: float  # s (irregular sea: the peak period)
+    spectrum: str
+    gamma: float
+    n_components: int
+    eta_g: float  # generator efficiency
+    eta_m: float  # motor efficiency
+    max_generator_torque: float  # N m
+    max_generator_power: float  # W, per unit (the drive's limit, set in the model)
+    rotor_loss: float  # W
+    max_gimbal_rate: float  # rad/s
+    episode_seconds: float  # s
+
+
+def build(kw: dict[str, Any]) -> Scene:
+    """The `Scene` of the env's kwargs `kw`; ValueError names the kwarg."""
+    amplitude = check_range("wave_amplitude", kw["wave_amplitude"], 1e-6, 30.0)
+    direction = check_range("wave_direction", kw["wave_direction"], -10.0, 10.0)
+    irregular = kw["significant_wave_height"] is not None
+    if irregular:
+        hs = check_range("significant_wave_height", kw["significant_wave_height"], 1e-6, 30.0)
+        amplitude = hs / (2.0 * math.sqrt(2.0))
+    # both periods are checked whichever sea is used (a bad one is an error either way)
+    periods = {n: check_range(n, kw[n], 0.5, 60.0) for n in ("wave_period", "peak_period")}
+    spectrum = check_choice("spectrum", kw["spectrum"], SPECTRA)
+    gamma = check_range("gamma", kw["gamma"], 1.0, 20.0)
+    n_components = check_int("n_components", kw["n_components"], low=1, high=4096)
+    eta_g = check_range("generator_efficiency", kw["generator_efficiency"], 1e-3, 1.0)
+    eta_m = kw["motor_efficiency"]
+    eta_m = eta_g if eta_m is None else check_range("motor_efficiency", eta_m, 1e-3, 1.0)
+    return Scene(
+        amplitude, direction, irregular, periods["peak_period" if irregular else "wave_period"],
+        spectrum, gamma, n_components, eta_g, eta_m,
+        check_range("max_generator_torque", kw["max_generator_torque"], 0.0),
+        check_range("max_generator_power", kw["max_generator_power"], 0.0),
+        check_range("rotor_loss", kw["rotor_loss"], 0.0, 1e7),
+        check_range("max_gimbal_rate", kw["max_gimbal_rate"], 1e-6),
+        check_range("episode_seconds", kw["episode_seconds"], 1e-3, 1e6),
+    )  # fmt: skip
+
+
+def floating_model(
+    scene: Scene, kw: dict[str, Any], effects: frozenset
+) -> tuple[HullCoefficients, FloatingModel]:
+    """The hull (`load_hull(kw["hull"])`) and its `FloatingModel`: the gyroscope pair of
+    rotor_inertia / rotor_speed, a PTO at zero gains within the scene's limits, radiation and a
+    linear viscous damping (default 5 % of critical in pitch) per the effects."""
+    hull = load_hull(kw["hull"])
+    gyro = GOWECParams(
+        check_range("rotor_inertia", kw["rotor_inertia"], 1e-9, 1e6),
+        check_range("rotor_speed", kw["rotor_speed"], -1e4, 1e4),
+    )
+    pto = dict(damping=0.0, stiffness=0.0, max_torque=scene.max_generator_torque,
+               max_power=scene.max_generator_power, eta_generator=scene.eta_g,
+               eta_motor=scene.eta_m)  # fmt: skip
+    units = check_int("gyro_units", kw["gyro_units"], low=1, high=2)
+    model = FloatingModel(hull, gyro, pto, gyroscopic="gyroscopic" in effects, units=units)
+    crit = 2.0 * math.sqrt(hull.stiffness * (model.p.inertia[0]))
+    bv = kw["viscous_damping"]
+    bv = check_range("viscous_damping", VISCOUS_FRACTION * crit if bv is None else bv, 0.0, 1e12)
+    model.set_viscous(bv if "viscous_damping" in effects else 0.0)
+    if "radiation" not in effects:
+        model.set_radiation(False)
+    return hull, model

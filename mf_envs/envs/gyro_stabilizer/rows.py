@@ -1,0 +1,216 @@
+"""GyroStabilizer-v0's compiled step: the observation kernel `observe` shared by the single env and
+the native vector env's rows (`step_rows`, `reset_rows`), so both give the same bits, and the
+packing of a `build.Scene` into the ship kernels' parameter vector (`pack`) and irregular-sea
+table (`irregular_table`)."""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from mf_envs._jit import kernel
+from mf_envs.envs.gyro_stabilizer import spec
+from mf_envs.envs.gyro_stabilizer.build import Scene
+from mf_envs.frames.kernels import rk4_work, rkmk4_rwork
+from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.layout import Slot
+from mf_envs.physics.ship.model import WaveLoad, pack_params
+from mf_envs.physics.ship.seas import G, excitation_table, jonswap_sea, regular_roll_moment, sinc
+from mf_envs.physics.ship.waves import regular_heave_force
+
+OBS = spec.OBS
+_HIGH = tuple(float(v) for v in OBS.high())
+
+
+@kernel
+def observe(roll, y, R, out):
+    """The observation (OBS order) of ship state y (N_STATE,), attitude R (3, 3) and its roll
+    angle (rad) into the float32 row `out`, clipped to the bounds; returns False (out untouched)
+    if the state is not finite (the failure contract)."""
+    for i in range(y.shape[0]):
+        if not math.isfinite(y[i]):
+            return False
+    for i in range(3):
+        for j in range(3):
+            if not math.isfinite(R[i, j]):
+                return False
+    phi = (y[3] + math.pi) % (2.0 * math.pi) - math.pi
+    vals = (roll, y[0], y[1], y[2], phi, y[4])
+    for i in range(6):
+        out[i] = min(max(vals[i], -_HIGH[i]), _HIGH[i])
+    return True
+
+
+_ROLL = spec.OBS.index("roll")
+# info columns written by step_rows / reset_rows, in spec.INFO_KEYS order up to drive_energy
+COLS = spec.INFO_KEYS[:11]
+C_ENERGY, C_RROLL, C_REFFORT, C_TIME, N_COLS = 10, 11, 12, 13, 14
+ROLL0, RATE0, PHASE0 = (-0.05, 0.05), (-0.02, 0.02), (0.0, 2.0 * math.pi)  # reset's U(lo, hi)
+
+
+@numba.njit(cache=True, inline="always")
+def _info_row(c, roll, y, out, energy):
+    """Info columns (COLS order) of one row: roll, body rates, gimbal angle/rate, moments,
+    drive torque/power, the step's drive energy (`spec.step_info`)."""
+    c[0] = roll
+    for j in range(5):
+        c[1 + j] = y[j]
+    for j in range(4):
+        c[6 + j] = out[j]
+    c[C_ENERGY] = energy
+
+
+@numba.njit(cache=True, nogil=True)
+def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
+              ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
+    """One control step of the active rows lo <= i < hi (GyroStabilizerEnv.step without Python;
+    the GIL is released, so threads can step disjoint blocks of rows at once).
+
+    t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.alloc_batch`;
+    u (N,) rad/s; steps (N,) int64; last (N, 6) float32 the last returned observations; writes
+    obs (N, 6) float32, cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False
+    on a numerical failure (the step then scores 0 and keeps the last observation), reward (N,).
+    This task's scratch is allocated here; the rows are stepped by `_rows`.
+    """
+    work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
+    ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
+    _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
+
+
+@kernel
+def _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c):  # fmt: skip
+    """The row loop of `step_rows` on the batch arrays in place (a `mf_envs._jit.kernel`: its
+    row views cost no reference counts, so threads share the arrays freely); work, Rwork: the
+    stepper's scratch, ob (6,) float32 and c (N_COLS,) one row's observation and info columns."""
+    for i in range(lo, hi):
+        if not active[i]:
+            continue
+        yi, Ri, oi = y[i], R[i], out[i]
+        e0 = yi[K.E_STATE]
+        t[i] = K.advance_with(t[i], yi, Ri, u[i], dt, n_sub, P[i], tab[i], oi, work, Rwork)
+        steps[i] += 1
+        roll = K.roll_of(Ri)
+        ok = observe(roll, yi, Ri, ob)
+        if not ok:  # the last finite observation stays (and is scored)
+            for k in range(ob.shape[0]):
+                ob[k] = last[i, k]
+        energy = yi[K.E_STATE] - e0
+        q = np.float64(ob[_ROLL]) / roll_scale
+        c[C_RROLL], c[C_REFFORT] = -(q * q), -effort_weight * energy
+        rew = c[C_RROLL] + c[C_REFFORT]
+        _info_row(c, roll, yi, oi, energy)
+        c[C_TIME] = steps[i] * control_dt
+        ok_out[i] = ok and math.isfinite(rew)
+        if not ok_out[i]:  # MFEnv._finish_step: last finite obs, reward 0, terminated
+            for k in range(ob.shape[0]):
+                ob[k] = last[i, k]
+            rew = 0.0
+        reward[i] = rew
+        for k in range(ob.shape[0]):
+            obs[i, k] = ob[k]
+        for k in range(c.shape[0]):
+            cols[k, i] = c[k]
+
+
+@numba.njit(cache=True)
+def reset_rows(idx, draws, ptr, p_sign, t, y, R, P, tab, out, steps, obs, cols):
+    """GyroStabilizerEnv.reset() (regular seas, no options) for the rows idx from pre-drawn
+    doubles: draws (N, 3 K) next_double()s of each row's generator, ptr (N,) the next unused one.
+    Writes roll ~ U(-0.05, 0.05) rad (R = rot_x(roll)), roll rate ~ U(-0.02, 0.02) rad/s, the
+    wave phase ~ U(0, 2 pi) into P[WPHASE] (times p_sign), t = 0, the rest of y zero, the
+    moments and drive output at t = 0 (out), the observation and the info columns."""
+    for j in range(idx.shape[0]):
+        i = idx[j]
+        p = ptr[i]
+        roll = ROLL0[0] + (ROLL0[1] - ROLL0[0]) * draws[i, p]
+        rate = RATE0[0] + (RATE0[1] - RATE0[0]) * draws[i, p + 1]
+        phase = PHASE0[0] + (PHASE0[1] - PHASE0[0]) * draws[i, p + 2]
+        ptr[i] = p + 3
+        if p_sign != 0.0:  # 0: the scene has no regular wave (the phase is unused)
+            P[i, Slot.WPHASE] = phase if p_sign > 0.0 else -phase
+        y[i, :] = 0.0
+        y[i, 0] = rate
+        c, s = math.cos(roll), math.sin(roll)
+        Ri = R[i]
+        Ri[0, 0], Ri[0, 1], Ri[0, 2] = 1.0, 0.0, 0.0
+        Ri[1, 0], Ri[1, 1], Ri[1, 2] = 0.0, c, -s
+        Ri[2, 0], Ri[2, 1], Ri[2, 2] = 0.0, s, c
+        t[i], steps[i] = 0.0, 0
+        out[i, 0] = 0.0
+        out[i, 1] = K.external_moment(0.0, y[i], Ri, P[i], tab[i])[3]
+        out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i])
+        roll0 = K.roll_of(Ri)
+        observe(roll0, y[i], Ri, obs[i])
+        _info_row(cols[i], roll0, y[i], out[i], 0.0)
+        cols[i, C_RROLL], cols[i, C_REFFORT], cols[i, C_TIME] = 0.0, 0.0, 0.0
+
+
+def pack(scene: Scene, phase: float) -> np.ndarray:
+    """The packed physics parameters of the scene, its regular wave at `phase` (rad) met at the
+    ship's heading and speed (`physics.ship.seas.regular_roll_moment`)."""
+    hull = scene.hull
+    m0, we = regular_roll_moment(
+        scene.wave_moment_amplitude, scene.wave_period, scene.heading, scene.ship_speed, hull.length
+    )
+    period = 2.0 * math.pi / max(abs(we), 1e-12)
+    phase = phase if we >= 0.0 else -phase  # cos(-w t + p) = cos(w t - p)
+    k = (2.0 * math.pi / scene.wave_period) ** 2 / G
+    gain = float(sinc(0.5 * k * hull.length * math.cos(scene.heading)))  # heave: length mean
+    try:
+        heave = regular_heave_force(
+            scene.wave_moment_amplitude,
+            scene.wave_period,
+            hull.roll_stiffness,
+            hull.heave_stiffness,
+            scene.effective_slope,
+        )
+    except ZeroDivisionError:
+        heave = math.inf
+    if not math.isfinite(heave * gain):
+        raise ValueError(
+            "roll_stiffness, wave_period: the wave of this roll moment would have an infinite "
+            f"heave force (C44 = {hull.roll_stiffness:g} N m/rad is too small)"
+        )
+    wave = WaveLoad(m0, period, phase, heave * gain)
+    return pack_params(
+        scene.ship,
+        scene.gyro,
+        scene.n_gyros,
+        scene.effects,
+        scene.drive,
+        wave,
+        scene.form,
+        scene.table_dt,
+        hull.gz_cubic,
+        scene.coupling,
+        scene.ship_speed,
+    )
+
+
+def irregular_table(scene: Scene, rng: np.random.Generator, seconds: float) -> np.ndarray:
+    """A new JONSWAP sea (long- or short-crested, `physics.ship.seas`) met at the ship's heading
+    and speed, drawn from `rng`: the (N, 2) roll-moment / heave-force table over `seconds`."""
+    hull = scene.hull
+    sea = jonswap_sea(
+        scene.significant_wave_height,
+        scene.wave_period,
+        scene.heading,
+        rng,
+        64,
+        scene.wave_spreading,
+    )
+    return excitation_table(
+        sea,
+        scene.ship_speed,
+        hull.roll_stiffness,
+        hull.heave_stiffness,
+        hull.length,
+        hull.beam,
+        seconds + 1.0,
+        scene.table_dt,
+        scene.effective_slope,
+    )

@@ -1,0 +1,135 @@
+"""Inchworm-v0's compiled step, shared by the single env and the native vector env so both give the
+same bits.
+
+- `observe_row`: the observation in one compiled function: strain-gauge curvatures at the
+  control points (the curvature field sampled 16 times per element, interpolated linearly, as
+  `Inchworm.curvature_at`), the commanded curvature, the foot IMU angles, the head-tail
+  distance, the grip and the ground reactions (`Inchworm.support_reactions`; with `terrain` the
+  caller passes the soil's).
+- `step_rows`: N inchworms on friction feet stepped in one compiled call (the native vector
+  env's kernel). Every active row runs exactly what the single env runs for one control step
+  (the action scaling of `InchwormEnv.step`, `quasistatic.drive_step`, the re-centring of the
+  local origin of `Inchworm._recenter`, `observe_row`), so a row is bit-identical to a single
+  env. Rows are independent; blocks of rows run on threads (`envs._rows.RowBlocks`), which does
+  not change any row's arithmetic.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam import fields
+from mf_envs.physics.beam.contact import stick_slip as ss
+from mf_envs.physics.inchworm import quasistatic as qs
+
+SAMPLES_PER_ELEMENT = 16  # curvature samples per element of the strain gauges
+
+
+def sample_points(model) -> tuple[np.ndarray, np.ndarray]:
+    """(xis (16,), S (16 n_el + 1,)) of the curvature samples of a `BeamModel`."""
+    xis = np.linspace(0.0, 1.0, SAMPLES_PER_ELEMENT + 1)[:-1]
+    s = (model.node_S[:-1, None] + xis[None, :] * model.le[:, None]).ravel()
+    return xis, np.append(s, model.params.length)
+
+
+@numba.njit(cache=True)
+def observe_row(
+    d, x_origin, kappa_gauss, kappa_cmd, head_grips, reactions, own_reactions, geometry,
+    f_ext, scales, out,
+):  # fmt: skip
+    """The observation (layout of `spec.observation_layout`) into out (float32, 2 n + 6).
+
+    d (n_dof,) local dofs, x_origin [m]; kappa_gauss (n_el, 4) realised kappa# [1/m];
+    kappa_cmd (n,) commanded kappa# [1/m]; head_grips: bool; reactions (2,) [N] used when
+    own_reactions is False (terrain), else the residual P - F at the feet's z dofs;
+    geometry = (le, qxi, qw, stiff, xis, S samples, S control points);
+    scales = (length, max_curvature, weight)."""
+    le, qxi, qw, stiff, xis, s_samples, s_ctrl = geometry
+    length, max_curvature, weight = scales
+    n = kappa_cmd.shape[0]
+    ne = le.shape[0]
+    nx = xis.shape[0]
+    samples = np.empty(ne * nx + 1)
+    for e in range(ne):
+        for q in range(nx):
+            samples[e * nx + q] = el.kappa_at(d, 6 * e, le[e], xis[q])
+    samples[ne * nx] = el.kappa_at(d, 6 * (ne - 1), le[ne - 1], 1.0)
+    curv = np.interp(s_ctrl, s_samples, samples)
+    nd = d.shape[0]
+    r_t, r_h = reactions[0], reactions[1]
+    if own_reactions:
+        p = np.empty(2)
+        el.forces_at_into(d, le, kappa_gauss, qxi, qw, stiff, (2, nd - 3), p)
+        r_t = p[0] - f_ext[2]
+        r_h = p[1] - f_ext[nd - 3]
+    for k in range(n):
+        out[k] = curv[k] * length
+        out[n + k] = kappa_cmd[k] / max_curvature
+    x_head = x_origin + d[nd - 5]
+    x_tail = x_origin + d[0]
+    out[2 * n] = d[4]
+    out[2 * n + 1] = d[nd - 1]
+    out[2 * n + 2] = (x_head - x_tail) / length
+    out[2 * n + 3] = 1.0 if head_grips else -1.0
+    out[2 * n + 4] = r_t / weight
+    out[2 * n + 5] = r_h / weight
+
+
+@numba.njit(cache=True, nogil=True)
+def step_rows(lo, hi, active, actions, state, work, cfg, out):
+    """Advance the active rows among lo..hi - 1 one control step (releases the GIL: blocks of
+    rows run on threads, `envs._rows.RowBlocks`).
+
+    actions (N, n [+ 1]) in [-1, 1]; state = (d (N, n_dof), x_origin (N,), lag kappa# (N, n),
+    realised kappa_ctrl (N, n), engagement (N, 2), slipping (N, 2) int, commanded kappa#
+    (N, n), head grips (N,) bool); work = (vec, ab, work, piv, kap) scratch with a leading N
+    axis; cfg = (switching, max_curvature, control_dt, min_substeps, act, feet, S_ctrl,
+    gauss_S, f_ext, beam constants, observation geometry, (length, max_curvature, weight),
+    centerline xis); out = (status (N,) int, report (N, ss.N_REPORT), tail before (N, 2) =
+    (x_origin, local x), obs (N, 2 n + 6) float32, elastic energy (N,), centerline (N, P, 2),
+    kappa# at the Gauss points (N, n_el, 4))."""
+    d_all, xo, lag, kc, g, slip, cmd_all, head = state
+    vec, ab, wk, piv, kap = work
+    switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc, geo, scales, xis = cfg
+    status, rep, before, obs, energy, line, kg = out
+    n = cmd_all.shape[1]
+    nd = d_all.shape[1]
+    length = scales[0]
+    for i in range(lo, hi):
+        if not active[i]:
+            continue
+        cmd = np.empty(n)
+        for k in range(n):
+            cmd[k] = -max_curv * 0.5 * (actions[i, k] + 1.0)
+        grip = np.ones(2)
+        grips_head = True
+        if switching:
+            grips_head = actions[i, n] > 0.0
+            grip[0] = 0.0 if grips_head else 1.0
+            grip[1] = 1.0 if grips_head else 0.0
+        d = d_all[i]
+        before[i, 0] = xo[i]
+        before[i, 1] = d[0]
+        sc = (vec[i], ab[i], wk[i], piv[i], kap[i])
+        st = qs.drive_step(
+            (d, lag[i], kc[i], g[i], slip[i]), cmd, grip, dt, min_sub, act, feet, s_ctrl,
+            gauss_s, f_ext, bc, sc, rep[i],
+        )  # fmt: skip
+        status[i] = st
+        if st == ss.OK:
+            cmd_all[i] = cmd
+            head[i] = grips_head
+            shift = d[0]
+            if abs(shift) > length:
+                for j in range(0, nd, 6):
+                    d[j] -= shift
+                xo[i] += shift
+        kg[i] = np.interp(gauss_s.ravel(), s_ctrl, kc[i]).reshape(gauss_s.shape)
+        le = bc[0]
+        energy[i] = el.assemble_into(d, le, kg[i], bc[1], bc[2], bc[3], False, vec[i][0], ab[i])
+        observe_row(
+            d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales, obs[i],
+        )  # fmt: skip
+        fields.centerline_into(d, xo[i], le, xis, line[i])
