@@ -238,18 +238,18 @@ class SMAWireParams:
 def maker_times(
     params: SMAWireParams, current: float | None = None, dt: float = 1e-3, done: float = 0.95
 ) -> tuple[float, float]:
-    """The maker's two tests in still air on `params` (`sma_kernels.contraction_time` and
-    `relaxation_time`): contraction time [s] under `current` [A] (default: rated) from rest,
-    then the cooling time [s] with the current off from the contracted state; a wire counts as
-    contracted / relaxed at `done` of its stroke. inf when never reached (60 s)."""
+    """The maker's two tests in still air on `params`: the contraction time [s] under `current`
+    [A] (default: rated) from rest (`sma_kernels.contraction_time`; inf if not within 60 s),
+    and the cooling time [s] with the current off from the contracted state a full heating
+    reaches, whatever current got it there (`relaxation_time`). A wire counts as contracted /
+    relaxed at `done` of its stroke."""
     (hp, cap, t_amb), tt = params.kernel_args()
     i = params.current if current is None else current
-    power = i * i * params.resistance_per_length
-    t_c, temp = sk.contraction_time(power, hp, cap, t_amb, dt, *tt, done, 60.0)
-    if not math.isfinite(t_c):  # cool from the contracted state the full heating branch gives
-        t_c2, temp = sk.contraction_time(
-            1e3 * hp * (tt[1] - t_amb), hp, cap, t_amb, dt * 1e-3, *tt, done, 60.0
-        )
+    t_c, _temp = sk.contraction_time(
+        i * i * params.resistance_per_length, hp, cap, t_amb, dt, *tt, done, 60.0
+    )
+    # contracted state: heated fast (1000 x the power that holds Af) to xi = 1 - done
+    _t, temp = sk.contraction_time(1e3 * hp * (tt[1] - t_amb), hp, cap, t_amb, 1e-6, *tt, done, 1.0)
     return t_c, sk.relaxation_time(temp, 1.0 - done, hp, cap, t_amb, dt, *tt, done, 60.0)
 
 
@@ -267,16 +267,10 @@ def cooling_cases(wires=FLEXINOL_WIRES) -> list[tuple[FlexinolWire, SMAAlloy, fl
 def model_cooling_time(w: FlexinolWire, alloy: SMAAlloy, h: float) -> float:
     """The model's cooling time [s] of the row's wire with film coefficient h (`maker_times`)."""
     p = SMAWireParams(
-        diameter=w.diameter,
-        alloy=alloy,
-        film_coefficient=h,
-        resistance=w.resistance or 1.0,
+        diameter=w.diameter, alloy=alloy, film_coefficient=h, resistance=w.resistance or 1.0,
         rated_current=w.current or 1.0,
-    )
-    (hp, cap, t_amb), tt = p.kernel_args()
-    # the contracted state of a full heating (independent of the current that got it there)
-    _t, temp = sk.contraction_time(1e3 * hp * (tt[1] - t_amb), hp, cap, t_amb, 1e-6, *tt, 0.95, 1.0)
-    return sk.relaxation_time(temp, 0.05, hp, cap, t_amb, 1e-3, *tt, 0.95, 60.0)
+    )  # fmt: skip
+    return maker_times(p, current=0.0)[1]
 
 
 def fit_convection(cases=None) -> tuple[float, float, list[float]]:
@@ -299,3 +293,84 @@ def fit_convection(cases=None) -> tuple[float, float, list[float]]:
     sol = least_squares(resid, [math.log(200.0), 0.3], x_scale=[1.0, 0.3])
     errors = [math.expm1(r) for r in resid(sol.x)]
     return math.exp(sol.x[0]), float(sol.x[1]), errors
+
+
+@dataclass
+class SMAStepReport:
+    """One step of a wire group: temperature [degC], martensite fraction xi, recovery strain
+    (fraction), electrical power [W] and, over the step [J]: electrical energy in, heat
+    convected, sensible and latent heat stored (energy in = the three others, exactly)."""
+
+    temperature: float
+    xi: float
+    strain: float
+    power: float
+    energy_in: float
+    convected: float
+    sensible: float
+    latent: float
+
+
+class SMAWireGroup:
+    """State (T, xi and the hysteresis branch) of a group of wires driven alike, stepped by the
+    compiled `sma_kernels.sma_step` under a held current or duty cycle of the rated current."""
+
+    def __init__(self, params: SMAWireParams) -> None:
+        self.params = params
+        self.reset()
+
+    def reset(self, temperature: float | None = None) -> None:
+        """At rest in martensite (xi = 1) at `temperature` [degC] (default ambient), which must
+        lie below As."""
+        p = self.params
+        t = p.ambient if temperature is None else finite_scalar("temperature", temperature)
+        if t >= p.alloy.austenite_start:
+            raise ValueError(f"temperature: {t} degC is not below As of {p.alloy.name}")
+        self.temperature, self.xi = float(t), 1.0
+        self.direction, self.t_rev, self.xi_rev = sk.COOLING, float(t), 1.0
+
+    @property
+    def strain(self) -> float:
+        """Recovery strain eps_max (1 - xi): the contraction as a fraction of the length."""
+        return self.params.strain_max * (1.0 - self.xi)
+
+    @property
+    def force(self) -> float:
+        """Pull force [N] of the group at the maker's rated stress (fully austenitic)."""
+        return self.params.n_wires * pull_force(self.params.diameter)
+
+    def power_of(self, current: float | None = None, duty: float | None = None) -> float:
+        """Joule power [W] of the group at `current` [A] per wire, or at `duty` in [0, 1] of
+        the rated current (pulse-width modulation faster than the wire's time constant: the
+        mean power duty I_r^2 R)."""
+        p = self.params
+        if (current is None) == (duty is None):
+            raise ValueError("current: give exactly one of current and duty")
+        if duty is not None:
+            duty = finite_scalar("duty", duty)
+            if not 0.0 <= duty <= 1.0:
+                raise ValueError(f"duty: must lie in [0, 1], got {duty}")
+            if p.current is None:
+                raise ValueError("rated_current: unknown for this wire; pass current instead")
+            i2 = duty * p.current**2
+        else:
+            i2 = finite_scalar("current", current) ** 2
+        return i2 * p.resistance_per_length * p.length * p.n_wires
+
+    def step(self, dt: float, current: float | None = None, duty: float | None = None):
+        """Hold `current` [A] per wire (or `duty` of the rated current) for dt [s]."""
+        dt = float(check_positive("dt", dt))
+        p = self.params
+        power = self.power_of(current, duty)
+        scale = p.length * p.n_wires
+        (hp, cap, t_amb), (a_s, a_f, m_s, m_f, lat) = p.kernel_args()
+        t0, xi0 = self.temperature, self.xi
+        t1, xi1, self.direction, self.t_rev, self.xi_rev, q = sk.sma_step(
+            t0, xi0, self.direction, self.t_rev, self.xi_rev, power / scale, hp, cap, t_amb,
+            dt, a_s, a_f, m_s, m_f, lat,
+        )  # fmt: skip
+        self.temperature, self.xi = t1, xi1
+        return SMAStepReport(
+            t1, xi1, self.strain, power, power * dt, q * scale, cap * (t1 - t0) * scale,
+            cap * lat * (xi0 - xi1) * scale,
+        )  # fmt: skip
