@@ -61,7 +61,7 @@ def test_one_dexpinv():
 def test_one_runge_kutta_stage_loop():
     rk = r"\b2(?:\.0)? \* \w+(?: \[ [^\]]* \])? \+ 2(?:\.0)? \* \w+"
     hits = _hits(rk, skip=("benchmarks/speed/",))
-    assert hits == ["frames/kernels.py"]  # `_rk4_combine`, used by the RK4 and RKMK4 templates
+    assert hits == ["frames/steppers.py"]  # `_rk4_combine`, used by the RK4 and RKMK4 templates
 
 
 def test_one_g_and_one_sea_water_density():

@@ -15,6 +15,7 @@ import sys
 import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 from mf_envs._extras import install_hint, missing_extra
 
@@ -81,6 +82,22 @@ def build_parser() -> argparse.ArgumentParser:
         dest="command", required=True, metavar="COMMAND", parser_class=_OneLineParser
     )
 
+    _add_run_commands(sub)
+    _add_train_commands(sub)
+    s = sub.add_parser("sweep", help="env kwargs x controllers x seeds on Ray (CSV + PNG)")
+    from mf_envs.sweep.cli import add_arguments
+
+    add_arguments(s)
+    s.set_defaults(func=_cmd_sweep)
+    p.description = (
+        f"Moving-frame Gymnasium environments (Rios 2017). Commands: {', '.join(sub.choices)}."
+    )
+    p.add_argument("--version", action="version", version=f"%(prog)s {package_version()}")
+    return p
+
+
+def _add_run_commands(sub: Any) -> None:
+    """demo, bench, render."""
     d = sub.add_parser("demo", help="run every system's showcase on defaults; writes plots + GIFs")
     d.add_argument("--out", default="mf_envs_demo", help="output folder (default: %(default)s)")
     d.add_argument("--quick", action="store_true", help="shorter runs")
@@ -102,6 +119,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--seed", type=int, default=0, help="reset seed, >= 0 (default: %(default)s)")
     r.set_defaults(func=_cmd_render)
 
+
+def _add_train_commands(sub: Any) -> None:
+    """train, evaluate."""
     t = sub.add_parser("train", help="train a PPO agent (Stable-Baselines3) on an env")
     t.add_argument("env_id")
     t.add_argument(
@@ -140,17 +160,6 @@ def build_parser() -> argparse.ArgumentParser:
     )
     e.add_argument("--force", action="store_true", help="replace an existing OUT/ENV_ID folder")
     e.set_defaults(func=_cmd_evaluate)
-
-    s = sub.add_parser("sweep", help="env kwargs x controllers x seeds on Ray (CSV + PNG)")
-    from mf_envs.sweep.cli import add_arguments
-
-    add_arguments(s)
-    s.set_defaults(func=_cmd_sweep)
-    p.description = (
-        f"Moving-frame Gymnasium environments (Rios 2017). Commands: {', '.join(sub.choices)}."
-    )
-    p.add_argument("--version", action="version", version=f"%(prog)s {package_version()}")
-    return p
 
 
 def package_version() -> str:

@@ -41,6 +41,7 @@ from mf_envs.controllers import register
 from mf_envs.envs.gyro_stabilizer.spec import OBS
 from mf_envs.envs.gyro_stabilizer.task import DECLARATION
 from mf_envs.physics.ship import gyro_roll_moment
+from mf_envs.physics.ship.drive import stop_envelope
 
 _ROLL, _ROLL_RATE = OBS.index("roll"), OBS.index("roll_rate")
 _PHI, _PHI_RATE = OBS.index("gimbal_angle"), OBS.index("gimbal_rate")
@@ -68,6 +69,7 @@ class RollModel:
     drive: Any = None
     jg: float = 0.0
     n_gyros: int = 1
+    stop_time: float = 0.1  # s, the drive's end-stop envelope (`ship.drive.stop_envelope`)
 
     @property
     def omega_n(self) -> float:
@@ -81,7 +83,7 @@ def roll_model(env: Any) -> RollModel:
     """The `RollModel` of a (wrapped) GyroStabilizer env, from its parameters and effects."""
     u = env.unwrapped
     eff = u.effects
-    j = u.ship.inertia[0] + (u.ship.added_roll_inertia if "added_inertia" in eff else 0.0)
+    j = u.ship.roll_inertia("added_inertia" in eff)
     j += u.n_gyros * (u.gyro.gimbal_inertia + u.gyro.rotor_j1)
     c = u.ship.roll_stiffness if "hydrostatic_restoring" in eff else 0.0
     b = u.ship.roll_damping if "roll_damping" in eff else 0.0
@@ -99,13 +101,13 @@ def roll_model(env: Any) -> RollModel:
         u.drive.machine,
         u.gyro.gimbal_inertia + u.gyro.rotor_j1,
         u.n_gyros,
+        u.drive.stop_time,
     )
 
 
-def _stop_envelope(cmd: float, phi: float, m: RollModel, stop_time: float = 0.1) -> float:
-    hi = (m.max_angle - phi) / stop_time
-    lo = (-m.max_angle - phi) / stop_time
-    return min(max(cmd, lo), hi)
+def _stop_envelope(cmd: float, phi: float, m: RollModel) -> float:
+    """The drive's end-stop envelope (`ship.drive.stop_envelope`, the one definition)."""
+    return float(stop_envelope(cmd, phi, m.max_angle, m.stop_time))
 
 
 class PIDStabilizer:

@@ -92,6 +92,13 @@ class MFEnv(gym.Env):
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     @property
+    def max_episode_steps(self) -> int:
+        """Control steps per episode, `max_steps` (from `episode_seconds` by `_episode_steps`:
+        ceil(episode_seconds / control_dt); GOWEC-v0's `n_periods` and Inchworm-v0's
+        `max_episode_steps` are aliases given in steps)."""
+        return self.max_steps
+
+    @property
     def dt(self) -> float:
         """Control interval in seconds (one `step`)."""
         return self.control_dt

@@ -14,5 +14,5 @@ One subpackage per model, each with a small public face in its `__init__`:
 Shared beside them: `constants` (G, RHO_SEAWATER, RPM: one definition each), `gyros`
 (Seakeeper Table 3-1), `waves` (linear sea states), `terrain` (soil models; a beam's soil
 contact is `beam/contact/terrain`). The Lie-group kernel and the one RK4 / RKMK4 stepper every
-model steps with are in `mf_envs.frames.kernels`.
+model steps with are in `mf_envs.frames.kernels` and `mf_envs.frames.steppers`.
 """

@@ -67,7 +67,20 @@ def draw_inchworm(
             ground_row - (np.asarray(z) - gz) * ppm,
         )
 
-    # ground band and fixed ticks
+    _ground(draw, px, x_mid, span, gz, ground_row, (h, w), ss)
+    # head / tail ground markers (triangles pointing up at the node's ground position)
+    tri = 6 * ss
+    for x, col in ((xt, TAIL), (xh, HEAD)):
+        u, v = px(x, gz)
+        draw.polygon([(u, v), (u - tri, v + 1.6 * tri), (u + tri, v + 1.6 * tri)], fill=col)
+
+    _body(draw, np.column_stack(px(c[:, 0], c[:, 1])), max(4.0 * ss, 0.05 * length * ppm), ss)
+    return canvas.finish(text)
+
+
+def _ground(draw, px, x_mid: float, span: float, gz: float, ground_row: float, hw, ss: int):
+    """The ground band, its ticks and labels (fixed in x), and the dashed start line x = 0."""
+    h, w = hw
     draw.rectangle((0, ground_row, w * ss, h * ss), fill=GROUND)
     draw.line((0, ground_row, w * ss, ground_row), fill=GROUND_EDGE, width=2 * ss)
     step = _nice_step(span)
@@ -88,21 +101,15 @@ def draw_inchworm(
     for v in np.arange(0.15 * h * ss, ground_row, 8 * ss):  # dashed start line at x = 0
         draw.line((u0, v, u0, v + 4 * ss), fill=(150, 150, 160), width=ss)
 
-    # head / tail ground markers (triangles pointing up at the node's ground position)
-    tri = 6 * ss
-    for x, col in ((xt, TAIL), (xh, HEAD)):
-        u, v = px(x, gz)
-        draw.polygon([(u, v), (u - tri, v + 1.6 * tri), (u + tri, v + 1.6 * tri)], fill=col)
 
-    # the body: a ribbon of width `thick` around the centreline (offset along the normals)
-    thick = max(4.0 * ss, 0.05 * length * ppm)
-    pts = np.column_stack(px(c[:, 0], c[:, 1]))
+def _body(draw, pts: np.ndarray, thick: float, ss: int) -> None:
+    """The body: a ribbon of width `thick` around the centreline points `pts` (offset along the
+    normals), the tail and head as discs."""
     tangent = np.gradient(pts, axis=0)
     normal = np.column_stack([-tangent[:, 1], tangent[:, 0]])
     normal /= np.maximum(np.linalg.norm(normal, axis=1, keepdims=True), 1e-12)
     ribbon = np.vstack([pts + 0.5 * thick * normal, (pts - 0.5 * thick * normal)[::-1]])
     draw.polygon([tuple(p) for p in ribbon.tolist()], fill=BODY, outline=BODY_EDGE, width=ss)
-    pts = [tuple(p) for p in pts.tolist()]
-    for (u, v), col, rad in ((pts[0], TAIL, 0.55 * thick), (pts[-1], HEAD, 0.8 * thick)):
+    ends = [tuple(p) for p in pts.tolist()]
+    for (u, v), col, rad in ((ends[0], TAIL, 0.55 * thick), (ends[-1], HEAD, 0.8 * thick)):
         draw.ellipse((u - rad, v - rad, u + rad, v + rad), fill=col, outline=BODY_EDGE, width=ss)
-    return canvas.finish(text)

@@ -175,6 +175,17 @@ def draw_ship(
     return canvas.finish(text, overlay=lambda d: axis_triad(d, cam, (0.1 * w, 0.86 * h), 0.07 * h))
 
 
+def _wave_profile(wave_x: ArrayLike, wave_z: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """The (n,) profile arrays, checked: equal lengths >= 2, wave_x strictly increasing."""
+    s = np.ravel(check_finite("wave_x", wave_x))
+    z = np.ravel(check_finite("wave_z", wave_z))
+    if s.shape != z.shape or len(s) < 2:
+        raise ValueError(f"wave_x, wave_z: need equal lengths >= 2, got {len(s)} and {len(z)}")
+    if np.any(np.diff(s) <= 0):
+        raise ValueError("wave_x: must be strictly increasing")
+    return s, z
+
+
 def draw_gowec(
     *,
     buoy_R: ArrayLike,
@@ -200,12 +211,7 @@ def draw_gowec(
     phi = finite_scalar("gimbal_angle", gimbal_angle)
     psi = finite_scalar("rotor_angle", rotor_angle)
     theta = finite_scalar("wave_direction", wave_direction)
-    s = np.ravel(check_finite("wave_x", wave_x))
-    z = np.ravel(check_finite("wave_z", wave_z))
-    if s.shape != z.shape or len(s) < 2:
-        raise ValueError(f"wave_x, wave_z: need equal lengths >= 2, got {len(s)} and {len(z)}")
-    if np.any(np.diff(s) <= 0):
-        raise ValueError("wave_x: must be strictly increasing")
+    s, z = _wave_profile(wave_x, wave_z)
     size = check_size(size)
     span = float(s[-1] - s[0])
     rb = span / 10 if buoy_radius is None else positive_scalar("buoy_radius", buoy_radius)

@@ -64,7 +64,7 @@ class ToyOscillatorEnv(MFEnv):
         self.stiffness = positive_scalar("stiffness", stiffness)
         self.damping = check_range("damping", damping, 0.0, None)
         self.max_force = positive_scalar("max_force", max_force)
-        self.max_episode_steps = self._episode_steps(episode_seconds)
+        self.max_steps = self._episode_steps(episode_seconds)
         c = self.damping if "damping" in self.effects else 0.0
         a = np.array([[0.0, 1.0], [-self.stiffness / self.mass, -c / self.mass]])
         big = np.zeros((3, 3))
@@ -96,7 +96,7 @@ class ToyOscillatorEnv(MFEnv):
         info = self._info(u * self.max_force)
         info["reward_terms"] = terms
         return self._finish_step(self.state.copy(), sum(terms.values()), False,
-                                 self._steps >= self.max_episode_steps, info,
+                                 self._steps >= self.max_steps, info,
                                  bool(np.all(np.isfinite(self.state))))  # fmt: skip
 
     def _info(self, force):

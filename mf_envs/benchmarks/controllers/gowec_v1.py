@@ -141,12 +141,10 @@ def figures(out: Path) -> list[Path]:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
     from mf_envs.physics.gowec import GOWECParams
     from mf_envs.physics.gowec.hydro import load_hull
     from mf_envs.physics.gowec.hydro.model import FloatingModel
-    from mf_envs.physics.waves import regular_wave
 
     out.mkdir(parents=True, exist_ok=True)
     hull = load_hull()
@@ -154,8 +152,13 @@ def figures(out: Path) -> list[Path]:
         damping=0.0, stiffness=0.0, max_torque=1e9, max_power=1e12, eta_generator=1.0, eta_motor=1.0
     )
     m = FloatingModel(hull, GOWECParams(), pto, gyroscopic=False)
-    paths = []
-    # free decay
+    return [_free_decay(m, hull, out), _rao(m, hull, out), _coupling(out)]
+
+
+def _free_decay(m, hull, out: Path) -> Path:
+    """gowec_v1_free_decay.png: rotor-off pitch decay against the envelope from B(w_n)."""
+    import matplotlib.pyplot as plt
+
     dt, n = 0.01, 6000
     y, th = m.initial_state(pitch=0.05), [0.05]
     for i in range(n):
@@ -164,8 +167,7 @@ def figures(out: Path) -> list[Path]:
     t = np.arange(n + 1) * dt
     wn = hull.natural_frequency()
     A, B, _ = hull.at(wn)
-    I = m.pitch_inertia()
-    zeta = B / (2 * math.sqrt(hull.stiffness * (I + A)))
+    zeta = B / (2 * math.sqrt(hull.stiffness * (m.pitch_inertia() + A)))
     fig, ax = plt.subplots(figsize=(8, 3.5))
     ax.plot(t, th, label="Cummins + state-space radiation (rotor off)")
     ax.plot(t, 0.05 * np.exp(-zeta * wn * t), "k--", lw=1, label="envelope from B(w_n)")
@@ -175,10 +177,20 @@ def figures(out: Path) -> list[Path]:
     ax.set_ylim(-0.085, 0.06)
     ax.legend(loc="lower right", fontsize=8, ncol=2)
     fig.tight_layout()
-    paths.append(out / "gowec_v1_free_decay.png")
-    fig.savefig(paths[-1], dpi=110)
+    path = out / "gowec_v1_free_decay.png"
+    fig.savefig(path, dpi=110)
     plt.close(fig)
-    # RAO
+    return path
+
+
+def _rao(m, hull, out: Path) -> Path:
+    """gowec_v1_rao.png: the time-domain pitch RAO (steady part, least squares) at six periods
+    against the frequency-domain |X| / |-w^2 (I + A) + i w B + C|."""
+    import matplotlib.pyplot as plt
+
+    from mf_envs.physics.waves import regular_wave
+
+    dt, wn, I = 0.01, hull.natural_frequency(), m.pitch_inertia()
     periods = [4.5, 5.0, 5.3, 5.8, 6.5, 7.5]
     sim = []
     for T in periods:
@@ -190,16 +202,8 @@ def figures(out: Path) -> list[Path]:
             ths.append(y[0])
         tt = np.arange(1, 40001) * dt
         sel = tt > 50
-        basis = np.stack(
-            [
-                np.cos(w * tt[sel]),
-                np.sin(w * tt[sel]),
-                np.cos(wn * tt[sel]),
-                np.sin(wn * tt[sel]),
-                np.ones(sel.sum()),
-            ],
-            1,
-        )
+        basis = np.stack([np.cos(w * tt[sel]), np.sin(w * tt[sel]), np.cos(wn * tt[sel]),
+                          np.sin(wn * tt[sel]), np.ones(sel.sum())], 1)  # fmt: skip
         c = np.linalg.lstsq(basis, np.asarray(ths)[sel], rcond=None)[0]
         sim.append(math.hypot(c[0], c[1]) / 0.05)
     wf = np.linspace(0.6, 2.0, 400)
@@ -215,11 +219,10 @@ def figures(out: Path) -> list[Path]:
     ax.set_ylabel("pitch RAO (rad/m)")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    paths.append(out / "gowec_v1_rao.png")
-    fig.savefig(paths[-1], dpi=110)
+    path = out / "gowec_v1_rao.png"
+    fig.savefig(path, dpi=110)
     plt.close(fig)
-    paths.append(_coupling(out))
-    return paths
+    return path
 
 
 def _coupling(out: Path) -> Path:

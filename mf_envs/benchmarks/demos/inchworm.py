@@ -162,47 +162,39 @@ def _gif(out: Path, quick: bool) -> Path | None:
     return save_gif(frames, out / "inchworm_seed_uniform.gif", fps=15)
 
 
+def _head(hist, n: int):
+    """The first n samples of a gait history."""
+    return type(hist)(hist.t[:n], hist.x_head[:n], hist.x_tail[:n], hist.anchors[:n],
+                      hist.centerlines[:n], hist.kappa_sharp[:n], 0)  # fmt: skip
+
+
 def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
     out.mkdir(parents=True, exist_ok=True)
     files = [_fig4_5(out), _rollup(out)]
-    lines = []
     curl = run_gait(
         Inchworm(P, frozenset({"gravity", "shear_deformation"})), GAITS["uniform"], 1, 40
     )
-    files.append(
-        _snapshots(
-            out,
-            "inchworm_fig4_8.png",
-            type(curl)(
-                curl.t[:21],
-                curl.x_head[:21],
-                curl.x_tail[:21],
-                curl.anchors[:21],
-                curl.centerlines[:21],
-                curl.kappa_sharp[:21],
-                0,
-            ),
-            "Head held: curling, Eq. 101 (fig. 4-8)",
-        )
-    )
-    n_cyc = 2 if quick else 3
+    title = "Head held: curling, Eq. 101 (fig. 4-8)"
+    files.append(_snapshots(out, "inchworm_fig4_8.png", _head(curl, 21), title))
+    gait_files, lines = _gaits(out, 2 if quick else 3)
+    files += gait_files
+    gif = _gif(out, quick)
+    if gif is not None:
+        files.append(gif)
+    return files, lines
+
+
+def _gaits(out: Path, n_cyc: int) -> tuple[list[Path], list[str]]:
+    """Figs. 4-9 and 4-10 (one cycle of each seed gait), their advance per cycle, and
+    inchworm_progress.png (head and tail over n_cyc cycles)."""
+    files, lines = [], []
     plt = _plt()
     fig, ax = plt.subplots(figsize=(7, 3.5))
     for name, fn in GAITS.items():
         hist = run_gait(Inchworm(P, FULL), fn, n_cyc, 40)
-        one = type(hist)(
-            hist.t[:41],
-            hist.x_head[:41],
-            hist.x_tail[:41],
-            hist.anchors[:41],
-            hist.centerlines[:41],
-            hist.kappa_sharp[:41],
-            0,
-        )
         fig_name = "inchworm_fig4_9.png" if name == "uniform" else "inchworm_fig4_10.png"
-        files.append(
-            _snapshots(out, fig_name, one, f"{name} gait, one cycle (grip = black triangle)")
-        )
+        title = f"{name} gait, one cycle (grip = black triangle)"
+        files.append(_snapshots(out, fig_name, _head(hist, 41), title))
         per = np.diff(hist.x_tail[::40])
         lines.append(
             f"{name} gait: tail advance per cycle {per.mean():.5f} m = "
@@ -222,7 +214,4 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
     fig.savefig(out / "inchworm_progress.png", dpi=110)
     plt.close(fig)
     files.append(out / "inchworm_progress.png")
-    gif = _gif(out, quick)
-    if gif is not None:
-        files.append(gif)
     return files, lines

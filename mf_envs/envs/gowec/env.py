@@ -174,11 +174,6 @@ class GOWECEnv(MFEnv):
         self._model0 = self.model  # phase 0; reset() shifts the phase
         self._last_power = 0.0
 
-    @property
-    def max_episode_steps(self) -> int:
-        """Control steps per episode (from episode_seconds or n_periods)."""
-        return self.max_steps
-
     def analytic_max_power(self) -> float:
         """Eq. 95 (Eq. 86 head-on), W: the locked-gimbal mean power of this wave and rotor
         (signed: negative for sin(theta) < 0; the reward uses `reference_power`, > 0).

@@ -125,7 +125,7 @@ class GOWECV1Env(MFEnv):
         self._base_substeps = self.n_substeps
         self.hull, self.model = build.floating_model(self.scene, kw, self.effects)
         self.buoy_radius = self.hull.radius if math.isfinite(self.hull.radius) else 0.0
-        self.max_steps = max(1, int(round(self.episode_seconds / self.control_dt)))
+        self.max_steps = self._episode_steps(self.episode_seconds)
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         hi = spec.OBS.high({"max_gimbal_rate": self.max_gimbal_rate})
         self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)

@@ -240,8 +240,8 @@ def stable_step(
     drive: GimbalDrive, gyro: GyroParams, hull: Hull, ship: ShipParams, n: int, eff: frozenset
 ) -> float:
     """Largest stable RK4 physics step (s) of the drive (`ship.drive.drive_stable_step`)."""
-    return drive_stable_step(drive, gyro, hull.inertia[0], hull.added_roll_inertia,
-                             hull.roll_stiffness, ship.roll_damping, n, eff)  # fmt: skip
+    j = hull.roll_inertia("added_inertia" in eff)
+    return drive_stable_step(drive, gyro, j, hull.roll_stiffness, ship.roll_damping, n, eff)
 
 
 def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: float) -> float:

@@ -188,11 +188,6 @@ class GyroStabilizerEnv(MFEnv):
         self._t, self._steps = 0.0, 0
 
     @property
-    def max_episode_steps(self) -> int:
-        """Control steps per episode, ceil(episode_seconds / control_dt)."""
-        return self.max_steps
-
-    @property
     def angular_momentum(self) -> float:
         """H = J3^(3) psi' of one rotor (N m s); 0 when `gyroscopic` is off."""
         return self.gyro.angular_momentum if "gyroscopic" in self.effects else 0.0

@@ -13,7 +13,7 @@ import numpy as np
 from mf_envs._jit import kernel
 from mf_envs.envs.gyro_stabilizer import spec
 from mf_envs.envs.gyro_stabilizer.build import Scene
-from mf_envs.frames.kernels import rk4_work, rkmk4_rwork
+from mf_envs.frames.steppers import rk4_work, rkmk4_rwork
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.layout import Slot
 from mf_envs.physics.ship.model import WaveLoad, pack_params

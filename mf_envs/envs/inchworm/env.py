@@ -174,10 +174,10 @@ class InchwormEnv(MFEnv):
                          render_mode=render_mode)  # fmt: skip
         self.scene = build.build(kw, self.effects, self.n_substeps)  # kwargs as physics params
         self._weight = self.scene.weight
-        self.max_episode_steps = build.episode_steps(
+        self.max_steps = build.episode_steps(
             max_episode_steps, episode_seconds, self._episode_steps
         )
-        self.episode_seconds = self.max_episode_steps * self.control_dt
+        self.episode_seconds = self.max_steps * self.control_dt
         self.actuator = self.actuator_params if "actuator_dynamics" in self.effects else None
         self._drive = build.drive_kwargs(self.scene, self.effects)
         try:
@@ -230,7 +230,7 @@ class InchwormEnv(MFEnv):
         info = self._get_info(terms, report)
         if ok:
             self._remember_frame(info)
-        truncated = self._steps >= self.max_episode_steps
+        truncated = self._steps >= self.max_steps
         reward = terms["progress"] + terms["effort"]
         return self._finish_step(obs, reward, False, truncated, info, ok)
 

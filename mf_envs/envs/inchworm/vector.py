@@ -134,5 +134,5 @@ class InchwormVectorEnv(BatchedVectorEnv):
         term = ~finite & active
         obs_out[term] = self._obs[term]  # last finite obs, reward 0, terminated
         reward[term] = 0.0
-        trunc = self._steps >= env.max_episode_steps
+        trunc = self._steps >= env.max_steps
         return obs_out, reward, term, trunc, info

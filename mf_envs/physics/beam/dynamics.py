@@ -152,6 +152,34 @@ def _strain_rate(model, st, d, k0, k1, dt):
     return assemble_algorithmic(st.d, d, *args)[2] / dt
 
 
+def _effective_force(model, state, scheme, extra, k0, f0, f_end) -> np.ndarray:
+    """The right-hand side of the alpha form: (1 - a_f) F_{n+1} + a_f F_n - a_m M a_n, minus
+    a_f P(d_n) (generalized-alpha) and plus a_f of the extra load at t_n."""
+    am, af, _, _ = scheme.coefficients()
+    f = f_end
+    if af != 0.0 or am != 0.0:
+        f = (1.0 - af) * f_end + af * f0 - am * banded.band_matvec(model.mass, state.a)
+    if af != 0.0 and scheme.name == "generalized_alpha":
+        f = f - af * model.internal(state.d, k0, tangent=False)[0]
+    if af != 0.0 and extra is not None:
+        f = f + af * extra(state.d, state.v)[0]
+    return f
+
+
+def _accept(model, state, scheme, d, d_pred, v_pred, fixed, k0, kappa_end, dt) -> NewmarkState:
+    """The converged step's state: a, v from the Newmark relations (zero on prescribed dofs),
+    and with the energy-momentum scheme the strain rate of the step."""
+    _, _, beta, gamma = scheme.coefficients()
+    a = (d - d_pred) / (beta * dt**2)
+    v = v_pred + gamma * dt * a
+    a[fixed] = 0.0
+    v[fixed] = 0.0
+    rate = None
+    if scheme.name == "energy_momentum":
+        rate = _strain_rate(model, state, d, k0, kappa_end, dt)
+    return NewmarkState(d, v, a, state.t + dt, rate)
+
+
 def time_step(
     model: BeamModel,
     state: NewmarkState,
@@ -177,13 +205,7 @@ def time_step(
     v_pred = state.v + (1.0 - gamma) * dt * state.a
     d_pred[fixed] = state.d[fixed]
     v_pred[fixed] = 0.0
-    f = f_end
-    if af != 0.0 or am != 0.0:
-        f = (1.0 - af) * f_end + af * f0 - am * banded.band_matvec(model.mass, state.a)
-    if af != 0.0 and scheme.name == "generalized_alpha":
-        f = f - af * model.internal(state.d, k0, tangent=False)[0]
-    if af != 0.0 and extra is not None:
-        f = f + af * extra(state.d, state.v)[0]
+    f = _effective_force(model, state, scheme, extra, k0, f0, f_end)
     pa = _algorithmic_force(model, state, scheme, k0, kappa_end, af, dt)
     dyn = Dynamics((1.0 - am) / (beta * dt**2), gamma / (beta * dt), d_pred, v_pred)
     args = (model, d_pred, kappa_end, f, fixed, settings, dyn, _scaled(extra, 1.0 - af), pa)
@@ -193,16 +215,9 @@ def time_step(
     if stats is not None:
         stats.iterations += res.iterations
     if res.converged:
-        a = (res.d - d_pred) / (beta * dt**2)
-        v = v_pred + gamma * dt * a
-        a[fixed] = 0.0
-        v[fixed] = 0.0
         if stats is not None:
             stats.steps += 1
-        rate = None
-        if scheme.name == "energy_momentum":
-            rate = _strain_rate(model, state, res.d, k0, kappa_end, dt)
-        return NewmarkState(res.d, v, a, state.t + dt, rate)
+        return _accept(model, state, scheme, res.d, d_pred, v_pred, fixed, k0, kappa_end, dt)
     if _depth >= settings.max_halvings:
         raise NewtonDivergence(
             f"{scheme.name}/Newton failed at t = {state.t:.6g} s (dt = {dt:.3g} s): scaled "

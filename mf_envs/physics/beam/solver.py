@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.linalg import get_lapack_funcs
@@ -213,6 +214,44 @@ class Dynamics:
     v_pred: np.ndarray
 
 
+def _tolerance(
+    model: BeamModel, d: np.ndarray, f_ext: np.ndarray, settings: NewtonSettings, dyn: Any
+) -> tuple[float, float]:
+    """(f_ref, eps1): the force scale of the scaled residual and its tolerance, floored at the
+    round-off level of the axial/shear force terms: the strain z' = sum N_i' z_i of nodes at
+    distance |z| from the origin carries eps |z| / l_e, so the floor grows with max(L, |z|)
+    (callers far from the origin should use local coordinates)."""
+    p = model.params
+    f_ref = p.EI / p.length + float(np.max(np.abs(f_ext * model.u_scale)))
+    eps = np.finfo(float).eps
+    reach = max(1.0, float(np.max(np.abs(d[0::6]), initial=0.0)) / p.length)
+    reach = max(reach, float(np.max(np.abs(d[2::6]), initial=0.0)) / p.length)
+    tol_r = max(settings.rtol, 256 * eps * max(p.EA, p.GAs) * p.length * reach / f_ref)
+    if dyn is not None:  # a = c_a (d - d_pred) loses digits in the difference
+        md = banded.band_matvec(model.mass, np.abs(d) + np.abs(dyn.d_pred))
+        tol_r = max(tol_r, 256 * eps * dyn.c_a * float(np.max(np.abs(md * model.u_scale))) / f_ref)
+    return f_ref, tol_r
+
+
+def _residual(model, d, kappa_sharp, f_ext, dyn, extra, internal) -> tuple[np.ndarray, np.ndarray]:
+    """(residual F - P(d) - M a(d) + extra, banded tangent) at d (before the constraints)."""
+    f_int, ab = model.internal(d, kappa_sharp) if internal is None else internal(d)
+    r = f_ext - f_int
+    if dyn is not None:
+        acc = dyn.c_a * (d - dyn.d_pred)
+        r -= banded.band_matvec(model.mass, acc)
+        ab += dyn.c_a * model.mass
+    if extra is not None:
+        vel = dyn.v_pred + dyn.c_v * (d - dyn.d_pred) if dyn is not None else np.zeros_like(d)
+        fx, dfdd, dfdv = extra(d, vel)
+        r += fx
+        if dfdd is not None:
+            ab -= dfdd
+        if dfdv is not None and dyn is not None:
+            ab -= dyn.c_v * dfdv
+    return r, ab
+
+
 def newton(
     model: BeamModel,
     d_start: np.ndarray,
@@ -230,35 +269,11 @@ def newton(
     f_ext: (n_dof,) dead nodal loads; fixed: bool (n_dof,) prescribed dofs; internal: d ->
     (force, banded tangent) replacing model.internal (the time schemes' algorithmic forces).
     """
-    p = model.params
     d = d_start.copy()
-    f_ref = p.EI / p.length + float(np.max(np.abs(f_ext * model.u_scale)))
-    # eps1, floored at the round-off level of the axial/shear force terms: the strain
-    # z' = sum N_i' z_i of nodes at distance |z| from the origin carries eps |z| / l_e, so the
-    # floor grows with max(L, |z|) (callers far from the origin should use local coordinates)
-    eps = np.finfo(float).eps
-    reach = max(1.0, float(np.max(np.abs(d[0::6]), initial=0.0)) / p.length)
-    reach = max(reach, float(np.max(np.abs(d[2::6]), initial=0.0)) / p.length)
-    tol_r = max(settings.rtol, 256 * eps * max(p.EA, p.GAs) * p.length * reach / f_ref)
-    if dyn is not None:  # a = c_a (d - d_pred) loses digits in the difference
-        md = banded.band_matvec(model.mass, np.abs(d) + np.abs(dyn.d_pred))
-        tol_r = max(tol_r, 256 * eps * dyn.c_a * float(np.max(np.abs(md * model.u_scale))) / f_ref)
+    f_ref, tol_r = _tolerance(model, d, f_ext, settings, dyn)
     res = np.inf
     for it in range(1, settings.max_iter + 1):
-        f_int, ab = model.internal(d, kappa_sharp) if internal is None else internal(d)
-        r = f_ext - f_int
-        if dyn is not None:
-            acc = dyn.c_a * (d - dyn.d_pred)
-            r -= banded.band_matvec(model.mass, acc)
-            ab += dyn.c_a * model.mass
-        if extra is not None:
-            vel = dyn.v_pred + dyn.c_v * (d - dyn.d_pred) if dyn is not None else np.zeros_like(d)
-            fx, dfdd, dfdv = extra(d, vel)
-            r += fx
-            if dfdd is not None:
-                ab -= dfdd
-            if dfdv is not None and dyn is not None:
-                ab -= dyn.c_v * dfdv
+        r, ab = _residual(model, d, kappa_sharp, f_ext, dyn, extra, internal)
         banded.constrain_band(ab, r, fixed)
         res = float(np.max(np.abs(r * model.u_scale))) / f_ref
         if it == 1:

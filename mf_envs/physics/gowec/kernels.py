@@ -8,7 +8,7 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import make_rk4
+from mf_envs.frames.steppers import make_rk4
 
 
 @numba.njit(cache=True)

@@ -31,7 +31,7 @@ generalized forces the actuators must supply along the prescribed coordinates ar
 
 Integration: `step` is a 4th-order Runge-Kutta-Munthe-Kaas step: rotations are advanced as
 R0 exp(hat(theta)) with the ch. 2 Rodrigues formula, so R stays orthogonal to round-off.
-All kernels are numba-compiled (`multibody.kernels`, stepping through `mf_envs.frames.kernels`);
+All kernels are numba-compiled (`multibody.kernels`, stepping through `mf_envs.frames.steppers`);
 the Python layer (`multibody.model`) only packs arrays; joints and bodies in `multibody.joints`.
 
 Worked example: a heavy symmetric top on a fixed pivot, and the GOWEC's buoy/gimbal/rotor.

@@ -26,7 +26,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import dexpinv_right, exp_so3, hat, make_rk4, rk4_work
+from mf_envs.frames.kernels import dexpinv_right, exp_so3, hat
+from mf_envs.frames.steppers import make_rk4, rk4_work
 
 FIXED, REVOLUTE, PRISMATIC, SPHERICAL, FREE = 0, 1, 2, 3, 4
 NQ = (0, 1, 1, 9, 12)  # configuration slots per joint type

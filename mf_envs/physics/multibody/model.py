@@ -31,36 +31,7 @@ class Multibody:
 
     # ------------------------------------------------------------------ assembly
     def _build(self) -> None:
-        nb = len(self.bodies)
-        parent = np.full(nb, -1, dtype=np.int64)
-        jtype = np.zeros(nb, dtype=np.int64)
-        Rpre = np.tile(np.eye(3), (nb, 1, 1))
-        Rpost = Rpre.copy()
-        spre, spost, axis = np.zeros((nb, 3)), np.zeros((nb, 3)), np.zeros((nb, 3))
-        mass, inertia = np.zeros(nb), np.zeros((nb, 3, 3))
-        for i, b in enumerate(self.bodies):
-            if b.parent is not None:
-                if b.parent not in self.index or self.index[b.parent] >= i:
-                    raise ValueError(
-                        f"parent: body {b.name!r} needs a parent listed before it, got {b.parent!r}"
-                    )
-                parent[i] = self.index[b.parent]
-            j = b.joint
-            jtype[i] = j.kind
-            spre[i] = check_shape(f"{b.name}.offset", j.offset, (3,))
-            spost[i] = check_shape(f"{b.name}.child_offset", j.child_offset, (3,))
-            for arr, val, nm in (
-                (Rpre, j.rotation, "rotation"),
-                (Rpost, j.child_rotation, "child_rotation"),
-            ):
-                if val is not None:
-                    Rv = check_shape(f"{b.name}.{nm}", val, (3, 3))
-                    if orthonormality_error(Rv) > 1e-9 or np.linalg.det(Rv) < 0:
-                        raise ValueError(f"{b.name}.{nm}: must be a rotation matrix")
-                    arr[i] = Rv
-            axis[i] = j.axis_vector()
-            mass[i] = nonnegative_scalar(f"{b.name}.mass", b.mass)
-            inertia[i] = _inertia_matrix(f"{b.name}.inertia", b.inertia)
+        parent, jtype, Rpre, Rpost, spre, spost, axis, mass, inertia = self._joint_arrays()
         ndof = np.array([K.NU[t] for t in jtype], dtype=np.int64)
         nqs = np.array([K.NQ[t] for t in jtype], dtype=np.int64)
         uoff = np.concatenate([[0], np.cumsum(ndof)[:-1]]).astype(np.int64)
@@ -103,6 +74,41 @@ class Multibody:
         M = self.mass_matrix_blocks()
         if np.any(np.linalg.eigvalsh(M) < 0):
             raise ValueError("inertia: every body inertia must be positive semidefinite")
+
+    def _joint_arrays(self) -> tuple[NDArray, ...]:
+        """Per body, validated (errors name the body's field): parent index, joint type, the
+        joint's pre/post rotations and offsets, its axis, mass and inertia."""
+        nb = len(self.bodies)
+        parent = np.full(nb, -1, dtype=np.int64)
+        jtype = np.zeros(nb, dtype=np.int64)
+        Rpre = np.tile(np.eye(3), (nb, 1, 1))
+        Rpost = Rpre.copy()
+        spre, spost, axis = np.zeros((nb, 3)), np.zeros((nb, 3)), np.zeros((nb, 3))
+        mass, inertia = np.zeros(nb), np.zeros((nb, 3, 3))
+        for i, b in enumerate(self.bodies):
+            if b.parent is not None:
+                if b.parent not in self.index or self.index[b.parent] >= i:
+                    raise ValueError(
+                        f"parent: body {b.name!r} needs a parent listed before it, got {b.parent!r}"
+                    )
+                parent[i] = self.index[b.parent]
+            j = b.joint
+            jtype[i] = j.kind
+            spre[i] = check_shape(f"{b.name}.offset", j.offset, (3,))
+            spost[i] = check_shape(f"{b.name}.child_offset", j.child_offset, (3,))
+            for arr, val, nm in (
+                (Rpre, j.rotation, "rotation"),
+                (Rpost, j.child_rotation, "child_rotation"),
+            ):
+                if val is not None:
+                    Rv = check_shape(f"{b.name}.{nm}", val, (3, 3))
+                    if orthonormality_error(Rv) > 1e-9 or np.linalg.det(Rv) < 0:
+                        raise ValueError(f"{b.name}.{nm}: must be a rotation matrix")
+                    arr[i] = Rv
+            axis[i] = j.axis_vector()
+            mass[i] = nonnegative_scalar(f"{b.name}.mass", b.mass)
+            inertia[i] = _inertia_matrix(f"{b.name}.inertia", b.inertia)
+        return parent, jtype, Rpre, Rpost, spre, spost, axis, mass, inertia
 
     def mass_matrix_blocks(self) -> NDArray[np.float64]:
         """M (6 nb, 6 nb) = diag(m I3, J_C) per body (Eq. 56)."""

@@ -217,18 +217,31 @@ def solve_static(
     ts = np.zeros(n) if theta_sharp is None else check_shape("theta_sharp", theta_sharp, (n,))
     ts = ts + np.eye(1, n)[0] * params.base_angle  # the clamp direction acts like theta#_0
 
-    def potential(psi: NDArray[np.float64]) -> float:
-        el = np.diff(psi, prepend=0.0) - ts
-        work = np.sum(np.cos(psi) * A[:, 0] + np.sin(psi) * A[:, 1]) + M0 * psi[-1]
-        return float(0.5 * np.sum(k * el * el) - work)
-
-    def gradient(psi: NDArray[np.float64]) -> NDArray[np.float64]:
-        km = k * (np.diff(psi, prepend=0.0) - ts)  # joint moments
-        g = km - np.append(km[1:], 0.0) + np.sin(psi) * A[:, 0] - np.cos(psi) * A[:, 1]
-        g[-1] -= M0
-        return g
-
     psi = np.zeros(n) if psi0 is None else check_shape("psi0", psi0, (n,)).copy()
+    psi, iterations = _minimise(psi, A, k, ts, M0, tol, max_iter)
+    cl = centerline(params, psi)
+    energy = _potential(psi, A, k, ts, M0)
+    return ChainStatic(psi, cl, cl[-1].copy(), float(psi[-1]), energy, iterations)
+
+
+def _potential(psi: NDArray[np.float64], A, k, ts, M0: float) -> float:
+    """Total potential of the chain: joint strain energy minus the work of the dead loads."""
+    el = np.diff(psi, prepend=0.0) - ts
+    work = np.sum(np.cos(psi) * A[:, 0] + np.sin(psi) * A[:, 1]) + M0 * psi[-1]
+    return float(0.5 * np.sum(k * el * el) - work)
+
+
+def _gradient(psi: NDArray[np.float64], A, k, ts, M0: float) -> NDArray[np.float64]:
+    """d potential / d psi."""
+    km = k * (np.diff(psi, prepend=0.0) - ts)  # joint moments
+    g = km - np.append(km[1:], 0.0) + np.sin(psi) * A[:, 0] - np.cos(psi) * A[:, 1]
+    g[-1] -= M0
+    return g
+
+
+def _minimise(psi, A, k, ts, M0: float, tol: float, max_iter: int) -> tuple[NDArray, int]:
+    """Newton on the tridiagonal Hessian with Armijo backtracking, from psi; (psi, steps)."""
+    n = psi.shape[0]
     ab = np.zeros((2, n))
     ab[0, 1:] = -k[1:]
     kd = k.copy()
@@ -237,7 +250,7 @@ def solve_static(
     g_prev = np.inf
     iterations = 0
     for iterations in range(1, max_iter + 1):  # noqa: B007 (reported below)
-        g = gradient(psi)
+        g = _gradient(psi, A, k, ts, M0)
         g_max = float(np.max(np.abs(g)))
         # round-off floor of the joint moments k (theta - theta#), and stagnation at that level
         floor = 16.0 * eps * float(np.max(k)) * (1.0 + float(np.max(np.abs(psi))))
@@ -246,9 +259,9 @@ def solve_static(
         g_prev = g_max
         ab[1] = kd + np.cos(psi) * A[:, 0] + np.sin(psi) * A[:, 1]
         d = _shifted_solve(ab, -g)
-        step, pi0 = 1.0, potential(psi)
+        step, pi0 = 1.0, _potential(psi, A, k, ts, M0)
         while np.max(np.abs(d)) * step > 1e-6 and step > 1e-10:
-            if potential(psi + step * d) <= pi0 + 1e-4 * step * (g @ d):
+            if _potential(psi + step * d, A, k, ts, M0) <= pi0 + 1e-4 * step * (g @ d):
                 break
             step *= 0.5
         psi = psi + step * d
@@ -256,8 +269,7 @@ def solve_static(
             break
     else:
         raise RuntimeError(f"solve_static: no convergence in {max_iter} Newton steps")
-    cl = centerline(params, psi)
-    return ChainStatic(psi, cl, cl[-1].copy(), float(psi[-1]), potential(psi), iterations)
+    return psi, iterations
 
 
 def _shifted_solve(ab: NDArray[np.float64], rhs: NDArray[np.float64]) -> NDArray[np.float64]:

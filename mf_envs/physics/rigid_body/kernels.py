@@ -23,7 +23,8 @@ import math
 import numba
 import numpy as np
 
-from mf_envs.frames.kernels import cross, exp_so3, make_rk4, rk4_work
+from mf_envs.frames.kernels import cross, exp_so3
+from mf_envs.frames.steppers import make_rk4, rk4_work
 
 # method codes used by `integrate` (names in rigid_body.METHODS, same order)
 RK4_RODRIGUES, RK4_MAGNUS4, RK4_MAGNUS4_PROJ, SPLITTING2, SPLITTING4 = 0, 1, 2, 3, 4

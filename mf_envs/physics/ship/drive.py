@@ -160,12 +160,20 @@ def _clip(x: float, lo: float, hi: float) -> float:
 
 
 @kernel(forceinline=True)
+def stop_envelope(u: float, phi: float, phi_max: float, stop_time: float) -> float:
+    """The end-stop envelope, the one definition (the servo's, the machine drives' and the
+    controllers'): a precession rate u (rad/s) clipped to (-phi_max - phi) / stop_time <= u <=
+    (phi_max - phi) / stop_time, so the gimbal reaches +-phi_max no sooner than stop_time."""
+    lo = (-phi_max - phi) / stop_time
+    return _clip(u, lo, (phi_max - phi) / stop_time)
+
+
+@kernel(forceinline=True)
 def rate_command(u: float, phi: float, D: np.ndarray, o: int = 0) -> float:
     """The command u (rad/s) clipped to +-max_rate and the end-stop envelope (module doc).
     D[o:] is the packed drive vector (o > 0: read in place from a longer vector, no slice)."""
     ue = _clip(u, -D[o + DRMAX], D[o + DRMAX])
-    lo = (-D[o + DPHIMAX] - phi) / D[o + DTSTOP]
-    return _clip(ue, lo, (D[o + DPHIMAX] - phi) / D[o + DTSTOP])
+    return stop_envelope(ue, phi, D[o + DPHIMAX], D[o + DTSTOP])
 
 
 @kernel(forceinline=True)
@@ -324,7 +332,7 @@ def drive_machine(
     rotor: J_g w_b max_rate), `loop_gain` K_p = 2 w_b J_g setting the bandwidth, the passive
     brake c = n H^2 / sqrt(C44 J) and the pendulum/spring k = J_g w_n^2 tuned to the roll."""
     jg = gyro.gimbal_inertia + gyro.rotor_j1
-    j = hull.inertia[0] + hull.added_roll_inertia + n * jg
+    j = hull.roll_inertia() + n * jg
     wn = math.sqrt(hull.roll_stiffness / j) if hull.roll_stiffness > 0 else 2 * math.pi / 10.0
     if loop_gain is not None:  # v0 name: the proportional gain K_p = 2 w_b J_g (zeta = 1)
         bandwidth = loop_gain / (2.0 * jg)
@@ -350,19 +358,19 @@ def drive_stable_step(
     drive: Any,
     gyro: Any,
     roll_inertia: float,
-    added_roll_inertia: float,
     roll_stiffness: float,
     roll_damping: float,
     n: int,
     eff: Any,
 ) -> float:
     """Largest stable RK4 physics step (s) of a `model.GimbalDrive` on its roll-gimbal
-    linearisation (`stable_physics_dt`) with the effects `eff`; the kinematic servo: 2.78 tau
-    (RK4 on -1/tau)."""
+    linearisation (`stable_physics_dt`) with the effects `eff` and the hull's roll inertia
+    (`Hull.roll_inertia`, with A44 per the effects); the kinematic servo: 2.78 tau (RK4 on
+    -1/tau)."""
     if drive.machine is None:
         return 2.785 * drive.servo_time_constant
     jg = gyro.gimbal_inertia + gyro.rotor_j1
-    j = roll_inertia + (added_roll_inertia if "added_inertia" in eff else 0.0)
+    j = roll_inertia
     h = abs(gyro.angular_momentum) if "gyroscopic" in eff else 0.0
     c44 = roll_stiffness if "hydrostatic_restoring" in eff else 0.0
     b44 = roll_damping if "roll_damping" in eff else 0.0

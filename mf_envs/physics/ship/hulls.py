@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import check_positive, nonnegative_scalar
 from mf_envs.physics.constants import RHO_SEAWATER, G
-from mf_envs.physics.ship.params import ShipParams
+from mf_envs.physics.ship.params import ShipParams, roll_inertia_of
 
 RHO_SEA = RHO_SEAWATER  # kg/m^3, sea water (the yacht); MSS uses 1014
 G_MSS = G  # m/s^2, navalvessel.m's const.g (= 9.81)
@@ -190,15 +190,15 @@ class Hull:
         b = self.roll_damping + self.roll_damping_speed * abs(speed)
         return -b * p - self.roll_damping_quadratic * np.abs(p) * p
 
+    def roll_inertia(self, added_inertia: bool = True) -> float:
+        """J44 + A44 (kg m^2; `params.roll_inertia_of`)."""
+        return roll_inertia_of(self, added_inertia)
+
     def natural_roll_period(self) -> float:
         """T_n = 2 pi sqrt((J44 + A44) / C44), s (inf without restoring)."""
         if self.roll_stiffness <= 0.0:
             return math.inf
-        return (
-            2.0
-            * math.pi
-            * math.sqrt((self.inertia[0] + self.added_roll_inertia) / self.roll_stiffness)
-        )
+        return 2.0 * math.pi * math.sqrt(self.roll_inertia() / self.roll_stiffness)
 
     def ship_params(self) -> ShipParams:
         """The `ShipParams` of the kernels (fields it has; gz_cubic, speed damping, length, beam
@@ -228,7 +228,7 @@ def roll_decay(
     from scipy.integrate import solve_ivp
 
     check_positive("t_end", t_end)
-    j = hull.inertia[0] + hull.added_roll_inertia
+    j = hull.roll_inertia()
 
     def rhs(t: float, x: NDArray) -> list[float]:
         m = hull.restoring_moment(x[0]) + hull.roll_damping_moment(x[1], speed)

@@ -43,7 +43,8 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.frames.kernels import make_rkmk4, rk4_work, rkmk4_rwork, sincos_near
+from mf_envs.frames.kernels import sincos_near
+from mf_envs.frames.steppers import make_rkmk4, rk4_work, rkmk4_rwork
 from mf_envs.physics.ship.coupling import N_COUPLING, solve_sway_roll_yaw
 from mf_envs.physics.ship.drive import end_stop
 from mf_envs.physics.ship.layout import (  # noqa: F401 (re-exported)

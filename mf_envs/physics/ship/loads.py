@@ -12,7 +12,7 @@ import numpy as np
 
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
-from mf_envs.physics.ship.drive import drive_torque
+from mf_envs.physics.ship.drive import drive_torque, stop_envelope
 from mf_envs.physics.ship.layout import (
     DRV0,
     GIMBAL_CONTINUOUS,
@@ -44,9 +44,7 @@ def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
     if P[S.LIMITS] > 0.5:
         rmax = P[S.RATEMAX]
         ue = min(max(ue, -rmax), rmax)
-        hi = (P[S.PHIMAX] - phi) / P[S.TSTOP]
-        lo = (-P[S.PHIMAX] - phi) / P[S.TSTOP]
-        ue = min(max(ue, lo), hi)
+        ue = stop_envelope(ue, phi, P[S.PHIMAX], P[S.TSTOP])
     return phi, phid, (ue - phid) / P[S.TAU]
 
 

@@ -322,6 +322,6 @@ def roll_inertia(
     """Exact roll inertia J_xx(phi) = J1 (+A44) + n [(J_g + J_r1) cos^2 phi + (J_g + J_r3) sin^2
     phi] (kg m^2); Eq. 123 uses its phi = 0 value."""
     jg = gyro.gimbal_inertia
-    j = ship.inertia[0] + (ship.added_roll_inertia if added else 0.0)
+    j = ship.roll_inertia(added)
     c2, s2 = math.cos(phi) ** 2, math.sin(phi) ** 2
     return j + n_gyros * ((jg + gyro.rotor_j1) * c2 + (jg + gyro.rotor_inertia) * s2)

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
 from mf_envs.physics.constants import RHO_SEAWATER, RPM, G
@@ -119,12 +120,22 @@ class ShipParams:
         ):
             check_nonnegative(name, getattr(self, name))
 
+    def roll_inertia(self, added_inertia: bool = True) -> float:
+        """J1 + A44 (kg m^2; without A44 if not `added_inertia`): `roll_inertia_of`."""
+        return roll_inertia_of(self, added_inertia)
+
     def natural_roll_period(self, added_inertia: bool = True) -> float:
         """T_n = 2 pi sqrt((J1 + A44) / C44) in s (inf without restoring)."""
         if self.roll_stiffness <= 0.0:
             return math.inf
-        j = self.inertia[0] + (self.added_roll_inertia if added_inertia else 0.0)
-        return 2.0 * math.pi * math.sqrt(j / self.roll_stiffness)
+        return 2.0 * math.pi * math.sqrt(self.roll_inertia(added_inertia) / self.roll_stiffness)
+
+
+def roll_inertia_of(hull: Any, added_inertia: bool = True) -> float:
+    """J1 + A44 (kg m^2) of a `ShipParams` or `hulls.Hull` (their `inertia`, `added_roll_inertia`;
+    without A44 if not `added_inertia`): the one definition of the hull's roll inertia that the
+    models, the drive sizing and the controllers use."""
+    return hull.inertia[0] + (hull.added_roll_inertia if added_inertia else 0.0)
 
 
 def seakeeper_gyro(model: str = "9", gimbal_inertia: float | None = None) -> GyroParams:

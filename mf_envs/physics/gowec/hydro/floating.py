@@ -45,7 +45,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs._jit import kernel
-from mf_envs.frames.kernels import make_rk4, rk4_work
+from mf_envs.frames.steppers import make_rk4, rk4_work
 
 N_MECH = 6
 N_ENERGY = 6
