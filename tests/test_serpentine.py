@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from mf_envs.physics.beam.banded import band_to_dense
+from mf_envs.physics.beam.solver import BeamModel
 from mf_envs.physics.serpentine import (
     BellyFriction,
     Serpentine,
@@ -19,6 +20,7 @@ from mf_envs.physics.serpentine import (
 )
 from mf_envs.physics.serpentine.friction import assemble_ground
 from mf_envs.physics.serpentine.gait import elastica_spline
+from mf_envs.physics.serpentine.theory import viscous_wave_speed
 
 G = 9.80665
 MU = (0.1, 0.15, 0.2)  # forward, backward, lateral
@@ -81,8 +83,15 @@ def test_regularisation_is_viscous_below_the_slip_speed():
 
 @pytest.mark.parametrize("viscous", [False, True])
 def test_ground_tangent_matches_finite_differences(viscous):
-    ground = BellyFriction(*MU, slip_speed=1e-3, viscous=viscous, c_tangential=0.3,
-                           c_normal=1.1, drag_rate=0.5, couple_damping=2e-4)  # fmt: skip
+    ground = BellyFriction(
+        *MU,
+        slip_speed=1e-3,
+        viscous=viscous,
+        c_tangential=0.3,
+        c_normal=1.1,
+        drag_rate=0.5,
+        couple_damping=2e-4,
+    )
     s = _snake(n_el=3, ground=ground)
     m = s.model
     rng = np.random.default_rng(3)
@@ -167,6 +176,26 @@ def test_frictionless_body_released_from_a_bent_rest_shape_conserves_energy():
     assert energy[0] > 1e-4  # the straight body stores the bent rest shape's energy
     assert np.max(np.abs(energy - energy[0])) < 1e-9 * energy[0]
     assert np.max(h.kinetic_energy()) > 0.3 * energy[0]  # and it swings
+
+
+@pytest.mark.parametrize("wavelength", [0.35, 0.7])
+def test_small_amplitude_wave_on_viscous_ground_crawls_at_the_slender_body_speed(wavelength):
+    """theory.viscous_wave_speed (our O(eps^2) resistive-force derivation with recoil) for a
+    stiff body (E = 1e12 Pa: the shape is kappa#) with 0.05 rad slope amplitude; measured
+    ratios 0.998 (lambda = L, 16 elements) and 0.9997 (lambda = 2 L); the rest is O(eps^2)."""
+    period, length = 2.0, 0.35
+    p = rod_params(length, 0.011 * length, 1e12, 1e12 / 1.5, 1000.0, 16)
+    k = 2 * np.pi / wavelength
+    a = 0.05 * k
+    ground = BellyFriction(viscous=True, c_tangential=10.0, c_normal=20.0)
+    gait = serpenoid(BeamModel(p).gauss_S, a, wavelength, period, direction=1, ramp_time=period)
+    h = Serpentine(p, ground, gait).simulate(3 * period, 0.02)
+    com = h.com()
+    i, j = (int(np.argmin(np.abs(h.t - n * period))) for n in (1, 3))
+    speed = (com[j, 0] - com[i, 0]) / (h.t[j] - h.t[i])
+    want = viscous_wave_speed(length, k, 2 * np.pi / period, a, 10.0, 20.0)
+    assert want < 0.0  # against the wave
+    assert speed == pytest.approx(want, rel=5e-3)
 
 
 def test_spline_is_pyelastica_own():

@@ -55,11 +55,63 @@ def elastica_projected_speed(t: np.ndarray, com: np.ndarray) -> float:
     vel = np.gradient(com, t, axis=0)
     step = int(round(PERIOD / (t[1] - t[0])))
     n_per = len(t) // step
-    disp = [np.mean(com[(i + 1) * step : (i + 2) * step] - com[i * step : (i + 1) * step], 0)
-            for i in range(1, n_per - 1)]  # fmt: skip
+    disp = [
+        np.mean(com[(i + 1) * step : (i + 2) * step] - com[i * step : (i + 1) * step], 0)
+        for i in range(1, n_per - 1)
+    ]
     heading = np.mean(disp, axis=0)
     heading /= np.linalg.norm(heading)
     return float(np.mean(vel[2 * step :] @ heading))
+
+
+def _elastica_snake(n_elem: int, dt: float):
+    """PyElastica's simulator and rod of the example (module docstring), not finalized."""
+    import elastica as ea
+
+    class Sim(
+        ea.BaseSystemCollection, ea.Constraints, ea.Forcing, ea.Damping, ea.Contact, ea.CallBacks
+    ):
+        pass
+
+    sim = Sim()
+    normal = np.array([0.0, 1.0, 0.0])
+    rod = ea.CosseratRod.straight_rod(
+        n_elem,
+        np.zeros(3),
+        np.array([0.0, 0.0, 1.0]),
+        normal,
+        L,
+        RADIUS,
+        RHO,
+        youngs_modulus=E,
+        shear_modulus=SHEAR,
+    )
+    sim.append(rod)
+    sim.add_forcing_to(rod).using(ea.GravityForces, acc_gravity=np.array([0.0, -G_ACC, 0.0]))
+    sim.add_forcing_to(rod).using(
+        ea.MuscleTorques,
+        base_length=L,
+        b_coeff=COEFFS,
+        period=PERIOD,
+        wave_number=2.0 * np.pi / WAVELENGTH,
+        phase_shift=0.0,
+        rest_lengths=rod.rest_lengths,
+        ramp_up_time=PERIOD,
+        direction=normal,
+        with_spline=True,
+    )
+    plane = ea.Plane(plane_origin=np.array([0.0, -RADIUS, 0.0]), plane_normal=normal)
+    sim.append(plane)
+    sim.detect_contact_between(rod, plane).using(
+        ea.RodPlaneContactWithAnisotropicFriction,
+        k=1.0,
+        nu=1e-6,
+        slip_velocity_tol=1e-8,
+        static_mu_array=np.zeros(3),
+        kinetic_mu_array=MU * np.array([1.0, 1.5, 2.0]),
+    )
+    sim.dampen(rod).using(ea.AnalyticalLinearDamper, damping_constant=DAMPING, time_step=dt)
+    return sim, rod
 
 
 def run_elastica(n_elem: int = 50, dt: float = 1e-4, t_end: float = N_PERIODS * PERIOD):
@@ -67,26 +119,7 @@ def run_elastica(n_elem: int = 50, dt: float = 1e-4, t_end: float = N_PERIODS * 
     wall seconds of the time loop)."""
     import elastica as ea
 
-    class Sim(ea.BaseSystemCollection, ea.Constraints, ea.Forcing, ea.Damping, ea.Contact,
-              ea.CallBacks):  # fmt: skip
-        pass
-
-    sim = Sim()
-    normal = np.array([0.0, 1.0, 0.0])
-    rod = ea.CosseratRod.straight_rod(n_elem, np.zeros(3), np.array([0.0, 0.0, 1.0]), normal, L,
-                                      RADIUS, RHO, youngs_modulus=E, shear_modulus=SHEAR)  # fmt: skip
-    sim.append(rod)
-    sim.add_forcing_to(rod).using(ea.GravityForces, acc_gravity=np.array([0.0, -G_ACC, 0.0]))
-    sim.add_forcing_to(rod).using(
-        ea.MuscleTorques, base_length=L, b_coeff=COEFFS, period=PERIOD,
-        wave_number=2.0 * np.pi / WAVELENGTH, phase_shift=0.0, rest_lengths=rod.rest_lengths,
-        ramp_up_time=PERIOD, direction=normal, with_spline=True)  # fmt: skip
-    plane = ea.Plane(plane_origin=np.array([0.0, -RADIUS, 0.0]), plane_normal=normal)
-    sim.append(plane)
-    sim.detect_contact_between(rod, plane).using(
-        ea.RodPlaneContactWithAnisotropicFriction, k=1.0, nu=1e-6, slip_velocity_tol=1e-8,
-        static_mu_array=np.zeros(3), kinetic_mu_array=MU * np.array([1.0, 1.5, 2.0]))  # fmt: skip
-    sim.dampen(rod).using(ea.AnalyticalLinearDamper, damping_constant=DAMPING, time_step=dt)
+    sim, rod = _elastica_snake(n_elem, dt)
     rec: dict[str, list] = {"t": [], "com": []}
     every = max(1, int(round(SAMPLE / dt)))
 
@@ -111,15 +144,22 @@ def snake(n_el: int = 10, slip_speed: float = 1e-4, damper: bool = True) -> Serp
     """Our serpentine beam with PyElastica's snake's parameters (module docstring)."""
     p = rod_params(L, RADIUS, E, SHEAR, RHO, n_el)
     drag, couple = (DAMPING, DAMPING * p.mass_per_length) if damper else (0.0, 0.0)
-    ground = BellyFriction(MU, 1.5 * MU, 2.0 * MU, slip_speed=slip_speed, drag_rate=drag,
-                           couple_damping=couple)  # fmt: skip
+    ground = BellyFriction(
+        MU, 1.5 * MU, 2.0 * MU, slip_speed=slip_speed, drag_rate=drag, couple_damping=couple
+    )
     gauss_s = BeamModel(p).gauss_S
     gait = elastica_muscles(gauss_s, L, p.EI, COEFFS, WAVELENGTH, PERIOD, PERIOD)
     return Serpentine(p, ground, gait, gravity=G_ACC)
 
 
-def run_ours(n_el: int = 10, dt: float = 0.01, slip_speed: float = 1e-4, damper: bool = True,
-             theta: float = 1.0, t_end: float = N_PERIODS * PERIOD):  # fmt: skip
+def run_ours(
+    n_el: int = 10,
+    dt: float = 0.01,
+    slip_speed: float = 1e-4,
+    damper: bool = True,
+    theta: float = 1.0,
+    t_end: float = N_PERIODS * PERIOD,
+):
     """-> (t, com (N, 2), wall seconds, Newton iterations)."""
     s = snake(n_el, slip_speed, damper)
     s.simulate(4 * dt, dt)  # compile / warm
@@ -131,8 +171,10 @@ def run_ours(n_el: int = 10, dt: float = 0.01, slip_speed: float = 1e-4, damper:
 
 def _row(name, t, com, wall):
     v5, vp = forward_speed(t, com), elastica_projected_speed(t, com)
-    print(f"{name:38s} v(5-11) {1e3 * v5:7.3f} mm/s  projected {1e3 * vp:7.3f} mm/s  "
-          f"wall {wall:7.3f} s")  # fmt: skip
+    print(
+        f"{name:38s} v(5-11) {1e3 * v5:7.3f} mm/s  projected {1e3 * vp:7.3f} mm/s  "
+        f"wall {wall:7.3f} s"
+    )
     return v5, wall
 
 
@@ -160,8 +202,10 @@ def main(argv: list[str] | None = None) -> None:
         name = f"ours n={n_el} dt={dt:g} v_eps={v_eps:g}{'' if damper else ' no-damper'} th={th:g}"
         v5, _ = _row(name, t, com, wall)
         if ref is not None:
-            print(f"{'':38s} speed / PyElastica {v5 / ref[0]:.4f}  wall ratio {ref[1] / wall:.1f}x"
-                  f"  Newton its/step {its / (N_PERIODS * PERIOD / dt):.2f}")  # fmt: skip
+            print(
+                f"{'':38s} speed / PyElastica {v5 / ref[0]:.4f}  wall ratio {ref[1] / wall:.1f}x"
+                f"  Newton its/step {its / (N_PERIODS * PERIOD / dt):.2f}"
+            )
 
 
 if __name__ == "__main__":

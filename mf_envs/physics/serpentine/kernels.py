@@ -115,8 +115,26 @@ def advance(d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_ha
 
 
 @numba.njit(cache=True)
-def run(d, v, t0, dt, n_steps, every, mass, le, quad, ground, gait, th, tol, max_iter,
-        max_halvings, d_out, v_out, t_out):  # fmt: skip
+def run(
+    d,
+    v,
+    t0,
+    dt,
+    n_steps,
+    every,
+    mass,
+    le,
+    quad,
+    ground,
+    gait,
+    th,
+    tol,
+    max_iter,
+    max_halvings,
+    d_out,
+    v_out,
+    t_out,
+):
     """n_steps steps of dt from (d, v) at t0 (in place); every `every` steps (and at the start)
     the state goes to row j of d_out, v_out (rows, n_dof) and t_out. Returns (total Newton
     iterations, index of the failed step or -1)."""
@@ -140,8 +158,9 @@ def run(d, v, t0, dt, n_steps, every, mass, le, quad, ground, gait, th, tol, max
     t_out[0] = t0
     for n in range(n_steps):
         t = t0 + n * dt
-        its = advance(d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter,
-                      max_halvings, scratch)  # fmt: skip
+        its = advance(
+            d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_halvings, scratch
+        )
         if its < 0:
             return total, n
         total += its
@@ -152,4 +171,3 @@ def run(d, v, t0, dt, n_steps, every, mass, le, quad, ground, gait, th, tol, max
                 v_out[j, i] = v[i]
             t_out[j] = t0 + (n + 1) * dt
     return total, -1
-

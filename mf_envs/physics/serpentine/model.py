@@ -77,7 +77,10 @@ class SnakeHistory:
 
     def com(self) -> np.ndarray:
         """(N, 2) centre of mass [m] (uniform m_A: int z dS / L, 4-point Gauss)."""
-        return np.array([_integrate(self.model, d, None)[0] for d in self.d]) / self.model.params.length
+        return (
+            np.array([_integrate(self.model, d, None)[0] for d in self.d])
+            / self.model.params.length
+        )
 
     def momentum(self) -> tuple[np.ndarray, np.ndarray]:
         """Linear momentum (N, 2) [kg m/s] and angular momentum about the origin (N,) [kg m^2/s]:
@@ -134,7 +137,9 @@ class Serpentine:
         if gait is None:
             gait = WaveGait(np.zeros(shape), np.zeros(shape), 0.0)
         if np.shape(gait.amplitude) != shape:
-            raise ValueError(f"gait: tabulated on {np.shape(gait.amplitude)}, the beam needs {shape}")
+            raise ValueError(
+                f"gait: tabulated on {np.shape(gait.amplitude)}, the beam needs {shape}"
+            )
         self.gait = gait
 
     @property
@@ -147,10 +152,18 @@ class Serpentine:
         f = np.zeros(self.model.n_dof)
         ab = np.zeros((21, self.model.n_dof))
         m = self.model
-        power = assemble_ground(
-            d, v, m.le, self.normal_load, m.params.mass_per_length, self.ground.packed(), f, ab, 0.0, 0.0
-        )
+        args = (m.le, self.normal_load, m.params.mass_per_length, self.ground.packed())
+        power = assemble_ground(d, v, *args, f, ab, 0.0, 0.0)
         return f, float(power)
+
+    def _start(self, d0: np.ndarray | None, v0: np.ndarray | None):
+        m = self.model
+        d = m.straight() if d0 is None else np.array(d0, float)
+        v = np.zeros(m.n_dof) if v0 is None else np.array(v0, float)
+        for name, arr in (("d0", d), ("v0", v)):
+            if arr.shape != (m.n_dof,) or not np.all(np.isfinite(arr)):
+                raise ValueError(f"{name}: need {m.n_dof} finite values")
+        return d, v
 
     def simulate(
         self,
@@ -172,25 +185,38 @@ class Serpentine:
         check_range("theta", theta, 0.5, 1.0)
         check_positive("tol", tol)
         m = self.model
-        d = m.straight() if d0 is None else np.array(d0, float)
-        v = np.zeros(m.n_dof) if v0 is None else np.array(v0, float)
-        for name, arr in (("d0", d), ("v0", v)):
-            if arr.shape != (m.n_dof,) or not np.all(np.isfinite(arr)):
-                raise ValueError(f"{name}: need {m.n_dof} finite values")
+        d, v = self._start(d0, v0)
         n_steps = int(round(t_end / dt))
         rows = n_steps // every + 1
         d_out, v_out, t_out = np.zeros((rows, m.n_dof)), np.zeros((rows, m.n_dof)), np.zeros(rows)
         quad = (*m.quad, m.u_scale)
         ground = (self.normal_load, m.params.mass_per_length, self.ground.packed())
         g = self.gait
-        gait = (np.ascontiguousarray(g.amplitude, float), np.ascontiguousarray(g.phase, float),
-                float(g.omega), float(g.ramp_time))  # fmt: skip
-        its, failed = kernels.run(d, v, 0.0, float(dt), n_steps, every, m.mass, m.le, quad,
-                                  ground, gait, float(theta), float(tol), int(max_iter),
-                                  int(max_halvings), d_out, v_out, t_out)  # fmt: skip
+        a_gp, phi_gp = (np.ascontiguousarray(x, float) for x in (g.amplitude, g.phase))
+        gait = (a_gp, phi_gp, float(g.omega), float(g.ramp_time))
+        its, failed = kernels.run(
+            d,
+            v,
+            0.0,
+            float(dt),
+            n_steps,
+            every,
+            m.mass,
+            m.le,
+            quad,
+            ground,
+            gait,
+            float(theta),
+            float(tol),
+            int(max_iter),
+            int(max_halvings),
+            d_out,
+            v_out,
+            t_out,
+        )
         if failed >= 0:
             raise NewtonDivergence(
                 f"dt: Newton failed at step {failed} (t = {failed * dt:.6g} s) even after "
-                f"{2 ** max_halvings} sub-steps"
+                f"{2**max_halvings} sub-steps"
             )
         return SnakeHistory(t_out, d_out, v_out, m, int(its))
