@@ -10,6 +10,7 @@ import pytest
 
 from mf_envs.physics.beam.banded import band_to_dense
 from mf_envs.physics.beam.solver import BeamModel
+from mf_envs.physics.constants import G
 from mf_envs.physics.serpentine import (
     BellyFriction,
     Serpentine,
@@ -22,7 +23,6 @@ from mf_envs.physics.serpentine.friction import assemble_ground
 from mf_envs.physics.serpentine.gait import elastica_spline
 from mf_envs.physics.serpentine.theory import viscous_wave_speed
 
-G = 9.80665
 MU = (0.1, 0.15, 0.2)  # forward, backward, lateral
 
 

@@ -2,7 +2,9 @@
 
 PyElastica: `examples/ContinuumSnakeCase/continuum_snake.py` with its parameters (L = 0.35 m,
 r = 0.011 L, E = 1 MPa, G = E / 1.5 (the example's `E / (poisson + 1)`), rho = 1000 kg/m^3,
-gravity 9.80665 m/s^2 normal to the plane, muscle torques from the spline coefficients
+gravity normal to the plane (the example's 9.80665 m/s^2; we run both codes at the project's
+g = 9.81, `physics.constants.G`: the friction force mu m g = m L / (T^2 Fr) does not depend on g,
+and nothing else does), muscle torques from the spline coefficients
 (3.4, 3.3, 4.2, 2.6, 3.6, 3.5) e-3 N m, wavelength 1.0 L, period 2 s, ramp over one period,
 kinetic mu (forward, backward, lateral) = (1, 1.5, 2) L / (T^2 g Fr), Fr = 0.1, static mu 0,
 slip tolerance 1e-8 m/s, plane contact k = 1, nu = 1e-6, AnalyticalLinearDamper with
@@ -30,10 +32,11 @@ import time
 import numpy as np
 
 from mf_envs.physics.beam.solver import BeamModel
+from mf_envs.physics.constants import G
 from mf_envs.physics.serpentine import BellyFriction, Serpentine, elastica_muscles, rod_params
 
 L, PERIOD, N_PERIODS = 0.35, 2.0, 11.01
-RADIUS, E, RHO, G_ACC, FROUDE = 0.011 * L, 1e6, 1000.0, 9.80665, 0.1
+RADIUS, E, RHO, G_ACC, FROUDE = 0.011 * L, 1e6, 1000.0, G, 0.1
 SHEAR = E / 1.5
 COEFFS = np.array([3.4e-3, 3.3e-3, 4.2e-3, 2.6e-3, 3.6e-3, 3.5e-3])
 WAVELENGTH = 1.0

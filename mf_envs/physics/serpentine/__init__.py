@@ -4,10 +4,9 @@ and the model (`model`). See docs/serpentine.md."""
 
 from mf_envs.physics.serpentine.friction import BellyFriction
 from mf_envs.physics.serpentine.gait import WaveGait, elastica_muscles, serpenoid
-from mf_envs.physics.serpentine.model import G_STANDARD, Serpentine, SnakeHistory, rod_params
+from mf_envs.physics.serpentine.model import Serpentine, SnakeHistory, rod_params
 
 __all__ = [
-    "G_STANDARD",
     "BellyFriction",
     "Serpentine",
     "SnakeHistory",

@@ -24,11 +24,10 @@ from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam import fields
 from mf_envs.physics.beam.banded import band_matvec
 from mf_envs.physics.beam.solver import BeamModel, BeamParams, NewtonDivergence
+from mf_envs.physics.constants import G
 from mf_envs.physics.serpentine import kernels
 from mf_envs.physics.serpentine.friction import BellyFriction, assemble_ground
 from mf_envs.physics.serpentine.gait import WaveGait
-
-G_STANDARD = 9.80665  # m/s^2
 
 
 def rod_params(
@@ -126,7 +125,7 @@ class Serpentine:
         params: BeamParams,
         ground: BellyFriction | None = None,
         gait: WaveGait | None = None,
-        gravity: float = G_STANDARD,
+        gravity: float = G,
     ) -> None:
         if params.mass_per_length <= 0.0:
             raise ValueError("mass_per_length: a crawling body needs mass, got 0")
