@@ -36,11 +36,10 @@ from mf_envs.physics.constants import G
 from mf_envs.physics.serpentine import BellyFriction, Serpentine, elastica_muscles, rod_params
 
 L, PERIOD, N_PERIODS = 0.35, 2.0, 11.01
-RADIUS, E, RHO, G_ACC, FROUDE = 0.011 * L, 1e6, 1000.0, G, 0.1
+RADIUS, E, RHO, FROUDE = 0.011 * L, 1e6, 1000.0, 0.1
 SHEAR = E / 1.5
 COEFFS = np.array([3.4e-3, 3.3e-3, 4.2e-3, 2.6e-3, 3.6e-3, 3.5e-3])
 WAVELENGTH = 1.0
-MU = L / (PERIOD**2 * G_ACC * FROUDE)
 DAMPING = 2e-3
 SAMPLE = 0.02  # s between stored centre-of-mass samples
 
@@ -67,7 +66,12 @@ def elastica_projected_speed(t: np.ndarray, com: np.ndarray) -> float:
     return float(np.mean(vel[2 * step :] @ heading))
 
 
-def _elastica_snake(n_elem: int, dt: float):
+def _mu(g: float) -> float:
+    """The example's kinetic mu = L / (T^2 g Fr)."""
+    return L / (PERIOD**2 * g * FROUDE)
+
+
+def _elastica_snake(n_elem: int, dt: float, g: float):
     """PyElastica's simulator and rod of the example (module docstring), not finalized."""
     import elastica as ea
 
@@ -90,7 +94,7 @@ def _elastica_snake(n_elem: int, dt: float):
         shear_modulus=SHEAR,
     )
     sim.append(rod)
-    sim.add_forcing_to(rod).using(ea.GravityForces, acc_gravity=np.array([0.0, -G_ACC, 0.0]))
+    sim.add_forcing_to(rod).using(ea.GravityForces, acc_gravity=np.array([0.0, -g, 0.0]))
     sim.add_forcing_to(rod).using(
         ea.MuscleTorques,
         base_length=L,
@@ -111,18 +115,20 @@ def _elastica_snake(n_elem: int, dt: float):
         nu=1e-6,
         slip_velocity_tol=1e-8,
         static_mu_array=np.zeros(3),
-        kinetic_mu_array=MU * np.array([1.0, 1.5, 2.0]),
+        kinetic_mu_array=_mu(g) * np.array([1.0, 1.5, 2.0]),
     )
     sim.dampen(rod).using(ea.AnalyticalLinearDamper, damping_constant=DAMPING, time_step=dt)
     return sim, rod
 
 
-def run_elastica(n_elem: int = 50, dt: float = 1e-4, t_end: float = N_PERIODS * PERIOD):
+def run_elastica(
+    n_elem: int = 50, dt: float = 1e-4, t_end: float = N_PERIODS * PERIOD, g: float = G
+):
     """PyElastica's continuum snake (module docstring) -> (t, com (N, 2) in the ground plane,
     wall seconds of the time loop)."""
     import elastica as ea
 
-    sim, rod = _elastica_snake(n_elem, dt)
+    sim, rod = _elastica_snake(n_elem, dt, g)
     rec: dict[str, list] = {"t": [], "com": []}
     every = max(1, int(round(SAMPLE / dt)))
 
@@ -143,16 +149,23 @@ def run_elastica(n_elem: int = 50, dt: float = 1e-4, t_end: float = N_PERIODS * 
     return np.array(rec["t"]), com[:, [2, 0]], wall  # (z, x) of PyElastica = the ground plane
 
 
-def snake(n_el: int = 10, slip_speed: float = 1e-4, damper: bool = True) -> Serpentine:
+def snake(
+    n_el: int = 10, slip_speed: float = 1e-4, damper: bool = True, g: float = G
+) -> Serpentine:
     """Our serpentine beam with PyElastica's snake's parameters (module docstring)."""
     p = rod_params(L, RADIUS, E, SHEAR, RHO, n_el)
     drag, couple = (DAMPING, DAMPING * p.mass_per_length) if damper else (0.0, 0.0)
     ground = BellyFriction(
-        MU, 1.5 * MU, 2.0 * MU, slip_speed=slip_speed, drag_rate=drag, couple_damping=couple
+        _mu(g),
+        1.5 * _mu(g),
+        2.0 * _mu(g),
+        slip_speed=slip_speed,
+        drag_rate=drag,
+        couple_damping=couple,
     )
     gauss_s = BeamModel(p).gauss_S
     gait = elastica_muscles(gauss_s, L, p.EI, COEFFS, WAVELENGTH, PERIOD, PERIOD)
-    return Serpentine(p, ground, gait, gravity=G_ACC)
+    return Serpentine(p, ground, gait, gravity=g)
 
 
 def run_ours(
@@ -162,9 +175,10 @@ def run_ours(
     damper: bool = True,
     theta: float = 1.0,
     t_end: float = N_PERIODS * PERIOD,
+    g: float = G,
 ):
     """-> (t, com (N, 2), wall seconds, Newton iterations)."""
-    s = snake(n_el, slip_speed, damper)
+    s = snake(n_el, slip_speed, damper, g)
     s.simulate(4 * dt, dt)  # compile / warm
     t0 = time.perf_counter()
     h = s.simulate(t_end, dt, every=max(1, int(round(SAMPLE / dt))), theta=theta)
@@ -185,13 +199,14 @@ def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="skip PyElastica's 25-element run")
     ap.add_argument("--no-elastica", action="store_true", help="ours only")
+    ap.add_argument("--gravity", type=float, default=G, help="g [m/s^2] of both codes")
     args = ap.parse_args(argv)
     ref = None
     if not args.no_elastica:
-        run_elastica(n_elem=50, t_end=0.01)  # numba warm-up
-        ref = _row("pyelastica n=50 dt=1e-4", *run_elastica(50, 1e-4))
+        run_elastica(n_elem=50, t_end=0.01, g=args.gravity)  # numba warm-up
+        ref = _row("pyelastica n=50 dt=1e-4", *run_elastica(50, 1e-4, g=args.gravity))
         if not args.quick:
-            _row("pyelastica n=25 dt=1e-4", *run_elastica(25, 1e-4))
+            _row("pyelastica n=25 dt=1e-4", *run_elastica(25, 1e-4, g=args.gravity))
     for n_el, dt, v_eps, damper, th in (
         (10, 0.01, 1e-4, True, 1.0),
         (10, 0.005, 1e-4, True, 1.0),
@@ -201,7 +216,7 @@ def main(argv: list[str] | None = None) -> None:
         (10, 0.01, 1e-4, True, 0.5),
         (6, 0.02, 1e-4, True, 1.0),
     ):
-        t, com, wall, its = run_ours(n_el, dt, v_eps, damper, th)
+        t, com, wall, its = run_ours(n_el, dt, v_eps, damper, th, g=args.gravity)
         name = f"ours n={n_el} dt={dt:g} v_eps={v_eps:g}{'' if damper else ' no-damper'} th={th:g}"
         v5, _ = _row(name, t, com, wall)
         if ref is not None:
