@@ -182,7 +182,7 @@ def test_frictionless_body_released_from_a_bent_rest_shape_conserves_energy():
 def test_small_amplitude_wave_on_viscous_ground_crawls_at_the_slender_body_speed(wavelength):
     """theory.viscous_wave_speed (our O(eps^2) resistive-force derivation with recoil) for a
     stiff body (E = 1e12 Pa: the shape is kappa#) with 0.05 rad slope amplitude; measured
-    ratios 0.9982 (lambda = L) and 1.00002 (lambda = 2 L), 16 elements; the rest is O(eps^2)."""
+    ratios 0.9982 (lambda = L) and 1.00002 (lambda = 2 L), 16 elements (mesh and higher order)."""
     period, length = 2.0, 0.35
     p = rod_params(length, 0.011 * length, 1e12, 1e12 / 1.5, 1000.0, 16)
     k = 2 * np.pi / wavelength
