@@ -18,6 +18,7 @@ import numpy as np
 
 from mf_envs._validate import as_action, check_range
 from mf_envs.effects import resolve_effects
+from mf_envs.envs._spec import check_options
 
 MIN_DT = 1e-6  # s, smallest control or physics step
 MAX_CONTROL_DT = 60.0  # s, largest control step
@@ -145,7 +146,47 @@ class MFEnv(gym.Env):
             return -1.0 if u < -1.0 else (1.0 if u > 1.0 else u)
         return float(self._validate_action(action)[0])
 
+    # ------------------------------------------------------------------ reset
+    RESET_OPTIONS: tuple[str, ...] = ()  # the keys reset(options=...) takes
+
+    def reset(
+        self, *, seed: int | None = None, options: Mapping[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Every env's reset: the options checked (unknown keys, then each value by the
+        subclass's `_check_reset_options`) before any draw, so a refused reset leaves the
+        generator untouched; then seeding, the step counter at 0, the subclass's `_start(opts)`
+        (the start drawn from `self.np_random`; returns (observation, info)), and the
+        observation clipped to its bounds (`_finish_reset`)."""
+        opts = self._check_reset_options(check_options(options, self.RESET_OPTIONS))
+        super().reset(seed=seed)
+        self._steps = 0
+        obs, info = self._start(opts)
+        return self._finish_reset(obs), info
+
+    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
+        """The reset options' values, validated (ValueError naming the key); no draws."""
+        return opts
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
+        """Draw and set the start state (from `self.np_random`, honouring `opts`); return the
+        observation and the reset info."""
+        raise TypeError(f"{type(self).__name__} does not define _start()")
+
     # ------------------------------------------------------------------ numerics
+    def _step_ok(
+        self,
+        obs: np.ndarray,
+        reward: float,
+        terminated: bool,
+        truncated: bool,
+        info: dict[str, Any],
+    ) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        """The end of a healthy step whose observation the env's kernel already checked finite
+        and clipped to the bounds: `_finish_step`'s contract without repeating its checks."""
+        info["numerical_failure"] = False
+        self._last_obs = obs
+        return obs, reward, terminated, truncated, info
+
     def _finish_step(
         self,
         obs: np.ndarray,

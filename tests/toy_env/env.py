@@ -7,7 +7,7 @@ from gymnasium import spaces
 from scipy.linalg import expm
 
 from mf_envs._validate import check_range, positive_scalar
-from mf_envs.envs._spec import Field, ObsLayout, check_options
+from mf_envs.envs._spec import Field, ObsLayout
 from mf_envs.envs.base import MFEnv
 
 OBS = ObsLayout(
@@ -77,15 +77,14 @@ class ToyOscillatorEnv(MFEnv):
         self.observation_space = spaces.Box(-high, high, dtype=np.float32)
         self.state = np.zeros(2)
 
-    def reset(self, *, seed=None, options=None):
-        opts = check_options(options, self.RESET_OPTIONS)
-        given = {k: check_range(k, v, -MAX_START, MAX_START) for k, v in opts.items()}
-        super().reset(seed=seed)
+    def _check_reset_options(self, opts):  # MFEnv.reset: checked before any draw
+        return {k: check_range(k, v, -MAX_START, MAX_START) for k, v in opts.items()}
+
+    def _start(self, opts):  # MFEnv.reset: after seeding, with the step counter at 0
         self.state = self.np_random.uniform(-0.1, 0.1, 2)
-        for k, v in given.items():
+        for k, v in opts.items():
             self.state[OBS.index(k)] = v
-        self._steps = 0
-        return self._finish_reset(self.state.copy()), self._info(0.0)
+        return self.state.copy(), self._info(0.0)
 
     def step(self, action):
         u = self._scalar_action(action)

@@ -11,7 +11,6 @@ from gymnasium import spaces
 from mf_envs._validate import (
     check_range,
 )
-from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec import build, rows, spec
 from mf_envs.envs.gowec.render import wave_frame
@@ -212,16 +211,10 @@ class GOWECEnv(MFEnv):
             return self._finish_step(self._obs, reward, False, truncated, info, False)
         self._last_power = power = energy / self.control_dt
         info = spec.step_info(power, phi, phid, w1, eta, self._t, reward)
-        info["numerical_failure"] = False
         info["overspeed"] = overspeed
-        # the base class's _finish_step contract, inlined for speed: obs finite and within bounds
-        obs = self._last_obs = self._obs.copy()
-        return obs, float(reward), overspeed, truncated, info
+        return self._step_ok(self._obs.copy(), float(reward), overspeed, truncated, info)
 
-    def reset(
-        self, *, seed: int | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]:
-        opts = check_options(options, spec.RESET_OPTIONS)  # all checks before any draw
+    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         angle = 4.0 * math.pi
         for key, bound in (("gimbal_angle", angle), ("wave_phase", angle)):
             if key in opts:
@@ -229,11 +222,13 @@ class GOWECEnv(MFEnv):
         if "gimbal_rate" in opts:
             g = self.max_gimbal_rate
             opts["gimbal_rate"] = check_range("gimbal_rate", opts["gimbal_rate"], -g, g)
-        super().reset(seed=seed)
-        rng = self.np_random
-        phi = float(opts.get("gimbal_angle", rng.uniform(-0.1, 0.1)))
+        return opts
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
+        rng = self.np_random  # the start distribution is rows.PHI0, rows.PHASE0 (vector env's)
+        phi = float(opts.get("gimbal_angle", rng.uniform(*rows.PHI0)))
         phid = float(opts.get("gimbal_rate", 0.0))
-        phase = float(opts.get("wave_phase", rng.uniform(0, 2 * math.pi)))
+        phase = float(opts.get("wave_phase", rng.uniform(*rows.PHASE0)))
         if "irregular_waves" in self.effects:
             hs = 2.0 * math.sqrt(2.0) * self.wave_amplitude
             self.wave = waves.IrregularSea(
@@ -251,7 +246,7 @@ class GOWECEnv(MFEnv):
             self.model = self._model0.with_phases([phase])
         self.wave = self.model.wave
         self.state = np.array([phi, phid])
-        self._t, self._steps = 0.0, 0
+        self._t = 0.0
         w = self.model.rates(0.0)[0]
         self._w = tuple(w)
         self._eta = float(self.wave.elevation(0.0))
@@ -259,7 +254,7 @@ class GOWECEnv(MFEnv):
         rows.observe(phi, phid, 0.0, w[0], w[1], w[2], self.max_gimbal_rate, self._obs)
         info = spec.step_info(0.0, phi, phid, float(w[0]), self._eta, 0.0, 0.0)
         info["overspeed"] = False
-        return self._finish_reset(self._obs.copy()), info
+        return self._obs.copy(), info
 
     def batch_row(self) -> dict[str, Any]:
         """The state the native vector env copies into its row after a reset: gimbal state,

@@ -10,7 +10,6 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
-from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import build, spec
 from mf_envs.envs.gowec_v1.rows import observe_one, step_one
@@ -196,8 +195,7 @@ class GOWECV1Env(MFEnv):
         info["reward_terms"] = {"net_electrical_energy": reward}
         info["overspeed"], info["out_of_range"] = over, out
         if finite and math.isfinite(reward):  # _finish_step's checks, done in the kernel
-            self._last_obs = obs
-            return obs, reward, over or out, truncated, info
+            return self._step_ok(obs, reward, over or out, truncated, info)
         return self._finish_step(obs, reward, over or out, truncated, info, True)
 
     def _loss(self) -> float:
@@ -214,10 +212,7 @@ class GOWECV1Env(MFEnv):
             self._consts_val, self._consts_key = (self._loss(), sp.low, sp.high, lim), key
         return self._consts_val
 
-    def reset(
-        self, *, seed: int | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]:
-        opts = check_options(options, spec.RESET_OPTIONS)
+    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         lim = {
             "buoy_pitch": spec.MAX_BUOY_ANGLE,
             "buoy_roll": spec.MAX_BUOY_ANGLE,
@@ -226,7 +221,9 @@ class GOWECV1Env(MFEnv):
         }
         for k in opts:
             opts[k] = check_range(k, opts[k], -lim[k], lim[k])
-        super().reset(seed=seed)
+        return opts
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
         rng = self.np_random
         if self.irregular:
             hs = 2.0 * math.sqrt(2.0) * self.wave_amplitude
@@ -257,12 +254,12 @@ class GOWECV1Env(MFEnv):
             opts.get("gimbal_angle", float(rng.uniform(-0.1, 0.1))),
             opts.get("gimbal_rate", 0.0),
         )
-        self._t, self._steps = 0.0, 0
+        self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
         info.update(
             reward_terms={"net_electrical_energy": 0.0}, overspeed=False, out_of_range=False
         )
-        return self._finish_reset(self._get_obs()), info
+        return self._get_obs(), info
 
     def _info(self, p_el: float, p_mech: float, tau: float) -> dict[str, Any]:
         """The info of the current state (reset): the same compiled quantities as a step."""

@@ -10,7 +10,6 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
-from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gyro_stabilizer import build, render, rows, spec
 from mf_envs.physics.ship import kernels as K
@@ -219,27 +218,24 @@ class GyroStabilizerEnv(MFEnv):
         truncated = self._steps >= self.max_steps
         if not (ok and math.isfinite(reward)):
             return self._finish_step(obs, reward, False, truncated, info, False)
-        info["numerical_failure"] = False  # MFEnv._finish_step contract, without its overhead
-        self._last_obs = obs
         if self.render_mode is not None:  # what render() draws if the state later blows up
             self._frame_state = (R.copy(), float(y[3]), self._t)
-        return obs, reward, False, truncated, info
+        return self._step_ok(obs, reward, False, truncated, info)
 
-    def reset(
-        self, *, seed: int | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]:
-        opts = check_options(options, spec.RESET_OPTIONS)  # all checks before any draw
+    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         phi_max = self.max_gimbal_angle if "gimbal_limits" in self.effects else math.pi
         bounds = {"roll": 0.5 * math.pi, "roll_rate": 10.0, "gimbal_angle": phi_max}
         for key, value in opts.items():
             b = bounds.get(key, 4.0 * math.pi)
             opts[key] = check_range(key, value, -b, b)
-        super().reset(seed=seed)
-        rng = self.np_random
-        roll = float(opts.get("roll", rng.uniform(-0.05, 0.05)))
-        roll_rate = float(opts.get("roll_rate", rng.uniform(-0.02, 0.02)))
+        return opts
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
+        rng = self.np_random  # the start distribution: rows.ROLL0, RATE0, PHASE0 (vector env's)
+        roll = float(opts.get("roll", rng.uniform(*rows.ROLL0)))
+        roll_rate = float(opts.get("roll_rate", rng.uniform(*rows.RATE0)))
         gimbal = float(opts.get("gimbal_angle", 0.0))
-        phase = float(opts.get("wave_phase", rng.uniform(0.0, 2.0 * math.pi)))
+        phase = float(opts.get("wave_phase", rng.uniform(*rows.PHASE0)))
         self._P = rows.pack(self.scene, phase)
         self._tab = (
             rows.irregular_table(self.scene, self.np_random, self.episode_seconds)
@@ -247,7 +243,7 @@ class GyroStabilizerEnv(MFEnv):
             else np.zeros((1, 2))
         )
         self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
-        self._t, self._steps, self._energy = 0.0, 0, 0.0
+        self._t, self._energy = 0.0, 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
         self._out[:] = (0.0, mw, *K.drive_output(0.0, self._y, self._R, 0.0, self._P))
         roll0 = K.roll_of(self._R)
@@ -255,7 +251,7 @@ class GyroStabilizerEnv(MFEnv):
         terms0 = {"roll": 0.0, "effort": 0.0}
         info = spec.step_info(roll0, self._y, self._out, 0.0, terms0, 0.0)
         self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
-        return self._finish_reset(self._obs.copy()), info
+        return self._obs.copy(), info
 
     def batch_row(self) -> dict[str, Any]:
         """What the native vector env copies into its row after a reset (names of

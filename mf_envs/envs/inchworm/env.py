@@ -8,7 +8,6 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
-from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.inchworm import build, render, spec
 from mf_envs.physics.beam import NewtonDivergence
@@ -234,10 +233,7 @@ class InchwormEnv(MFEnv):
         reward = terms["progress"] + terms["effort"]
         return self._finish_step(obs, reward, False, truncated, info, ok)
 
-    def reset(
-        self, *, seed: int | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]:
-        opts = check_options(options, spec.RESET_OPTIONS)  # all checks before any draw
+    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         x_tail = check_range("x_tail", opts.get("x_tail", 0.0), -spec.MAX_X_TAIL, spec.MAX_X_TAIL)
         kappa = None
         if "kappa" in opts:
@@ -247,7 +243,10 @@ class InchwormEnv(MFEnv):
             kappa = kappa.astype(float)
             if not np.all(np.isfinite(kappa)) or np.any(np.abs(kappa) > self.max_curvature):
                 raise ValueError("kappa: must be finite and within +-max_curvature")
-        super().reset(seed=seed)
+        return {"x_tail": x_tail, "kappa": kappa}
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
+        x_tail, kappa = opts["x_tail"], opts["kappa"]
         noise = self.np_random.uniform(0.0, self.reset_noise_scale, self.n_ctrl)
         drawn, kappa = kappa is None, -self.max_curvature * noise if kappa is None else kappa
         for _ in range(8 if drawn else 1):  # a drawn start without equilibrium is halved
@@ -261,11 +260,11 @@ class InchwormEnv(MFEnv):
                 raise ValueError("kappa: no equilibrium for this initial actuation")
             kappa = np.zeros(self.n_ctrl)  # the flat body is always an equilibrium
             self.driven.reset(kappa, x_tail=x_tail)
-        self._kappa_ctrl, self._steps = kappa, 0
+        self._kappa_ctrl = kappa
         info = self._get_info({"progress": 0.0, "effort": 0.0}, None)
         self._frame_state = None
         self._remember_frame(info)
-        return self._finish_reset(self._observe()), info
+        return self._observe(), info
 
     # ------------------------------------------------------------------ helpers
     def _observe(self) -> np.ndarray:
