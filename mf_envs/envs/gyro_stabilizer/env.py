@@ -197,7 +197,7 @@ class GyroStabilizerEnv(MFEnv):
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         a0 = self._scalar_action(action)
-        u = a0 * self.max_precession_rate
+        u = spec.precession_command(a0, self.max_precession_rate)
         y, R = self._y, self._R
         e0 = y[K.E_STATE]
         self._t = K.advance(

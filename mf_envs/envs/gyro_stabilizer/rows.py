@@ -17,8 +17,14 @@ from mf_envs.frames.steppers import rk4_work, rkmk4_rwork
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.layout import Slot
 from mf_envs.physics.ship.model import WaveLoad, pack_params
-from mf_envs.physics.ship.seas import G, excitation_table, jonswap_sea, regular_roll_moment, sinc
-from mf_envs.physics.ship.waves import regular_heave_force
+from mf_envs.physics.ship.seas import (
+    G,
+    excitation_table,
+    jonswap_sea,
+    regular_heave_force,
+    regular_roll_moment,
+    sinc,
+)
 
 OBS = spec.OBS
 _HIGH = tuple(float(v) for v in OBS.high())
@@ -44,9 +50,12 @@ def observe(roll, y, R, out):
 
 
 _ROLL = spec.OBS.index("roll")
-# info columns written by step_rows / reset_rows, in spec.INFO_KEYS order up to drive_energy
-COLS = spec.INFO_KEYS[:11]
-C_ENERGY, C_RROLL, C_REFFORT, C_TIME, N_COLS = 10, 11, 12, 13, 14
+# info columns written by step_rows / reset_rows: spec.INFO_KEYS up to drive_energy, then the
+# two reward terms and the time (named, from the spec's keys)
+COLS = spec.INFO_KEYS[: spec.INFO_KEYS.index("drive_energy") + 1]
+C_ENERGY = COLS.index("drive_energy")
+C_RROLL, C_REFFORT, C_TIME = len(COLS), len(COLS) + 1, len(COLS) + 2
+N_COLS = len(COLS) + 3
 ROLL0, RATE0, PHASE0 = (-0.05, 0.05), (-0.02, 0.02), (0.0, 2.0 * math.pi)  # reset's U(lo, hi)
 
 

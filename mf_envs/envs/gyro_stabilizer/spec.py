@@ -55,6 +55,12 @@ A physics_dt beyond the RK4 limit is refused (ValueError naming physics_dt).
 """
 
 
+def precession_command(action, max_precession_rate: float):
+    """The precession-rate command (rad/s) of an action in [-1, 1] (scalar or (N,) array): the
+    one scaling, for the single and the vector env."""
+    return action * max_precession_rate
+
+
 def reward_terms(roll_obs, energy, roll_scale: float, effort_weight: float) -> dict[str, Any]:
     """roll = -(roll / roll_scale)^2 on the observed (float32) roll, effort = -w E with E the
     drive energy of the step (J); scalars or (N,) arrays. q * q, not q ** 2: libm pow, which

@@ -115,7 +115,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         b, env = self.b, self.template
-        u = actions[:, 0] * env.max_precession_rate
+        u = spec.precession_command(actions[:, 0], env.max_precession_rate)
         # fresh info columns (N_COLS, N), written by the kernel (rows not stepped: reset infos)
         cols = np.empty((N_COLS, self.num_envs))
         args = (

@@ -172,7 +172,6 @@ class InchwormEnv(MFEnv):
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
         self.scene = build.build(kw, self.effects, self.n_substeps)  # kwargs as physics params
-        self._weight = self.scene.weight
         self.max_steps = build.episode_steps(
             max_episode_steps, episode_seconds, self._episode_steps
         )
@@ -188,14 +187,14 @@ class InchwormEnv(MFEnv):
             ) from None
         self.sim = self.driven.sim
         self.S_ctrl = self.driven.S_ctrl
-        self._obs_geometry = spec.observe_geometry(self.sim, self.S_ctrl)
+        self.obs_geometry = spec.observe_geometry(self.sim, self.S_ctrl)
         self.switching = "anchor_switching" in self.effects
         n_act = self.n_ctrl + (1 if self.switching else 0)
         self.action_space = spaces.Box(-1.0, 1.0, (n_act,), np.float32)
         self.obs_layout = spec.observation_layout(self.n_ctrl)
         hi = self.obs_layout.high()
         self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
-        self._kappa_ctrl = np.zeros(self.n_ctrl)
+        self.kappa_command = np.zeros(self.n_ctrl)
         self._steps = 0
         self._frame_state: dict[str, Any] | None = None  # last finite state, for render()
 
@@ -217,7 +216,7 @@ class InchwormEnv(MFEnv):
         try:
             n_min = self.n_substeps if "inertia" in self.effects else 1
             report = self.driven.step(kappa_new, anchor, self.control_dt, n_min)
-            self._kappa_ctrl = kappa_new
+            self.kappa_command = kappa_new
         except SOLVER_ERRORS:
             ok = False
         self._steps += 1
@@ -260,7 +259,7 @@ class InchwormEnv(MFEnv):
                 raise ValueError("kappa: no equilibrium for this initial actuation")
             kappa = np.zeros(self.n_ctrl)  # the flat body is always an equilibrium
             self.driven.reset(kappa, x_tail=x_tail)
-        self._kappa_ctrl = kappa
+        self.kappa_command = kappa
         info = self._get_info({"progress": 0.0, "effort": 0.0}, None)
         self._frame_state = None
         self._remember_frame(info)
@@ -268,7 +267,7 @@ class InchwormEnv(MFEnv):
 
     # ------------------------------------------------------------------ helpers
     def _observe(self) -> np.ndarray:
-        args = (self._obs_geometry, self._kappa_ctrl, self.max_curvature, self._weight)
+        args = (self.obs_geometry, self.kappa_command, self.max_curvature, self.weight)
         return spec.observe(self.sim, *args)
 
     def _get_info(self, terms: dict[str, float], report: Any) -> dict[str, Any]:
@@ -279,7 +278,7 @@ class InchwormEnv(MFEnv):
             "centerline": sim.centerline(),
             "anchor": sim.anchor,
             "kappa_sharp": self.driven.kappa_ctrl.copy(),
-            "kappa_command": self._kappa_ctrl.copy(),
+            "kappa_command": self.kappa_command.copy(),
             "actuation_power": 0.0 if report is None else report.net_work / self.control_dt,
             "actuation_energy": 0.0 if report is None else report.energy,
             "grip": self.driven.grip.copy(),

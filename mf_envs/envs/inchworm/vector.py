@@ -63,10 +63,10 @@ class InchwormVectorEnv(BatchedVectorEnv):
         sc = driven.feet.scratch
         self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in sc)
         xis = np.linspace(0.0, 1.0, CENTERLINE_PER_ELEMENT + 1)[:-1]
-        scales = (env.params.length, env.max_curvature, env._weight)
+        scales = (env.params.length, env.max_curvature, env.weight)
         self._cfg = (
             env.switching, env.max_curvature, env.control_dt, 1, *driven.kernel_args(),
-            env._obs_geometry, scales, xis,
+            env.obs_geometry, scales, xis,
         )  # fmt: skip
         n_pts = CENTERLINE_PER_ELEMENT * ne + 1
         self._out = (
@@ -85,7 +85,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         d[i], xo[i] = sim.state.d, sim.x_origin
         lag[i] = driven.lag.kappa if driven.lag is not None else driven.kappa_ctrl
         kc[i], g[i], slip[i] = driven.kappa_ctrl, driven.feet.g, driven.feet.slipping
-        cmd[i], head[i] = env._kappa_ctrl, sim.anchor == "head"  # noqa: SLF001
+        cmd[i], head[i] = env.kappa_command, sim.anchor == "head"
         self._steps[i] = 0
 
     def state_nbytes(self) -> int:

@@ -19,6 +19,7 @@ Public facade over the concept modules:
 """
 
 from mf_envs.physics.ship.engine import build_ship_multibody, simulate_engine
+from mf_envs.physics.ship.hulls import mss_naval_vessel, small_yacht
 from mf_envs.physics.ship.model import (
     FORMS,
     SEED_EFFECTS,
@@ -40,12 +41,10 @@ from mf_envs.physics.ship.params import (
     GyroParams,
     ShipParams,
     capacity_ratio,
-    mss_naval_vessel,
     seakeeper_gyro,
     seed_test_hull,
-    small_yacht,
 )
-from mf_envs.physics.ship.waves import regular_heave_force, wave_table
+from mf_envs.physics.ship.seas import regular_heave_force, wave_table
 
 __all__ = [
     "FORMS",

@@ -84,7 +84,14 @@ class Hull:
 
     # ------------------------------------------------------------------ presets
     @classmethod
-    def yacht(cls) -> Hull:
+    def yacht(
+        cls,
+        displacement: float = 18000.0,
+        beam: float = 4.2,
+        gm: float = 0.9,
+        gm_longitudinal: float = 25.0,
+        length_wl: float = 11.5,
+    ) -> Hull:
         """The default 18 t, 12-13 m motor yacht (GyroStabilizer-v0). Field by field:
 
         mass 18 000 kg; L_wl 11.5 m; beam 4.2 m; GM 0.9 m, GM_L 25 m (assumed loading).
@@ -100,7 +107,10 @@ class Hull:
         effective_slope 0.7. These are rules of thumb (no published yacht data);
         `mss_naval_vessel` is the hull with published coefficients.
         """
-        m, b, gm, gml, lwl = 18000.0, 4.2, 0.9, 25.0, 11.5
+        m, b, gml, lwl = displacement, beam, gm_longitudinal, length_wl
+        for name, value in (("displacement", m), ("beam", b), ("gm", gm),
+                            ("gm_longitudinal", gml), ("length_wl", lwl)):  # fmt: skip
+            check_positive(name, value)
         j44 = m * (0.38 * b) ** 2
         j55 = m * (0.25 * lwl) ** 2
         j66 = 1.1 * j55
@@ -237,3 +247,21 @@ def roll_decay(
     t = np.linspace(0.0, t_end, n_out)
     sol = solve_ivp(rhs, (0.0, t_end), [roll0, 0.0], "DOP853", t, rtol=1e-11, atol=1e-14)
     return sol.t, sol.y[0]
+
+
+def small_yacht(
+    displacement: float = 18000.0,
+    beam: float = 4.2,
+    gm: float = 0.9,
+    gm_longitudinal: float = 25.0,
+    length_wl: float = 11.5,
+) -> ShipParams:
+    """The kernels' `ShipParams` of `Hull.yacht` (the same arguments): an 18 t, 12-13 m motor
+    yacht by rules of thumb, roll period with added inertia 3.71 s."""
+    return Hull.yacht(displacement, beam, gm, gm_longitudinal, length_wl).ship_params()
+
+
+def mss_naval_vessel() -> ShipParams:
+    """The kernels' `ShipParams` of `Hull.mss_naval_vessel` (Blanke & Christensen 1993, Fossen's
+    MSS `navalvessel.m`): roll period 5.64 s."""
+    return Hull.mss_naval_vessel().ship_params()

@@ -16,7 +16,7 @@ Effects (names from `mf_envs.effects`; all off costs nothing: a zero coefficient
 | roll_damping           | -B44 w1, -B55 w2, -B66 w3 (linear)                               |
 | quadratic_roll_damping | -B44q abs(w1) w1 (MSS's K_abs(p)p; Ikeda's eddy/viscous part)    |
 | wave_moment            | regular M0 cos(2 pi t / T + phase)                               |
-| irregular_waves        | roll moment from an irregular sea (`ship.waves`), replaces regular |
+| irregular_waves        | roll moment from an irregular sea (`ship.seas`), replaces regular |
 | gimbal_limits          | precession-rate limit and end stops on the servo                 |
 | gimbal_damping         | bearing friction c phi' of an active torque drive (passive drives |
 |                        | always brake with their own c)                                   |
@@ -146,7 +146,7 @@ def pack_params(
 ) -> NDArray[np.float64]:
     """The packed float64 parameter vector P of `ship.kernels` for this scene.
 
-    `irregular_waves` needs a moment table (see `ship.waves.wave_table`) passed to the kernels
+    `irregular_waves` needs a moment table (see `ship.seas.wave_table`) passed to the kernels
     with its sampling step `table_dt` (s). ship_gz_cubic: the cubic GZ term over GM (1/rad^2,
     `ship.hulls.Hull.gz_cubic`). coupling: sway-roll-yaw coefficients (`ship.coupling`): with
     them the sway equation and the coupling terms are on, at ship speed `speed` (m/s); they

@@ -5,18 +5,9 @@ and presets:
 
 - `seed_test_hull()`: the seed's demonstration values (§3.3.4.1): J^(1) = (1e6, 1e9, 1e10) kg m^2,
   J2^(2) = 10, J3^(3) = 50 kg m^2, 8050 rpm (they "do not reflect a marine vessel").
-- `small_yacht()`: an 18 t, 12-13 m motor yacht (the default of GyroStabilizer-v0), sized with the
-  usual naval-architecture rules of thumb: roll radius of gyration k44 = 0.38 B (0.35-0.45 B,
-  Fossen 2011, *Handbook of Marine Craft Hydrodynamics and Motion Control*, §4.3 / Faltinsen
-  1990), added roll inertia A44 = 0.2 J44 (10-30 %), GM = 0.9 m, linear roll damping ratio 0.04
-  plus quadratic damping (Himeno 1981 ranges for small craft). Roll period with added inertia
-  T_n = 2 pi sqrt((J44 + A44) / (rho g V GM)) = 3.71 s.
-- `mss_naval_vessel()`: the 51.5 m multipurpose naval vessel of Blanke & Christensen (1993),
-  as coded in Fossen's Marine Systems Simulator (MSS, `VESSELS/navalvessel.m`): displacement
-  357 m^3 (rho = 1014 kg/m^3), I_xx = 2.3763e6, I_zz = 47.934e6 kg m^2, added roll inertia
-  -K_p' = 7.74e5 kg m^2, GM = 1.1 m, linear roll damping -K_p = 5.0e5 N m s, quadratic
-  -K_|p|p = 4.16e5 N m s^2 (roll period 5.64 s). I_yy (not in the model) is taken = I_zz and
-  GM_L from a waterplane estimate (C_wp = 0.75).
+- The hulls (the yacht, the MSS naval vessel) are one family, `hulls.Hull` with its presets;
+  `ShipParams` is the kernels' view of a hull (`Hull.ship_params()`, `hulls.small_yacht()`,
+  `hulls.mss_naval_vessel()`).
 - `SEAKEEPER`: Table 3-1 of the seed (model: rpm, angular momentum N m s, spool-up power W);
   `seakeeper_gyro(model)` turns a row into a `GyroParams` (rotor polar inertia J3 = H / psi').
 
@@ -31,7 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mf_envs._validate import check_finite, check_int, check_nonnegative, check_positive
-from mf_envs.physics.constants import RHO_SEAWATER, RPM, G
+from mf_envs.physics.constants import RPM
 from mf_envs.physics.gyros import SEAKEEPER  # seed Table 3-1, shared with the GOWEC
 
 
@@ -159,76 +150,6 @@ def seakeeper_gyro(model: str = "9", gimbal_inertia: float | None = None) -> Gyr
 def seed_test_hull() -> tuple[ShipParams, GyroParams]:
     """The seed's test values (§3.3.4.1): no hydrostatics, damping or added inertia."""
     return ShipParams(inertia=(1.0e6, 1.0e9, 1.0e10)), GyroParams(50.0, 10.0, 8050.0 * RPM)
-
-
-def small_yacht(
-    displacement: float = 18000.0,
-    beam: float = 4.2,
-    gm: float = 0.9,
-    gm_longitudinal: float = 25.0,
-    length_wl: float = 11.5,
-) -> ShipParams:
-    """An 18 t planing/semi-displacement motor yacht (12-13 m LOA) by rules of thumb (see module).
-
-    displacement: kg; beam: m; gm, gm_longitudinal: metacentric heights, m; length_wl: m.
-    """
-    check_positive("displacement", displacement)
-    check_positive("beam", beam)
-    check_positive("gm", gm)
-    check_positive("gm_longitudinal", gm_longitudinal)
-    check_positive("length_wl", length_wl)
-    j44 = displacement * (0.38 * beam) ** 2
-    j55 = displacement * (0.25 * length_wl) ** 2
-    j66 = 1.1 * j55
-    a44 = 0.2 * j44
-    c44 = displacement * G * gm
-    c55 = displacement * G * gm_longitudinal
-    zeta = 0.04
-    b44 = 2.0 * zeta * math.sqrt(c44 * (j44 + a44))
-    awp = 0.75 * length_wl * beam  # waterplane area, C_wp = 0.75
-    bm = 0.75 * length_wl * beam**3 / (12.0 * displacement / RHO_SEAWATER)  # I_wp / V
-    return ShipParams(
-        inertia=(j44, j55, j66),
-        mass=displacement,
-        added_roll_inertia=a44,
-        roll_stiffness=c44,
-        pitch_stiffness=c55,
-        gz_bm_over_gm=bm / gm,
-        roll_damping=b44,
-        roll_damping_quadratic=2.5 * b44,
-        pitch_damping=2.0 * 0.2 * math.sqrt(c55 * j55),
-        yaw_damping=0.1 * b44 * j66 / j44,
-        heave_stiffness=RHO_SEAWATER * G * awp,
-        heave_damping=2.0 * 0.2 * math.sqrt(RHO_SEAWATER * G * awp * displacement),
-        surge_sway_damping=0.05 * displacement,
-    )
-
-
-def mss_naval_vessel() -> ShipParams:
-    """The MSS naval vessel (Blanke & Christensen 1993; Fossen MSS `navalvessel.m`), see module."""
-    rho, lpp, beam = 1014.0, 51.5, 8.6
-    vol = 357.0
-    mass = rho * vol
-    c44 = rho * G * vol * 1.1
-    bm_l = 0.75 * lpp**3 * beam / 12.0 / vol  # I_L / V with C_wp = 0.75
-    c55 = rho * G * vol * bm_l
-    j55 = 47.934e6
-    awp = 0.75 * lpp * beam
-    return ShipParams(
-        inertia=(2.3763e6, j55, 47.934e6),
-        mass=mass,
-        added_roll_inertia=7.74e5,
-        roll_stiffness=c44,
-        pitch_stiffness=c55,
-        gz_bm_over_gm=(4.47 - 1.53) / 1.1,  # BM = KM - KB (navalvessel.m)
-        roll_damping=5.0e5,
-        roll_damping_quadratic=4.16e5,
-        pitch_damping=2.0 * 0.2 * math.sqrt(c55 * j55),
-        yaw_damping=0.0,
-        heave_stiffness=rho * G * awp,
-        heave_damping=2.0 * 0.2 * math.sqrt(rho * G * awp * mass),
-        surge_sway_damping=1.96e3,
-    )
 
 
 def capacity_ratio(
