@@ -171,3 +171,60 @@ def run(
                 v_out[j, i] = v[i]
             t_out[j] = t0 + (n + 1) * dt
     return total, -1
+
+
+@numba.njit(cache=True)
+def advance_linear(
+    d, v, ka, kb, dt, mass, le, quad, ground, th, tol, max_iter, max_halvings, scratch
+):
+    """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4) (a
+    commanded actuation held by a first-order hold), splitting the step on Newton failure as
+    `advance`. Returns the Newton iterations used, or -1 (d, v untouched) on failure."""
+    work, piv, k0, k1, d0, v0, d1, v1 = scratch
+    ne, ng = ka.shape
+    for level in range(max_halvings + 1):
+        n_sub = 2**level
+        h = dt / n_sub
+        for i in range(d.shape[0]):
+            d0[i] = d[i]
+            v0[i] = v[i]
+        total = 0
+        ok = True
+        for k in range(n_sub):
+            s0, s1 = k / n_sub, (k + 1) / n_sub
+            for e in range(ne):
+                for g in range(ng):
+                    k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
+                    k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
+            for i in range(d.shape[0]):
+                d1[i] = d0[i] + h * v0[i]  # predictor: constant velocity
+            its = _newton_step(
+                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, work, piv
+            )
+            if its < 0:
+                ok = False
+                break
+            total += its
+            for i in range(d.shape[0]):
+                d0[i] = d1[i]
+                v0[i] = v1[i]
+        if ok:
+            for i in range(d.shape[0]):
+                d[i] = d0[i]
+                v[i] = v0[i]
+            return total
+    return -1
+
+
+def make_scratch(n_dof: int, n_elements: int) -> tuple:
+    """The scratch arrays of `advance` / `advance_linear` for a beam of n_elements."""
+    return (
+        np.empty((n_dof, 3 * HALF_BW + 1)),
+        np.empty(n_dof, np.int64),
+        np.empty((n_elements, 4)),
+        np.empty((n_elements, 4)),
+        np.empty(n_dof),
+        np.empty(n_dof),
+        np.empty(n_dof),
+        np.empty(n_dof),
+    )
