@@ -31,7 +31,7 @@ FROUDE, REFERENCE_PERIOD = 0.1, 2.0  # the friction's Froude number at this gait
 MU = LENGTH / (REFERENCE_PERIOD**2 * G * FROUDE)  # 0.892: forward Coulomb coefficient
 # effort weight x (body weight x length): effort ~ 0.1 progress for the tuned serpenoid
 # (measured: `python -m mf_envs.controllers.serpentine --effort`)
-EFFORT_SCALE = 0.02
+EFFORT_SCALE = 0.1
 
 
 @dataclasses.dataclass(frozen=True)

@@ -93,13 +93,14 @@ def observe_row(d, v, cmd, cfg, body, out):
 
 
 @numba.njit(cache=True, nogil=True)
-def _bending_work(d, ka, kb, le, ei):
-    """int EI (kappa(d) - ka) (kb - ka) dS at the 4 Gauss points [J]."""
+def _bending_work(d, k, ka, kb, le, ei):
+    """int EI (kappa(d) - k) (kb - ka) dS at the 4 Gauss points [J] (M3 at d with kappa# = k
+    times the step's change of kappa#)."""
     acc = 0.0
     for e in range(le.shape[0]):
         for g in range(4):
             kap = el.kappa_at(d, 6 * e, le[e], el.GAUSS_XI[g])
-            acc += el.GAUSS_W[g] * le[e] * (kap - ka[e, g]) * (kb[e, g] - ka[e, g])
+            acc += el.GAUSS_W[g] * le[e] * (kap - k[e, g]) * (kb[e, g] - ka[e, g])
     return ei * acc
 
 
@@ -127,14 +128,14 @@ def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
             for g in range(4):
                 ka[e, g] = k_old[e, g] + s / n_sub * (k_new[e, g] - k_old[e, g])
                 kb[e, g] = k_old[e, g] + (s + 1) / n_sub * (k_new[e, g] - k_old[e, g])
-        work = _bending_work(d, ka, kb, le, ei)
+        work = _bending_work(d, ka, ka, kb, le, ei)
         its = advance_linear(d, v, ka, kb, h, mass, le, quad, ground, th, tol, max_iter,
                              max_halvings, sc[:8])  # fmt: skip
         if its < 0:
             ok = 0.0
             break
         total += its
-        work = -0.5 * (work + _bending_work(d, ka, kb, le, ei))
+        work = -0.5 * (work + _bending_work(d, kb, ka, kb, le, ei))
         energy += max(work, 0.0)
     for j in range(n):
         cmd[j] = max_curvature * action[j]
