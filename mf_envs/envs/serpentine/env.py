@@ -205,8 +205,8 @@ class SerpentineEnv(MFEnv):
     def _info(self, speed: float, energy: float, its: int, terms: dict) -> dict[str, Any]:
         d = self.state[0]
         return spec.step_info(
-            self._body[:2].copy(), float(d[-1]), float(speed), self.cmd.copy(), energy,
-            self.control_dt, its, self._steps * self.control_dt, terms,
+            float(self._body[0]), float(self._body[1]), float(d[-1]), float(speed),
+            self.cmd.copy(), energy, self.control_dt, its, self._steps * self.control_dt, terms,
         )  # fmt: skip
 
     def centerline(self, per_element: int = 8) -> np.ndarray:

@@ -37,11 +37,11 @@ def observation_layout(n: int) -> ObsLayout:
     )
 
 
-def step_info(com, heading, speed, cmd, energy, dt, iterations, time, terms) -> dict[str, Any]:
-    """The info of a step (scalars, or (N,) arrays in the vector env; com (.., 2) [m])."""
+def step_info(x, y, heading, speed, cmd, energy, dt, iterations, time, terms) -> dict[str, Any]:
+    """The info of a step (scalars, or (N,) arrays in the vector env)."""
     return {
-        "x": com[..., 0],
-        "y": com[..., 1],
+        "x": x,
+        "y": y,
         "heading": heading,
         "speed": speed,
         "kappa_command": cmd,
