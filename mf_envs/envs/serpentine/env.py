@@ -195,6 +195,7 @@ class SerpentineEnv(MFEnv):
         energy = float(rep[rows.REP_ENERGY])
         terms = {"progress": along / self.length, "effort": -self.effort_weight * energy}
         info = self._info(along / self.control_dt, energy, int(rep[rows.REP_ITER]), terms)
+        info["actuation_net_work"] = float(rep[rows.REP_NET])
         if ok:
             self._track.append((self._body[0], self._body[1]))
         reward = terms["progress"] + terms["effort"]
@@ -206,7 +207,8 @@ class SerpentineEnv(MFEnv):
         d = self.state[0]
         return spec.step_info(
             float(self._body[0]), float(self._body[1]), float(d[-1]), float(speed),
-            self.cmd.copy(), energy, self.control_dt, its, self._steps * self.control_dt, terms,
+            self.cmd.copy(), energy, 0.0, self.control_dt, its,
+            self._steps * self.control_dt, terms,
         )  # fmt: skip
 
     def centerline(self, per_element: int = 8) -> np.ndarray:

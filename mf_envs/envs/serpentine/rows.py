@@ -23,9 +23,10 @@ import numpy as np
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.kernels import advance_linear, make_scratch
 
-# report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m]
-REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0 = range(5)
-N_REPORT = 5
+# report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
+# the muscles' signed (net) work [J]
+REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
+N_REPORT = 6
 TOLERANCE, MAX_ITER, MAX_HALVINGS, THETA = 1e-8, 12, 6, 1.0  # the Newton settings
 
 
@@ -47,9 +48,9 @@ def pack(scene, model, n_substeps: int, physics_dt: float, target: float) -> tup
 
 
 def scratch(model) -> tuple:
-    """A row's scratch: the Newton solver's and four (n_el, 4) kappa# tables."""
+    """A row's scratch: the Newton solver's, four (n_el, 4) kappa# tables and the work sums."""
     ne = model.n_elements
-    return (*make_scratch(model.n_dof, ne), *(np.empty((ne, 4)) for _ in range(4)))
+    return (*make_scratch(model.n_dof, ne), *(np.empty((ne, 4)) for _ in range(4)), np.zeros(2))
 
 
 @numba.njit(cache=True, nogil=True)
@@ -93,18 +94,6 @@ def observe_row(d, v, cmd, cfg, body, out):
 
 
 @numba.njit(cache=True, nogil=True)
-def _bending_work(d, k, ka, kb, le, ei):
-    """int EI (kappa(d) - k) (kb - ka) dS at the 4 Gauss points [J] (M3 at d with kappa# = k
-    times the step's change of kappa#)."""
-    acc = 0.0
-    for e in range(le.shape[0]):
-        for g in range(4):
-            kap = el.kappa_at(d, 6 * e, le[e], el.GAUSS_XI[g])
-            acc += el.GAUSS_W[g] * le[e] * (kap - k[e, g]) * (kb[e, g] - ka[e, g])
-    return ei * acc
-
-
-@numba.njit(cache=True, nogil=True)
 def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
     """One control step of one snake in place (module docstring): d, v (n_dof,), cmd (n,)
     [1/m] the previous command, action (n,) in [-1, 1]; obs (2 n + 4) float32, body (5,),
@@ -122,24 +111,23 @@ def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
             k_old[e, g], k_new[e, g] = o, w
     body_state(d, v, le, cfg[9], cfg[10], body)
     rep[REP_X0], rep[REP_Y0] = body[0], body[1]
-    energy, total, ok = 0.0, 0, 1.0
+    total, ok = 0, 1.0
+    acc = sc[12]
+    acc[0], acc[1] = 0.0, 0.0
     for s in range(n_sub):
         for e in range(ne):
             for g in range(4):
                 ka[e, g] = k_old[e, g] + s / n_sub * (k_new[e, g] - k_old[e, g])
                 kb[e, g] = k_old[e, g] + (s + 1) / n_sub * (k_new[e, g] - k_old[e, g])
-        work = _bending_work(d, ka, ka, kb, le, ei)
         its = advance_linear(d, v, ka, kb, h, mass, le, quad, ground, th, tol, max_iter,
-                             max_halvings, sc[:8])  # fmt: skip
+                             max_halvings, sc[:8], ei, acc)  # fmt: skip
         if its < 0:
             ok = 0.0
             break
         total += its
-        work = -0.5 * (work + _bending_work(d, kb, ka, kb, le, ei))
-        energy += max(work, 0.0)
     for j in range(n):
         cmd[j] = max_curvature * action[j]
-    rep[REP_OK], rep[REP_ENERGY], rep[REP_ITER] = ok, energy, total
+    rep[REP_OK], rep[REP_ENERGY], rep[REP_ITER], rep[REP_NET] = ok, acc[0], total, acc[1]
     observe_row(d, v, cmd, cfg, body, obs)
 
 
@@ -152,6 +140,6 @@ def step_rows(lo, hi, active, actions, state, cmd, cfg, work, body, obs, rep):
         if active[i]:
             sc = (work[0][i], work[1][i], work[2][i], work[3][i], work[4][i], work[5][i],
                   work[6][i], work[7][i], work[8][i], work[9][i], work[10][i],
-                  work[11][i])  # fmt: skip
+                  work[11][i], work[12][i])  # fmt: skip
             step_row(state[i, 0], state[i, 1], cmd[i], actions[i], cfg, sc, body[i], obs[i],
                      rep[i])  # fmt: skip

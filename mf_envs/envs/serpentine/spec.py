@@ -3,8 +3,6 @@ points), reward terms, reset options and info keys, shared by the single and the
 
 from __future__ import annotations
 
-from typing import Any
-
 from mf_envs.envs._spec import Field, ObsLayout
 
 CURVATURE_OBS_LIMIT = 20.0  # |kappa L| bound of the observation (also caps max_curvature * L)
@@ -19,6 +17,7 @@ INFO_KEYS = (
     "kappa_command",  # (n,) 1/m, commanded actuation curvature at the control points
     "actuation_energy",  # J, positive work of the muscles in the step (no regeneration)
     "actuation_power",  # W, actuation_energy / control_dt
+    "actuation_net_work",  # J, the muscles' signed work in the step (dKE + dU - ground work)
     "newton_iterations",  # of the step (all substeps)
     "time",  # s, steps x control_dt
     "reward_terms",  # {"progress", "effort"}, sums to the reward
@@ -37,7 +36,7 @@ def observation_layout(n: int) -> ObsLayout:
     )
 
 
-def step_info(x, y, heading, speed, cmd, energy, dt, iterations, time, terms) -> dict[str, Any]:
+def step_info(x, y, heading, speed, cmd, energy, net, dt, iterations, time, terms) -> dict:
     """The info of a step (scalars, or (N,) arrays in the vector env)."""
     return {
         "x": x,
@@ -47,6 +46,7 @@ def step_info(x, y, heading, speed, cmd, energy, dt, iterations, time, terms) ->
         "kappa_command": cmd,
         "actuation_energy": energy,
         "actuation_power": energy / dt,
+        "actuation_net_work": net,
         "newton_iterations": iterations,
         "time": time,
         "reward_terms": terms,

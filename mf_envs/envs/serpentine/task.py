@@ -37,7 +37,7 @@ DECLARATION = EnvDeclaration(
     baselines="mf_envs.controllers.serpentine",
     metric=Metric("speed", True, "m/s"),
     episode_metrics=episode_metrics,
-    info_keys=("x", "y", "heading", "speed", "actuation_energy", "actuation_power", "time"),
+    info_keys=("x", "y", "heading", "speed", "actuation_energy", "actuation_net_work", "time"),
     bad_reset_options=(
         ("heading", float("nan")),
         ("heading", "1"),

@@ -75,7 +75,8 @@ class SerpentineVectorEnv(BatchedVectorEnv):
         reward = progress + effort
         info = spec.step_info(
             body[:, 0].copy(), body[:, 1].copy(), self._state[:, 0, -1].copy(),
-            along / env.control_dt, self._cmd.copy(), energy, env.control_dt,
+            along / env.control_dt, self._cmd.copy(), energy, rep[:, rows.REP_NET].copy(),
+            env.control_dt,
             rep[:, rows.REP_ITER].astype(np.int64), self._steps * env.control_dt,
             {"progress": progress, "effort": effort},
         )  # fmt: skip

@@ -29,6 +29,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.algorithmic import assemble_algorithmic
 from mf_envs.physics.beam.banded import HALF_BW, band_solve_into
 from mf_envs.physics.serpentine.friction import assemble_ground
@@ -174,12 +175,29 @@ def run(
 
 
 @numba.njit(cache=True)
+def bending_work(d, k, ka, kb, le, ei):
+    """int EI (kappa(d) - k) (kb - ka) dS at the 4 Gauss points [J]: M3 at d with kappa# = k
+    times a change kb - ka of kappa#."""
+    acc = 0.0
+    for e in range(le.shape[0]):
+        for g in range(4):
+            kap = el.kappa_at(d, 6 * e, le[e], el.GAUSS_XI[g])
+            acc += el.GAUSS_W[g] * le[e] * (kap - k[e, g]) * (kb[e, g] - ka[e, g])
+    return ei * acc
+
+
+@numba.njit(cache=True)
 def advance_linear(
-    d, v, ka, kb, dt, mass, le, quad, ground, th, tol, max_iter, max_halvings, scratch
+    d, v, ka, kb, dt, mass, le, quad, ground, th, tol, max_iter, max_halvings, scratch, ei, out
 ):
     """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4) (a
     commanded actuation held by a first-order hold), splitting the step on Newton failure as
-    `advance`. Returns the Newton iterations used, or -1 (d, v untouched) on failure."""
+    `advance`. Returns the Newton iterations used, or -1 (d, v untouched) on failure.
+
+    out[0] += the muscles' positive work [J] summed over the (sub)steps, out[1] += their signed
+    work: -int sigma_3 (k1 - k0) dS with the step's algorithmic moment sigma_3 = EI ((kappa_0
+    - k0) + (kappa_1 - k1)) / 2 (`beam.algorithmic`, theta = 1/2), the exact discrete balance
+    dKE + dU = W_muscles + F_ground . dd of the scheme (EI: the bending stiffness [N m^2])."""
     work, piv, k0, k1, d0, v0, d1, v1 = scratch
     ne, ng = ka.shape
     for level in range(max_halvings + 1):
@@ -188,7 +206,7 @@ def advance_linear(
         for i in range(d.shape[0]):
             d0[i] = d[i]
             v0[i] = v[i]
-        total = 0
+        total, pos, signed = 0, 0.0, 0.0
         ok = True
         for k in range(n_sub):
             s0, s1 = k / n_sub, (k + 1) / n_sub
@@ -205,6 +223,9 @@ def advance_linear(
                 ok = False
                 break
             total += its
+            w = -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
+            pos += max(w, 0.0)
+            signed += w
             for i in range(d.shape[0]):
                 d0[i] = d1[i]
                 v0[i] = v1[i]
@@ -212,6 +233,8 @@ def advance_linear(
             for i in range(d.shape[0]):
                 d[i] = d0[i]
                 v[i] = v0[i]
+            out[0] += pos
+            out[1] += signed
             return total
     return -1
 
