@@ -30,7 +30,7 @@ ENV_ID = DECLARATION.env_id
 ELASTICA = (20.0, 1.0, 2.0)  # a [1/m], lambda / L, T [s]: PyElastica's snake (~ its muscles)
 # `python -m mf_envs.controllers.serpentine --tune` (default env, 8 s horizon, speed 2-8 s,
 # Nelder-Mead from ELASTICA, 40 evaluations)
-TUNED = (22.3447, 1.001, 1.7568)  # speed 0.0469 m/s (ELASTICA: 0.0285)
+TUNED = (22.3447, 1.001, 1.7568)  # gait_speed 0.0440 m/s re-evaluated (ELASTICA: 0.0285)
 BOUNDS = ((5.0, 25.0), (0.5, 2.0), (1.0, 4.0))  # a [1/m], lambda / L, T [s]
 
 

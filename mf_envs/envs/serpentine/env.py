@@ -58,9 +58,9 @@ class SerpentineEnv(MFEnv):
     `reward = progress + effort`, the terms in `info["reward_terms"]`: `progress` = centre-of-
     mass displacement along the target direction in the step / L; `effort` = -effort_weight x
     actuation energy of the step [J] (the muscles' positive work -int M3 dkappa#/dt dS, no
-    regeneration; default weight 0.1 / (m_A g L^2): about 0.1 of progress for the tuned
-    serpenoid). Info keys: `spec.INFO_KEYS` (x, y of the centre of mass [m], heading [rad],
-    speed [m/s], actuation energy [J] and power [W], time [s]).
+    regeneration; default weight 0.1 / (m_A g L^2): about 0.07 of progress for the
+    PyElastica-like serpenoid). Info keys: `spec.INFO_KEYS` (x, y of the centre of mass [m],
+    heading [rad], speed [m/s], actuation energy [J] and power [W], time [s]).
 
     ## Starting State
     At rest, curvature kappa0 = max_curvature x U(-reset_noise_scale, reset_noise_scale) at the
