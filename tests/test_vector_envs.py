@@ -27,6 +27,7 @@ SHORT: dict[str, dict[str, Any]] = {
     "GyroStabilizer-v0": {"episode_seconds": 0.6},
     "FloatingGOWEC-v0": {"episode_seconds": 0.2},
     "Inchworm-v0": {"max_episode_steps": 5},
+    "Serpentine-v0": {"episode_seconds": 0.25},
 }
 # scenes with the most effects on (irregular seas draw per-env random components at reset)
 FULL: dict[str, dict[str, Any]] = {
@@ -52,6 +53,7 @@ FULL: dict[str, dict[str, Any]] = {
     },
     "FloatingGOWEC-v0": {"significant_wave_height": 2.0, "n_components": 8},
     "Inchworm-v0": {"n_control_points": 5, "n_elements": 8, "reset_noise_scale": 0.5},
+    "Serpentine-v0": {"effects": ("viscous_ground",), "n_control_points": 5, "n_elements": 8},
 }
 # kwargs that blow the state up within a step (numerical-failure path)
 BLOWUP: dict[str, dict[str, Any]] = {
@@ -63,6 +65,8 @@ BLOWUP: dict[str, dict[str, Any]] = {
     },
     "FloatingGOWEC-v0": {"max_generator_torque": 1e300, "max_generator_power": 1e300},
     "Inchworm-v0": {"friction_coefficients": (0.0, 0.0, 0.0, 0.0)},  # both feet slip
+    # a stiff rod commanded full curvature in one large step: Newton fails after 2^6 halvings
+    "Serpentine-v0": {"youngs_modulus": 1e12, "physics_dt": 0.05, "max_curvature": 57.0},
 }
 SEEDS = [11, 3, 7]
 ENV_STAB = "GyroStabilizer-v0"
@@ -416,7 +420,7 @@ def test_threads_do_not_change_results(env_id: str) -> None:
     through autoresets; num_threads is checked and its automatic choice follows the row cost."""
     from mf_envs.envs._vector import MIN_ROWS_PER_THREAD
 
-    heavy = env_id == "Inchworm-v0"
+    heavy = env_id in ("Inchworm-v0", "Serpentine-v0")  # millisecond rows
     n = 5 if heavy else 300
     kw = SHORT[env_id]
     one = make_vec(env_id, n, num_threads=1, **kw)

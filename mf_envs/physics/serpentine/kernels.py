@@ -29,6 +29,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.algorithmic import assemble_algorithmic
 from mf_envs.physics.beam.banded import HALF_BW, band_solve_into
 from mf_envs.physics.serpentine.friction import assemble_ground
@@ -171,3 +172,82 @@ def run(
                 v_out[j, i] = v[i]
             t_out[j] = t0 + (n + 1) * dt
     return total, -1
+
+
+@numba.njit(cache=True)
+def bending_work(d, k, ka, kb, le, ei):
+    """int EI (kappa(d) - k) (kb - ka) dS at the 4 Gauss points [J]: M3 at d with kappa# = k
+    times a change kb - ka of kappa#."""
+    acc = 0.0
+    for e in range(le.shape[0]):
+        for g in range(4):
+            kap = el.kappa_at(d, 6 * e, le[e], el.GAUSS_XI[g])
+            acc += el.GAUSS_W[g] * le[e] * (kap - k[e, g]) * (kb[e, g] - ka[e, g])
+    return ei * acc
+
+
+@numba.njit(cache=True)
+def advance_linear(
+    d, v, ka, kb, dt, mass, le, quad, ground, th, tol, max_iter, max_halvings, scratch, ei, out
+):
+    """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4) (a
+    commanded actuation held by a first-order hold), splitting the step on Newton failure as
+    `advance`. Returns the Newton iterations used, or -1 (d, v untouched) on failure.
+
+    out[0] += the muscles' positive work [J] summed over the (sub)steps, out[1] += their signed
+    work: -int sigma_3 (k1 - k0) dS with the step's algorithmic moment sigma_3 = EI ((kappa_0
+    - k0) + (kappa_1 - k1)) / 2 (`beam.algorithmic`, theta = 1/2), the exact discrete balance
+    dKE + dU = W_muscles + F_ground . dd of the scheme (EI: the bending stiffness [N m^2])."""
+    work, piv, k0, k1, d0, v0, d1, v1 = scratch
+    ne, ng = ka.shape
+    for level in range(max_halvings + 1):
+        n_sub = 2**level
+        h = dt / n_sub
+        for i in range(d.shape[0]):
+            d0[i] = d[i]
+            v0[i] = v[i]
+        total, pos, signed = 0, 0.0, 0.0
+        ok = True
+        for k in range(n_sub):
+            s0, s1 = k / n_sub, (k + 1) / n_sub
+            for e in range(ne):
+                for g in range(ng):
+                    k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
+                    k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
+            for i in range(d.shape[0]):
+                d1[i] = d0[i] + h * v0[i]  # predictor: constant velocity
+            its = _newton_step(
+                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, work, piv
+            )
+            if its < 0:
+                ok = False
+                break
+            total += its
+            w = -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
+            pos += max(w, 0.0)
+            signed += w
+            for i in range(d.shape[0]):
+                d0[i] = d1[i]
+                v0[i] = v1[i]
+        if ok:
+            for i in range(d.shape[0]):
+                d[i] = d0[i]
+                v[i] = v0[i]
+            out[0] += pos
+            out[1] += signed
+            return total
+    return -1
+
+
+def make_scratch(n_dof: int, n_elements: int) -> tuple:
+    """The scratch arrays of `advance` / `advance_linear` for a beam of n_elements."""
+    return (
+        np.empty((n_dof, 3 * HALF_BW + 1)),
+        np.empty(n_dof, np.int64),
+        np.empty((n_elements, 4)),
+        np.empty((n_elements, 4)),
+        np.empty(n_dof),
+        np.empty(n_dof),
+        np.empty(n_dof),
+        np.empty(n_dof),
+    )

@@ -1,0 +1,224 @@
+"""Serpentine-v0: a soft snake crawling on anisotropic belly friction (Rios 2017 §4.5 II)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+
+from mf_envs._validate import check_range
+from mf_envs.envs._spec import check_options
+from mf_envs.envs.base import MFEnv
+from mf_envs.envs.serpentine import build, render, rows, spec
+from mf_envs.physics.beam.solver import BeamModel
+
+AVAILABLE_EFFECTS = {
+    "friction": "anisotropic Coulomb belly friction (mu, backward_ratio mu, lateral_ratio mu)",
+    "viscous_ground": "viscous ground f = -(c_t v_t t + c_n v_n n) (exclusive with friction)",
+}
+DEFAULT_EFFECTS = ("friction",)
+MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
+
+
+class SerpentineEnv(MFEnv):
+    """
+    ## Description
+    A soft serpentine robot lying on flat ground (Rios 2017 §4.5 II), modelled as a planar
+    geometrically exact active C1 beam (`mf_envs.physics.serpentine`) sized like PyElastica's
+    continuum snake: L = 0.35 m, radius 0.011 L, E = 1 MPa, rho = 1000 kg/m^3. Its muscles set
+    the active curvature kappa#(S, t) (M3 = EI (kappa - kappa#)); the belly slides on
+    anisotropic Coulomb friction (forward mu, backward 1.5 mu, lateral 2 mu, mu from the
+    Froude number 0.1 at a 2 s period), stepped by the implicit energy-momentum scheme with the
+    friction's consistent tangent. Lateral undulation turns the lateral friction into thrust.
+    Goal: crawl along the target direction (+x) with little actuation energy.
+
+    ## Action Space
+    `Box(-1, 1, (n_control_points,), float32)`: kappa# = max_curvature * a at the control
+    points S_j = j L / (n - 1), tail (S = 0) to head (S = L), linear in S between them; each
+    step the command moves linearly in time from the previous one to the new one (it is
+    reached at the end of the step).
+
+    ## Observation Space
+    `Box(float32, (2 n + 4,))`, what an on-board robot senses, laid out by
+    `mf_envs.envs.serpentine.spec.observation_layout(n)` (the env's `obs_layout`):
+
+    | Num | Name | Observation | Bound | Unit |
+    |---|---|---|---|---|
+    | 0..n-1 | curvature | measured kappa L at the control points (strain gauges) | +-20 | |
+    | n | sin_heading | sin(psi_head - target direction) | +-1 | |
+    | n+1 | cos_heading | cos(psi_head - target direction) | +-1 | |
+    | n+2..n+3 | velocity | v_com / L along, across the mean axis | +-10 | 1/s |
+    | n+4..2n+3 | curvature_command | commanded kappa# / max_curvature | +-1 | |
+
+    psi_head is the frame angle at the head; the mean axis is the mean frame angle.
+
+    ## Rewards
+    `reward = progress + effort`, the terms in `info["reward_terms"]`: `progress` = centre-of-
+    mass displacement along the target direction in the step / L; `effort` = -effort_weight x
+    actuation energy of the step [J] (the muscles' positive work -int M3 dkappa#/dt dS, no
+    regeneration; default weight 0.1 / (m_A g L^2): about 0.07 of progress for the
+    PyElastica-like serpenoid). Info keys: `spec.INFO_KEYS` (x, y of the centre of mass [m],
+    heading [rad], speed [m/s], actuation energy [J] and power [W], time [s]).
+
+    ## Starting State
+    At rest, curvature kappa0 = max_curvature x U(-reset_noise_scale, reset_noise_scale) at the
+    control points (linear between) and commanded alike (an equilibrium), mean frame angle
+    U(-initial_heading_range, initial_heading_range), centre of mass at the origin.
+    `reset(options={"heading": rad (|.| <= 4 pi), "kappa": (n,) 1/m within +-max_curvature})`
+    overrides; any other key or value raises ValueError naming it (and draws nothing).
+
+    ## Episode End
+    Truncation after `episode_seconds`. Termination on numerical failure (Newton fails even
+    after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
+
+    ## Arguments
+    | Argument | Default | Meaning |
+    |---|---|---|
+    | length, radius | 0.35, 0.011 L | body length L, section radius [m] (radius <= L / 10) |
+    | youngs_modulus, shear_modulus | 1e6, E / 1.5 | E, G [Pa] in [1e3, 1e12] |
+    | density | 1000 | rho [kg/m^3] |
+    | n_elements | 6 | C1 elements, 2..64 |
+    | max_curvature | 25 | action scale [1/m], max_curvature L <= 20 |
+    | n_control_points | 7 | actuation control points, 2..64 |
+    | control_dt, physics_dt | 0.05, 0.025 | s per step, implicit physics step |
+    | episode_seconds | 20 | episode length [s] (10 periods of the reference gait) |
+    | friction_coefficient | 0.892 | forward Coulomb mu = L / (T^2 g Fr), T = 2 s, Fr = 0.1 |
+    | backward_ratio, lateral_ratio | 1.5, 2 | backward, lateral coefficient / mu |
+    | slip_speed | 1e-3 | regularisation speed of the friction [m/s] |
+    | viscous_tangential, viscous_normal | 2, 4 | c_t, c_n [N s/m^2] with `viscous_ground` |
+    | effort_weight | None | [1/J] >= 0; None: 0.1 / (m_A g L^2) |
+    | reset_noise_scale | 0.05 | start curvature noise / max_curvature, in [0, 1] |
+    | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
+    | effects | friction | also viscous_ground (instead of friction); () frictionless |
+
+    ## Version History
+    * v0: initial release (issue 33).
+    """
+
+    RESET_OPTIONS = spec.RESET_OPTIONS
+    AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
+    metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 20}
+    target_direction = 0.0  # rad: +x
+
+    def __init__(
+        self,
+        length: float = build.LENGTH,
+        radius: float | None = None,
+        youngs_modulus: float = 1e6,
+        shear_modulus: float | None = None,
+        density: float = 1000.0,
+        n_elements: int = 6,
+        max_curvature: float = 25.0,
+        n_control_points: int = 7,
+        control_dt: float = 0.05,
+        physics_dt: float = 0.025,
+        episode_seconds: float = 20.0,
+        friction_coefficient: float = build.MU,
+        backward_ratio: float = 1.5,
+        lateral_ratio: float = 2.0,
+        slip_speed: float = 1e-3,
+        viscous_tangential: float = 2.0,
+        viscous_normal: float = 4.0,
+        effort_weight: float | None = None,
+        reset_noise_scale: float = 0.05,
+        initial_heading_range: float = math.pi,
+        effects: Any = None,
+        render_mode: str | None = None,
+    ) -> None:
+        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
+                         render_mode=render_mode)  # fmt: skip
+        self.scene = build.build(kw, self.effects)
+        self.max_steps = self._episode_steps(episode_seconds)
+        self.episode_seconds = self.max_steps * self.control_dt
+        self.model = BeamModel(self.scene.params)
+        self.cfg = rows.pack(
+            self.scene, self.model, self.n_substeps, self.physics_dt, self.target_direction
+        )
+        n, nd = self.n_ctrl, self.model.n_dof
+        self.action_space = spaces.Box(-1.0, 1.0, (n,), np.float32)
+        self.obs_layout = spec.observation_layout(n)
+        hi = self.obs_layout.high()
+        self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
+        self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
+        self.state[0] = self.model.straight()
+        self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
+        self._sc = rows.scratch(self.model)
+        self._body, self._rep = np.zeros(5), np.zeros(rows.N_REPORT)
+        self._obs = np.zeros(self.obs_layout.size, np.float32)
+        self._steps = 0
+        self._track: list[tuple[float, float]] = []
+
+    # ------------------------------------------------------------------ API
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        opts = check_options(options, spec.RESET_OPTIONS)  # all checks before any draw
+        heading = None
+        if "heading" in opts:
+            heading = check_range("heading", opts["heading"], -MAX_HEADING, MAX_HEADING)
+        kappa = None
+        if "kappa" in opts:
+            kappa = np.asarray(opts["kappa"])
+            if kappa.shape != (self.n_ctrl,) or kappa.dtype.kind not in "iuf":
+                raise ValueError(f"kappa: expected {self.n_ctrl} numbers, got {opts['kappa']!r}")
+            kappa = kappa.astype(float)
+            if not np.all(np.isfinite(kappa)) or np.any(np.abs(kappa) > self.max_curvature):
+                raise ValueError("kappa: must be finite and within +-max_curvature")
+        super().reset(seed=seed)
+        rng, sc = self.np_random, self.scene
+        drawn_heading = rng.uniform(-sc.initial_heading_range, sc.initial_heading_range)
+        noise = rng.uniform(-1.0, 1.0, self.n_ctrl) * sc.reset_noise_scale * self.max_curvature
+        heading = drawn_heading if heading is None else heading
+        kappa = noise if kappa is None else kappa
+        self.state[0] = build.initial_dofs(sc.params, kappa, heading)
+        self.state[1] = 0.0
+        self.cmd[:] = kappa
+        self._steps = 0
+        rows.observe_row(self.state[0], self.state[1], self.cmd, self.cfg, self._body, self._obs)
+        self._track = [(self._body[0], self._body[1])]
+        info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
+        return self._finish_reset(self._obs.copy()), info
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        a = self._validate_action(action)
+        rep = self._rep
+        d, v = self.state[0], self.state[1]
+        rows.step_row(d, v, self.cmd, a, self.cfg, self._sc, self._body, self._obs, rep)
+        self._steps += 1
+        ok = rep[rows.REP_OK] > 0.0 and bool(np.isfinite(self.state).all())
+        dx = self._body[0] - rep[rows.REP_X0], self._body[1] - rep[rows.REP_Y0]
+        c, s = math.cos(self.target_direction), math.sin(self.target_direction)
+        along = c * dx[0] + s * dx[1]
+        energy = float(rep[rows.REP_ENERGY])
+        terms = {"progress": along / self.length, "effort": -self.effort_weight * energy}
+        info = self._info(along / self.control_dt, energy, int(rep[rows.REP_ITER]), terms)
+        info["actuation_net_work"] = float(rep[rows.REP_NET])
+        if ok:
+            self._track.append((self._body[0], self._body[1]))
+        reward = terms["progress"] + terms["effort"]
+        trunc = self._steps >= self.max_steps
+        return self._finish_step(self._obs.copy(), reward, False, trunc, info, ok)
+
+    # ------------------------------------------------------------------ helpers
+    def _info(self, speed: float, energy: float, its: int, terms: dict) -> dict[str, Any]:
+        d = self.state[0]
+        return spec.step_info(
+            float(self._body[0]), float(self._body[1]), float(d[-1]), float(speed),
+            self.cmd.copy(), energy, 0.0, self.control_dt, its,
+            self._steps * self.control_dt, terms,
+        )  # fmt: skip
+
+    def centerline(self, per_element: int = 8) -> np.ndarray:
+        """(N, 2) points of the body's centreline [m], tail to head."""
+        return self.model.centerline(self.state[0], per_element)
+
+    def _draw_frame(self) -> np.ndarray:
+        line = self.centerline()
+        if not np.isfinite(line).all():  # after a numerical failure: the last finite track
+            line = np.array([self._track[-1], self._track[-1]]) + [[0.0, 0.0], [1e-9, 0.0]]
+        x, y = self._track[-1] if self._track else (0.0, 0.0)
+        text = f"t = {self._steps * self.control_dt:.2f} s  com ({x:+.3f}, {y:+.3f}) m"
+        return render.draw(line, self._track[-400:], self.target_direction, text)
