@@ -67,9 +67,12 @@ SOAK_STEPS: dict[str, int] = {
     "FloatingGOWEC-v0": 20_000,  # ~1 ms per step (Cummins + gyro, 4 RK4 substeps)
 }
 
-# Random-action steps for the determinism/pickling checks ("a few hundred"); the quasi-static
-# inchworm solves a nonlinear FE problem per step, so it gets fewer to keep the suite fast.
-ROLLOUT_STEPS: dict[str, int] = {"Inchworm-v0": 60}
+
+# Random-action steps for the determinism/pickling checks ("a few hundred"); an env declared
+# `slow` (a nonlinear FE solve per step: the inchworm, the serpentine) gets 60.
+def _rollout_steps(env_id: str) -> int:
+    return 60 if declaration(env_id).slow else 300
+
 
 # How each env's physics state is made non-finite through `env.unwrapped` (read from the env
 # code: the arrays its step integrates from); an env not listed keeps its state in `state`.
@@ -177,7 +180,7 @@ def test_sb3_check_env(env_id, make):
 @pytest.mark.parametrize("env_id", ENV_IDS)
 def test_same_seed_same_trajectory(env_id, make):
     a, b = make(env_id), make(env_id)
-    actions = _actions(a, ROLLOUT_STEPS.get(env_id, 300))
+    actions = _actions(a, _rollout_steps(env_id))
     _assert_same(_rollout(a, actions, seed=7), _rollout(b, actions, seed=7))
 
 
@@ -197,7 +200,11 @@ def test_different_seed_different_start(env_id, make):
 def test_pickle_round_trip_continues_identically(env_id, make):
     env = make(env_id)
     clone = pickle.loads(pickle.dumps(env))  # a fresh env
-    actions = _actions(env, min(40, ROLLOUT_STEPS.get(env_id, 300) // 3), seed=1)
+    actions = _actions(
+        env,
+        min(40, _rollout_steps(env_id) // 3),
+        seed=1,
+    )
     half = len(actions) // 2
     _assert_same(_rollout(env, actions, seed=3), _rollout(clone, actions, seed=3))
     # a stepped env: pickle in the middle of an episode, both continue identically
@@ -406,7 +413,7 @@ def test_random_action_soak(env_id, make):
     rng = np.random.default_rng(0)
     env.reset(seed=0)
     low, high = env.action_space.low, env.action_space.high
-    for i in range(SOAK_STEPS.get(env_id, 100_000)):
+    for i in range(SOAK_STEPS.get(env_id, 1_000 if declaration(env_id).slow else 100_000)):
         a = rng.uniform(low, high).astype(np.float32)
         obs, r, term, trunc, info = env.step(a)
         assert not info["numerical_failure"], f"numerical failure at step {i}"

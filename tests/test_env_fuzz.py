@@ -34,7 +34,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import mf_envs  # noqa: F401  (registers the envs)
-from mf_envs.envs import available_env_ids
+from mf_envs.envs import available_env_ids, declaration
 
 FAST, SLOW = 30, 300
 ENV_IDS = available_env_ids()
@@ -69,7 +69,11 @@ WILD = st.one_of(
 )
 # every effect an env can switch (MFEnv.available_effects of its default instance)
 EFFECTS = {e: gym.make(e, disable_env_checker=True).unwrapped.available_effects for e in ENV_IDS}
-STEPS = {"Inchworm-v0": 3}  # steps per example (others: 20; the inchworm is ~0.5 ms/step)
+
+
+# steps per example: 20, or 3 for an env declared `slow` (a nonlinear solve per step)
+def _steps(env_id: str) -> int:
+    return 3 if declaration(env_id).slow else 20
 
 
 def env_class(env_id: str) -> type:
@@ -299,7 +303,7 @@ def check_scene(env_id: str, kwargs: dict, options: dict, seed: int) -> None:
         obs, _ = env.reset(seed=seed)
     assert np.isfinite(obs).all() and env.observation_space.contains(obs)
     rng = np.random.default_rng(seed)
-    for _ in range(STEPS.get(env_id, 20)):
+    for _ in range(_steps(env_id)):
         action = rng.uniform(-1.5, 1.5, env.action_space.shape).astype(np.float32)
         obs, r, term, trunc, info = env.step(action)
         assert np.isfinite(obs).all() and math.isfinite(r), info
@@ -326,7 +330,7 @@ def _fuzz(env_id: str, n: int):
 
 @pytest.mark.parametrize("env_id", ENV_IDS)
 def test_fuzz_fast(env_id):
-    _fuzz(env_id, FAST if env_id != "Inchworm-v0" else FAST // 2)()
+    _fuzz(env_id, FAST // 2 if declaration(env_id).slow else FAST)()
 
 
 @pytest.mark.slow

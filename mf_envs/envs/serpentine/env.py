@@ -9,7 +9,6 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
-from mf_envs.envs._spec import check_options
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.serpentine import build, render, rows, spec
 from mf_envs.physics.beam.solver import BeamModel
@@ -152,10 +151,7 @@ class SerpentineEnv(MFEnv):
         self._track: list[tuple[float, float]] = []
 
     # ------------------------------------------------------------------ API
-    def reset(
-        self, *, seed: int | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]:
-        opts = check_options(options, spec.RESET_OPTIONS)  # all checks before any draw
+    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         heading = None
         if "heading" in opts:
             heading = check_range("heading", opts["heading"], -MAX_HEADING, MAX_HEADING)
@@ -167,7 +163,10 @@ class SerpentineEnv(MFEnv):
             kappa = kappa.astype(float)
             if not np.all(np.isfinite(kappa)) or np.any(np.abs(kappa) > self.max_curvature):
                 raise ValueError("kappa: must be finite and within +-max_curvature")
-        super().reset(seed=seed)
+        return {"heading": heading, "kappa": kappa}
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
+        heading, kappa = opts["heading"], opts["kappa"]
         rng, sc = self.np_random, self.scene
         drawn_heading = rng.uniform(-sc.initial_heading_range, sc.initial_heading_range)
         noise = rng.uniform(-1.0, 1.0, self.n_ctrl) * sc.reset_noise_scale * self.max_curvature
@@ -176,11 +175,10 @@ class SerpentineEnv(MFEnv):
         self.state[0] = build.initial_dofs(sc.params, kappa, heading)
         self.state[1] = 0.0
         self.cmd[:] = kappa
-        self._steps = 0
         rows.observe_row(self.state[0], self.state[1], self.cmd, self.cfg, self._body, self._obs)
         self._track = [(self._body[0], self._body[1])]
         info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
-        return self._finish_reset(self._obs.copy()), info
+        return self._obs.copy(), info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         a = self._validate_action(action)
