@@ -98,6 +98,7 @@ class SerpentineEnv(MFEnv):
 
     RESET_OPTIONS = spec.RESET_OPTIONS
     AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
+    exclusive_effects = (("friction", "viscous_ground"),)  # one ground law (ValueError)
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 20}
     target_direction = 0.0  # rad: +x
 
