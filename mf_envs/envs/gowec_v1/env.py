@@ -128,7 +128,7 @@ class GOWECV1Env(MFEnv):
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         hi = spec.OBS.high({"max_gimbal_rate": self.max_gimbal_rate})
         self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
-        self._energy_scale = 1.0 / (self.reference_power() * self.control_dt)
+        self.energy_scale = 1.0 / (self.reference_power() * self.control_dt)
         self.wave: waves.WaveField = waves.regular_wave(
             self.wave_amplitude, self.wave_period, self.wave_direction
         )
@@ -190,7 +190,7 @@ class GOWECV1Env(MFEnv):
             info["reward_terms"] = {"net_electrical_energy": 0.0}
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
         self.state = y
-        reward = float(self._vals[11] * self._energy_scale)  # net electrical energy / scale
+        reward = float(self._vals[11] * self.energy_scale)  # net electrical energy / scale
         info = self._info_from(self._vals)
         info["reward_terms"] = {"net_electrical_energy": reward}
         info["overspeed"], info["out_of_range"] = over, out
@@ -198,7 +198,7 @@ class GOWECV1Env(MFEnv):
             return self._step_ok(obs, reward, over or out, truncated, info)
         return self._finish_step(obs, reward, over or out, truncated, info, True)
 
-    def _loss(self) -> float:
+    def rotor_loss_power(self) -> float:
         """Rotor loss (W) while the rotor spins, else 0."""
         return self.rotor_loss * (self.model.psid != 0.0)
 
@@ -209,7 +209,10 @@ class GOWECV1Env(MFEnv):
         sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
         if self._consts_key != key:
             lim = (self.max_gimbal_rate, spec.MAX_BUOY_ANGLE)
-            self._consts_val, self._consts_key = (self._loss(), sp.low, sp.high, lim), key
+            self._consts_val, self._consts_key = (
+                (self.rotor_loss_power(), sp.low, sp.high, lim),
+                key,
+            )
         return self._consts_val
 
     def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:

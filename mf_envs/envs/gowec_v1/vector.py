@@ -163,11 +163,11 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         obs = self._fresh
         self.blocks.run(
             step_rows, active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps, shared,
-            sea["om"], sea["cp"], sea["cr"], sea["amp"], sea["eps"], dtc, env._loss(), self._vals,
-            ok, self._lo, self._hi, obs,
+            sea["om"], sea["cp"], sea["cr"], sea["amp"], sea["eps"], dtc,
+            env.rotor_loss_power(), self._vals, ok, self._lo, self._hi, obs,
         )  # fmt: skip
         v, Y = self._vals, self.Y
-        reward = v[:, 11] * env._energy_scale
+        reward = v[:, 11] * env.energy_scale
         vt = v.T.copy()  # one copy; the info columns are its rows (fresh every step)
         info: dict[str, Any] = {key: vt[j] for key, j in _SCALAR_SLOTS.items()}
         info["buoy_rate"] = v[:, 4:6].copy()
