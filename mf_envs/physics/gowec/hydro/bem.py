@@ -20,6 +20,10 @@ from numpy.typing import ArrayLike
 
 from mf_envs.physics.gowec.hydro import RHO, CylinderHull, G, HullCoefficients
 
+# (n_theta, n_side, n_bottom, ratio) of `meshes.cylinder_mesh` for the GOWEC default cylinder
+# (r 2.5 m, d 2 m): 13 824 hull panels, Haskind within 5 % at 0.3-3 rad/s (docs/gowec_v1.md,
+# "Convergence"; scripts/hydro_convergence.py)
+CONVERGED_MESH = (192, 36, 36, 1.12)
 DOF_NAMES = {1: "Surge", 2: "Sway", 3: "Heave", 4: "Roll", 5: "Pitch", 6: "Yaw"}
 
 
@@ -45,11 +49,13 @@ def solve(
     water_depth: float = math.inf,
     rho: float = RHO,
     g: float = G,
+    green_function: Any = None,
 ) -> dict[str, np.ndarray]:
     """Radiation and diffraction of `body` for the rigid-body modes (1..6 = surge..yaw) at the
     frequencies omega (rad/s), head waves along +x. Returns float64/complex128 arrays:
     A, B (n, m, m) [i, j] = force on mode i from motion of mode j; X (n, m) excitation per metre
-    of wave amplitude (Capytaine's e^{-i w t} convention); k (n,) wavenumber (rad/m)."""
+    of wave amplitude (Capytaine's e^{-i w t} convention); k (n,) wavenumber (rad/m).
+    green_function: a Capytaine Green function object (default: Capytaine's Delhommeau)."""
     import capytaine as cpt
     import xarray as xr
 
@@ -72,7 +78,9 @@ def solve(
             "water_depth": water_depth,
         }
     )
-    ds = cpt.BEMSolver().fill_dataset(test, body, hydrostatics=False).sel(omega=om)  # input order
+    gf = {} if green_function is None else dict(green_function=green_function)
+    solver = cpt.BEMSolver(**gf)
+    ds = solver.fill_dataset(test, body, hydrostatics=False).sel(omega=om)  # input order
     order = dict(influenced_dof=names, radiating_dof=names)
     A = ds.added_mass.sel(**order).transpose("omega", "influenced_dof", "radiating_dof")
     B = ds.radiation_damping.sel(**order).transpose("omega", "influenced_dof", "radiating_dof")
@@ -85,12 +93,15 @@ def solve(
     )
 
 
-def limit_added_mass(body: Any, mode: int, omega: float, rho: float = RHO, g: float = G) -> float:
-    """Added mass of `mode` at omega = 0 or inf (deep water), kg or kg m^2."""
+def deep_green_function():
+    """Liang-Wu-Noblesse deep-water Green function (Capytaine's `LiangWuNoblesseGF`, as in
+    HAMS): evaluated from its series and asymptotic expansions, not interpolated from a table.
+    Capytaine's default (Delhommeau's tabulated wave term) leaves a ~5e-4 relative jitter in the
+    influence matrices, which B55 about G of the GOWEC cylinder, a ~1e-3 difference of large
+    terms, turns into +-8 % frequency-to-frequency noise at 2.3-3.3 rad/s (issue 29)."""
     import capytaine as cpt
 
-    pb = cpt.RadiationProblem(body=body, radiating_dof=DOF_NAMES[mode], omega=omega, rho=rho, g=g)
-    return float(cpt.BEMSolver().solve(pb).added_mass[DOF_NAMES[mode]])
+    return cpt.LiangWuNoblesseGF()
 
 
 def _legacy_body(hull: CylinderHull, resolution: tuple[int, int, int]):
@@ -127,10 +138,15 @@ def from_capytaine(
     the keel-graded axisymmetric mesh (`meshes.cylinder_mesh`, the converged one of issue 29);
     without it, resolution = (radial, azimuthal, vertical) panels of Capytaine's uniform
     cylinder before clipping at the waterline (the pre-issue-29 mesh, under-resolved at the
-    keel). C55 is the mesh hydrostatics (`CylinderHull.stiffness` is the independent check)."""
-    body = _legacy_body(hull, resolution) if mesh is None else cylinder_body(hull, mesh, rho)
-    r = solve(body, omega, (5,), math.inf, rho, g)
-    limits = [limit_added_mass(body, 5, w, rho, g) for w in (0.0, np.inf)]
+    keel). C55 is the mesh hydrostatics (`CylinderHull.stiffness` is the independent check).
+    The graded mesh is solved with the exact deep-water Green function (`deep_green_function`);
+    the legacy mesh with Capytaine's default, as the old file was."""
+    if mesh is None:
+        body, gf = _legacy_body(hull, resolution), None
+    else:
+        body, gf = cylinder_body(hull, mesh, rho), deep_green_function()
+    r = solve(body, omega, (5,), math.inf, rho, g, gf)
+    limits = [float(solve_limit(body, (5,), w, rho, g)[0, 0]) for w in (0.0, np.inf)]
     hs = body.compute_hydrostatics(rho=rho, g=g)
     C = float(np.asarray(hs["hydrostatic_stiffness"])[4, 4])
     return HullCoefficients(
@@ -150,3 +166,56 @@ def from_capytaine(
         zg=hull.zg,
         name=f"capytaine cylinder r={hull.radius} d={hull.draft}",
     )
+
+
+def three_dof_from_capytaine(
+    hull: CylinderHull,
+    omega: ArrayLike,
+    water_depth: float,
+    mesh: tuple[int, int, int, float],
+    rho: float = RHO,
+    g: float = G,
+):
+    """Surge/heave/pitch `ThreeDofCoefficients` of `hull` about G at finite `water_depth` (m)
+    on the keel-graded axisymmetric mesh (n_theta, n_side, n_bottom, ratio). The hydrostatic
+    matrix is the mesh hydrostatics (rows/columns 1, 3, 5 of Capytaine's 6 x 6); the mass
+    matrix is diag(m, m, m k^2) with m = rho V (freely floating) and k the pitch gyration."""
+    from mf_envs.physics.gowec.hydro.three_dof import MODES, ThreeDofCoefficients
+
+    body = cylinder_body(hull, mesh, rho)
+    r = solve(body, omega, MODES, water_depth, rho, g)
+    deep = solve_limit(body, MODES, np.inf, rho, g)
+    idx = np.ix_([m - 1 for m in MODES], [m - 1 for m in MODES])
+    C = np.asarray(body.compute_hydrostatics(rho=rho, g=g)["hydrostatic_stiffness"])[idx]
+    m = hull.mass(rho)
+    return ThreeDofCoefficients(
+        omega=np.asarray(omega, dtype=float),
+        wavenumber=r["k"],
+        added_mass=r["A"],
+        damping=r["B"],
+        excitation=r["X"],
+        added_mass_inf=deep,
+        hydrostatic_stiffness=np.asarray(C, dtype=float),
+        mass_matrix=np.diag([m, m, hull.inertia(rho)]),
+        water_depth=float(water_depth),
+        rho=rho,
+        g=g,
+        radius=hull.radius,
+        draft=hull.draft,
+        zg=hull.zg,
+        gyration=hull.gyration,
+        name=f"capytaine cylinder r={hull.radius} d={hull.draft} h={water_depth}",
+    )
+
+
+def solve_limit(body: Any, modes: tuple[int, ...], omega: float, rho: float = RHO, g: float = G):
+    """Added-mass matrix (m, m) of `modes` at omega = 0 or inf, deep water; [i, j] = force on
+    mode i from mode j."""
+    import capytaine as cpt
+
+    out = np.zeros((len(modes), len(modes)))
+    for j, mj in enumerate(modes):
+        pb = cpt.RadiationProblem(body=body, radiating_dof=DOF_NAMES[mj], omega=omega, rho=rho, g=g)
+        res = cpt.BEMSolver().solve(pb)
+        out[:, j] = [float(res.added_mass[DOF_NAMES[mi]]) for mi in modes]
+    return out

@@ -36,10 +36,10 @@ def graded(length: float, n: int, ratio: float) -> NDArray[np.float64]:
 def cylinder_profile(
     radius: float, draft: float, n_side: int, n_bottom: int, ratio: float = 1.1
 ) -> NDArray[np.float64]:
-    """Meridian points (m, 3) of a vertical cylinder's wetted surface, waterline -> keel edge ->
-    axis, graded towards the keel edge (`graded`); the waterline end of the side is graded too
-    (smallest panels at both ends of the side, the free-surface intersection being the other
-    place where the potential varies fast at high frequency)."""
+    """Meridian points (m, 3) of a vertical cylinder's wetted surface, axis -> keel edge ->
+    waterline (the order `revolve` needs), graded towards the keel edge (`graded`); the
+    waterline end of the side is graded too (smallest panels at both ends of the side, the
+    free-surface intersection being the other place where the potential varies fast)."""
     half = n_side // 2
     upper = graded(0.5 * draft, max(half, 1), ratio)  # from the waterline down to mid-draft
     lower = graded(0.5 * draft, max(n_side - half, 1), ratio)  # from the keel up to mid-draft
@@ -47,12 +47,14 @@ def cylinder_profile(
     r_bot = radius - graded(radius, n_bottom, ratio)[1:]  # keel edge -> axis
     r = np.concatenate((np.full_like(z_side, radius), r_bot))
     z = np.concatenate((z_side, np.full_like(r_bot, -draft)))
-    return np.stack((r, np.zeros_like(r), z), axis=1)
+    return np.stack((r, np.zeros_like(r), z), axis=1)[::-1]
 
 
 def revolve(profile: NDArray, n_theta: int, name: str | None = None):
-    """`RotationSymmetricMesh` of the profile (points (m, 3) in the xz plane, z decreasing away
-    from the waterline) repeated n_theta times about z."""
+    """`RotationSymmetricMesh` of the profile (points (m, 3) in the xz plane) repeated n_theta
+    times about z. Capytaine sorts the points by increasing z (stable sort) and joins neighbours,
+    so a profile must already run upwards, and along a horizontal part (a flat bottom) from the
+    axis outwards; the normals then point out of the body."""
     from capytaine.meshes.symmetric_meshes import RotationSymmetricMesh
 
     if not (isinstance(n_theta, int) and n_theta >= 3):
