@@ -183,7 +183,7 @@ def three_dof_from_capytaine(
     from mf_envs.physics.gowec.hydro.three_dof import MODES, ThreeDofCoefficients
 
     body = cylinder_body(hull, mesh, rho)
-    r = solve(body, omega, MODES, water_depth, rho, g)
+    r = solve_depth(body, omega, MODES, water_depth, rho, g)
     deep = solve_limit(body, MODES, np.inf, rho, g)
     idx = np.ix_([m - 1 for m in MODES], [m - 1 for m in MODES])
     C = np.asarray(body.compute_hydrostatics(rho=rho, g=g)["hydrostatic_stiffness"])[idx]
@@ -206,6 +206,36 @@ def three_dof_from_capytaine(
         gyration=hull.gyration,
         name=f"capytaine cylinder r={hull.radius} d={hull.draft} h={water_depth}",
     )
+
+
+def solve_depth(
+    body: Any,
+    omega: ArrayLike,
+    modes: tuple[int, ...],
+    water_depth: float,
+    rho: float = RHO,
+    g: float = G,
+    deep_kh: float = 6.0,
+) -> dict[str, np.ndarray]:
+    """`solve` at a finite depth h: Capytaine's finite-depth Green function where k h <= deep_kh,
+    the exact deep-water one (`deep_green_function`) where the seabed is deeper than deep_kh / k
+    (its effect on the potential there is ~exp(-2 k h) = 6e-6 at k h = 6, while the finite-depth
+    function's tabulation jitter is ~1e-3 there). k is the finite-depth wavenumber throughout."""
+    from mf_envs.physics.waves import wavenumber
+
+    om = np.asarray(omega, dtype=float)
+    if om.ndim != 1 or om.size == 0 or not np.all(np.diff(om) > 0):
+        raise ValueError(f"omega: expected strictly increasing frequencies, got {omega!r}")
+    k = wavenumber(om, water_depth, g)
+    deep = k * water_depth > deep_kh
+    parts = []
+    if np.any(~deep):
+        parts.append(solve(body, om[~deep], modes, water_depth, rho, g))
+    if np.any(deep):
+        parts.append(solve(body, om[deep], modes, math.inf, rho, g, deep_green_function()))
+    out = {key: np.concatenate([p[key] for p in parts]) for key in ("A", "B", "X")}
+    out["k"] = k
+    return out
 
 
 def solve_limit(body: Any, modes: tuple[int, ...], omega: float, rho: float = RHO, g: float = G):
