@@ -26,7 +26,7 @@ from mf_envs.physics.gowec.hydro import CylinderHull
 from mf_envs.physics.gowec.hydro.bem import three_dof_from_capytaine
 from mf_envs.physics.gowec.hydro.three_dof import ISWEC_HULL_FILE
 
-ISWEC_MESH = (128, 16, 40, 1.1)  # (n_theta, n_side, n_bottom, ratio): docs/gowec_v1.md
+ISWEC_MESH = (128, 16, 48, 1.1)  # (n_theta, n_side, n_bottom, ratio): docs/gowec_v1.md
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -37,7 +37,7 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--zg", type=float, default=-0.5, help="centre of gravity z (m, waterline 0)")
     p.add_argument("--gyration", type=float, default=4.2, help="pitch radius of gyration (m)")
     p.add_argument("--depth", type=float, default=35.0, help="water depth (m)")
-    p.add_argument("--omega", type=float, nargs=3, default=(0.2, 4.0, 39), help="w0 w1 n (rad/s)")
+    p.add_argument("--omega", type=float, nargs=3, default=(0.2, 3.4, 33), help="w0 w1 n (rad/s)")
     p.add_argument("--mesh", type=float, nargs=4, default=ISWEC_MESH, help="nt n_side n_bottom q")
     a = p.parse_args(argv)
     hull = CylinderHull(a.radius, a.draft, a.zg, a.gyration)

@@ -61,11 +61,14 @@ def max_absorbed_power(h: ThreeDofCoefficients, rcond: float = 0.05) -> NDArray[
     """Largest mean power (W per m^2 of wave amplitude) the three modes together can absorb from
     a regular head wave, 1/8 X^H B^+ X (Falnes 2002 ch. 6, optimal velocities u = B^+ X / 2),
     at each frequency. Surge and pitch radiate the same cos(beta) pattern, so by Haskind their
-    2 x 2 damping block has rank one (the combination that moves a non-radiating point); B^+
-    drops eigenvalues below rcond x the largest, which are that combination's mesh error."""
+    2 x 2 damping block has rank one (the combination that moves a non-radiating point). B is
+    scaled to unit diagonal, D^-1/2 B D^-1/2, whose eigenvalues are then ~1 (heave), ~2 and ~0
+    (surge-pitch); the pseudo-inverse drops those below rcond, the ~0 one's mesh error."""
     out = np.empty(h.omega.size)
     for n in range(h.omega.size):
-        Bp = np.linalg.pinv(0.5 * (h.damping[n] + h.damping[n].T), rcond=rcond, hermitian=True)
-        X = h.excitation[n]
+        Bn = 0.5 * (h.damping[n] + h.damping[n].T)
+        s = 1.0 / np.sqrt(np.diag(Bn))
+        Bp = np.linalg.pinv(Bn * np.outer(s, s), rcond=rcond, hermitian=True)
+        X = h.excitation[n] * s
         out[n] = 0.125 * float(np.real(np.conj(X) @ Bp @ X))
     return out
