@@ -1,16 +1,16 @@
 """Mesh convergence of the GOWEC default cylinder's pitch coefficients about G (issue 29).
 
     pip install "mf-envs[hydro]"
-    nice -n 10 python scripts/hydro_convergence.py            # ~3 min on 2 shared cores
-    nice -n 10 python scripts/hydro_convergence.py --quick    # without the finest mesh (~1 min)
+    nice -n 10 python scripts/hydro_convergence.py            # ~10 min on 2 shared cores
+    nice -n 10 python scripts/hydro_convergence.py --quick    # without the finest mesh (~5 min)
 
 Prints Markdown tables (rows: meshes; columns: frequencies) of A55, B55 and |X5| about G and of
 the Haskind ratio B_Haskind / B55, where B_Haskind = k |X5|^2 / (8 rho g c_g) is the damping the
 far field carries away (`checks.haskind_damping`). Pitch about G of this hull is nearly
-non-radiating (B55 ~ 1e-3 of the surge and pitch-about-the-waterline terms it is the difference
-of), so near-field panel errors are amplified in B55 while |X5| converges fast: the ratio measures
-the B55 error. The last mesh is `bem.CONVERGED_MESH`'s finer neighbour (a check that the
-shipped data have converged, not only that Haskind holds).
+non-radiating (B55(G) = B55(O) + 2 dz B15 + dz^2 B11, O on the waterline, is 0.35 % of the sum
+of its terms' magnitudes at 2 rad/s), so near-field panel errors are amplified in B55 while
+|X5| converges fast: the ratio measures the B55 error. The last mesh is `bem.CONVERGED_MESH`'s
+finer neighbour (a check that the shipped data have converged, not only that Haskind holds).
 """
 
 from __future__ import annotations

@@ -30,9 +30,9 @@ def test_hydrostatic_stiffness_from_geometry(hull):
 
 def test_haskind_relation(hull):
     # far field (Haskind, from |X|) vs near field (pressure integral) B55 about G. Pitch about G
-    # of this hull is nearly non-radiating (B55(G) = B55(0) + 2 z_G B15 + z_G^2 B11 is ~1e-3 of
+    # of this hull is nearly non-radiating (B55(G) = B55(0) + 2 z_G B15 + z_G^2 B11 is 0.1-3 % of
     # its terms), so this measures the mesh error (issue 29): the keel-graded 13 824-panel mesh
-    # holds it to 1.2 % at 0.3-3 rad/s and 2.1 % over the table (the old 768-panel file: 41 %)
+    # holds it to 1.2 % at 0.3-3 rad/s and 2.1 % over the table (old 768-panel file: 78 %)
     B = haskind_damping(hull)
     band = (hull.omega >= 0.3) & (hull.omega <= 3.0)
     assert np.max(np.abs(B[band] / hull.damping[band] - 1.0)) < 0.02

@@ -96,8 +96,8 @@ def solve(
 def deep_green_function():
     """Liang-Wu-Noblesse deep-water Green function (Capytaine's `LiangWuNoblesseGF`, as in
     HAMS): evaluated from its series and asymptotic expansions, not interpolated from a table.
-    Capytaine's default (Delhommeau's tabulated wave term) leaves a ~5e-4 relative jitter in the
-    influence matrices, which B55 about G of the GOWEC cylinder, a ~1e-3 difference of large
+    Capytaine's default (Delhommeau's tabulated wave term) leaves an interpolation error in the
+    influence matrices, which B55 about G of the GOWEC cylinder, a 0.1-3 % difference of large
     terms, turns into +-8 % frequency-to-frequency noise at 2.3-3.3 rad/s (issue 29)."""
     import capytaine as cpt
 
@@ -219,8 +219,8 @@ def solve_depth(
 ) -> dict[str, np.ndarray]:
     """`solve` at a finite depth h: Capytaine's finite-depth Green function where k h <= deep_kh,
     the exact deep-water one (`deep_green_function`) where the seabed is deeper than deep_kh / k
-    (its effect on the potential there is ~exp(-2 k h) = 6e-6 at k h = 6, while the finite-depth
-    function's tabulation jitter is ~1e-3 there). k is the finite-depth wavenumber throughout."""
+    (its effect on the potential there is ~exp(-2 k h) = 6e-6 at k h = 6, less than the
+    finite-depth function's tabulation error). k is the finite-depth wavenumber throughout."""
     from mf_envs.physics.waves import wavenumber
 
     om = np.asarray(omega, dtype=float)
