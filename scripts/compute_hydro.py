@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from mf_envs.physics.gowec.hydro import DEFAULT_HULL_FILE, CylinderHull, from_capytaine
+from mf_envs.physics.gowec.hydro.bem import CONVERGED_MESH
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -33,11 +34,22 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--gyration", type=float, default=1.5, help="pitch radius of gyration (m)")
     p.add_argument("--omega-max", type=float, default=5.0, help="rad/s")
     p.add_argument("--n-omega", type=int, default=70)
-    p.add_argument("--resolution", type=int, nargs=3, default=(8, 48, 16), help="(nr, ntheta, nz)")
+    p.add_argument(
+        "--mesh", type=float, nargs=4, default=CONVERGED_MESH,
+        help="keel-graded axisymmetric mesh (n_theta, n_side, n_bottom, ratio)",
+    )  # fmt: skip
+    p.add_argument(
+        "--legacy-resolution", type=int, nargs=3, default=None, metavar=("NR", "NTHETA", "NZ"),
+        help="use the pre-issue-29 uniform mesh instead (e.g. 8 48 16: the old default_hull.npz)",
+    )  # fmt: skip
     a = p.parse_args(argv)
     hull = CylinderHull(a.radius, a.draft, a.zg, a.gyration)
     omega = np.linspace(0.05, a.omega_max, a.n_omega)
-    coeffs = from_capytaine(hull, omega, resolution=tuple(a.resolution))
+    if a.legacy_resolution is not None:
+        coeffs = from_capytaine(hull, omega, resolution=tuple(a.legacy_resolution))
+    else:
+        nt, ns, nb, q = a.mesh
+        coeffs = from_capytaine(hull, omega, mesh=(int(nt), int(ns), int(nb), q))
     coeffs.save(a.out)
     print(f"wrote {a.out}: {len(omega)} frequencies, C55 = {coeffs.stiffness:.4g} N m/rad")
 

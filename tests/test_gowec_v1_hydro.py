@@ -7,6 +7,7 @@ import pytest
 
 from mf_envs.physics.gowec.hydro import (
     DEFAULT_HULL_FILE,
+    LEGACY_HULL_FILE,
     CylinderHull,
     HullCoefficients,
     load_hull,
@@ -28,24 +29,31 @@ def test_hydrostatic_stiffness_from_geometry(hull):
 
 
 def test_haskind_relation(hull):
-    # B55 about G is a small difference of large surge and pitch terms (B55(G) = B55(0) +
-    # 2 z_G B15 + z_G^2 B11), so the far-field (Haskind) and near-field (pressure) values differ
-    # by the mesh error of the large terms: up to ~30 % of the local value at 1.5-2.5 rad/s
-    # (17 % of the band's largest B), within 5 % above 3.7 rad/s where B55 is not small
+    # far field (Haskind, from |X|) vs near field (pressure integral) B55 about G. Pitch about G
+    # of this hull is nearly non-radiating (B55(G) = B55(0) + 2 z_G B15 + z_G^2 B11 is 0.1-3 % of
+    # its terms), so this measures the mesh error (issue 29): the keel-graded 13 824-panel mesh
+    # holds it to 1.2 % at 0.3-3 rad/s and 2.1 % over the table (old 768-panel file: 78 %)
     B = haskind_damping(hull)
-    band = hull.omega < 4.0  # panels < wavelength/8 below ~4 rad/s
-    err = np.max(np.abs(B[band] - hull.damping[band])) / hull.damping[band].max()
-    assert err < 0.2
-    big = band & (hull.omega > 3.7)
-    assert np.max(np.abs(B[big] / hull.damping[big] - 1.0)) < 0.05
+    band = (hull.omega >= 0.3) & (hull.omega <= 3.0)
+    assert np.max(np.abs(B[band] / hull.damping[band] - 1.0)) < 0.02
+    big = hull.omega > 0.3
+    assert np.max(np.abs(B[big] / hull.damping[big] - 1.0)) < 0.03
+
+
+def test_legacy_file_is_kept(hull):
+    # the pre-issue-29 table stays loadable; its B55 is low against the converged one
+    old = load_hull(LEGACY_HULL_FILE)
+    assert old.radius == hull.radius and old.draft == hull.draft and old.zg == hull.zg
+    assert old.at(2.0)[1] < 0.7 * hull.at(2.0)[1]
 
 
 def test_kramers_kronig(hull):
     w = hull.omega[(hull.omega > 0.3) & (hull.omega < 2.5)]
     Akk = kramers_kronig_added_mass(hull, w, 0.5)
     Abem = np.interp(w, hull.omega, hull.added_mass) - np.interp(0.5, hull.omega, hull.added_mass)
-    # A varies by only 0.6 % over the table; KK holds to 10 % of that variation (5e-4 of A)
-    assert np.max(np.abs(Akk - Abem)) < 0.1 * np.ptp(hull.added_mass)
+    # A varies by only 0.8 % over the table; KK holds to 12 % of that variation (19 kg m^2,
+    # 9e-4 of A, largest at 1.4-2.1 rad/s; the table stops at 5 rad/s where B55 still rises)
+    assert np.max(np.abs(Akk - Abem)) < 0.12 * np.ptp(hull.added_mass)
 
 
 def test_frequency_limits(hull):
@@ -61,7 +69,9 @@ def test_frequency_limits(hull):
 
 def test_radiation_fit_reported(hull):
     fit = fit_radiation(hull.omega, hull.added_mass, hull.damping, hull.added_mass_inf)
-    assert fit.error < 0.04 and fit.error_damping < 0.05
+    # the converged table's K(iw) is hard for a low-order rational fit (B55 ~ 60 N m s/rad at
+    # w_n, rising to 650 at 5 rad/s): 10.6 % of max abs(K), 7.5 % of max B (old table 3.3 %, 3.7 %)
+    assert fit.error < 0.11 and fit.error_damping < 0.08
     assert np.all(np.linalg.eigvals(fit.A).real < 0)
     # independent: Re K_fit against the damping table at the natural frequency
     wn = hull.natural_frequency()

@@ -6,6 +6,9 @@
 - Kramers-Kronig (causality of K(t)): A(w) - A_inf = (2/pi) PV int_0^inf B(s) / (s^2 - w^2) ds.
   The table stops at w_max, so the check uses differences A(w) - A(w_ref), whose kernel decays
   like s^-4 (the truncated tail then matters little at w << w_max).
+- Haskind for surge/heave/pitch in finite depth (`haskind_matrix`) and the largest power the
+  three modes absorb together (`max_absorbed_power`; for an axisymmetric hull 3 lambda J / 2 pi:
+  lambda J / 2 pi in heave, lambda J / pi in surge and pitch together; Newman 1976, Evans 1976).
 - Hydrostatics: C55 = rho g (I_wp + V z_B) - m g z_G from the geometry (`CylinderHull`).
 """
 
@@ -17,6 +20,7 @@ from scipy.integrate import quad
 from scipy.interpolate import CubicSpline
 
 from mf_envs.physics.gowec.hydro import HullCoefficients
+from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
 
 
 def haskind_damping(h: HullCoefficients) -> NDArray[np.float64]:
@@ -36,3 +40,35 @@ def kramers_kronig_added_mass(h: HullCoefficients, w: NDArray, w_ref: float) -> 
 
     ref = pv(w_ref)
     return np.array([2.0 / np.pi * (pv(float(x)) - ref) for x in w])
+
+
+# Far-field patterns of an axisymmetric hull's modes (surge, heave, pitch): X_i(beta) =
+# X_i p_i(beta) with p = cos, 1, cos, so int_0^2pi p_i p_j dbeta is pi, 2 pi, pi on the diagonal,
+# pi between surge and pitch, 0 between heave and the others.
+PATTERN_INTEGRALS = np.array([[np.pi, 0.0, np.pi], [0.0, 2.0 * np.pi, 0.0], [np.pi, 0.0, np.pi]])
+
+
+def haskind_matrix(h: ThreeDofCoefficients) -> NDArray[np.float64]:
+    """B_ij (n, 3, 3) from the excitation by the Haskind relation in finite depth (Newman 1962;
+    Falnes 2002 ch. 5): B_ij = k / (8 pi rho g c_g) Re int X_i(beta) conj(X_j(beta)) dbeta,
+    c_g the finite-depth group velocity."""
+    X = h.excitation
+    c = h.wavenumber / (8.0 * np.pi * h.rho * h.g * h.group_velocity)
+    return c[:, None, None] * PATTERN_INTEGRALS * np.real(X[:, :, None] * np.conj(X[:, None, :]))
+
+
+def max_absorbed_power(h: ThreeDofCoefficients, rcond: float = 0.05) -> NDArray[np.float64]:
+    """Largest mean power (W per m^2 of wave amplitude) the three modes together can absorb from
+    a regular head wave, 1/8 X^H B^+ X (Falnes 2002 ch. 6, optimal velocities u = B^+ X / 2),
+    at each frequency. Surge and pitch radiate the same cos(beta) pattern, so by Haskind their
+    2 x 2 damping block has rank one (the combination that moves a non-radiating point). B is
+    scaled to unit diagonal, D^-1/2 B D^-1/2, whose eigenvalues are then ~1 (heave), ~2 and ~0
+    (surge-pitch); the pseudo-inverse drops those below rcond, the ~0 one's mesh error."""
+    out = np.empty(h.omega.size)
+    for n in range(h.omega.size):
+        Bn = 0.5 * (h.damping[n] + h.damping[n].T)
+        s = 1.0 / np.sqrt(np.diag(Bn))
+        Bp = np.linalg.pinv(Bn * np.outer(s, s), rcond=rcond, hermitian=True)
+        X = h.excitation[n] * s
+        out[n] = 0.125 * float(np.real(np.conj(X) @ Bp @ X))
+    return out

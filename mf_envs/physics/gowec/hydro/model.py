@@ -198,6 +198,25 @@ def radiation_bound(hull: HullCoefficients, wave: WaveField) -> float:
     return total
 
 
+def motion_limited_bound(hull: HullCoefficients, wave: WaveField, theta_max: float) -> float:
+    """Mean absorbed power (W) when the hull's tilt is limited to theta_max (rad): the power a
+    linear body absorbs is P = 1/2 Re(X a conj(u)) - 1/2 B |u|^2 <= 1/2 |X| a |u| with the tilt
+    rate u = w Theta (Falnes 2002 ch. 6; the constrained optimum is below this), so for a
+    regular wave P <= 1/2 |X| a w theta_max. For several components the time average of the
+    squared tilt, 1/2 sum |Theta_i|^2, cannot exceed theta_max^2, and Cauchy-Schwarz gives
+    P <= theta_max sqrt(sum (|X_i| a_i w_i)^2 / 2). Returns the smaller of this and
+    `radiation_bound`. ValueError if theta_max is not > 0."""
+    if not (isinstance(theta_max, (int, float)) and math.isfinite(theta_max) and theta_max > 0):
+        raise ValueError(f"theta_max: must be a finite angle > 0 (rad), got {theta_max!r}")
+    drive = np.array([abs(hull.at(float(w))[2]) * a * w for a, w in zip(wave.amplitudes,
+                                                                         wave.omegas)])  # fmt: skip
+    if drive.size == 1:
+        motion = 0.5 * float(drive[0]) * theta_max
+    else:
+        motion = theta_max * math.sqrt(0.5 * float(np.sum(drive**2)))
+    return min(motion, radiation_bound(hull, wave))
+
+
 def wave_power_flux(wave: WaveField, rho: float, g: float) -> float:
     """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest), deep water (Eqs. 15, 18)."""
     return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * g / (2.0 * wave.omegas)))

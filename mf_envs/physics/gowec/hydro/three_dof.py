@@ -1,0 +1,159 @@
+"""Surge-heave-pitch hydrodynamic coefficients of a floating hull (BEM, linear potential flow).
+
+The ISWEC-class hull's data (issue 29): 3 x 3 added mass and damping matrices over the modes
+(surge 1, heave 3, pitch 5) with their couplings (A15, A51, B15, ...), the excitation of each
+mode, the hydrostatic and rigid-body mass matrices, all about the centre of gravity G, at a
+finite water depth. Conventions as `mf_envs.physics.gowec.hydro`: head wave along +x,
+eta(0, t) = Re(a e^{-i w t}), force or moment F_i(t) = Re(X_i a e^{-i w t}); A[:, i, j] is the
+force on mode i per unit acceleration of mode j. Units: kg, kg m, kg m^2 (translation,
+coupling, rotation) for A and the mass matrix; N s/m, N s, N m s/rad for B; N/m, N/rad, N m/rad
+for C; N/m and N m/m for X.
+
+File schema (`.npz`, read with `allow_pickle=False`, all arrays float64):
+
+    modes            (3,)      1, 3, 5 (surge, heave, pitch)
+    omega            (n,)      rad/s, > 0, strictly increasing
+    wavenumber       (n,)      rad/m, finite-depth: w^2 = g k tanh(k h)
+    added_mass       (n, 3, 3)
+    damping          (n, 3, 3)
+    excitation_re    (n, 3)    Re X, per metre of wave amplitude
+    excitation_im    (n, 3)    Im X
+    added_mass_inf   (3, 3)    w -> inf limit (deep-water solve: the limit of a body 14 drafts
+                               above the seabed; Capytaine's finite-depth w = inf is not used)
+    hydrostatic_stiffness (3, 3)
+    mass_matrix      (3, 3)    diag(m, m, m k^2) about G
+    water_depth, rho, g, radius, draft, zg, gyration   scalars (m, kg/m^3, m/s^2, m, m, m, m)
+"""
+
+from __future__ import annotations
+
+import math
+import zipfile
+import zlib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+ISWEC_HULL_FILE = Path(__file__).with_name("iswec_cylinder_3dof.npz")
+MODES = (1, 3, 5)
+_MATRICES = ("added_mass", "damping")
+_FIXED = ("added_mass_inf", "hydrostatic_stiffness", "mass_matrix")
+_SCALARS = ("water_depth", "rho", "g", "radius", "draft", "zg", "gyration")
+
+
+@dataclass(frozen=True)
+class ThreeDofCoefficients:
+    """Surge/heave/pitch coefficients about G (module docstring for the fields and units)."""
+
+    omega: NDArray[np.float64]
+    wavenumber: NDArray[np.float64]
+    added_mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    excitation: NDArray[np.complex128]
+    added_mass_inf: NDArray[np.float64]
+    hydrostatic_stiffness: NDArray[np.float64]
+    mass_matrix: NDArray[np.float64]
+    water_depth: float
+    rho: float
+    g: float
+    radius: float
+    draft: float
+    zg: float
+    gyration: float
+    name: str = field(default="hull")
+
+    def __post_init__(self) -> None:
+        _validate(self)
+
+    def save(self, path: str | Path) -> None:
+        """Write an .npz of plain float64 arrays (no pickled objects)."""
+        data: dict[str, Any] = {k: np.asarray(getattr(self, k), float) for k in _SCALARS}
+        for k in ("omega", "wavenumber", *_MATRICES, *_FIXED):
+            data[k] = np.asarray(getattr(self, k), dtype=float)
+        data["modes"] = np.asarray(MODES, dtype=float)
+        data["excitation_re"] = self.excitation.real.astype(float)
+        data["excitation_im"] = self.excitation.imag.astype(float)
+        np.savez(path, **data)
+
+    @classmethod
+    def load(cls, path: str | Path = ISWEC_HULL_FILE) -> ThreeDofCoefficients:
+        """Read a file written by `save`; ValueError naming the file if missing or inconsistent."""
+        p = Path(path)
+        if not p.is_file():
+            raise ValueError(f"hull: file {str(p)!r} not found")
+        try:
+            z = np.load(p, allow_pickle=False)
+            if not isinstance(z, np.lib.npyio.NpzFile):
+                raise ValueError("an .npy array, not an .npz archive of named arrays")
+            with z:
+                kw: dict[str, Any] = {k: float(_entry(z, k, 0)) for k in _SCALARS}
+                for k, nd in (("omega", 1), ("wavenumber", 1), ("added_mass", 3),
+                              ("damping", 3), *((k, 2) for k in _FIXED)):  # fmt: skip
+                    kw[k] = _entry(z, k, nd)
+                if not np.array_equal(_entry(z, "modes", 1), MODES):
+                    raise ValueError(f"modes: expected {MODES}")
+                kw["excitation"] = _entry(z, "excitation_re", 2) + 1j * _entry(
+                    z, "excitation_im", 2
+                )
+        except (KeyError, OSError, ValueError, TypeError, EOFError, zipfile.BadZipFile,
+                zlib.error) as exc:  # fmt: skip
+            raise ValueError(
+                f"hull: file {str(p)!r} is not a 3-dof coefficient file ({exc})"
+            ) from exc
+        return cls(**kw, name=str(p))
+
+    @property
+    def group_velocity(self) -> NDArray[np.float64]:
+        """c_g = (w / 2k)(1 + 2kh / sinh 2kh) (m/s), finite depth."""
+        kh2 = 2.0 * self.wavenumber * self.water_depth
+        shoal = np.where(kh2 < 700.0, kh2 / np.sinh(np.minimum(kh2, 700.0)), 0.0)
+        return self.omega / (2.0 * self.wavenumber) * (1.0 + shoal)
+
+    def wave_power_flux(self, amplitude: float = 1.0) -> NDArray[np.float64]:
+        """J = rho g a^2 c_g / 2 (W per metre of crest) of a regular wave at each omega."""
+        return 0.5 * self.rho * self.g * amplitude**2 * self.group_velocity
+
+
+def _entry(z: Any, key: str, ndim: int) -> NDArray[np.float64]:
+    if key not in z.files:
+        raise KeyError(f"no array {key!r}")
+    a = np.asarray(z[key])
+    if a.dtype.kind not in "iuf":
+        raise ValueError(f"{key}: expected real numbers, got dtype {a.dtype}")
+    if a.ndim != ndim:
+        raise ValueError(f"{key}: expected {ndim} dimensions, got shape {a.shape}")
+    return a.astype(np.float64)
+
+
+def _validate(h: ThreeDofCoefficients) -> None:
+    n, om = h.name, np.asarray(h.omega, dtype=float)
+    if om.ndim != 1 or om.size < 4:
+        raise ValueError(f"hull {n!r}: omega must be a 1-D table of >= 4 frequencies")
+    if not (np.all(np.isfinite(om)) and om[0] > 0 and np.all(np.diff(om) > 0)):
+        raise ValueError(f"hull {n!r}: omega must be > 0 and strictly increasing")
+    m = len(MODES)
+    shapes = dict(wavenumber=om.shape, added_mass=(om.size, m, m), damping=(om.size, m, m),
+                  excitation=(om.size, m), added_mass_inf=(m, m), hydrostatic_stiffness=(m, m),
+                  mass_matrix=(m, m))  # fmt: skip
+    for k, shape in shapes.items():
+        v = np.asarray(getattr(h, k))
+        if v.shape != shape:
+            raise ValueError(f"hull {n!r}: {k} must have shape {shape}, got {v.shape}")
+        if not np.all(np.isfinite(v)) or np.max(np.abs(v)) > 1e20:
+            raise ValueError(f"hull {n!r}: {k} must be finite and |value| <= 1e20 (SI)")
+    for k in ("water_depth", "rho", "g", "radius", "draft", "gyration"):
+        v = getattr(h, k)
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ValueError(f"hull {n!r}: {k} must be > 0, got {v!r}")
+    if not (math.isfinite(h.zg) and h.zg > -h.draft):
+        raise ValueError(f"hull {n!r}: zg must be above the keel (> {-h.draft}), got {h.zg!r}")
+    k = np.asarray(h.wavenumber)
+    if not np.allclose(om**2, h.g * k * np.tanh(k * h.water_depth), rtol=1e-6):
+        raise ValueError(f"hull {n!r}: wavenumber must solve w^2 = g k tanh(k h) at water_depth")
+    if np.any(np.diagonal(h.damping, axis1=1, axis2=2) < -1e-9 * np.max(np.abs(h.damping))):
+        raise ValueError(f"hull {n!r}: damping diagonal must be >= 0 (negative radiation damping)")
+    if np.any(np.diag(h.mass_matrix) <= 0):
+        raise ValueError(f"hull {n!r}: mass_matrix diagonal must be > 0")
