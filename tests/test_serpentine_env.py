@@ -35,14 +35,14 @@ def test_serpenoid_speed_equals_the_physics_models_simulate():
     hist = model.simulate(10.0, dt, every=1, tol=1e-10)
     ref = hist.mean_speed(4.0, 10.0)
     _rest(env)
-    s = np.linspace(0.0, u.length, u.n_ctrl)
+    s = np.linspace(0.0, u.scene.length, u.n_ctrl)
     com = {}
     for k in range(1, 1001):
         t = k * dt
         kappa = (
             min(1.0, t / ramp)
             * a
-            * np.sin(2 * np.pi * (u.length - s) / lam - 2 * np.pi * t / period)
+            * np.sin(2 * np.pi * (u.scene.length - s) / lam - 2 * np.pi * t / period)
         )
         *_, info = env.step((kappa / u.max_curvature).astype(np.float32))
         if k in (400, 1000):
@@ -105,7 +105,7 @@ def test_start_shape_has_the_asked_curvature_heading_and_rest():
     kappa = np.linspace(-3.0, 4.0, u.n_ctrl)
     obs, info = env.reset(seed=0, options={"heading": 0.5, "kappa": kappa})
     lay = u.obs_layout
-    np.testing.assert_allclose(obs[lay.slice("curvature")], kappa * u.length, atol=2e-3)
+    np.testing.assert_allclose(obs[lay.slice("curvature")], kappa * u.scene.length, atol=2e-3)
     assert math.hypot(info["x"], info["y"]) < 1e-6
     np.testing.assert_array_equal(obs[lay.slice("velocity")], 0.0)
     mean_psi = np.mean(u.model.fields(u.state[0], 32)["psi"])

@@ -141,7 +141,7 @@ class GOWECEnv(MFEnv):
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
-        self.scene = build.build(kw)  # the kwargs, validated, as physics parameters
+        self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, control_dt=self.wave_period / self.steps_per_period,
                          physics_dt=physics_dt, render_mode=render_mode)  # fmt: skip
         if buoy_radius is None:

@@ -116,7 +116,7 @@ class GOWECV1Env(MFEnv):
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
-        self.scene = build.build(kw)  # the kwargs, validated, as physics parameters
+        self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, render_mode=render_mode,
                          control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
                          physics_dt=check_range("physics_dt", physics_dt, 1e-5, 1.0))  # fmt: skip

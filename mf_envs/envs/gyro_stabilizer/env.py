@@ -175,7 +175,7 @@ class GyroStabilizerEnv(MFEnv):
             check_range("episode_seconds", episode_seconds, 0, 1e9)
         )
         self.episode_seconds = float(episode_seconds)
-        self.scene = build.timed(scene, self.physics_dt)
+        self._set_scene(build.timed(scene, self.physics_dt))
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
         self._P = rows.pack(self.scene, 0.0)

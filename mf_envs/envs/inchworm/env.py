@@ -171,7 +171,7 @@ class InchwormEnv(MFEnv):
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
-        self.scene = build.build(kw, self.effects, self.n_substeps)  # kwargs as physics params
+        self._set_scene(build.build(kw, self.effects, self.n_substeps))  # kwargs as physics params
         self.max_steps = build.episode_steps(
             max_episode_steps, episode_seconds, self._episode_steps
         )
@@ -267,7 +267,7 @@ class InchwormEnv(MFEnv):
 
     # ------------------------------------------------------------------ helpers
     def _observe(self) -> np.ndarray:
-        args = (self.obs_geometry, self.kappa_command, self.max_curvature, self.weight)
+        args = (self.obs_geometry, self.kappa_command, self.max_curvature, self.scene.weight)
         return spec.observe(self.sim, *args)
 
     def _get_info(self, terms: dict[str, float], report: Any) -> dict[str, Any]:

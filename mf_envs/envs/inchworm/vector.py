@@ -63,7 +63,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         sc = driven.feet.scratch
         self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in sc)
         xis = np.linspace(0.0, 1.0, CENTERLINE_PER_ELEMENT + 1)[:-1]
-        scales = (env.params.length, env.max_curvature, env.weight)
+        scales = (env.params.length, env.max_curvature, env.scene.weight)
         self._cfg = (
             env.switching, env.max_curvature, env.control_dt, 1, *driven.kernel_args(),
             env.obs_geometry, scales, xis,

@@ -130,7 +130,7 @@ class SerpentineEnv(MFEnv):
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
-        self.scene = build.build(kw, self.effects)
+        self._set_scene(build.build(kw, self.effects))
         self.max_steps = self._episode_steps(episode_seconds)
         self.episode_seconds = self.max_steps * self.control_dt
         self.model = BeamModel(self.scene.params)
@@ -192,7 +192,7 @@ class SerpentineEnv(MFEnv):
         c, s = math.cos(self.target_direction), math.sin(self.target_direction)
         along = c * dx[0] + s * dx[1]
         energy = float(rep[rows.REP_ENERGY])
-        terms = {"progress": along / self.length, "effort": -self.effort_weight * energy}
+        terms = {"progress": along / self.scene.length, "effort": -self.effort_weight * energy}
         info = self._info(along / self.control_dt, energy, int(rep[rows.REP_ITER]), terms)
         info["actuation_net_work"] = float(rep[rows.REP_NET])
         if ok:

@@ -70,7 +70,7 @@ class SerpentineVectorEnv(BatchedVectorEnv):
         c, s = math.cos(env.target_direction), math.sin(env.target_direction)
         along = c * (body[:, 0] - rep[:, rows.REP_X0]) + s * (body[:, 1] - rep[:, rows.REP_Y0])
         energy = rep[:, rows.REP_ENERGY].copy()
-        progress = along / env.length
+        progress = along / env.scene.length
         effort = -env.effort_weight * energy
         reward = progress + effort
         info = spec.step_info(
