@@ -105,3 +105,15 @@ def check_options(options: Mapping[str, Any] | None, known: tuple[str, ...]) -> 
     if bad:
         raise ValueError(f"options: unknown key(s) {bad}; known: {', '.join(known)}")
     return dict(options)
+
+
+def check_curvature_option(value: Any, n: int, max_curvature: float) -> np.ndarray:
+    """A `kappa` reset option of a beam robot: n finite numbers within +-max_curvature (1/m), as
+    float64; ValueError naming `kappa` otherwise."""
+    kappa = np.asarray(value)
+    if kappa.shape != (n,) or kappa.dtype.kind not in "iuf":
+        raise ValueError(f"kappa: expected {n} numbers, got {value!r}")
+    kappa = kappa.astype(float)
+    if not np.all(np.isfinite(kappa)) or np.any(np.abs(kappa) > max_curvature):
+        raise ValueError("kappa: must be finite and within +-max_curvature")
+    return kappa

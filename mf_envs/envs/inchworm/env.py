@@ -8,6 +8,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.inchworm import build, render, spec
 from mf_envs.physics.beam import NewtonDivergence
@@ -236,12 +237,7 @@ class InchwormEnv(MFEnv):
         x_tail = check_range("x_tail", opts.get("x_tail", 0.0), -spec.MAX_X_TAIL, spec.MAX_X_TAIL)
         kappa = None
         if "kappa" in opts:
-            kappa = np.asarray(opts["kappa"])
-            if kappa.shape != (self.n_ctrl,) or kappa.dtype.kind not in "iuf":
-                raise ValueError(f"kappa: expected {self.n_ctrl} numbers, got {opts['kappa']!r}")
-            kappa = kappa.astype(float)
-            if not np.all(np.isfinite(kappa)) or np.any(np.abs(kappa) > self.max_curvature):
-                raise ValueError("kappa: must be finite and within +-max_curvature")
+            kappa = check_curvature_option(opts["kappa"], self.n_ctrl, self.max_curvature)
         return {"x_tail": x_tail, "kappa": kappa}
 
     def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:

@@ -9,6 +9,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.serpentine import build, render, rows, spec
 from mf_envs.physics.beam.solver import BeamModel
@@ -158,12 +159,7 @@ class SerpentineEnv(MFEnv):
             heading = check_range("heading", opts["heading"], -MAX_HEADING, MAX_HEADING)
         kappa = None
         if "kappa" in opts:
-            kappa = np.asarray(opts["kappa"])
-            if kappa.shape != (self.n_ctrl,) or kappa.dtype.kind not in "iuf":
-                raise ValueError(f"kappa: expected {self.n_ctrl} numbers, got {opts['kappa']!r}")
-            kappa = kappa.astype(float)
-            if not np.all(np.isfinite(kappa)) or np.any(np.abs(kappa) > self.max_curvature):
-                raise ValueError("kappa: must be finite and within +-max_curvature")
+            kappa = check_curvature_option(opts["kappa"], self.n_ctrl, self.max_curvature)
         return {"heading": heading, "kappa": kappa}
 
     def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
