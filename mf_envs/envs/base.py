@@ -9,6 +9,7 @@ the observation returned is the last finite one, the reward 0). Physics lives in
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Iterable, Mapping
 from typing import Any
@@ -27,8 +28,6 @@ MAX_EPISODE_STEPS = 10_000_000  # control steps per episode
 
 
 def _field_names(scene: Any) -> frozenset[str]:
-    import dataclasses
-
     return frozenset(f.name for f in dataclasses.fields(scene))
 
 
