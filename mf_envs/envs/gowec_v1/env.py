@@ -16,6 +16,17 @@ from mf_envs.envs.gowec_v1.rows import observe_one, step_one
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import batch as hb
+from mf_envs.physics.gowec.hydro.batch import (
+    V_ELEVATION,
+    V_EXCITATION,
+    V_GIMBAL,
+    V_GIMBAL_RATE,
+    V_GYRO,
+    V_PITCH,
+    V_POWER,
+    V_POWER_MECH,
+    V_ROLL,
+)
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -190,7 +201,7 @@ class GOWECV1Env(MFEnv):
             info["reward_terms"] = {"net_electrical_energy": 0.0}
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
         self.state = y
-        reward = float(self._vals[11] * self.energy_scale)  # net electrical energy / scale
+        reward = float(self._vals[hb.V_ENERGY] * self.energy_scale)  # net electrical energy
         info = self._info_from(self._vals)
         info["reward_terms"] = {"net_electrical_energy": reward}
         info["overspeed"], info["out_of_range"] = over, out
@@ -267,19 +278,21 @@ class GOWECV1Env(MFEnv):
     def _info(self, p_el: float, p_mech: float, tau: float) -> dict[str, Any]:
         """The info of the current state (reset): the same compiled quantities as a step."""
         v, wave = self._vals, self.wave
-        v[0], v[1] = p_el, p_mech
+        v[hb.V_POWER], v[hb.V_POWER_MECH] = p_el, p_mech
         hb.state_values(self._t, self.state, float(tau), self.model._args(), wave.amplitudes,
                         wave.phases, v)  # fmt: skip
         return self._info_from(v)
 
     def _info_from(self, v: np.ndarray) -> dict[str, Any]:
         """The info dict from `hb.step_row`'s value slots v (N_VALS,)."""
-        x = v.tolist()
-        self._last_power = x[0]
-        return {"power": x[0], "power_mechanical": x[1], "buoy_pitch": x[2], "buoy_roll": x[3],
-                "buoy_rate": v[4:6].copy(), "excitation_moment": x[6], "gyro_moment": x[7],
-                "gimbal_angle": x[8], "gimbal_rate": x[9], "wave_elevation": x[10],
-                "time": self._t, "numerical_failure": False}  # fmt: skip
+        x = v.tolist()  # the slots by name (`hb.INFO_SLOTS`), written out: the per-step path
+        self._last_power = x[V_POWER]
+        return {"power": x[V_POWER], "power_mechanical": x[V_POWER_MECH], "buoy_pitch": x[V_PITCH],
+                "buoy_roll": x[V_ROLL], "buoy_rate": v[hb.RATES].copy(),
+                "excitation_moment": x[V_EXCITATION], "gyro_moment": x[V_GYRO],
+                "gimbal_angle": x[V_GIMBAL], "gimbal_rate": x[V_GIMBAL_RATE],
+                "wave_elevation": x[V_ELEVATION], "time": self._t,
+                "numerical_failure": False}  # fmt: skip
 
     def _get_obs(self) -> np.ndarray:
         obs = np.empty(8, np.float32)  # observe.py: the hull body rates of the module doc

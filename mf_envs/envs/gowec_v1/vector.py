@@ -39,15 +39,16 @@ from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
 from mf_envs.envs.gowec_v1.rows import observe_one, step_rows
-from mf_envs.physics.gowec.hydro.batch import N_VALS, state_values_into
+from mf_envs.physics.gowec.hydro.batch import (
+    INFO_SLOTS,
+    N_VALS,
+    RATES,
+    V_ENERGY,
+    state_values_into,
+)
 from mf_envs.physics.gowec.hydro.floating import excitation_coefficients
 
-# info keys from step_row's value slots (buoy_rate is the pair of slots 4, 5)
-_SCALAR_SLOTS = {
-    "power": 0, "power_mechanical": 1, "buoy_pitch": 2, "buoy_roll": 3,
-    "excitation_moment": 6, "gyro_moment": 7, "gimbal_angle": 8, "gimbal_rate": 9,
-    "wave_elevation": 10,
-}  # fmt: skip
+_SCALAR_SLOTS = INFO_SLOTS  # info key -> step_row value slot (physics.gowec.hydro.batch)
 _FAILURE_KEYS = ("power", "reward_terms", "overspeed", "out_of_range", "numerical_failure")
 PHASE0, GIMBAL0 = (0.0, 2.0 * math.pi), (-0.1, 0.1)  # GOWECV1Env.reset's U(low, high) draws
 
@@ -134,7 +135,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         v = np.zeros((n, N_VALS))
         v[idx] = self._vals[idx]
         info: dict[str, Any] = {key: v[:, j].copy() for key, j in _SCALAR_SLOTS.items()}
-        info["buoy_rate"] = v[:, 4:6].copy()
+        info["buoy_rate"] = v[:, RATES].copy()
         info["time"] = np.zeros(n)
         info["numerical_failure"] = np.zeros(n, dtype=bool)
         info["reward_terms"] = {"net_electrical_energy": np.zeros(n), "_net_electrical_energy":
@@ -167,10 +168,10 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
             env.rotor_loss_power(), self._vals, ok, self._lo, self._hi, obs,
         )  # fmt: skip
         v, Y = self._vals, self.Y
-        reward = v[:, 11] * env.energy_scale
+        reward = v[:, V_ENERGY] * env.energy_scale
         vt = v.T.copy()  # one copy; the info columns are its rows (fresh every step)
         info: dict[str, Any] = {key: vt[j] for key, j in _SCALAR_SLOTS.items()}
-        info["buoy_rate"] = v[:, 4:6].copy()
+        info["buoy_rate"] = v[:, RATES].copy()
         info["time"] = t1.copy()
         info["reward_terms"] = {"net_electrical_energy": reward.copy()}
         over = np.abs(Y[:, 5]) > env.max_gimbal_rate

@@ -19,7 +19,19 @@ import numpy as np
 from mf_envs._jit import kernel
 from mf_envs.physics.gowec.hydro.floating import N_MECH, excitation, mechanics, rk4_steps_into
 
-N_VALS = 12  # step_row's value slots (see its docstring)
+# step_row's value slots (its docstring), by name: the one layout the env and the vector env read
+(
+    V_POWER, V_POWER_MECH, V_PITCH, V_ROLL, V_PITCH_RATE, V_ROLL_RATE, V_EXCITATION, V_GYRO,
+    V_GIMBAL, V_GIMBAL_RATE, V_ELEVATION, V_ENERGY,
+) = range(12)  # fmt: skip
+N_VALS = 12
+# info key -> value slot (buoy_rate is the pair V_PITCH_RATE, V_ROLL_RATE)
+INFO_SLOTS = {
+    "power": V_POWER, "power_mechanical": V_POWER_MECH, "buoy_pitch": V_PITCH,
+    "buoy_roll": V_ROLL, "excitation_moment": V_EXCITATION, "gyro_moment": V_GYRO,
+    "gimbal_angle": V_GIMBAL, "gimbal_rate": V_GIMBAL_RATE, "wave_elevation": V_ELEVATION,
+}  # fmt: skip
+RATES = slice(V_PITCH_RATE, V_ROLL_RATE + 1)
 
 
 @numba.njit(cache=True)
@@ -41,15 +53,15 @@ def step_work(n_state):
 
 @kernel(forceinline=True)
 def state_values_into(t, y, tau, args, amp, eps, vals):
-    """Slots 2-10 of `step_row`'s values (its docstring) at (t, y) with the PTO command tau:
-    the buoy and gimbal state, the excitation moment, the gyro moment (`_gyro_pitch`) and
-    the elevation, for the sea (args, amp, eps)."""
+    """Slots V_PITCH..V_ELEVATION of `step_row`'s values (its docstring) at (t, y) with the PTO
+    command tau: the buoy and gimbal state, the excitation moment, the gyro moment
+    (`_gyro_pitch`) and the elevation, for the sea (args, amp, eps)."""
     mx, my = excitation(t, args[9], args[10], args[11])
-    vals[2], vals[3], vals[4], vals[5] = y[0], y[1], y[3], y[4]
-    vals[6] = mx
-    vals[7] = _gyro_pitch(mechanics(t, y, tau, args, mx, my))
-    vals[8], vals[9] = y[2], y[5]
-    vals[10] = elevation(t, amp, args[9], eps)
+    vals[V_PITCH], vals[V_ROLL], vals[V_PITCH_RATE], vals[V_ROLL_RATE] = y[0], y[1], y[3], y[4]
+    vals[V_EXCITATION] = mx
+    vals[V_GYRO] = _gyro_pitch(mechanics(t, y, tau, args, mx, my))
+    vals[V_GIMBAL], vals[V_GIMBAL_RATE] = y[2], y[5]
+    vals[V_ELEVATION] = elevation(t, amp, args[9], eps)
 
 
 @numba.njit(cache=True)
@@ -92,9 +104,9 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
         if not math.isfinite(y1[i]):
             return False
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
-    vals[0], vals[1] = p_el, (y1[k + 3] - y[k + 3]) / dtc
+    vals[V_POWER], vals[V_POWER_MECH] = p_el, (y1[k + 3] - y[k + 3]) / dtc
     state_values_into(t1, y1, tau, args, amp, eps, vals)
-    vals[11] = p_el * dtc
+    vals[V_ENERGY] = p_el * dtc
     return True
 
 
