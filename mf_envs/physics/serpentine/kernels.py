@@ -38,8 +38,11 @@ from mf_envs.physics.serpentine.gait import gait_kappa_into
 
 @numba.njit(cache=True)
 def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, d, v, work, piv):
-    """One step from (d0, v0) with kappa# k0 -> k1 (module docstring). d, v receive the result
-    (d holds the start guess on entry). Returns the Newton iterations, or -1 on failure."""
+    """One step from (d0, v0) with kappa# k0 -> k1 (module docstring). d, v receive the result,
+    from the constant-velocity predictor d = d0 + dt v0. Returns the Newton iterations, or -1
+    on failure."""
+    for i in range(d0.shape[0]):
+        d[i] = d0[i] + dt * v0[i]  # predictor: constant velocity
     qxi, qw, stiff, u_scale = quad
     p, m_a, law = ground
     nd = d0.shape[0]
@@ -95,8 +98,6 @@ def advance(d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_ha
         for k in range(n_sub):
             gait_kappa_into(a_gp, phi_gp, w, t_ramp, t + k * h, k0)
             gait_kappa_into(a_gp, phi_gp, w, t_ramp, t + (k + 1) * h, k1)
-            for i in range(d.shape[0]):
-                d1[i] = d0[i] + h * v0[i]  # predictor: constant velocity
             its = _newton_step(
                 d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, work, piv
             )
@@ -214,8 +215,6 @@ def advance_linear(
                 for g in range(ng):
                     k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
                     k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
-            for i in range(d.shape[0]):
-                d1[i] = d0[i] + h * v0[i]  # predictor: constant velocity
             its = _newton_step(
                 d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, work, piv
             )
