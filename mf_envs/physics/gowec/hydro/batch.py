@@ -17,7 +17,13 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.physics.gowec.hydro.floating import N_MECH, excitation, mechanics, rk4_steps_into
+from mf_envs.physics.gowec.hydro.floating import (
+    N_MECH,
+    mechanics,
+    ramp,
+    rk4_steps_into,
+    sea_inputs,
+)
 
 # step_row's value slots (its docstring), by name: the one layout the env and the vector env read
 (
@@ -56,12 +62,12 @@ def state_values_into(t, y, tau, args, amp, eps, vals):
     """Slots V_PITCH..V_ELEVATION of `step_row`'s values (its docstring) at (t, y) with the PTO
     command tau: the buoy and gimbal state, the excitation moment, the gyro moment
     (`_gyro_pitch`) and the elevation, for the sea (args, amp, eps)."""
-    mx, my = excitation(t, args[9], args[10], args[11])
+    inp = sea_inputs(t, args[9], args[10], args[11], args[12], args[13])
     vals[V_PITCH], vals[V_ROLL], vals[V_PITCH_RATE], vals[V_ROLL_RATE] = y[0], y[1], y[3], y[4]
-    vals[V_EXCITATION] = mx
-    vals[V_GYRO] = _gyro_pitch(mechanics(t, y, tau, args, mx, my))
+    vals[V_EXCITATION] = inp[0]
+    vals[V_GYRO] = _gyro_pitch(mechanics(t, y, tau, args, inp))
     vals[V_GIMBAL], vals[V_GIMBAL_RATE] = y[2], y[5]
-    vals[V_ELEVATION] = elevation(t, amp, args[9], eps)
+    vals[V_ELEVATION] = elevation(t, amp, args[9], eps) * ramp(t, args[13][1])
 
 
 @numba.njit(cache=True)

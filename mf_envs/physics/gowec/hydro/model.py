@@ -49,6 +49,8 @@ class FloatingModel:
             [gyro.rotor_inertia, gyro.transverse, *gyro.gimbal_inertia, units], dtype=float
         )
         self._packed: tuple | None = None  # `_args`' cache
+        self.sp = np.zeros(fl.SP_LEN)  # drag off, no ramp (`set_drag`, `set_ramp`)
+        self.drag_coefficient = 0.0
         self.p = fl.FloatingParams(
             inertia=np.array([hull.inertia + hull.added_mass_inf, Iz]),
             gyro=g,
@@ -88,12 +90,30 @@ class FloatingModel:
         if wave is None:
             self._om = np.zeros(0)
             self._cp = self._cr = np.zeros(0, dtype=complex)
+            self._dk = np.zeros((0, fl.N_KEEL + fl.N_SIDE), dtype=complex)
             return
         X = self.hull_excitation(wave.omegas)
         self._om = np.asarray(wave.omegas, dtype=float)
         self._cp, self._cr = fl.excitation_coefficients(
             X, wave.amplitudes, wave.phases, wave.direction
         )
+        self.sp = fl.drag_geometry(self.hull, self.drag_coefficient, float(self.sp[1]),
+                                   wave.direction)  # fmt: skip
+        self._dk = fl.drag_velocity_coefficients(
+            self.sp, self.hull, self._om, wave.amplitudes, wave.phases
+        )
+
+    def set_drag(self, drag_coefficient: float) -> None:
+        """Quadratic Morison drag on the keel plate and the side (`floating.drag_moments`) with
+        the drag coefficient C_d (0 = off, no cost)."""
+        self.drag_coefficient = float(drag_coefficient)
+        self.set_sea(self.wave)
+
+    def set_ramp(self, seconds: float) -> None:
+        """Ramp the incident wave in over `seconds` (s; 0 = none, `floating.ramp`)."""
+        self.sp = self.sp.copy()
+        self.sp[1] = float(seconds)
+        self._packed = None
 
     def hull_excitation(self, omegas: NDArray) -> NDArray[np.complex128]:
         """The hull's complex pitch excitation per unit amplitude (N m/m) at each frequency
@@ -129,12 +149,13 @@ class FloatingModel:
     def _args(self) -> tuple:
         """`floating.pack` of the params and the sea, cached until either changes."""
         if self._packed is None:
-            self._packed = fl.pack(self.p, self._om, self._cp, self._cr)
+            self._packed = fl.pack(self.p, self._om, self._cp, self._cr, self._dk, self.sp)
         return self._packed
 
     def excitation(self, t: float) -> tuple[float, float]:
-        """(M_x, M_y) wave excitation moments (N m) about e1 (pitch) and e2 (roll)."""
-        return fl.excitation(t, self._om, self._cp, self._cr)
+        """(M_x, M_y) wave excitation moments (N m) about e1 (pitch) and e2 (roll), ramped."""
+        a = self._args()
+        return fl.sea_inputs(t, a[9], a[10], a[11], a[12], a[13])[:2]
 
     def generator_torque(self, y: NDArray, tau: float) -> float:
         """M_g (N m) the PTO applies at state y for the command tau."""
