@@ -14,6 +14,14 @@ and the matched linear PTO.
 
   and the absorbed power |M_ex|^2 / (8 R). The gains are set once on the drive's inner loop
   (`env.unwrapped.set_pto`, evaluated every physics substep); the torque command is 0.
+  It maximises *mechanical* power: the reactive power k phi phi' it circulates through the
+  generator costs 1 - eta each way, so on a real drive it is not the best linear PTO.
+- `efficient_pto` and `passive_damper` (issue 29): the linear PTO (c, k) and the pure damper
+  (k = 0) that maximise the *net electrical* power eta P+ - P- / eta - rotor loss of the
+  linearised device in the sea the env has just drawn (`net_electrical_power`: frequency-domain
+  response of hull + gyro units to every wave component, the quadratic drag by stochastic
+  (Lorentz) linearisation, the electrical power from the synthesised time signal of
+  M_g phi'), maximised by scipy (Nelder-Mead over (log c, k); bounded scalar search for c).
 """
 
 from __future__ import annotations
@@ -45,6 +53,126 @@ def matched_pto(env: Any, period: float | None = None) -> tuple[float, float]:
     return H2 * R / Z2, w * w * Ig - w * H2 * Xh / Z2
 
 
+def _drag_k(raw: Any) -> float:
+    """Still-water quadratic pitch damping K (N m s^2/rad^2) of the keel plate,
+    1/2 rho C_d 8 R^5 / 15 (`floating.drag_geometry`), 0 with the drag off."""
+    sp = raw.model.sp
+    if sp[0] == 0.0:
+        return 0.0
+    return float(raw.model.drag_coefficient * 0.5 * raw.hull.rho * 8.0 * raw.hull.radius**5 / 15.0)
+
+
+def linear_response(raw: Any, c: float, k: float) -> tuple[np.ndarray, np.ndarray]:
+    """Complex amplitudes (e^{-i w t}) of the hull's pitch rate and one gimbal's rate (rad/s)
+    at the env's wave components under the linear PTO (c, k): hull impedance
+    Z_h = B + b + i (w (I + A) - C / w) with b the linear viscous plus the drag's stochastic
+    linearisation sqrt(8 / pi) K sigma (regular sea: 8 / (3 pi) K |theta'|), n units of
+    load H^2 / Z_g, Z_g = c + i (w I_g - k / w)."""
+    hull, p, wave = raw.hull, raw.model.p, raw.wave
+    om = np.asarray(wave.omegas, dtype=float)
+    X = raw.model.hull_excitation(om) * np.asarray(wave.amplitudes) * np.exp(1j * wave.phases)
+    A = np.array([hull.at(float(w))[0] for w in om])
+    B = np.array([hull.at(float(w))[1] for w in om])
+    H = p.gyro[0] * p.psid
+    Ig = p.gyro[1] + p.gyro[3]
+    n = raw.model.units
+    Zg = c + 1j * (om * Ig - k / om)
+    K, b = _drag_k(raw), 0.0
+    for _ in range(30):
+        Zh = B + p.viscous + b + 1j * (om * (raw.model.pitch_inertia() + A) - hull.stiffness / om)
+        th = X / (Zh + n * H * H / Zg)
+        if om.size == 1:
+            b_new = 8.0 / (3.0 * math.pi) * K * abs(th[0])
+        else:
+            b_new = math.sqrt(8.0 / math.pi) * K * math.sqrt(0.5 * float(np.sum(np.abs(th) ** 2)))
+        if abs(b_new - b) <= 1e-6 * (b + 1.0):
+            break
+        b = 0.5 * (b + b_new)
+    return th, H * th / Zg
+
+
+MAX_LINEAR_GIMBAL = 1.2  # rad: gimbal swing the linearisation is trusted to (cos 1.2 = 0.36)
+PITCH_MARGIN = 0.6  # predicted pitch kept below this fraction of the device's pitch_limit
+
+
+def net_electrical_power(raw: Any, c: float, k: float) -> float:
+    """Predicted mean net electrical power (W) of the linearised device under (c, k)
+    (`linear_response`): n units' M_g phi' = (c phi' + k phi) phi' synthesised over one period
+    (regular sea) or 20 min (irregular), generator efficiency when positive, 1 / motor
+    efficiency when negative, less the rotor loss. Gains whose torque, power, gimbal swing or
+    hull pitch would exceed the drive's limits, MAX_LINEAR_GIMBAL or PITCH_MARGIN x the pitch
+    limit (peaks; irregular seas: 99th percentiles) are scored down by the excess."""
+    th, ph = linear_response(raw, c, k)
+    om = np.asarray(raw.wave.omegas, dtype=float)
+    span = 2.0 * math.pi / om[0] if om.size == 1 else 1200.0
+    t = np.linspace(0.0, span, 256 if om.size == 1 else 4000, endpoint=False)
+    e = np.exp(-1j * np.outer(t, om))
+    rate = (e @ ph).real
+    angle = (e @ (ph / (-1j * om))).real
+    pitch = (e @ (th / (-1j * om))).real
+    torque = c * rate + k * angle
+    P = raw.model.units * torque * rate
+    el = np.where(P > 0.0, P * raw.eta_g, P / raw.eta_m)
+    net = float(np.mean(el)) - raw.rotor_loss_power()
+    q = 1.0 if om.size == 1 else 0.99  # irregular: the 99th percentile
+    excess = max(
+        np.quantile(np.abs(torque), q) / raw.max_generator_torque,
+        np.quantile(np.abs(torque * rate), q) / max(raw.max_generator_power, 1e-9),
+        np.quantile(np.abs(angle), q) / MAX_LINEAR_GIMBAL,
+        np.quantile(np.abs(pitch), q) / (PITCH_MARGIN * raw.pitch_limit),
+    )
+    if excess > 1.0:
+        net -= (excess - 1.0) * (abs(net) + raw.rotor_loss_power() + 1.0) * 10.0
+    return net
+
+
+def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
+    """(c, k) maximising `net_electrical_power` (k = 0 when `passive`), started from the
+    mechanical match (`matched_pto`)."""
+    from scipy.optimize import minimize, minimize_scalar
+
+    c0, k0 = matched_pto(raw)
+    c0 = max(c0, 1.0)
+    if passive:
+        r = minimize_scalar(lambda x: -net_electrical_power(raw, math.exp(x), 0.0),
+                            bounds=(math.log(c0) - 5.0, math.log(c0) + 5.0), method="bounded",
+                            options={"xatol": 1e-3})  # fmt: skip
+        return math.exp(r.x), 0.0
+    # k >= 0 (k = ks x^2): a negative gimbal spring destabilises the gimbal
+    ks = abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period)  # scale of k
+    r = minimize(lambda x: -net_electrical_power(raw, math.exp(x[0]), x[1] ** 2 * ks),
+                 np.array([math.log(c0), math.sqrt(max(k0, 0.0) / ks)]), method="Nelder-Mead",
+                 options={"xatol": 1e-3, "fatol": 1.0, "maxiter": 300})  # fmt: skip
+    best = (math.exp(r.x[0]), float(r.x[1] ** 2 * ks))
+    cp, _ = efficient_pto(raw, passive=True)  # never worse than the damper
+    if net_electrical_power(raw, cp, 0.0) > net_electrical_power(raw, *best):
+        return cp, 0.0
+    return best
+
+
+class EfficientPTOController:
+    """The linear PTO optimised for net electrical power in the sea of the last reset
+    (`efficient_pto`); `passive=True` the best pure damper. Gains set on the drive at reset."""
+
+    def __init__(self, env: Any, passive: bool = False) -> None:
+        self.env, self.passive = env, passive
+        self.c, self.k = 0.0, 0.0
+
+    def reset(self) -> None:
+        self.c, self.k = efficient_pto(self.env.unwrapped, self.passive)
+        self.env.unwrapped.set_pto(self.c, self.k)
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        return np.zeros(1, dtype=np.float32), None
+
+
+class PassiveDamperController(EfficientPTOController):
+    """The best pure damper (k = 0) for net electrical power (`efficient_pto`)."""
+
+    def __init__(self, env: Any) -> None:
+        super().__init__(env, passive=True)
+
+
 class LinearPTOController:
     """Sets the matched (c*, k*) on the drive at reset; commands zero extra torque."""
 
@@ -63,3 +191,5 @@ class LinearPTOController:
 register(ENV_ID, "pll", PLLController, default=True)
 register(ENV_ID, "bang_bang", SquareWaveController)
 register(ENV_ID, "linear_pto", LinearPTOController)
+register(ENV_ID, "efficient_pto", EfficientPTOController)
+register(ENV_ID, "passive_damper", PassiveDamperController)

@@ -12,10 +12,14 @@ from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import HullCoefficients, load_hull
+from mf_envs.physics.gowec.hydro.devices import DEVICES, FloatingDevice
 from mf_envs.physics.gowec.hydro.model import FloatingModel
 
 SPECTRA = {"jonswap": waves.jonswap_spectrum, "pierson_moskowitz": waves.pierson_moskowitz_spectrum}
-VISCOUS_FRACTION = 0.05  # default linear viscous damping, fraction of critical
+# the kwargs a device fills when they are None (`devices.FloatingDevice` fields)
+DEVICE_KWARGS = ("rotor_inertia", "rotor_speed", "gyro_units", "generator_efficiency",
+                 "max_generator_torque", "max_generator_power", "rotor_loss",
+                 "drag_coefficient", "pitch_limit", "wave_ramp")  # fmt: skip
 
 
 @dataclasses.dataclass(frozen=True)
@@ -36,10 +40,25 @@ class Scene:
     rotor_loss: float  # W
     max_gimbal_rate: float  # rad/s
     episode_seconds: float  # s
+    device: str  # `devices.DEVICES` key
+    drag_coefficient: float  # quadratic drag C_d (0 = none)
+    pitch_limit: float  # rad: |theta| or |rho| beyond it ends the episode
+    wave_ramp: float  # s: the incident wave ramps in over it
+
+
+def device_of(kw: dict[str, Any]) -> FloatingDevice:
+    """The named device of kw["device"]; its fields fill the kwargs left None (in place)."""
+    dev = DEVICES[check_choice("device", kw["device"], DEVICES)]
+    for k in DEVICE_KWARGS:
+        if kw[k] is None:
+            kw[k] = getattr(dev, k)
+    return dev
 
 
 def build(kw: dict[str, Any]) -> Scene:
-    """The `Scene` of the env's kwargs `kw`; ValueError names the kwarg."""
+    """The `Scene` of the env's kwargs `kw` (None = the device's value); ValueError names the
+    kwarg."""
+    device_of(kw)
     amplitude = check_range("wave_amplitude", kw["wave_amplitude"], 1e-6, 30.0)
     direction = check_range("wave_direction", kw["wave_direction"], -10.0, 10.0)
     irregular = kw["significant_wave_height"] is not None
@@ -62,19 +81,26 @@ def build(kw: dict[str, Any]) -> Scene:
         check_range("rotor_loss", kw["rotor_loss"], 0.0, 1e7),
         check_range("max_gimbal_rate", kw["max_gimbal_rate"], 1e-6),
         check_range("episode_seconds", kw["episode_seconds"], 1e-3, 1e6),
+        kw["device"], check_range("drag_coefficient", kw["drag_coefficient"], 0.0, 100.0),
+        check_range("pitch_limit", kw["pitch_limit"], 1e-3, 1.0),
+        check_range("wave_ramp", kw["wave_ramp"], 0.0, 1e4),
     )  # fmt: skip
 
 
 def floating_model(
     scene: Scene, kw: dict[str, Any], effects: frozenset
 ) -> tuple[HullCoefficients, FloatingModel]:
-    """The hull (`load_hull(kw["hull"])`) and its `FloatingModel`: the gyroscope pair of
-    rotor_inertia / rotor_speed, a PTO at zero gains within the scene's limits, radiation and a
-    linear viscous damping (default 5 % of critical in pitch) per the effects."""
-    hull = load_hull(kw["hull"])
+    """The hull (the device's, or `load_hull(kw["hull"])`) and its `FloatingModel`: the
+    gyroscope units of rotor_inertia / rotor_speed (the device's gimbal frame), a PTO at zero
+    gains within the scene's limits, radiation, a linear viscous damping (the device's fraction
+    of critical unless viscous_damping is given), the quadratic drag and the wave ramp, per the
+    effects."""
+    dev = DEVICES[scene.device]
+    hull = dev.hull() if kw["hull"] is None else load_hull(kw["hull"])
     gyro = GOWECParams(
         check_range("rotor_inertia", kw["rotor_inertia"], 1e-9, 1e6),
         check_range("rotor_speed", kw["rotor_speed"], -1e4, 1e4),
+        gimbal_inertia=dev.gimbal_inertia,
     )
     pto = dict(damping=0.0, stiffness=0.0, max_torque=scene.max_generator_torque,
                max_power=scene.max_generator_power, eta_generator=scene.eta_g,
@@ -83,8 +109,12 @@ def floating_model(
     model = FloatingModel(hull, gyro, pto, gyroscopic="gyroscopic" in effects, units=units)
     crit = 2.0 * math.sqrt(hull.stiffness * (model.p.inertia[0]))
     bv = kw["viscous_damping"]
-    bv = check_range("viscous_damping", VISCOUS_FRACTION * crit if bv is None else bv, 0.0, 1e12)
+    bv = dev.viscous_fraction * crit if bv is None else bv
+    bv = check_range("viscous_damping", bv, 0.0, 1e12)
     model.set_viscous(bv if "viscous_damping" in effects else 0.0)
     if "radiation" not in effects:
         model.set_radiation(False)
+    model.set_ramp(scene.wave_ramp)
+    if "quadratic_drag" in effects and scene.drag_coefficient > 0.0:
+        model.set_drag(scene.drag_coefficient)
     return hull, model

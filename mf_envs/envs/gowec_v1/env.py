@@ -27,15 +27,17 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_POWER_MECH,
     V_ROLL,
 )
+from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
     "gyroscopic": "rotor spin coupling (off: rotor stopped)",
     "radiation": "radiation memory of the Cummins equation (off: A_inf only, no wave damping)",
     "viscous_damping": "linear viscous pitch/roll damping (viscous_damping, N m s/rad)",
+    "quadratic_drag": "Morison drag of keel plate and side on the velocity relative to the water",
     "irregular_waves": "irregular sea (also switched on by significant_wave_height)",
 }
-DEFAULT_EFFECTS = ("gyroscopic", "radiation", "viscous_damping")
+DEFAULT_EFFECTS = ("gyroscopic", "radiation", "viscous_damping", "quadratic_drag")
 _P = GOWECParams()
 SPECTRA = build.SPECTRA
 
@@ -109,15 +111,19 @@ class GOWECV1Env(MFEnv):
         spectrum: str = "jonswap",
         gamma: float = 3.3,
         n_components: int = 64,
-        rotor_inertia: float = _P.rotor_inertia,
-        rotor_speed: float = _P.rotor_speed,
-        gyro_units: int = 2,
-        generator_efficiency: float = 0.8,
+        device: str = DEFAULT_DEVICE,
+        rotor_inertia: float | None = None,
+        rotor_speed: float | None = None,
+        gyro_units: int | None = None,
+        generator_efficiency: float | None = None,
         motor_efficiency: float | None = None,
-        max_generator_torque: float = 10000.0,
-        max_generator_power: float = 50000.0,
-        rotor_loss: float = 3000.0,
+        max_generator_torque: float | None = None,
+        max_generator_power: float | None = None,
+        rotor_loss: float | None = None,
         viscous_damping: float | None = None,
+        drag_coefficient: float | None = None,
+        pitch_limit: float | None = None,
+        wave_ramp: float | None = None,
         max_gimbal_rate: float = spec.MAX_GIMBAL_RATE,
         hull: Any = None,
         episode_seconds: float = 120.0,
@@ -198,12 +204,15 @@ class GOWECV1Env(MFEnv):
         )  # fmt: skip
         if not ok:
             info = dict(power=0.0, overspeed=False, out_of_range=False)
-            info["reward_terms"] = {"net_electrical_energy": 0.0}
+            info["reward_terms"] = {"net_electrical_energy": 0.0, "shutdown_loss": 0.0}
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
         self.state = y
         reward = float(self._vals[hb.V_ENERGY] * self.energy_scale)  # net electrical energy
         info = self._info_from(self._vals)
-        info["reward_terms"] = {"net_electrical_energy": reward}
+        # ending early must not pay: the rotors' running loss of the steps left is charged
+        shut = -self.shutdown_energy(self._steps) * self.energy_scale if over or out else 0.0
+        info["reward_terms"] = {"net_electrical_energy": reward, "shutdown_loss": shut}
+        reward += shut
         info["overspeed"], info["out_of_range"] = over, out
         if finite and math.isfinite(reward):  # _finish_step's checks, done in the kernel
             return self._step_ok(obs, reward, over or out, truncated, info)
@@ -213,13 +222,18 @@ class GOWECV1Env(MFEnv):
         """Rotor loss (W) while the rotor spins, else 0."""
         return self.rotor_loss * (self.model.psid != 0.0)
 
+    def shutdown_energy(self, steps: Any) -> Any:
+        """Rotor running loss (J) of the episode's steps left after `steps` (int or array): what
+        a termination (overspeed, pitch limit) is charged, so that ending early never pays."""
+        return self.rotor_loss_power() * self.control_dt * np.maximum(self.max_steps - steps, 0)
+
     @property
     def _consts(self) -> tuple:
         """(rotor loss W, obs bounds, (max gimbal rate, max buoy angle)), rebuilt when the public
         attributes they come from change (e.g. domain randomisation)."""
         sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
         if self._consts_key != key:
-            lim = (self.max_gimbal_rate, spec.MAX_BUOY_ANGLE)
+            lim = (self.max_gimbal_rate, self.pitch_limit)
             self._consts_val, self._consts_key = (
                 (self.rotor_loss_power(), sp.low, sp.high, lim),
                 key,
@@ -271,7 +285,8 @@ class GOWECV1Env(MFEnv):
         self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
         info.update(
-            reward_terms={"net_electrical_energy": 0.0}, overspeed=False, out_of_range=False
+            reward_terms={"net_electrical_energy": 0.0, "shutdown_loss": 0.0}, overspeed=False,
+            out_of_range=False,
         )
         return self._get_obs(), info
 

@@ -11,7 +11,7 @@ from mf_envs.envs._spec import Field, ObsLayout
 
 MAX_GIMBAL_RATE = 60.0  # rad/s, overspeed trip and observation bound
 MAX_BUOY_RATE = 5.0  # rad/s, observation bound
-MAX_BUOY_ANGLE = 1.0  # rad: beyond it linear hydrodynamics is meaningless; the episode ends
+MAX_BUOY_ANGLE = 1.0  # rad: observation bound; the device's pitch_limit (<= 1 rad) ends episodes
 
 OBS = ObsLayout(
     Field("sin_gimbal_angle", "", 1.0, "sin(phi), gimbal angle phi (encoder)"),
@@ -27,7 +27,7 @@ I_RATE = OBS.index("gimbal_rate")
 S_BUOY = OBS.slice("buoy_rates")
 S_ANGLES = OBS.slice("buoy_angles")
 
-REWARD_TERMS = ("net_electrical_energy",)
+REWARD_TERMS = ("net_electrical_energy", "shutdown_loss")
 RESET_OPTIONS = ("buoy_pitch", "buoy_roll", "gimbal_angle", "gimbal_rate")
 INFO_KEYS = (
     "power",  # W, net electrical power over the step (generator/motor efficiency, rotor loss)
@@ -44,5 +44,5 @@ INFO_KEYS = (
     "reward_terms",  # {"net_electrical_energy": ...}, sums to the reward
     "numerical_failure",
     "overspeed",  # |phi'| > max_gimbal_rate: terminates
-    "out_of_range",  # |theta| or |rho| > MAX_BUOY_ANGLE: terminates
+    "out_of_range",  # |theta| or |rho| > pitch_limit: terminates (charged the shutdown_loss)
 )

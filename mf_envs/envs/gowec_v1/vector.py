@@ -151,7 +151,8 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         info["time"] = np.zeros(n)
         info["numerical_failure"] = np.zeros(n, dtype=bool)
         info["reward_terms"] = {"net_electrical_energy": np.zeros(n), "_net_electrical_energy":
-                                mask.copy()}  # fmt: skip
+                                mask.copy(), "shutdown_loss": np.zeros(n),
+                                "_shutdown_loss": mask.copy()}  # fmt: skip
         info["overspeed"], info["out_of_range"] = np.zeros(n, bool), np.zeros(n, bool)
         for key in list(info):
             if not key.startswith("_"):
@@ -186,14 +187,17 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         info: dict[str, Any] = {key: vt[j] for key, j in _SCALAR_SLOTS.items()}
         info["buoy_rate"] = v[:, RATES].copy()
         info["time"] = t1.copy()
-        info["reward_terms"] = {"net_electrical_energy": reward.copy()}
         over = np.abs(Y[:, 5]) > env.max_gimbal_rate
-        out = np.maximum(np.abs(Y[:, 0]), np.abs(Y[:, 1])) > spec.MAX_BUOY_ANGLE
+        out = np.maximum(np.abs(Y[:, 0]), np.abs(Y[:, 1])) > env.pitch_limit
+        shut = np.where(over | out, -env.shutdown_energy(self._steps) * env.energy_scale, 0.0)
+        info["reward_terms"] = {"net_electrical_energy": reward.copy(), "shutdown_loss": shut}
+        reward = reward + shut
         info["overspeed"], info["out_of_range"] = over, out
         finite = ok & np.isfinite(reward)  # MFEnv._finish_step: finite obs and reward
         info["numerical_failure"] = ~finite
         masks = np.ones((len(spec.INFO_KEYS) + 1, self.num_envs), dtype=bool)
         info["reward_terms"]["_net_electrical_energy"] = masks[-1]
+        info["reward_terms"]["_shutdown_loss"] = masks[-1]
         for j, key in enumerate(spec.INFO_KEYS):
             info[f"_{key}"] = masks[j]
         term = over | out
@@ -203,6 +207,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
             reward[bad], term[bad] = 0.0, True
             gone = ~ok & active  # the physics failed: only the failure keys, zeroed
             info["power"][gone], info["reward_terms"]["net_electrical_energy"][gone] = 0.0, 0.0
+            info["reward_terms"]["shutdown_loss"][gone] = 0.0
             over[gone], out[gone] = False, False
             for key in set(spec.INFO_KEYS) - set(_FAILURE_KEYS):
                 info[f"_{key}"][gone] = False

@@ -1,0 +1,153 @@
+"""FloatingGOWEC-v0's power matrix: mean net electrical power over significant wave height x
+peak period, as the power matrices published for wave energy converters (issue 29).
+
+Each cell is a JONSWAP sea (gamma 3.3) scored over `--seconds` (default 1200 s, 20 min) of
+simulated time per seed after the start-up ramp, on unseen seeds 2000.., with a controller
+from `mf_envs.controllers.gowec_v1` (default: `efficient_pto`, the linear PTO optimised for
+net electrical power in the sea drawn; `passive_damper` beside it). Reported per cell: net
+electrical power (W, mean and spread over seeds), mechanical PTO power, capture width
+P_mech / J (m) with J the drawn sea's deep-water energy flux, capture-width ratio over the
+hull's width (12 m), the share of episodes ended at the pitch limit.
+
+    python -m mf_envs.benchmarks.power_matrix --out docs/img   # ~10 min on 2 cores
+
+writes `gowec_power_matrix.json` and `.png` there and prints a Markdown table.
+MHKiT is not used: this environment's wave kinematics, spectrum and energy flux are the
+package's own (`physics.waves`); MHKiT is not a dependency of the hydro extra yet.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+import mf_envs  # noqa: F401
+from mf_envs.controllers import make_baseline
+
+ENV_ID = "FloatingGOWEC-v0"
+HS = (1.0, 1.5, 2.0, 2.5)  # m
+TP = (4.0, 5.0, 6.0, 7.0, 8.0)  # s
+SEEDS = (2000, 2001, 2002)
+HULL_WIDTH = 12.0  # m, the ISWEC-class cylinder's diameter (capture-width ratio)
+
+
+def cell(hs: float, tp: float, seed: int, seconds: float, kind: str, **kw: Any) -> dict:
+    """One episode: JONSWAP (hs, tp), `kind` controller set at reset; powers over the
+    episode after the ramp (W), J (W/m), terminated (pitch limit or overspeed)."""
+    env = gym.make(ENV_ID, significant_wave_height=hs, peak_period=tp,
+                   episode_seconds=seconds + 20.0, **kw)  # fmt: skip
+    ctrl = make_baseline(env, kind)
+    obs, _ = env.reset(seed=seed)
+    ctrl.reset()
+    u = env.unwrapped
+    skip = int(math.ceil(max(u.wave_ramp, 1.0) * 2.0 / u.control_dt))  # ramp + as long again
+    pe, pm, done, n, term = 0.0, 0.0, False, 0, False
+    steps = 0
+    while not done:
+        a, _ = ctrl.predict(obs)
+        obs, _, term, trunc, info = env.step(a)
+        steps += 1
+        if steps > skip:
+            pe += info["power"]
+            pm += info["power_mechanical"]
+            n += 1
+        done = term or trunc
+    out = dict(Pe=pe / max(n, 1), Pm=pm / max(n, 1), J=float(u.wave_power_flux()),
+               terminated=bool(term), c=float(getattr(ctrl, "c", 0.0)),
+               k=float(getattr(ctrl, "k", 0.0)))  # fmt: skip
+    env.close()
+    return out
+
+
+def matrix(hs=HS, tp=TP, seeds=SEEDS, seconds: float = 1200.0, kind: str = "efficient_pto",
+           progress: bool = True) -> list[dict]:  # fmt: skip
+    """Rows (one per cell) of mean and std over seeds of `cell`'s figures."""
+    from tqdm import tqdm
+
+    rows = []
+    jobs = [(h, t) for h in hs for t in tp]
+    for h, t in tqdm(jobs, desc=f"power matrix ({kind})", disable=not progress):
+        runs = [cell(h, t, s, seconds, kind) for s in seeds]
+        pe = np.array([r["Pe"] for r in runs])
+        pm = np.array([r["Pm"] for r in runs])
+        J = float(np.mean([r["J"] for r in runs]))
+        rows.append(dict(hs=h, tp=t, kind=kind, net_W=float(pe.mean()), net_std_W=float(pe.std()),
+                         mech_W=float(pm.mean()), J_W_per_m=J, capture_width_m=float(pm.mean()) / J,
+                         cwr=float(pm.mean()) / J / HULL_WIDTH,
+                         terminated=float(np.mean([r["terminated"] for r in runs])),
+                         seeds=list(seeds), seconds=seconds))  # fmt: skip
+    return rows
+
+
+def table(rows: list[dict]) -> str:
+    """Markdown: net electrical power (kW, mean +- std over seeds) by Hs (rows) x Tp (cols)."""
+    hs = sorted({r["hs"] for r in rows})
+    tp = sorted({r["tp"] for r in rows})
+    at = {(r["hs"], r["tp"]): r for r in rows}
+    lines = ["| Hs (m) \\ Tp (s) | " + " | ".join(f"{t:g}" for t in tp) + " |",
+             "|---" * (len(tp) + 1) + "|"]  # fmt: skip
+    for h in hs:
+        cells = []
+        for t in tp:
+            r = at[(h, t)]
+            mark = " (ends)" if r["terminated"] > 0 else ""
+            cells.append(f"{r['net_W'] / 1e3:.1f} ± {r['net_std_W'] / 1e3:.1f}{mark}")
+        lines.append(f"| {h:g} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def plot(rows: list[dict], path: Path) -> Path:
+    """The matrix as a coloured grid with the values written in (kW)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    hs = sorted({r["hs"] for r in rows})
+    tp = sorted({r["tp"] for r in rows})
+    at = {(r["hs"], r["tp"]): r for r in rows}
+    z = np.array([[at[(h, t)]["net_W"] / 1e3 for t in tp] for h in hs])
+    fig, ax = plt.subplots(figsize=(7, 4))
+    lim = float(np.max(np.abs(z))) or 1.0
+    im = ax.imshow(z, origin="lower", cmap="RdYlGn", vmin=-lim, vmax=lim, aspect="auto")
+    for i, h in enumerate(hs):
+        for j, t in enumerate(tp):
+            end = "*" if at[(h, t)]["terminated"] > 0 else ""
+            ax.text(j, i, f"{z[i, j]:.1f}{end}", ha="center", va="center", fontsize=9)
+    ax.set_xticks(range(len(tp)), [f"{t:g}" for t in tp])
+    ax.set_yticks(range(len(hs)), [f"{h:g}" for h in hs])
+    ax.set_xlabel("peak period Tp (s)")
+    ax.set_ylabel("significant wave height Hs (m)")
+    r0 = rows[0]
+    ax.set_title(f"FloatingGOWEC-v0 (ISWEC-class), net electrical kW, {r0['kind']}, "
+                 f"{len(r0['seeds'])} seeds x {r0['seconds']:.0f} s (* = pitch limit hit)",
+                 fontsize=9)  # fmt: skip
+    fig.colorbar(im, ax=ax, label="net electrical power (kW)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", type=Path, default=Path("."), help="folder for the json and png")
+    ap.add_argument("--seconds", type=float, default=1200.0, help="scored time per seed (s)")
+    ap.add_argument("--seeds", type=int, default=len(SEEDS), help="seeds per cell (2000..)")
+    ap.add_argument("--kind", default="efficient_pto", help="baseline of controllers.gowec_v1")
+    a = ap.parse_args(argv)
+    a.out.mkdir(parents=True, exist_ok=True)
+    rows = matrix(seeds=tuple(range(2000, 2000 + a.seeds)), seconds=a.seconds, kind=a.kind)
+    (a.out / "gowec_power_matrix.json").write_text(json.dumps(rows, indent=1))
+    plot(rows, a.out / "gowec_power_matrix.png")
+    print(table(rows))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,108 @@
+"""Named floating GOWEC devices: a hull, its gyroscope units, PTO limits and losses (issue 29).
+
+`FloatingGOWEC-v0(device=...)` starts from one of these; any of its kwargs overrides a field.
+
+- ``"iswec_class"`` (the default): a device sized like ISWEC, the gyroscopic wave energy
+  converter of Politecnico di Torino / Wave for Energy deployed off Pantelleria in 2015 (hull
+  15 x 8 m in plan, 4.5 m high, 3.2 m draft, 35 m water depth, two gyroscope units with
+  flywheels over 2 m in diameter, slack mooring). Stand-in hull: the vertical cylinder of
+  the same footprint, radius 6 m, draft 2.5 m (`three_dof.ISWEC_HULL_FILE`, pitch block; why
+  a cylinder: docs/gowec_v1.md). What is chosen, not published (docs/gowec_v1.md says why):
+  the flywheel (a steel disc 2.4 m across and 0.35 m thick, J = 1.2e4 kg m^2 at 250 rpm,
+  H = 3.14e5 N m s per unit), the gimbal frame's inertia, the PTO limits (50 kN m and 100 kW
+  per unit), the running loss (1.5 kW per unit: bearings by SKF's friction model plus seals
+  and windage in the evacuated casing), 90 % drive efficiency each way, drag coefficient 1.
+- ``"seed_buoy"``: the device of mf_envs 0.1-0.4: the 5 m cylinder of GOWEC-v0's irregular
+  sea (converged BEM table) carrying the seed's mirrored pair of Seakeeper 26 rotors (Table
+  3-1), 3 kW rotor loss, 5 %-of-critical linear viscous damping, no drag, no ramp, episode
+  end at 1 rad of tilt. It nets no power with any controller (docs/gowec_v1.md); its figures
+  (free decay, RAO, stiff-hull Eq. 95) are the regression tests of the model.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from mf_envs.physics.constants import RPM
+from mf_envs.physics.gowec.hydro import DEFAULT_HULL_FILE, HullCoefficients
+from mf_envs.physics.gowec.hydro.three_dof import ISWEC_HULL_FILE, ThreeDofCoefficients
+
+
+@dataclass(frozen=True)
+class FloatingDevice:
+    """One floating GOWEC as built: every number SI. `rotor_loss` is the running loss of all
+    units together (W); limits are per unit; `viscous_fraction` a linear damping as a fraction
+    of critical (0 = none) and `drag_coefficient` the quadratic drag's C_d (0 = none);
+    `pitch_limit` (rad) ends the episode; `wave_ramp` (s) ramps the incident wave in."""
+
+    name: str
+    hull_file: Path
+    three_dof: bool  # the hull file is a surge/heave/pitch table (`three_dof`), pitch used
+    rotor_inertia: float  # kg m^2 (axial, per unit)
+    rotor_speed: float  # rad/s
+    gimbal_inertia: tuple[float, float, float]  # kg m^2 (gimbal frame, per unit)
+    gyro_units: int
+    rotor_loss: float  # W, all units
+    max_generator_torque: float  # N m per unit
+    max_generator_power: float  # W per unit
+    generator_efficiency: float
+    drag_coefficient: float
+    viscous_fraction: float
+    pitch_limit: float  # rad
+    wave_ramp: float  # s
+
+    def hull(self) -> HullCoefficients:
+        """The hull's pitch coefficients about G."""
+        if self.three_dof:
+            return pitch_hull(ThreeDofCoefficients.load(self.hull_file))
+        return HullCoefficients.load(self.hull_file)
+
+    @property
+    def angular_momentum(self) -> float:
+        """H = J psi' of one unit (N m s)."""
+        return self.rotor_inertia * self.rotor_speed
+
+
+def pitch_hull(c: ThreeDofCoefficients) -> HullCoefficients:
+    """The pitch block (mode 5 about G) of a surge/heave/pitch table as `HullCoefficients`
+    (A_0 taken as A55 at the table's lowest frequency; negative near-zero B55 at the table's
+    high end, where the mesh no longer resolves it, clipped to 0)."""
+    return HullCoefficients(
+        omega=c.omega, added_mass=c.added_mass[:, 2, 2],
+        damping=np.maximum(c.damping[:, 2, 2], 0.0), excitation=c.excitation[:, 2],
+        added_mass_inf=float(c.added_mass_inf[2, 2]),
+        added_mass_zero=float(c.added_mass[0, 2, 2]),
+        stiffness=float(c.hydrostatic_stiffness[2, 2]), inertia=float(c.mass_matrix[2, 2]),
+        mass=float(c.mass_matrix[0, 0]), rho=c.rho, g=c.g, radius=c.radius, draft=c.draft,
+        zg=c.zg, name=f"{c.name} (pitch)",
+    )  # fmt: skip
+
+
+# the ISWEC-class flywheel: a steel disc (7850 kg/m^3) 2.4 m across, 0.35 m thick
+_FLYWHEEL_MASS = 7850.0 * math.pi * 1.2**2 * 0.35  # 12.43 t
+_FLYWHEEL_J = 0.5 * _FLYWHEEL_MASS * 1.2**2  # 8.95e3 kg m^2 for a plain disc ...
+ISWEC_ROTOR_INERTIA = 1.2e4  # ... kg m^2 with a heavier rim (chosen; docs/gowec_v1.md)
+ISWEC_ROTOR_SPEED = 250.0 * RPM  # rad/s (chosen)
+
+DEVICES: dict[str, FloatingDevice] = {
+    "iswec_class": FloatingDevice(
+        name="iswec_class", hull_file=ISWEC_HULL_FILE, three_dof=True,
+        rotor_inertia=ISWEC_ROTOR_INERTIA, rotor_speed=ISWEC_ROTOR_SPEED,
+        gimbal_inertia=(4000.0, 4000.0, 4000.0), gyro_units=2, rotor_loss=3000.0,
+        max_generator_torque=1.5e5, max_generator_power=1.3e5, generator_efficiency=0.9,
+        drag_coefficient=1.0, viscous_fraction=0.0, pitch_limit=math.radians(20.0),
+        wave_ramp=10.0,
+    ),
+    "seed_buoy": FloatingDevice(
+        name="seed_buoy", hull_file=DEFAULT_HULL_FILE, three_dof=False,
+        rotor_inertia=26000.0 / (5000.0 * RPM), rotor_speed=5000.0 * RPM,
+        gimbal_inertia=(5.0, 5.0, 5.0), gyro_units=2, rotor_loss=3000.0,
+        max_generator_torque=1.0e4, max_generator_power=5.0e4, generator_efficiency=0.8,
+        drag_coefficient=0.0, viscous_fraction=0.05, pitch_limit=1.0, wave_ramp=0.0,
+    ),
+}  # fmt: skip
+DEFAULT_DEVICE = "iswec_class"
