@@ -96,6 +96,7 @@ def floating_model(
     of critical unless viscous_damping is given), the quadratic drag and the wave ramp, per the
     effects."""
     dev = DEVICES[scene.device]
+    three = dev.three_dof_table() if kw["hull"] is None else None
     hull = dev.hull() if kw["hull"] is None else load_hull(kw["hull"])
     gyro = GOWECParams(
         check_range("rotor_inertia", kw["rotor_inertia"], 1e-9, 1e6),
@@ -106,7 +107,13 @@ def floating_model(
                max_power=scene.max_generator_power, eta_generator=scene.eta_g,
                eta_motor=scene.eta_m)  # fmt: skip
     units = check_int("gyro_units", kw["gyro_units"], low=1, high=2)
-    model = FloatingModel(hull, gyro, pto, gyroscopic="gyroscopic" in effects, units=units)
+    model = FloatingModel(hull, gyro, pto, gyroscopic="gyroscopic" in effects, units=units,
+                          three_dof=three)  # fmt: skip
+    if "surge_heave" in effects:
+        if three is None:
+            raise ValueError("effects: 'surge_heave' needs a hull with surge/heave/pitch data "
+                             "(device='iswec_class'); this hull rotates about a fixed G")  # fmt: skip
+        model.set_translation(True, dev.mooring_stiffness)
     crit = 2.0 * math.sqrt(hull.stiffness * (model.p.inertia[0]))
     bv = kw["viscous_damping"]
     bv = dev.viscous_fraction * crit if bv is None else bv

@@ -27,7 +27,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_POWER_MECH,
     V_ROLL,
 )
-from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE
+from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -35,9 +35,10 @@ AVAILABLE_EFFECTS = {
     "radiation": "radiation memory of the Cummins equation (off: A_inf only, no wave damping)",
     "viscous_damping": "linear viscous pitch/roll damping (viscous_damping, N m s/rad)",
     "quadratic_drag": "Morison drag of keel plate and side on the velocity relative to the water",
+    "surge_heave": "surge (with the BEM surge-pitch coupling, slack mooring) and heave free",
     "irregular_waves": "irregular sea (also switched on by significant_wave_height)",
 }
-DEFAULT_EFFECTS = ("gyroscopic", "radiation", "viscous_damping", "quadratic_drag")
+DEFAULT_EFFECTS = DEVICES[DEFAULT_DEVICE].effects  # a device's own: `devices.FloatingDevice`
 _P = GOWECParams()
 SPECTRA = build.SPECTRA
 
@@ -136,7 +137,8 @@ class GOWECV1Env(MFEnv):
         self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, render_mode=render_mode,
                          control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
-                         physics_dt=check_range("physics_dt", physics_dt, 1e-5, 1.0))  # fmt: skip
+                         physics_dt=check_range("physics_dt", physics_dt, 1e-5, 1.0),
+                         default_effects=DEVICES[self.scene.device].effects)  # fmt: skip
         self.irregular = self.scene.hs_given or "irregular_waves" in self.effects
         self._base_substeps = self.n_substeps
         self.hull, self.model = build.floating_model(self.scene, kw, self.effects)

@@ -29,21 +29,21 @@ def observe_one(y, lo, hi, obs):
 
 
 @numba.njit(cache=True, nogil=True)
-def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, sp, amp, eps, dtc,
+def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
               loss, vals, ok, o_lo, o_hi, obs):  # fmt: skip
     """The native vector env's step of the active rows lo <= i < hi: `step_row`, and where it
     succeeded the new state into Y (N, n_state) and `observe_one` into obs (N, 8); ok (N,) bool,
     vals (N, N_VALS); t0, t1, tau (N,); om, cp, cr, amp, eps (N, M) and dk (N, M, nodes) each
-    row's sea; shared = `floating.pack`'s first nine entries and sp its last (the same for every
-    row); o_lo, o_hi the observation
+    row's sea; shared = `floating.pack`'s first nine entries and tail its last five (sp and the
+    translation; the same for every row); o_lo, o_hi the observation
     bounds. Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`)."""
-    _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, sp, amp, eps, dtc, loss,
-          vals, ok, o_lo, o_hi, obs, step_work(Y.shape[1]))  # fmt: skip
+    _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
+          loss, vals, ok, o_lo, o_hi, obs, step_work(Y.shape[1]))  # fmt: skip
 
 
 @kernel
-def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, sp, amp, eps, dtc, loss,
-          vals, ok, o_lo, o_hi, obs, w):  # fmt: skip
+def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
+          loss, vals, ok, o_lo, o_hi, obs, w):  # fmt: skip
     """The row loop of `step_rows` with one `step_work` buffer w (a `mf_envs._jit.kernel`: the
     rows' views of the shared arrays cost no reference counts)."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
@@ -51,7 +51,7 @@ def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, sp, amp
     for i in range(lo, hi):
         if not active[i]:
             continue
-        args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i], dk[i], sp)
+        args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i], dk[i], *tail)
         good = step_row(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc, loss,
                         vals[i], w)  # fmt: skip
         ok[i] = good

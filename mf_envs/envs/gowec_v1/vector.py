@@ -47,10 +47,10 @@ from mf_envs.physics.gowec.hydro.batch import (
     state_values_into,
 )
 from mf_envs.physics.gowec.hydro.floating import (
-    N_KEEL,
-    N_SIDE,
+    N_LOADS,
     drag_velocity_coefficients,
     excitation_coefficients,
+    translation_loads,
 )
 
 _SCALAR_SLOTS = INFO_SLOTS  # info key -> step_row value slot (physics.gowec.hydro.batch)
@@ -59,7 +59,7 @@ PHASE0, GIMBAL0 = (0.0, 2.0 * math.pi), (-0.1, 0.1)  # GOWECV1Env.reset's U(low,
 
 
 @numba.njit(cache=True)
-def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, sp, amp, eps, vals, lo, hi, obs):
+def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, tail, amp, eps, vals, lo, hi, obs):
     """GOWECV1Env.reset() (no options) for the rows idx whose sea (om, cp, cr, amp, eps) is in
     place: the state at rest with the gimbal angle gimbal[j] (rad), steps = 0, the reset info's
     value slots (`step_row`'s layout, at t = 0 with tau = 0) and the float32 observations."""
@@ -71,8 +71,8 @@ def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, sp, amp, eps, vals
         steps[i] = 0
         v = vals[i]
         v[:] = 0.0
-        state_values_into(0.0, y, 0.0, (*shared, om[i], cp[i], cr[i], dk[i], sp), amp[i], eps[i],
-                          v)  # fmt: skip
+        state_values_into(0.0, y, 0.0, (*shared, om[i], cp[i], cr[i], dk[i], *tail), amp[i],
+                          eps[i], v)  # fmt: skip
         observe_one(y, lo, hi, obs[i])
 
 
@@ -92,7 +92,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         self.Y = np.zeros((n, env.state.shape[0]))
         self.sea = {key: np.zeros((n, m)) for key in ("om", "amp", "eps")}
         self.sea.update(cp=np.zeros((n, m), complex), cr=np.zeros((n, m), complex))
-        self.sea["dk"] = np.zeros((n, m, N_KEEL + N_SIDE), complex)  # drag nodes' water
+        self.sea["dk"] = np.zeros((n, m, N_LOADS), complex)  # drag nodes' water, surge, heave
         self._steps = np.zeros(n, dtype=np.int64)
         self._vals = np.zeros((n, N_VALS))
         self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
@@ -129,13 +129,16 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
                 self._X, env.wave.amplitudes, eps, env.wave.direction
             )
             sea["eps"][i] = eps
-            sea["dk"][i] = drag_velocity_coefficients(
+            dk = drag_velocity_coefficients(
                 env.model.sp, env.hull, sea["om"][i], env.wave.amplitudes, eps
             )
+            if env.model.translating:
+                translation_loads(dk, env.model.three, sea["om"][i], env.wave.amplitudes, eps)
+            sea["dk"][i] = dk
         a = env.model._args()
         reset_rows(
             idx, gimbal, self.Y, self._steps, a[:9], sea["om"], sea["cp"], sea["cr"], sea["dk"],
-            a[13], sea["amp"], sea["eps"], self._vals, self._lo, self._hi, self._obs,
+            a[13:], sea["amp"], sea["eps"], self._vals, self._lo, self._hi, self._obs,
         )  # fmt: skip
         return self._reset_infos(idx)
 
@@ -178,7 +181,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         obs = self._fresh
         self.blocks.run(
             step_rows, active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps, shared,
-            sea["om"], sea["cp"], sea["cr"], sea["dk"], a[13], sea["amp"], sea["eps"], dtc,
+            sea["om"], sea["cp"], sea["cr"], sea["dk"], a[13:], sea["amp"], sea["eps"], dtc,
             env.rotor_loss_power(), self._vals, ok, self._lo, self._hi, obs,
         )  # fmt: skip
         v, Y = self._vals, self.Y

@@ -18,7 +18,7 @@ import numpy as np
 
 from mf_envs._jit import kernel
 from mf_envs.physics.gowec.hydro.floating import (
-    N_MECH,
+    energy_index,
     mechanics,
     ramp,
     rk4_steps_into,
@@ -98,7 +98,7 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     powers from the integrated PTO energies over dtc, `loss` (W) the rotor loss subtracted.
     A `mf_envs._jit.kernel` (no reference counting; it returns no array)."""
     m = y.shape[0]
-    k = N_MECH + 2 * args[5].shape[0]
+    k = energy_index(args)
     y1 = w[5 * m : 6 * m]
     for i in range(m):  # element-wise: a slice copy may allocate (no runtime here)
         y1[i] = y[i]

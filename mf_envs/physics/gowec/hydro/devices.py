@@ -54,12 +54,17 @@ class FloatingDevice:
     viscous_fraction: float
     pitch_limit: float  # rad
     wave_ramp: float  # s
+    mooring_stiffness: float  # N/m, linear surge spring (with surge free)
+    effects: tuple[str, ...]  # the env's default effects on this device
 
     def hull(self) -> HullCoefficients:
         """The hull's pitch coefficients about G."""
-        if self.three_dof:
-            return pitch_hull(ThreeDofCoefficients.load(self.hull_file))
-        return HullCoefficients.load(self.hull_file)
+        three = self.three_dof_table()
+        return HullCoefficients.load(self.hull_file) if three is None else pitch_hull(three)
+
+    def three_dof_table(self) -> ThreeDofCoefficients | None:
+        """The surge/heave/pitch table of the hull (None for a pitch-only file)."""
+        return ThreeDofCoefficients.load(self.hull_file) if self.three_dof else None
 
     @property
     def angular_momentum(self) -> float:
@@ -95,7 +100,8 @@ DEVICES: dict[str, FloatingDevice] = {
         gimbal_inertia=(4000.0, 4000.0, 4000.0), gyro_units=2, rotor_loss=3000.0,
         max_generator_torque=1.5e5, max_generator_power=1.3e5, generator_efficiency=0.9,
         drag_coefficient=1.0, viscous_fraction=0.0, pitch_limit=math.radians(20.0),
-        wave_ramp=10.0,
+        wave_ramp=10.0, mooring_stiffness=3.0e3,
+        effects=("gyroscopic", "radiation", "viscous_damping", "quadratic_drag", "surge_heave"),
     ),
     "seed_buoy": FloatingDevice(
         name="seed_buoy", hull_file=DEFAULT_HULL_FILE, three_dof=False,
@@ -103,6 +109,7 @@ DEVICES: dict[str, FloatingDevice] = {
         gimbal_inertia=(5.0, 5.0, 5.0), gyro_units=2, rotor_loss=3000.0,
         max_generator_torque=1.0e4, max_generator_power=5.0e4, generator_efficiency=0.8,
         drag_coefficient=0.0, viscous_fraction=0.05, pitch_limit=1.0, wave_ramp=0.0,
+        mooring_stiffness=0.0, effects=("gyroscopic", "radiation", "viscous_damping"),
     ),
 }  # fmt: skip
 DEFAULT_DEVICE = "iswec_class"

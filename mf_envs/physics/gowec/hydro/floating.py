@@ -70,6 +70,7 @@ class FloatingParams:
 
     @property
     def n_state(self) -> int:
+        """Without the translation block (`FloatingModel.n_state` adds it)."""
         return N_MECH + 2 * self.Ar.shape[0] + N_ENERGY
 
 
@@ -109,7 +110,15 @@ SP_YK = SP_XK + N_KEEL
 SP_CS = SP_YK + N_KEEL
 SP_ZS = SP_CS + N_SIDE
 SP_DIR = SP_ZS + N_SIDE
-SP_LEN = SP_DIR + 2
+SP_TRANS = SP_DIR + 2  # 1 when surge and heave are free (`sea_inputs` adds their forces)
+SP_LEN = SP_TRANS + 1
+N_LOADS = N_KEEL + N_SIDE + 2  # dk's columns: node velocities, then surge and heave forces
+# the translation parameters `tp` (TP_LEN,) (`translation_params`): on, M1 = m + A11_inf (kg),
+# A15_inf (kg m, about G, symmetrised), mooring stiffness (N/m), M3 = m + A33_inf (kg), C33 (N/m),
+# then the start of each radiation block in the stacked state (11 from s', 15 from alpha' to
+# the surge force, 51 from s' to the moment, 33 from z') and the stacked order nt
+TP_ON, TP_M1, TP_A15, TP_K, TP_M3, TP_C33, TP_O11, TP_O15, TP_O51, TP_O33, TP_NT = range(11)
+TP_LEN = 11
 
 
 @kernel(forceinline=True)
@@ -124,16 +133,18 @@ def ramp(t, tr):
 def sea_inputs(t, om, cp, cr, dk, sp):
     """The sea at time t (s), ramped (`ramp`): (M_x, M_y) (N m) as `excitation`, then the
     water's vertical velocity at the N_KEEL keel nodes and its horizontal speed along the wave
-    direction at the N_SIDE side nodes (m/s), sum Re(dk[i, j] e^{-i w_i t}) (zeros, and no
-    work, when the drag is off: sp[0] == 0)."""
+    direction at the N_SIDE side nodes (m/s), then the surge force along the wave and the heave
+    force (N), each sum Re(dk[i, j] e^{-i w_i t}) (zeros, and no work, when neither the drag
+    nor the translation is on)."""
     mx, my = 0.0, 0.0
     v0, v1, v2, v3, v4, v5, v6, v7 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    drag = sp[0] != 0.0
+    fs, fz = 0.0, 0.0
+    drag, trans = sp[0] != 0.0, sp[SP_TRANS] != 0.0
     for i in range(om.shape[0]):
         c, s = math.cos(om[i] * t), math.sin(om[i] * t)
         mx += cp[i].real * c + cp[i].imag * s
         my += cr[i].real * c + cr[i].imag * s
-        if drag:
+        if drag or trans:
             d = dk[i]
             v0 += d[0].real * c + d[0].imag * s
             v1 += d[1].real * c + d[1].imag * s
@@ -143,34 +154,42 @@ def sea_inputs(t, om, cp, cr, dk, sp):
             v5 += d[5].real * c + d[5].imag * s
             v6 += d[6].real * c + d[6].imag * s
             v7 += d[7].real * c + d[7].imag * s
+            fs += d[8].real * c + d[8].imag * s
+            fz += d[9].real * c + d[9].imag * s
     r = ramp(t, sp[1])
-    return (r * mx, r * my, r * v0, r * v1, r * v2, r * v3, r * v4, r * v5, r * v6, r * v7)
+    return (r * mx, r * my, r * v0, r * v1, r * v2, r * v3, r * v4, r * v5, r * v6, r * v7,
+            r * fs, r * fz)  # fmt: skip
 
 
 @kernel(forceinline=True)
-def drag_moments(th_d, ro_d, inp, sp):
-    """Quadratic (Morison) drag moments (M_x, M_y) (N m) on the hull rotating at (theta',
-    rho') in the water of `sea_inputs` inp: keel nodes -c |v_rel| v_rel on the vertical
-    velocity relative to the water (body: theta' y - rho' x), side nodes on the horizontal one
-    (body: (rho' z, -theta' z)), moments r x F about G. (0, 0) when the drag is off."""
+def drag_loads(th_d, ro_d, s_d, z_d, inp, sp):
+    """Quadratic (Morison) drag on the hull rotating at (theta', rho'), surging at s' along
+    the wave and heaving at z' in the water of `sea_inputs` inp: keel nodes -c |v_rel| v_rel on
+    the vertical velocity relative to the water (body: theta' y - rho' x + z'), side nodes on
+    the horizontal one (body: (rho' z, -theta' z) + s' (cos, sin) of the wave direction).
+    Returns (M_x, M_y) (N m, moments r x F about G), the surge force along the wave and the
+    heave force (N); zeros when the drag is off."""
     if sp[0] == 0.0:
-        return 0.0, 0.0
-    mx, my = 0.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0
+    mx, my, fz = 0.0, 0.0, 0.0
     for j in range(N_KEEL):
         x, yk = sp[SP_XK + j], sp[SP_YK + j]
-        rel = th_d * yk - ro_d * x - inp[2 + j]
+        rel = th_d * yk - ro_d * x + z_d - inp[2 + j]
         f = -sp[SP_CK + j] * abs(rel) * rel
         mx += yk * f
         my -= x * f
+        fz += f
     cb, sb = sp[SP_DIR], sp[SP_DIR + 1]
+    fs = 0.0
     for j in range(N_SIDE):
         z = sp[SP_ZS + j]
-        u = inp[2 + N_KEEL + j]
+        u = inp[2 + N_KEEL + j] - s_d
         rx, ry = ro_d * z - u * cb, -th_d * z - u * sb
         c = -sp[SP_CS + j] * math.sqrt(rx * rx + ry * ry)
         mx -= z * c * ry
         my += z * c * rx
-    return mx, my
+        fs += c * (rx * cb + ry * sb)
+    return mx, my, fs, fz
 
 
 @kernel(forceinline=True)
@@ -277,11 +296,18 @@ def _solve3(a, b):
 def mechanics(t, y, tau, args, inp):
     """The mechanical part of `deriv` at (t, y) with the sea `sea_inputs` inp at t:
     (u' (3), the mass terms of `_mass_terms`, radiation moments mu_t, mu_r (N m), M_g (N m),
-    drag moments (dx, dy) (N m))."""
+    drag moments (dx, dy) (N m), translation tr = (s'', z'' (m/s^2), surge and heave
+    excitation (N), surge radiation force mu_11 + mu_15 (N), the moment mu_51 about the axis
+    across the wave (N m), heave radiation force mu_33 (N), surge and heave drag (N)); tr is
+    zeros when surge and heave are held (`translation` module doc below)."""
     p_in, p_gy, psid, C, bv, Ar, _, Cr, pto = args[:9]
+    sp, tp = args[13], args[14]
     mx, my = inp[0], inp[1]
-    dx, dy = drag_moments(y[3], y[4], inp, args[13])
     nr = Ar.shape[0]
+    trans = tp[TP_ON] != 0.0
+    b = N_MECH + 2 * nr  # translation block: s, z, s', z', stacked radiation states
+    s_d, z_d = (y[b + 2], y[b + 3]) if trans else (0.0, 0.0)
+    dx, dy, dfs, dfz = drag_loads(y[3], y[4], s_d, z_d, inp, sp)
     m = _mass_terms(y[1], y[2], y[3], y[4], y[5], p_in, p_gy, psid)
     mu_t, mu_r = 0.0, 0.0
     for i in range(nr):
@@ -291,8 +317,32 @@ def mechanics(t, y, tau, args, inp):
     q0 = mx + dx - C * y[0] - mu_t - bv * y[3] - m[4]
     q1 = my + dy - C * y[1] - mu_r - bv * y[4] - m[5]
     q2 = -p_gy[5] * Mg - m[6]
-    a = (m[0], 0.0, 0.0, 0.0, m[1], m[2], 0.0, m[2], m[3])
-    return _solve3(a, (q0, q1, q2)), m, mu_t, mu_r, Mg, dx, dy
+    a00, a01, a11 = m[0], 0.0, m[1]
+    if not trans:
+        ud = _solve3((a00, a01, 0.0, a01, a11, m[2], 0.0, m[2], m[3]), (q0, q1, q2))
+        return ud, m, mu_t, mu_r, Mg, dx, dy, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    Cs = args[17]
+    m1, a15 = tp[TP_M1], tp[TP_A15]
+    mu_s, mu_n, mu_z = 0.0, 0.0, 0.0
+    for i in range(int(tp[TP_O15]) - int(tp[TP_O11])):
+        mu_s += Cs[int(tp[TP_O11]) + i] * y[b + 4 + int(tp[TP_O11]) + i]
+    for i in range(int(tp[TP_O51]) - int(tp[TP_O15])):
+        mu_s += Cs[int(tp[TP_O15]) + i] * y[b + 4 + int(tp[TP_O15]) + i]
+    for i in range(int(tp[TP_O33]) - int(tp[TP_O51])):
+        mu_n += Cs[int(tp[TP_O51]) + i] * y[b + 4 + int(tp[TP_O51]) + i]
+    for i in range(int(tp[TP_NT]) - int(tp[TP_O33])):
+        mu_z += Cs[int(tp[TP_O33]) + i] * y[b + 4 + int(tp[TP_O33]) + i]
+    # surge along the wave couples with alpha = -(g . u), g = (sin, -cos) of the direction
+    gt, gr = sp[SP_DIR + 1], -sp[SP_DIR]
+    fs, fz = inp[2 + N_KEEL + N_SIDE], inp[3 + N_KEEL + N_SIDE]
+    r_s = fs + dfs - mu_s - tp[TP_K] * y[b]
+    kk = a15 * a15 / m1
+    h = mu_n + a15 * r_s / m1
+    a00, a01, a11 = a00 - kk * gt * gt, a01 - kk * gt * gr, a11 - kk * gr * gr
+    ud = _solve3((a00, a01, 0.0, a01, a11, m[2], 0.0, m[2], m[3]), (q0 + gt * h, q1 + gr * h, q2))
+    sdd = (r_s + a15 * (gt * ud[0] + gr * ud[1])) / m1
+    zdd = (fz + dfz - mu_z - tp[TP_C33] * y[b + 1]) / tp[TP_M3]
+    return ud, m, mu_t, mu_r, Mg, dx, dy, (sdd, zdd, fs, fz, mu_s, mu_n, mu_z, dfs, dfz)
 
 
 @numba.njit(cache=True)
@@ -310,7 +360,7 @@ def deriv_into(t, y, tau, args, inp, dy):
     p_gy, psid, Ar, Br, pto = args[1], args[2], args[5], args[6], args[8]
     bv = args[4]
     nr = Ar.shape[0]
-    ud, m, mu_t, mu_r, Mg, drx, dry = mechanics(t, y, tau, args, inp)
+    ud, m, mu_t, mu_r, Mg, drx, dry, tr = mechanics(t, y, tau, args, inp)
     mx, my = inp[0], inp[1]
     for i in range(3):
         dy[i] = y[3 + i]
@@ -324,11 +374,23 @@ def deriv_into(t, y, tau, args, inp, dy):
         dy[6 + i] = at + Br[i] * th_d
         dy[6 + nr + i] = ar + Br[i] * ro_d
     k = 6 + 2 * nr
+    e_exc = mx * th_d + my * ro_d
+    e_rad = mu_t * th_d + mu_r * ro_d
+    e_drag = drx * th_d + dry * ro_d
+    tp = args[14]
+    if tp[TP_ON] != 0.0:
+        k = _translation_rates(y, dy, k, ud, tr, args)
+        sp = args[13]
+        s_d, z_d = y[6 + 2 * nr + 2], y[6 + 2 * nr + 3]
+        al_d = -(sp[SP_DIR + 1] * th_d - sp[SP_DIR] * ro_d)  # alpha' = -(g . u')
+        e_exc += tr[2] * s_d + tr[3] * z_d
+        e_rad += tr[4] * s_d + tr[5] * al_d + tr[6] * z_d
+        e_drag += tr[7] * s_d + tr[8] * z_d
     nu = p_gy[5]
     P = nu * Mg * ph_d
-    dy[k] = mx * th_d + my * ro_d
-    dy[k + 1] = mu_t * th_d + mu_r * ro_d
-    dy[k + 2] = bv * (th_d * th_d + ro_d * ro_d) - (drx * th_d + dry * ro_d)
+    dy[k] = e_exc
+    dy[k + 1] = e_rad
+    dy[k + 2] = bv * (th_d * th_d + ro_d * ro_d) - e_drag
     dy[k + 3] = P
     dy[k + 4] = P * pto[4] if P >= 0.0 else P / pto[5]
     # rotor motors hold +-psi': torque Ja d/dt(w_g3) with w_g3 = sin(b) theta', b = rho + s phi
@@ -338,6 +400,29 @@ def deriv_into(t, y, tau, args, inp, dy):
         cb, sb = (m[12], m[13]) if j == 0 else (m[14], m[15])
         pm += sg * (cb * (ro_d + sg * ph_d) * th_d + sb * ud[0])
     dy[k + 5] = p_gy[0] * pm * psid
+
+
+@kernel(forceinline=True)
+def _translation_rates(y, dy, k, ud, tr, args):
+    """The translation block's rates into dy (block at k = N_MECH + 2 nr: s, z, s', z', then
+    the stacked radiation states x' = As x + Bs v with v = s' (11 and 51 blocks), alpha' (15)
+    or z' (33)); returns the index of the energies after it."""
+    sp, tp, As, Bs = args[13], args[14], args[15], args[16]
+    b = k
+    dy[b], dy[b + 1], dy[b + 2], dy[b + 3] = y[b + 2], y[b + 3], tr[0], tr[1]
+    s_d, z_d = y[b + 2], y[b + 3]
+    al_d = -(sp[SP_DIR + 1] * y[3] - sp[SP_DIR] * y[4])
+    nt = int(tp[TP_NT])
+    o15, o51, o33 = int(tp[TP_O15]), int(tp[TP_O51]), int(tp[TP_O33])
+    for i in range(nt):
+        v = s_d if i < o15 else (al_d if i < o51 else (s_d if i < o33 else z_d))
+        lo = 0 if i < o15 else (o15 if i < o51 else (o51 if i < o33 else o33))
+        hi = o15 if i < o15 else (o51 if i < o51 else (o33 if i < o33 else nt))
+        acc = Bs[i] * v
+        for j in range(lo, hi):
+            acc += As[i, j] * y[b + 4 + j]
+        dy[b + 4 + i] = acc
+    return b + 4 + nt
 
 
 @kernel(forceinline=True)
@@ -361,7 +446,8 @@ _rk4 = make_rk4(_stage_rhs, _stage_excitation, inline=True)
 @numba.njit(cache=True)
 def rk4_steps(t, y, tau, dt, n, args):
     """n RK4 substeps of dt (s) from (t, y) with the PTO command tau held; returns y (new).
-    args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr, dk, sp) as `deriv` (`pack`).
+    args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om, cp, cr, dk, sp, tp, As, Bs, Cs) as
+    `deriv` (`pack`).
     The stage loop is the one of `mf_envs.frames.kernels.make_rk4`."""
     y = y.copy()
     rk4_steps_into(t, y, tau, dt, n, args, rk4_work(y.shape[0]))
@@ -382,12 +468,12 @@ def rk4_steps_into(t, y, tau, dt, n, args, work):
 
 
 def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray,
-         sp: NDArray) -> tuple:  # fmt: skip
+         sp: NDArray, tr: tuple) -> tuple:  # fmt: skip
     """The argument tuple of `deriv` / `rk4_steps` for params p, excitation (om, cp, cr), the
-    drag nodes' water velocity coefficients dk (n, N_KEEL + N_SIDE) and the sea parameters sp
-    (SP_LEN,) (`sea_inputs`)."""
+    sea's per-component loads dk (n, N_LOADS) and the sea parameters sp (SP_LEN,)
+    (`sea_inputs`), and the translation (tp, As, Bs, Cs) (`translation_params`)."""
     return (p.inertia, p.gyro, float(p.psid), float(p.stiffness), float(p.viscous), p.Ar, p.Br,
-            p.Cr, p.pto, om, cp, cr, dk, sp)  # fmt: skip
+            p.Cr, p.pto, om, cp, cr, dk, sp, *tr)  # fmt: skip
 
 
 def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction: float) -> NDArray:
@@ -424,13 +510,14 @@ def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction:
 
 def drag_velocity_coefficients(sp: NDArray, hull, om: NDArray, amp: NDArray,
                                eps: NDArray) -> NDArray[np.complex128]:  # fmt: skip
-    """dk (n, N_KEEL + N_SIDE): the incident wave's water velocity at the drag nodes is
+    """dk (n, N_LOADS), its first N_KEEL + N_SIDE columns (the last two, the surge and heave
+    forces, are `translation_loads`'): the incident wave's water velocity at the drag nodes is
     sum_i Re(dk[i, j] e^{-i w_i t}), linear deep-water kinematics (k = w^2 / g) of
     eta = sum a_i cos(k s - w_i t + eps_i): vertical w = a w e^{kz} sin(.) at the keel nodes
     (z = -draft), horizontal speed along the wave u = a w e^{kz} cos(.) at the side nodes
     (s = 0). Zeros when the drag is off."""
     om = np.asarray(om, dtype=float)
-    dk = np.zeros((om.size, N_KEEL + N_SIDE), dtype=complex)
+    dk = np.zeros((om.size, N_LOADS), dtype=complex)
     if sp[0] == 0.0 or om.size == 0:
         return dk
     k = om * om / float(hull.g)
@@ -440,17 +527,52 @@ def drag_velocity_coefficients(sp: NDArray, hull, om: NDArray, amp: NDArray,
     zk = -float(hull.draft)
     dk[:, :N_KEEL] = (-1j * om * np.exp(k * zk) * c)[:, None] * np.exp(1j * k[:, None] * s)
     zs = sp[SP_ZS : SP_ZS + N_SIDE] + float(hull.zg)  # absolute depth of the side nodes
-    dk[:, N_KEEL:] = (om * c)[:, None] * np.exp(k[:, None] * zs)
+    dk[:, N_KEEL : N_KEEL + N_SIDE] = (om * c)[:, None] * np.exp(k[:, None] * zs)
     return dk
 
 
-def mechanical_energy(p: FloatingParams, y: NDArray[np.float64]) -> float:
+def translation_loads(dk: NDArray, three, om: NDArray, amp: NDArray, eps: NDArray) -> None:
+    """dk's last two columns (in place): the surge force along the wave and the heave force
+    per component, X_1(w) a e^{i eps} and X_3(w) a e^{i eps} (N), from the 3-dof table `three`
+    (linear interpolation, 0 outside it)."""
+    om = np.asarray(om, dtype=float)
+    c = np.asarray(amp, dtype=float) * np.exp(1j * np.asarray(eps, dtype=float))
+    for col, mode in ((N_KEEL + N_SIDE, 0), (N_KEEL + N_SIDE + 1, 1)):
+        X = three.excitation[:, mode]
+        Xi = np.interp(om, three.omega, X.real, 0.0, 0.0) + 1j * np.interp(
+            om, three.omega, X.imag, 0.0, 0.0
+        )
+        dk[:, col] = Xi * c
+
+
+@numba.njit(cache=True, inline="always")
+def energy_index(args):
+    """Index of the integrated energies in the state: after the mechanical state, the two
+    rotational radiation copies and (when surge and heave are free) the translation block."""
+    tp = args[14]
+    k = N_MECH + 2 * args[5].shape[0]
+    if tp[TP_ON] != 0.0:
+        k += 4 + int(tp[TP_NT])
+    return k
+
+
+def mechanical_energy(p: FloatingParams, y: NDArray[np.float64], tp: NDArray | None = None,
+                      direction: float = 0.0) -> float:  # fmt: skip
     """Kinetic + hydrostatic energy (J) of the mechanical state, with the rotor spin's constant
-    1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor)."""
+    1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor); with the translation
+    parameters tp (surge and heave free) also 1/2 M1 s'^2 + A15 s' alpha' + 1/2 M3 z'^2 and
+    the mooring's and heave's springs."""
     M, _, spin, _ = mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
     u = y[3:6]
     kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * spin
-    return kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
+    e = kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
+    if tp is not None and tp[TP_ON] != 0.0:
+        b = N_MECH + 2 * p.Ar.shape[0]
+        s, z, sd, zd = y[b : b + 4]
+        al_d = -(math.sin(direction) * y[3] - math.cos(direction) * y[4])
+        e += 0.5 * tp[TP_M1] * sd * sd + tp[TP_A15] * sd * al_d + 0.5 * tp[TP_M3] * zd * zd
+        e += 0.5 * tp[TP_K] * s * s + 0.5 * tp[TP_C33] * z * z
+    return e
 
 
 def gyro_moment(p: FloatingParams, y: NDArray[np.float64], accel: NDArray) -> NDArray:

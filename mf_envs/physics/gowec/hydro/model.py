@@ -17,6 +17,7 @@ from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import HullCoefficients
 from mf_envs.physics.gowec.hydro import floating as fl
 from mf_envs.physics.gowec.hydro.radiation import RadiationFit, fit_radiation
+from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
 from mf_envs.physics.multibody import Body, Multibody, Revolute, constant_rate
 from mf_envs.physics.waves import WaveField
 
@@ -36,8 +37,11 @@ class FloatingModel:
         gyroscopic: bool = True,
         radiation: RadiationFit | None = None,
         units: int = 2,
+        three_dof: ThreeDofCoefficients | None = None,
     ) -> None:
         self.hull = hull
+        self.three = three_dof  # surge/heave/pitch table: `set_translation` can free them
+        self._tr = _TRANSLATION_OFF
         self.gyro = gyro
         self.fit = radiation or fit_radiation(
             hull.omega, hull.added_mass, hull.damping, hull.added_mass_inf
@@ -51,6 +55,7 @@ class FloatingModel:
         self._packed: tuple | None = None  # `_args`' cache
         self.sp = np.zeros(fl.SP_LEN)  # drag off, no ramp (`set_drag`, `set_ramp`)
         self.drag_coefficient = 0.0
+        self.mooring_stiffness = 0.0  # N/m (`set_translation`)
         self.p = fl.FloatingParams(
             inertia=np.array([hull.inertia + hull.added_mass_inf, Iz]),
             gyro=g,
@@ -90,7 +95,7 @@ class FloatingModel:
         if wave is None:
             self._om = np.zeros(0)
             self._cp = self._cr = np.zeros(0, dtype=complex)
-            self._dk = np.zeros((0, fl.N_KEEL + fl.N_SIDE), dtype=complex)
+            self._dk = np.zeros((0, fl.N_LOADS), dtype=complex)
             return
         X = self.hull_excitation(wave.omegas)
         self._om = np.asarray(wave.omegas, dtype=float)
@@ -99,9 +104,34 @@ class FloatingModel:
         )
         self.sp = fl.drag_geometry(self.hull, self.drag_coefficient, float(self.sp[1]),
                                    wave.direction)  # fmt: skip
+        self.sp[fl.SP_TRANS] = self._tr[0][fl.TP_ON]
         self._dk = fl.drag_velocity_coefficients(
             self.sp, self.hull, self._om, wave.amplitudes, wave.phases
         )
+        if self.translating:
+            fl.translation_loads(self._dk, self.three, self._om, wave.amplitudes, wave.phases)
+
+    @property
+    def translating(self) -> bool:
+        """Surge and heave are free (`set_translation`)."""
+        return bool(self._tr[0][fl.TP_ON])
+
+    def set_translation(self, on: bool, mooring_stiffness: float = 0.0) -> None:
+        """Free surge (along the wave) and heave with the 3-dof table's added mass, radiation
+        (state-space fits of K11, K15 = K51 symmetrised, K33) and excitation, and a linear
+        mooring spring in surge (N/m); off: the hull rotates about a fixed G (0.1-0.4)."""
+        if on and self.three is None:
+            raise ValueError("effects: surge_heave needs a surge/heave/pitch hull table")
+        self.mooring_stiffness = float(mooring_stiffness)
+        self._tr = translation_params(self.three, self.mooring_stiffness) if on else \
+            _TRANSLATION_OFF  # fmt: skip
+        self.set_sea(self.wave)
+
+    @property
+    def n_state(self) -> int:
+        """Length of the state vector (`floating` module doc, plus the translation block)."""
+        tp = self._tr[0]
+        return self.p.n_state + (4 + int(tp[fl.TP_NT]) if tp[fl.TP_ON] else 0)
 
     def set_drag(self, drag_coefficient: float) -> None:
         """Quadratic Morison drag on the keel plate and the side (`floating.drag_moments`) with
@@ -138,7 +168,7 @@ class FloatingModel:
     def initial_state(
         self, pitch: float = 0.0, roll: float = 0.0, gimbal: float = 0.0, gimbal_rate: float = 0.0
     ) -> NDArray[np.float64]:
-        y = np.zeros(self.p.n_state)
+        y = np.zeros(self.n_state)
         y[0], y[1], y[2], y[5] = pitch, roll, gimbal, gimbal_rate
         return y
 
@@ -149,7 +179,8 @@ class FloatingModel:
     def _args(self) -> tuple:
         """`floating.pack` of the params and the sea, cached until either changes."""
         if self._packed is None:
-            self._packed = fl.pack(self.p, self._om, self._cp, self._cr, self._dk, self.sp)
+            self._packed = fl.pack(self.p, self._om, self._cp, self._cr, self._dk, self.sp,
+                                   self._tr)  # fmt: skip
         return self._packed
 
     def excitation(self, t: float) -> tuple[float, float]:
@@ -172,10 +203,11 @@ class FloatingModel:
 
     def energies(self, y: NDArray) -> dict[str, float]:
         """Integrated energies (J) and the stored mechanical energy (`floating` module doc)."""
-        k = fl.N_MECH + 2 * self.p.Ar.shape[0]
+        k = int(fl.energy_index(self._args()))
         names = ("excitation", "radiated", "viscous", "pto_mechanical", "pto_electrical", "motor")
         out = {n: float(y[k + i]) for i, n in enumerate(names)}
-        out["stored"] = fl.mechanical_energy(self.p, y)
+        d = self.wave.direction if self.wave is not None else 0.0
+        out["stored"] = fl.mechanical_energy(self.p, y, self._tr[0], d)
         return out
 
     # ------------------------------------------------------------------ engine twin
@@ -203,6 +235,43 @@ class FloatingModel:
                 ),
             ]
         )
+
+
+# ---------------------------------------------------------------------- translation
+_TRANSLATION_OFF = (np.zeros(fl.TP_LEN), np.zeros((1, 1)), np.zeros(1), np.zeros(1))
+
+
+def translation_params(three: ThreeDofCoefficients, mooring_stiffness: float) -> tuple:
+    """(tp, As, Bs, Cs) of `floating`'s translation block: masses, the symmetrised A15_inf,
+    the mooring and heave stiffness, and the radiation fits of K11, K15 (from alpha' to the
+    surge force), K51 (from s' to the moment; the same symmetrised kernel) and K33 stacked
+    block-diagonally (`radiation.fit_radiation` each)."""
+    om, A, B, Ai = three.omega, three.added_mass, three.damping, three.added_mass_inf
+    a15 = 0.5 * (A[:, 0, 2] + A[:, 2, 0])
+    b15 = 0.5 * (B[:, 0, 2] + B[:, 2, 0])
+    a15_inf = 0.5 * (Ai[0, 2] + Ai[2, 0])
+    fits = [fit_radiation(om, A[:, 0, 0], B[:, 0, 0], Ai[0, 0]),
+            fit_radiation(om, a15, b15, a15_inf)]  # fmt: skip
+    fits += [fits[1], fit_radiation(om, A[:, 1, 1], B[:, 1, 1], Ai[1, 1], max_order=6)]
+    sizes = [f.A.shape[0] for f in fits]
+    nt = int(sum(sizes))
+    As, Bs, Cs = np.zeros((nt, nt)), np.zeros(nt), np.zeros(nt)
+    o = 0
+    offsets = []
+    for f, n in zip(fits, sizes):
+        offsets.append(o)
+        As[o : o + n, o : o + n] = f.A
+        Bs[o : o + n] = f.B[:, 0]
+        Cs[o : o + n] = f.C[0]
+        o += n
+    m = float(three.mass_matrix[0, 0])
+    tp = np.zeros(fl.TP_LEN)
+    tp[fl.TP_ON], tp[fl.TP_M1], tp[fl.TP_A15] = 1.0, m + Ai[0, 0], a15_inf
+    tp[fl.TP_K], tp[fl.TP_M3], tp[fl.TP_C33] = mooring_stiffness, m + Ai[1, 1], \
+        three.hydrostatic_stiffness[1, 1]  # fmt: skip
+    tp[fl.TP_O11], tp[fl.TP_O15], tp[fl.TP_O51], tp[fl.TP_O33] = offsets
+    tp[fl.TP_NT] = nt
+    return tp, As, Bs, Cs
 
 
 # ---------------------------------------------------------------------- ceilings
