@@ -125,11 +125,12 @@ class GOWECV1Env(MFEnv):
         drag_coefficient: float | None = None,
         pitch_limit: float | None = None,
         wave_ramp: float | None = None,
+        wave_preview: float = 0.0,
         max_gimbal_rate: float = spec.MAX_GIMBAL_RATE,
         hull: Any = None,
         episode_seconds: float = 120.0,
         control_dt: float = 0.02,
-        physics_dt: float = 0.005,
+        physics_dt: float | None = None,
         effects: Any = None,
         render_mode: str | None = None,
     ) -> None:
@@ -137,7 +138,10 @@ class GOWECV1Env(MFEnv):
         self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, render_mode=render_mode,
                          control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
-                         physics_dt=check_range("physics_dt", physics_dt, 1e-5, 1.0),
+                         physics_dt=check_range(
+                             "physics_dt",
+                             DEVICES[self.scene.device].physics_dt if physics_dt is None
+                             else physics_dt, 1e-5, 1.0),
                          default_effects=DEVICES[self.scene.device].effects)  # fmt: skip
         self.irregular = self.scene.hs_given or "irregular_waves" in self.effects
         self._base_substeps = self.n_substeps
@@ -146,6 +150,12 @@ class GOWECV1Env(MFEnv):
         self.max_steps = self._episode_steps(self.episode_seconds)
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         hi = spec.OBS.high({"max_gimbal_rate": self.max_gimbal_rate})
+        preview = check_range("wave_preview", wave_preview, 0.0, 120.0)
+        self.preview_times = preview * np.arange(1, spec.N_PREVIEW + 1) / spec.N_PREVIEW
+        if preview == 0.0:
+            self.preview_times = np.zeros(0)
+        hi = np.concatenate([hi, np.full(self.preview_times.size, spec.MAX_ELEVATION)])
+        hi = hi.astype(np.float32)
         self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
         self.energy_scale = 1.0 / (self.reference_power() * self.control_dt)
         self.wave: waves.WaveField = waves.regular_wave(
@@ -198,11 +208,12 @@ class GOWECV1Env(MFEnv):
         self._steps += 1
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
-        obs, (loss, lo, hi, limits) = np.empty(8, np.float32), self._consts
+        obs = np.empty(self.observation_space.shape[0], np.float32)
+        loss, lo, hi, limits = self._consts
         ok, y, finite, over, out = step_one(
             t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
             self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals,
-            self._work, lo, hi, obs, limits,
+            self._work, lo, hi, obs, limits, self.preview_times,
         )  # fmt: skip
         if not ok:
             info = dict(power=0.0, overspeed=False, out_of_range=False)
@@ -312,8 +323,11 @@ class GOWECV1Env(MFEnv):
                 "numerical_failure": False}  # fmt: skip
 
     def _get_obs(self) -> np.ndarray:
-        obs = np.empty(8, np.float32)  # observe.py: the hull body rates of the module doc
-        observe_one(self.state, self.observation_space.low, self.observation_space.high, obs)
+        obs = np.empty(self.observation_space.shape[0], np.float32)
+        a, w = self.model._args(), self.wave
+        observe_one(self.state, self._t, w.amplitudes, a[9], w.phases, a[13][1],
+                    self.preview_times, self.observation_space.low, self.observation_space.high,
+                    obs)  # fmt: skip
         return obs
 
     def _draw_frame(self) -> np.ndarray:

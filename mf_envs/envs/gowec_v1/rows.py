@@ -11,13 +11,17 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.physics.gowec.hydro.batch import end_state, step_row, step_work
+from mf_envs.physics.gowec.hydro.batch import elevation, end_state, step_row, step_work
+from mf_envs.physics.gowec.hydro.floating import ramp
 
 
 @numba.njit(cache=True)
-def observe_one(y, lo, hi, obs):
+def observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs):
     """(sin phi, cos phi, phi', hull body rates (cos rho theta', rho', sin rho theta'), theta,
-    rho) of the state y as float32 into obs (8,), clipped to [lo, hi]; True if all finite."""
+    rho) of the state y, the incident wave's elevation at the buoy at t (a wave probe) and,
+    when `preview` (s ahead, (n,)) is not empty, at t + preview[j] (a perfect forecast of the
+    incident sea, ramped as the sea is), as float32 into obs (9 + n,), clipped to [lo, hi];
+    True if all finite."""
     v = (math.sin(y[2]), math.cos(y[2]), y[5], math.cos(y[1]) * y[3], y[4],
          math.sin(y[1]) * y[3], y[0], y[1])  # fmt: skip
     finite = True
@@ -25,12 +29,18 @@ def observe_one(y, lo, hi, obs):
         x = min(max(np.float32(v[j]), lo[j]), hi[j])
         obs[j] = x
         finite = finite and math.isfinite(x)
+    for j in range(preview.shape[0] + 1):
+        tj = t if j == 0 else t + preview[j - 1]
+        x = np.float32(elevation(tj, amp, om, eps) * ramp(tj, tramp))
+        x = min(max(x, lo[8 + j]), hi[8 + j])
+        obs[8 + j] = x
+        finite = finite and math.isfinite(x)
     return finite
 
 
 @numba.njit(cache=True, nogil=True)
 def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
-              loss, vals, ok, o_lo, o_hi, obs):  # fmt: skip
+              loss, vals, ok, o_lo, o_hi, obs, preview):  # fmt: skip
     """The native vector env's step of the active rows lo <= i < hi: `step_row`, and where it
     succeeded the new state into Y (N, n_state) and `observe_one` into obs (N, 8); ok (N,) bool,
     vals (N, N_VALS); t0, t1, tau (N,); om, cp, cr, amp, eps (N, M) and dk (N, M, nodes) each
@@ -38,12 +48,12 @@ def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tai
     translation; the same for every row); o_lo, o_hi the observation
     bounds. Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`)."""
     _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
-          loss, vals, ok, o_lo, o_hi, obs, step_work(Y.shape[1]))  # fmt: skip
+          loss, vals, ok, o_lo, o_hi, obs, preview, step_work(Y.shape[1]))  # fmt: skip
 
 
 @kernel
 def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
-          loss, vals, ok, o_lo, o_hi, obs, w):  # fmt: skip
+          loss, vals, ok, o_lo, o_hi, obs, preview, w):  # fmt: skip
     """The row loop of `step_rows` with one `step_work` buffer w (a `mf_envs._jit.kernel`: the
     rows' views of the shared arrays cost no reference counts)."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
@@ -59,19 +69,21 @@ def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, a
             yi = Y[i]
             for j in range(m):
                 yi[j] = w[5 * m + j]
-            observe_one(yi, o_lo, o_hi, obs[i])
+            observe_one(yi, t1[i], amp[i], om[i], eps[i], tail[0][1], preview, o_lo, o_hi, obs[i])
 
 
 @numba.njit(cache=True)
-def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, obs, limits):
+def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, obs, limits,
+             preview):  # fmt: skip
     """The single env's step in one compiled call: `step_row`, then (if the state is finite)
-    `observe_one` into obs and the termination tests; limits = (max gimbal rate rad/s, max buoy
+    `observe_one` into obs (preview: its look-ahead times) and the termination tests; limits =
+    (max gimbal rate rad/s, max buoy
     angle rad), w = `step_work`. Returns (ok, y1, finite obs, overspeed, out of range)."""
     ok = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w)
     y1 = end_state(w, y.shape[0]).copy()  # the env keeps it as its state
     if not ok:
         return False, y1, False, False, False
-    finite = observe_one(y1, lo, hi, obs)
+    finite = observe_one(y1, t1, amp, args[9], eps, args[13][1], preview, lo, hi, obs)
     over = abs(y1[5]) > limits[0]
     out = max(abs(y1[0]), abs(y1[1])) > limits[1]
     return True, y1, finite, over, out

@@ -12,6 +12,7 @@ from mf_envs.envs._spec import Field, ObsLayout
 MAX_GIMBAL_RATE = 60.0  # rad/s, overspeed trip and observation bound
 MAX_BUOY_RATE = 5.0  # rad/s, observation bound
 MAX_BUOY_ANGLE = 1.0  # rad: observation bound; the device's pitch_limit (<= 1 rad) ends episodes
+MAX_ELEVATION = 15.0  # m: observation bound of the wave elevation (and its preview)
 
 OBS = ObsLayout(
     Field("sin_gimbal_angle", "", 1.0, "sin(phi), gimbal angle phi (encoder)"),
@@ -21,11 +22,16 @@ OBS = ObsLayout(
     Field(
         "buoy_angles", "rad", MAX_BUOY_ANGLE, "buoy pitch theta, roll rho (inclinometer)", size=2
     ),
+    Field("wave_elevation", "m", MAX_ELEVATION, "incident wave elevation at the buoy (probe)"),
 )
+# opt-in (wave_preview > 0): N_PREVIEW more slots, the incident elevation at the buoy
+# wave_preview * (j + 1) / N_PREVIEW s ahead (j = 0..N_PREVIEW-1), bounded by MAX_ELEVATION
+N_PREVIEW = 8
 I_SIN, I_COS = OBS.index("sin_gimbal_angle"), OBS.index("cos_gimbal_angle")
 I_RATE = OBS.index("gimbal_rate")
 S_BUOY = OBS.slice("buoy_rates")
 S_ANGLES = OBS.slice("buoy_angles")
+I_ELEVATION = OBS.index("wave_elevation")
 
 REWARD_TERMS = ("net_electrical_energy", "shutdown_loss")
 RESET_OPTIONS = ("buoy_pitch", "buoy_roll", "gimbal_angle", "gimbal_rate")

@@ -55,8 +55,9 @@ DECLARATION = EnvDeclaration(
         "peak_period": (0.75, 1.25),
         "wave_amplitude": (0.25, 1.0),
     },
-    # half the episodes regular waves (None), half JONSWAP seas of Hs 1-3 m
-    choices={"significant_wave_height": (None, 1.0, 2.0, 3.0)},
+    # a fifth of the episodes regular waves (None), the rest JONSWAP seas of the power
+    # matrix's heights (benchmarks/power_matrix.py)
+    choices={"significant_wave_height": (None, 1.0, 1.5, 2.0, 2.5)},
     # GOWEC-v0's settings as the starting point (untuned)
     rllib={"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
     vector_target=(1024, 5.0e5),

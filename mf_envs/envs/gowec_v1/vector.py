@@ -59,7 +59,8 @@ PHASE0, GIMBAL0 = (0.0, 2.0 * math.pi), (-0.1, 0.1)  # GOWECV1Env.reset's U(low,
 
 
 @numba.njit(cache=True)
-def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, tail, amp, eps, vals, lo, hi, obs):
+def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, tail, amp, eps, vals, lo, hi, obs,
+               preview):  # fmt: skip
     """GOWECV1Env.reset() (no options) for the rows idx whose sea (om, cp, cr, amp, eps) is in
     place: the state at rest with the gimbal angle gimbal[j] (rad), steps = 0, the reset info's
     value slots (`step_row`'s layout, at t = 0 with tau = 0) and the float32 observations."""
@@ -73,7 +74,7 @@ def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, tail, amp, eps, va
         v[:] = 0.0
         state_values_into(0.0, y, 0.0, (*shared, om[i], cp[i], cr[i], dk[i], *tail), amp[i],
                           eps[i], v)  # fmt: skip
-        observe_one(y, lo, hi, obs[i])
+        observe_one(y, 0.0, amp[i], om[i], eps[i], tail[0][1], preview, lo, hi, obs[i])
 
 
 class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
@@ -95,7 +96,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         self.sea["dk"] = np.zeros((n, m, N_LOADS), complex)  # drag nodes' water, surge, heave
         self._steps = np.zeros(n, dtype=np.int64)
         self._vals = np.zeros((n, N_VALS))
-        self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
+        self._fresh = np.zeros((n, env.observation_space.shape[0]), dtype=np.float32)
         self._ok = np.ones(n, dtype=bool)
         self._lo = self.single_observation_space.low.astype(np.float32)
         self._hi = self.single_observation_space.high.astype(np.float32)
@@ -139,6 +140,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         reset_rows(
             idx, gimbal, self.Y, self._steps, a[:9], sea["om"], sea["cp"], sea["cr"], sea["dk"],
             a[13:], sea["amp"], sea["eps"], self._vals, self._lo, self._hi, self._obs,
+            env.preview_times,
         )  # fmt: skip
         return self._reset_infos(idx)
 
@@ -182,7 +184,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         self.blocks.run(
             step_rows, active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps, shared,
             sea["om"], sea["cp"], sea["cr"], sea["dk"], a[13:], sea["amp"], sea["eps"], dtc,
-            env.rotor_loss_power(), self._vals, ok, self._lo, self._hi, obs,
+            env.rotor_loss_power(), self._vals, ok, self._lo, self._hi, obs, env.preview_times,
         )  # fmt: skip
         v, Y = self._vals, self.Y
         reward = v[:, V_ENERGY] * env.energy_scale

@@ -15,8 +15,9 @@ not modelled: the buoy rotates about G, its translation is held by the mooring):
 
 The shipped default hull (`cylinder_r2p5_converged.npz`, made by `scripts/compute_hydro.py` with
 Capytaine on a keel-graded mesh, issue 29) is a vertical cylinder: radius 2.5 m, draft 2.0 m,
-z_G = -0.6 m, pitch radius of gyration 1.5 m. `default_hull.npz` (LEGACY_HULL_FILE) is the same
-hull on the earlier 768-panel mesh, whose B55 is 18-56 % low at 1-2.5 rad/s.
+z_G = -0.6 m, pitch radius of gyration 1.5 m. The earlier 768-panel table of the same hull
+(B55 18-56 % low at 1-2.5 rad/s) is no longer shipped: it fails the Haskind check (issue 29);
+tests/data/legacy_hull_768_panels.npz keeps it as a regression fixture.
 Files are `.npz` read with `allow_pickle=False` (nothing loaded executes code).
 """
 
@@ -34,10 +35,8 @@ from numpy.typing import NDArray
 
 from mf_envs.physics.constants import RHO_SEAWATER, G
 
-# issue 29: the converged mesh's coefficients are the default; the pre-issue-29 file (B55 low by
-# 18-56 % at 1-2.5 rad/s, keel under-resolved) stays reachable as LEGACY_HULL_FILE
+# issue 29: the converged mesh's coefficients (the seed buoy's hull, `devices`)
 DEFAULT_HULL_FILE = Path(__file__).with_name("cylinder_r2p5_converged.npz")
-LEGACY_HULL_FILE = Path(__file__).with_name("default_hull.npz")
 RHO = RHO_SEAWATER  # kg/m^3, what the BEM runs use (the seed's Eq. 15 uses 1020)
 
 _ARRAYS = ("omega", "added_mass", "damping", "excitation")
@@ -277,7 +276,6 @@ def from_capytaine(*args: Any, **kwargs: Any) -> HullCoefficients:
 
 __all__ = [
     "DEFAULT_HULL_FILE",
-    "LEGACY_HULL_FILE",
     "CylinderHull",
     "HullCoefficients",
     "from_capytaine",

@@ -56,6 +56,7 @@ class FloatingDevice:
     wave_ramp: float  # s
     mooring_stiffness: float  # N/m, linear surge spring (with surge free)
     effects: tuple[str, ...]  # the env's default effects on this device
+    physics_dt: float  # s, the env's default RK4 substep (docs/gowec_v1.md: accuracy)
 
     def hull(self) -> HullCoefficients:
         """The hull's pitch coefficients about G."""
@@ -102,6 +103,7 @@ DEVICES: dict[str, FloatingDevice] = {
         drag_coefficient=1.0, viscous_fraction=0.0, pitch_limit=math.radians(20.0),
         wave_ramp=10.0, mooring_stiffness=3.0e3,
         effects=("gyroscopic", "radiation", "viscous_damping", "quadratic_drag", "surge_heave"),
+        physics_dt=0.01,
     ),
     "seed_buoy": FloatingDevice(
         name="seed_buoy", hull_file=DEFAULT_HULL_FILE, three_dof=False,
@@ -110,6 +112,7 @@ DEVICES: dict[str, FloatingDevice] = {
         max_generator_torque=1.0e4, max_generator_power=5.0e4, generator_efficiency=0.8,
         drag_coefficient=0.0, viscous_fraction=0.05, pitch_limit=1.0, wave_ramp=0.0,
         mooring_stiffness=0.0, effects=("gyroscopic", "radiation", "viscous_damping"),
+        physics_dt=0.005,
     ),
 }  # fmt: skip
 DEFAULT_DEVICE = "iswec_class"

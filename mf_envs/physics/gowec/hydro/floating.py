@@ -403,6 +403,16 @@ def deriv_into(t, y, tau, args, inp, dy):
 
 
 @kernel(forceinline=True)
+def _block_rates(y, dy, o, As, Bs, lo, hi, v):
+    """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi."""
+    for i in range(lo, hi):
+        acc = Bs[i] * v
+        for j in range(lo, hi):
+            acc += As[i, j] * y[o + j]
+        dy[o + i] = acc
+
+
+@kernel(forceinline=True)
 def _translation_rates(y, dy, k, ud, tr, args):
     """The translation block's rates into dy (block at k = N_MECH + 2 nr: s, z, s', z', then
     the stacked radiation states x' = As x + Bs v with v = s' (11 and 51 blocks), alpha' (15)
@@ -414,14 +424,10 @@ def _translation_rates(y, dy, k, ud, tr, args):
     al_d = -(sp[SP_DIR + 1] * y[3] - sp[SP_DIR] * y[4])
     nt = int(tp[TP_NT])
     o15, o51, o33 = int(tp[TP_O15]), int(tp[TP_O51]), int(tp[TP_O33])
-    for i in range(nt):
-        v = s_d if i < o15 else (al_d if i < o51 else (s_d if i < o33 else z_d))
-        lo = 0 if i < o15 else (o15 if i < o51 else (o51 if i < o33 else o33))
-        hi = o15 if i < o15 else (o51 if i < o51 else (o33 if i < o33 else nt))
-        acc = Bs[i] * v
-        for j in range(lo, hi):
-            acc += As[i, j] * y[b + 4 + j]
-        dy[b + 4 + i] = acc
+    _block_rates(y, dy, b + 4, As, Bs, 0, o15, s_d)  # K11: surge force from s'
+    _block_rates(y, dy, b + 4, As, Bs, o15, o51, al_d)  # K15: surge force from alpha'
+    _block_rates(y, dy, b + 4, As, Bs, o51, o33, s_d)  # K51: moment from s'
+    _block_rates(y, dy, b + 4, As, Bs, o33, nt, z_d)  # K33: heave force from z'
     return b + 4 + nt
 
 
