@@ -16,8 +16,9 @@ and the matched linear PTO.
   (`env.unwrapped.set_pto`, evaluated every physics substep); the torque command is 0.
   It maximises *mechanical* power: the reactive power k phi phi' it circulates through the
   generator costs 1 - eta each way, so on a real drive it is not the best linear PTO.
-- `efficient_pto` and `passive_damper` (issue 29): the linear PTO (c, k) and the pure damper
-  (k = 0) that maximise the *net electrical* power eta P+ - P- / eta - rotor loss of the
+- `efficient_pto` and `passive_damper` (issue 29): the linear PTO (c, k) and the damper (c,
+  with only the small centring spring k_c that keeps the gimbal from drifting to +-90 deg) that
+  maximise the *net electrical* power eta P+ - P- / eta - rotor loss of the
   linearised device in the sea the env has just drawn (`net_electrical_power`: frequency-domain
   response of hull + gyro units to every wave component, the quadratic drag by stochastic
   (Lorentz) linearisation, the electrical power from the synthesised time signal of
@@ -64,10 +65,10 @@ def _drag_k(raw: Any) -> float:
 
 def linear_response(raw: Any, c: float, k: float) -> tuple[np.ndarray, np.ndarray]:
     """Complex amplitudes (e^{-i w t}) of the hull's pitch rate and one gimbal's rate (rad/s)
-    at the env's wave components under the linear PTO (c, k): hull impedance
-    Z_h = B + b + i (w (I + A) - C / w) with b the linear viscous plus the drag's stochastic
-    linearisation sqrt(8 / pi) K sigma (regular sea: 8 / (3 pi) K |theta'|), n units of
-    load H^2 / Z_g, Z_g = c + i (w I_g - k / w)."""
+    at the env's wave components under the linear PTO (c, k), in the sea's e^{-i w t}
+    convention: hull impedance Z_h = B + b - i (w (I + A) - C / w) with b the linear viscous
+    plus the drag's stochastic linearisation sqrt(8 / pi) K sigma (regular sea:
+    8 / (3 pi) K |theta'|), n units of load H^2 / Z_g, Z_g = c - i (w I_g - k / w)."""
     hull, p, wave = raw.hull, raw.model.p, raw.wave
     om = np.asarray(wave.omegas, dtype=float)
     X = raw.model.hull_excitation(om) * np.asarray(wave.amplitudes) * np.exp(1j * wave.phases)
@@ -76,10 +77,10 @@ def linear_response(raw: Any, c: float, k: float) -> tuple[np.ndarray, np.ndarra
     H = p.gyro[0] * p.psid
     Ig = p.gyro[1] + p.gyro[3]
     n = raw.model.units
-    Zg = c + 1j * (om * Ig - k / om)
+    Zg = c - 1j * (om * Ig - k / om)
     K, b = _drag_k(raw), 0.0
     for _ in range(30):
-        Zh = B + p.viscous + b + 1j * (om * (raw.model.pitch_inertia() + A) - hull.stiffness / om)
+        Zh = B + p.viscous + b - 1j * (om * (raw.model.pitch_inertia() + A) - hull.stiffness / om)
         th = X / (Zh + n * H * H / Zg)
         if om.size == 1:
             b_new = 8.0 / (3.0 * math.pi) * K * abs(th[0])
@@ -91,8 +92,10 @@ def linear_response(raw: Any, c: float, k: float) -> tuple[np.ndarray, np.ndarra
     return th, H * th / Zg
 
 
-MAX_LINEAR_GIMBAL = 1.2  # rad: gimbal swing the linearisation is trusted to (cos 1.2 = 0.36)
+MAX_LINEAR_GIMBAL = 0.8  # rad: gimbal swing the linearisation is trusted to (cos 0.8 = 0.70)
 PITCH_MARGIN = 0.6  # predicted pitch kept below this fraction of the device's pitch_limit
+CENTRING = 0.25  # minimum spring k >= CENTRING I_g w^2: without one a gimbal swinging ~1 rad
+# drifts to +-pi/2, where the gyroscopic torque H theta' cos(phi) vanishes, and stays there
 
 
 def net_electrical_power(raw: Any, c: float, k: float) -> float:
@@ -126,27 +129,36 @@ def net_electrical_power(raw: Any, c: float, k: float) -> float:
     return net
 
 
+def centring_stiffness(raw: Any) -> float:
+    """k_c = CENTRING I_g w^2 (N m/rad) at the sea's (peak) frequency."""
+    p = raw.model.p
+    w = 2.0 * math.pi / float(raw.wave_period)
+    return CENTRING * (p.gyro[1] + p.gyro[3]) * w * w
+
+
 def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
-    """(c, k) maximising `net_electrical_power` (k = 0 when `passive`), started from the
-    mechanical match (`matched_pto`)."""
+    """(c, k) maximising `net_electrical_power`, started from the mechanical match
+    (`matched_pto`); k >= the centring spring k_c (`centring_stiffness`); `passive`: the damper
+    c alone with k = k_c."""
     from scipy.optimize import minimize, minimize_scalar
 
     c0, k0 = matched_pto(raw)
     c0 = max(c0, 1.0)
+    kc = centring_stiffness(raw)
     if passive:
-        r = minimize_scalar(lambda x: -net_electrical_power(raw, math.exp(x), 0.0),
+        r = minimize_scalar(lambda x: -net_electrical_power(raw, math.exp(x), kc),
                             bounds=(math.log(c0) - 5.0, math.log(c0) + 5.0), method="bounded",
                             options={"xatol": 1e-3})  # fmt: skip
-        return math.exp(r.x), 0.0
-    # k >= 0 (k = ks x^2): a negative gimbal spring destabilises the gimbal
+        return math.exp(r.x), kc
+    # k = k_c + ks x^2 >= k_c > 0 (a negative gimbal spring destabilises the gimbal)
     ks = abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period)  # scale of k
-    r = minimize(lambda x: -net_electrical_power(raw, math.exp(x[0]), x[1] ** 2 * ks),
-                 np.array([math.log(c0), math.sqrt(max(k0, 0.0) / ks)]), method="Nelder-Mead",
-                 options={"xatol": 1e-3, "fatol": 1.0, "maxiter": 300})  # fmt: skip
-    best = (math.exp(r.x[0]), float(r.x[1] ** 2 * ks))
+    r = minimize(lambda x: -net_electrical_power(raw, math.exp(x[0]), kc + x[1] ** 2 * ks),
+                 np.array([math.log(c0), math.sqrt(max(k0 - kc, 0.0) / ks)]),
+                 method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1.0, "maxiter": 300})
+    best = (math.exp(r.x[0]), float(kc + r.x[1] ** 2 * ks))
     cp, _ = efficient_pto(raw, passive=True)  # never worse than the damper
-    if net_electrical_power(raw, cp, 0.0) > net_electrical_power(raw, *best):
-        return cp, 0.0
+    if net_electrical_power(raw, cp, kc) > net_electrical_power(raw, *best):
+        return cp, kc
     return best
 
 
