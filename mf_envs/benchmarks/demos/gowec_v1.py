@@ -1,7 +1,7 @@
 """FloatingGOWEC-v0 showcase: the floating buoy pitching in the wave with its gimbal and rotor.
 
 Writes into `out`:
-- gowec_v1_episode.png  the default sea (regular, a = 1 m, T = 6 s) with the matched linear PTO
+- gowec_v1_episode.png  the default sea (regular, a = 1 m, T = 6 s) with the efficient_pto
                         and with the rotor off: buoy pitch, gimbal angle, mechanical PTO power,
                         against the wave elevation (two-way coupling: the loaded gyro changes
                         the buoy's motion)
@@ -74,8 +74,8 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
 
     seconds = 20.0 if quick else SECONDS
     n_frames = 0 if quick else 60
-    pto, ex, shots = _episode("linear_pto", True, seconds, n_frames)
-    off, _, _ = _episode("linear_pto", False, seconds)
+    pto, ex, shots = _episode("efficient_pto", True, seconds, n_frames)
+    off, _, _ = _episode("efficient_pto", False, seconds)
     fig, ax = plt.subplots(4, 1, figsize=(8, 8), sharex=True)
     ax[0].plot(pto["time"], pto["wave_elevation"], "k", lw=0.8)
     ax[0].set_ylabel("wave elevation (m)")
@@ -89,17 +89,17 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
     ax[3].set_ylabel(f"PTO power, {ex['units']:.0f} units (W)")
     ax[3].set_xlabel("time (s)")
     sat = ex["saturated"]
-    if sat.any():  # where the matched c phi' + k phi asks for more than the generator's rating
+    if sat.any():  # where the PTO's c phi' + k phi asks for more than the generator's rating
         t = pto["time"]
         for a in ax[2:]:
             a.fill_between(t, 0, 1, where=sat, color="tab:red", alpha=0.15, lw=0,
                            transform=a.get_xaxis_transform(), step="mid")  # fmt: skip
         ax[3].plot([], [], color="tab:red", alpha=0.3, lw=6, label=(
-            f"shaded: the matched c phi' + k phi asks for more than the generator's "
+            f"shaded: the PTO's c phi' + k phi asks for more than the generator's "
             f"{ex['torque_limit'] / 1e3:.0f} kN m (per unit); the torque clips and power peaks"
         ))  # fmt: skip
         ax[3].legend(loc="upper left", fontsize=8)
-    fig.suptitle("FloatingGOWEC-v0 on a regular wave a = 1 m, T = 6 s (matched linear PTO)")
+    fig.suptitle("FloatingGOWEC-v0 on a regular wave a = 1 m, T = 6 s (efficiency-aware linear PTO)")
     fig.tight_layout()
     files = [out / "gowec_v1_episode.png"]
     fig.savefig(files[0], dpi=100)
@@ -112,7 +112,7 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
     p = float(np.mean(pto["power_mechanical"][half:]))
     lines = [
         f"natural pitch period (rotor off) {ex['Tn']:.2f} s; wave power flux {ex['J']:.0f} W/m",
-        f"matched linear PTO: {p:.0f} W mechanical, capture width {p / ex['J']:.3f} m "
+        f"efficiency-aware linear PTO: {p:.0f} W mechanical, capture width {p / ex['J']:.3f} m "
         f"(net electrical after the 3 kW rotor loss: {np.mean(pto['power'][half:]):.0f} W)",
         "pitch amplitude rotor off / on: "
         f"{np.degrees(np.abs(off['buoy_pitch'][half:]).max()):.2f} / "
