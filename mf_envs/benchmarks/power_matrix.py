@@ -125,9 +125,9 @@ def plot(rows: list[dict], path: Path) -> Path:
     ax.set_xlabel("peak period Tp (s)")
     ax.set_ylabel("significant wave height Hs (m)")
     r0 = rows[0]
-    ax.set_title(f"FloatingGOWEC-v0 (ISWEC-class), net electrical kW, {r0['kind']}, "
-                 f"{len(r0['seeds'])} seeds x {r0['seconds']:.0f} s (* = pitch limit hit)",
-                 fontsize=9)  # fmt: skip
+    ax.set_title(f"FloatingGOWEC-v0 (ISWEC-class): net electrical power, {r0['kind']}\n"
+                 f"JONSWAP, {len(r0['seeds'])} seeds x {r0['seconds']:.0f} s each "
+                 f"(* = pitch limit hit)", fontsize=9)  # fmt: skip
     fig.colorbar(im, ax=ax, label="net electrical power (kW)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
