@@ -111,12 +111,15 @@ class DriveReport:
     energy); net_work [J] (signed, A2); wire_work [J]: the positive work of the bending moment
     EI kappa# on the body (`kernels.wire_work`, with gripping feet); increments and Newton
     iterations; slip (2,) [m] of tail, head (friction); ground_x, normal (2,) [N] of the feet
-    at the end (friction feet); feet: the friction feet's report (None otherwise)."""
+    at the end (friction feet); feet: the friction feet's report (None otherwise);
+    mechanical_work [J]: the actuator's positive mechanical work (wire_work with gripping
+    feet, else the positive work of A2)."""
 
     kappa_sharp: np.ndarray
     energy: float = 0.0
     net_work: float = 0.0
     wire_work: float = 0.0
+    mechanical_work: float = 0.0
     increments: int = 0
     iterations: int = 0
     slip: np.ndarray = field(default_factory=lambda: np.zeros(2))
@@ -260,6 +263,7 @@ class DrivenInchworm:
         self.kappa_ctrl = path[-1].copy()
         rep.energy = self.meter.input_energy - energy0
         rep.net_work = self.meter.net - net0
+        rep.mechanical_work = rep.energy * self.meter.efficiency
         if self.wires is not None:
             rep.energy = float(np.sum(command)) * self.wires.group_power * dt
             self.electrical_energy += rep.energy
@@ -313,7 +317,7 @@ class DrivenInchworm:
         out.ground_x = rep[gf.REP_GX : gf.REP_GX + 2].copy()
         out.normal = rep[gf.REP_N : gf.REP_N + 2].copy()
         out.net_work = float(rep[qs.REP_A2NET])
-        out.wire_work = float(rep[qs.REP_WIRE])
+        out.wire_work = out.mechanical_work = float(rep[qs.REP_WIRE])
         self.wire_work += out.wire_work
         if self.wires is not None:
             out.energy = float(rep[qs.REP_ELEC])
@@ -375,6 +379,7 @@ class DrivenInchworm:
         out.iterations, out.slip = out.feet.iterations, out.feet.slip.copy()
         out.energy = rep[ss.REP_POS] / self.meter.efficiency
         out.net_work = float(rep[ss.REP_NET])
+        out.mechanical_work = float(rep[ss.REP_POS])
         z = np.zeros_like(d)
         sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
         sim.kappa = self._gauss(self.kappa_ctrl)
@@ -484,6 +489,52 @@ def run_open_loop(
         c = command((k + 1) * dt)
         driven.step(c, grip_for(driven, c, dt), dt)
     dist, energy = sim.x_tail - x0, driven.meter.input_energy - e0
+    p, span = sim.params, n_meas * dt
+    weight = p.mass_per_length * p.gravity * p.length
+    cot = energy / (weight * dist) if dist > 0.0 else float("inf")
+    return GaitMetrics(dist / span / p.length, dist / p.length * period / span, cot, energy, dist)
+
+
+# ---------------------------------------------------------------------- SMA duty gaits
+DutyFn = Callable[[float], np.ndarray]  # t [s] -> duty cycles (n,) in [0, 1]
+
+
+def heat_cool_gait(t_heat: float, t_cool: float, n: int, duty_off: float = 0.0) -> DutyFn:
+    """Every wire group at duty 1 for t_heat [s], then at duty_off (0: the current off; > 0:
+    kept warm) for t_cool [s]: the SMA inchworm's square wave (period t_heat + t_cool)."""
+    period = t_heat + t_cool
+
+    def duty(t: float) -> np.ndarray:
+        phase = t % period
+        phase = 0.0 if phase > period - 1e-9 else phase  # snap round-off at the switches
+        return np.full(n, 1.0 if phase < t_heat - 1e-9 else duty_off)
+
+    return duty
+
+
+def run_duty_loop(
+    driven: DrivenInchworm,
+    duty: DutyFn,
+    period: float,
+    dt: float,
+    n_cycles: int = 2,
+    warmup_cycles: int = 1,
+) -> GaitMetrics:
+    """`run_open_loop` for the SMA wires (`sma_wires`): duty(t) (a `heat_cool_gait`) held over
+    control steps of dt [s], the head gripping while the wires are heated at duty 1, the tail
+    otherwise (Eq. 102 on the command); the distance is the feet's midpoint's (a body still
+    curling up over the warm-up does not count as crawling); the cost of transport is
+    electrical."""
+    sim = driven.sim
+    n_warm = int(round(warmup_cycles * period / dt))
+    n_meas = int(round(n_cycles * period / dt))
+    x0 = e0 = 0.0
+    for k in range(n_warm + n_meas):
+        if k == n_warm:
+            x0, e0 = 0.5 * (sim.x_tail + sim.x_head), driven.electrical_energy
+        u = duty((k + 1) * dt)
+        driven.step(u, "head" if u[0] == 1.0 else "tail", dt)
+    dist, energy = 0.5 * (sim.x_tail + sim.x_head) - x0, driven.electrical_energy - e0
     p, span = sim.params, n_meas * dt
     weight = p.mass_per_length * p.gravity * p.length
     cot = energy / (weight * dist) if dist > 0.0 else float("inf")

@@ -57,7 +57,9 @@ class GripLaw:
         check_positive("width", self.width)
         if self.threshold + self.width > 1.0:
             raise ValueError(f"threshold: threshold + width must be <= 1, got {self}")
-        for name in ("mu_slide", "grip_forward", "grip_backward", "v_slide", "v_grip"):
+        for name in ("mu_slide", "grip_forward", "grip_backward"):  # 0: frictionless
+            check_nonnegative(name, getattr(self, name))
+        for name in ("v_slide", "v_grip"):
             check_positive(name, getattr(self, name))
         if min(self.grip_forward, self.grip_backward) < self.mu_slide:
             raise ValueError("grip_forward: gripping coefficients must not be below mu_slide")

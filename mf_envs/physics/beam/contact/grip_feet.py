@@ -88,12 +88,14 @@ def _newton(d, d0, kap, f_ext, g, h, xd, zd, law, fixed, bc, sc):
         el.assemble_into(d, le, kap, qxi, qw, stiff, True, p, ab)
         for i in range(nd):
             r[i] = f_ext[i] - p[i]
+        support = 0.0
         for k in range(2):
             xi, zi = xd[k], zd[k]
             normal = p[zi] - f_ext[zi]
             fk, dfk = foot_force(d[xi] - d0[xi], h, g[k], normal, law)
             r[xi] += fk
             ab[hb, xi] -= dfk
+            support -= dfk
             # F is linear in N = P_z - F_ext,z: row x_k of the Jacobian gets -(F / N) K[z_k, :]
             if normal > 0.0:
                 dfn = fk / normal
@@ -103,6 +105,8 @@ def _newton(d, d0, kap, f_ext, g, h, xd, zd, law, fixed, bc, sc):
                 for j in range(max(0, zi - hb), min(nd, zi + hb + 1)):
                     if abs(xi - j) <= hb:
                         ab[hb + xi - j, j] -= dfn * coupling[j]
+        if not support > 0.0:  # frictionless feet: nothing holds the body in x (singular)
+            return False, it
         banded.constrain_band(ab, r, fixed)
         res = 0.0
         for i in range(nd):
