@@ -9,7 +9,7 @@ from gymnasium.utils.env_checker import check_env
 
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.controllers import baseline_kinds, make_baseline
-from mf_envs.envs.inchworm import ISSUE16_SCENE, RIOS2017_BODY, RIOS2017_SCENE, SEED_SCENE_EFFECTS
+from mf_envs.envs.inchworm import ISSUE16_SCENE, RIOS2017_BODY, RIOS2017_SCENE
 from mf_envs.physics.beam import NewtonSettings
 
 L = 0.3

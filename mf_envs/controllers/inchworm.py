@@ -37,7 +37,6 @@ from mf_envs.physics.actuators.sma import maker_times
 from mf_envs.physics.inchworm import quasistatic as qs
 from mf_envs.physics.inchworm.drive import (
     CommandFn,
-    DutyFn,
     cosine_gait,
     heat_cool_gait,
     make_driven,

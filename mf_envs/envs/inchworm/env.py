@@ -141,10 +141,10 @@ class InchwormEnv(MFEnv):
     |----------|---------|---------|
     | length | 0.06 | body length L [m] in [0.01, 10] (RIOS2017_BODY: 0.3) |
     | width, height | 0.010, 0.003 | cross-section b, h [m] in [1e-4, 1], h <= L / 5 |
-    | youngs_modulus, shear_modulus | 1.5e6, 5.03e5 | E, G [Pa] in [1e3, 1e13] (PDMS, Poisson 0.49) |
+    | youngs_modulus, shear_modulus | 1.5e6, 5.03e5 | E, G [Pa] in [1e3, 1e13] (PDMS, nu 0.49) |
     | mass_per_length | 0.0309 | m_A [kg/m] in [1e-6, 1e4] (1030 kg/m^3; J_3C = m_A h^2 / 12) |
     | n_elements | 12 | C1 elements, 1..64 |
-    | max_curvature | 50.0 | largest abs(kappa#) [1/m] (sma_wires: the wires' full stroke), <= 20 / L |
+    | max_curvature | 50.0 | largest abs(kappa#) [1/m] (sma_wires: full stroke), <= 20 / L |
     | n_control_points | 3 | actuation control points (wire groups), 2..64 |
     | control_dt, physics_dt | 0.1, 0.1 | s per step; Newmark step with `inertia` |
     | episode_seconds | None | episode length [s]; None: max_episode_steps steps |
@@ -350,9 +350,7 @@ class InchwormEnv(MFEnv):
         qse = spec.quasi_static_error(dx, self._foot_dx, self.control_dt, self.scene.params, limit)
         return float(qse)
 
-    def _get_info(
-        self, terms: dict[str, float], report: Any, qse: float = 0.0
-    ) -> dict[str, Any]:
+    def _get_info(self, terms: dict[str, float], report: Any, qse: float = 0.0) -> dict[str, Any]:
         sim = self.sim
         info: dict[str, Any] = {
             "x_head": sim.x_head,

@@ -103,7 +103,11 @@ class InchwormVectorEnv(BatchedVectorEnv):
         scales = (env.params.length, 1.0 if sma else env.max_curvature, env.scene.weight)
         if sma:
             w = env.scene.wires.params
-            tobs = (w.ambient, w.alloy.austenite_finish - w.ambient, spec.WIRE_TEMPERATURE_OBS_LIMIT)
+            tobs = (
+                w.ambient,
+                w.alloy.austenite_finish - w.ambient,
+                spec.WIRE_TEMPERATURE_OBS_LIMIT,
+            )
         else:
             tobs = (0.0, 1.0, 1.0)
         self._cfg = (
@@ -187,7 +191,8 @@ class InchwormVectorEnv(BatchedVectorEnv):
         mu4 = env.driven.feet.params.coefficients
         normal = rep[:, ss.REP_N : ss.REP_N + 2]
         limit = spec.holding_capacity(mu4, g, rep[:, ss.REP_GX : ss.REP_GX + 2], normal)
-        self._finish_info(info, np.zeros(self.num_envs), np.where(ok, rep[:, ss.REP_POS], 0.0), None,
+        mech = np.where(ok, rep[:, ss.REP_POS], 0.0)
+        self._finish_info(info, np.zeros(self.num_envs), mech, None,
                           cmd, feet_old, limit, ok, active, progress, effort)  # fmt: skip
         return self._finish_batch(obs, reward, info, ok, active)
 

@@ -30,7 +30,9 @@ from mf_envs.physics.actuators.curvature import (
     increment_work,
     kappa_at_gauss,
 )
+from mf_envs.physics.actuators.sma import SMAWireParams
 from mf_envs.physics.beam import NewmarkState, NewtonDivergence, static
+from mf_envs.physics.beam.contact import grip_feet as gf
 from mf_envs.physics.beam.contact import stick_slip as ss
 from mf_envs.physics.beam.contact.feet import (
     FootReport,
@@ -39,8 +41,6 @@ from mf_envs.physics.beam.contact.feet import (
     raise_status,
 )
 from mf_envs.physics.beam.contact.friction import FrictionParams
-from mf_envs.physics.actuators.sma import SMAWireParams
-from mf_envs.physics.beam.contact import grip_feet as gf
 from mf_envs.physics.beam.contact.grip import GripFeetParams
 from mf_envs.physics.inchworm import quasistatic as qs
 from mf_envs.physics.inchworm.model import Inchworm, InchwormParams
@@ -87,9 +87,10 @@ class SMAWires:
         xi = np.clip(1.0 + np.asarray(kappa_ctrl, float) / self.kappa_full, 0.0, 1.0)
         out = np.empty((5, len(xi)))
         t_amb = self.params.ambient
-        temp = a.austenite_start + (a.austenite_finish - a.austenite_start) * np.arccos(
-            2.0 * xi - 1.0
-        ) / np.pi
+        temp = (
+            a.austenite_start
+            + (a.austenite_finish - a.austenite_start) * np.arccos(2.0 * xi - 1.0) / np.pi
+        )
         out[qs.SMA_T] = np.where(xi >= 1.0, t_amb, temp)
         out[qs.SMA_XI] = xi
         out[qs.SMA_DIR] = np.where(xi >= 1.0, -1.0, 1.0)  # sma_kernels COOLING / HEATING
@@ -271,7 +272,7 @@ class DrivenInchworm:
 
     def grip_kernel_args(self) -> tuple:
         """(act, feet, S_ctrl, gauss_S, f_ext, beam constants) of `quasistatic.grip_step`."""
-        sim, key = self.sim, (self.sim.settings, self.sim.increment_factor)
+        key = (self.sim.settings, self.sim.increment_factor)
         if getattr(self, "_grip_key", None) != key:
             self._grip_args, self._grip_key = self._grip_kernel_args(), key
         return self._grip_args
@@ -283,7 +284,13 @@ class DrivenInchworm:
         if self.wires is not None:
             thermal, tt, p_full, k_full, group = self.wires.kernel_args()
         else:
-            thermal, tt, p_full, k_full, group = (1.0, 1.0, 0.0), (1.0, 2.0, 1.0, 0.0, 0.0), 0.0, 1.0, 0.0
+            thermal, tt, p_full, k_full, group = (
+                (1.0, 1.0, 0.0),
+                (1.0, 2.0, 1.0, 0.0, 0.0),
+                0.0,
+                1.0,
+                0.0,
+            )
         limit = sim.increment_factor * sim.params.max_dkappa
         act = (mode, tau, rate, limit, sim.model.params.EI, thermal, tt, p_full, k_full, group)
         feet = (self.foot_x, self.foot_z, gp.law.kernel_args(), gp.engage_time, gp.release_time)

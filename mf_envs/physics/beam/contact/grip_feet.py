@@ -15,8 +15,10 @@ surplus is added. The increment's equilibrium P(d, kappa#) = F_ext + F_feet(d) o
 the feet's z (held on the ground, Eq. 100a) is one smooth nonlinear system: Newton with the
 full Jacobian, the law's -dF/du (>= 0) on the feet's x diagonal and -(F / N) dN/dd on their x
 rows (N = the feet's z reaction P_z - F_ext,z, so dN/dd is the tangent's z row; the matrix is
-then not symmetric: banded LU), halving the increment when Newton fails. One well-posed solution for any engagements: both terms are
-odd and increasing in v.
+then not symmetric: banded LU), halving the increment when Newton fails. One well-posed
+solution for any engagements: both terms are odd and increasing in v. The feet's steps are
+controlled (the law saturates) and the first solve holds them where their last velocities take
+them (`increment`).
 
 law = (threshold, width, mu_slide, grip_forward, grip_backward, v_slide [m/s], v_grip [m/s]),
 `GripLaw.kernel_args()`.
@@ -115,7 +117,19 @@ def _newton(d, d0, kap, f_ext, g, h, xd, zd, law, fixed, bc, sc):
         if it == 1:
             res_first = res
         if DEBUG:
-            print("  it", it, "res", res, "tol", tol_r, "u", d[xd[0]] - d0[xd[0]], d[xd[1]] - d0[xd[1]], "h", h)
+            print(
+                "  it",
+                it,
+                "res",
+                res,
+                "tol",
+                tol_r,
+                "u",
+                d[xd[0]] - d0[xd[0]],
+                d[xd[1]] - d0[xd[1]],
+                "h",
+                h,
+            )
         if not np.isfinite(res) or (it >= 3 and res > 1e3 * max(res_first, tol_r)):
             return False, it
         if res < 1e-2 * tol_r:
@@ -151,9 +165,10 @@ def increment(d, k0, k1, f_ext, g0, g1, h, v_feet, xd, zd, law, bc, sc, rep, out
     """One actuation increment kappa# k0 -> k1 (n_el, 4) [1/m] of duration h [s], engagements
     g0 -> g1 (2,), from d converged at k0 (feet's z on the ground): the configuration at k1
     into out; v_feet (2,) [m/s]: the feet's velocities in the last increment, the predictor of
-    the first solve, updated; rep (>= N_REPORT,) accumulated (slip (2) [m], friction work [J], ground x force
-    (2) [N] and normal load (2) [N] at the end, Newton iterations). Halves the increment (up to
-    the settings' max_halvings) when Newton fails. Returns OK or NEWTON_FAILED."""
+    the first solve, updated; rep (>= N_REPORT,) accumulated (slip (2) [m], friction work [J],
+    ground x force (2) [N] and normal load (2) [N] at the end, Newton iterations). Halves the
+    increment (up to the settings' max_halvings) when Newton fails. Returns OK or
+    NEWTON_FAILED."""
     max_halvings = bc[11]
     vec, kap = sc[0], sc[4][0]
     start, trial = vec[ROW_START], vec[ROW_TRIAL]
