@@ -28,6 +28,23 @@ from mf_envs.physics.inchworm.drive import SMAWires
 from mf_envs.physics.inchworm.presets import V_GRIP, V_SLIDE
 from mf_envs.physics.terrain import SOILS
 
+# the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
+SEED_SCENE_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
+# issue 16's robot: the seed's body with a lag actuator and Coulomb friction feet
+ISSUE16_EFFECTS = (*SEED_SCENE_EFFECTS, "actuator_dynamics", "friction")
+# the seed's body (§4.10, Eqs. 99-103): gym.make("Inchworm-v0", **RIOS2017_SCENE) is the
+# dissertation's scene, bit for bit as before issue 31
+RIOS2017_BODY = {
+    "length": 0.3, "width": 0.02, "height": 0.01, "youngs_modulus": 2.4e9,
+    "shear_modulus": 0.96e9, "mass_per_length": 0.278, "max_curvature": 13.0,
+}  # fmt: skip
+RIOS2017_SCENE = {**RIOS2017_BODY, "effects": SEED_SCENE_EFFECTS}
+# issue 16's default robot (the seed's body on friction feet through a lag actuator)
+ISSUE16_SCENE = {**RIOS2017_BODY, "effects": ISSUE16_EFFECTS, "grip_time_constant": 0.2}
+# the default body: PDMS after Wang et al. 2014 (physics.inchworm.presets.BuildableInchworm)
+PDMS_E = 1.5e6  # Pa
+PDMS_G = PDMS_E / (2.0 * (1.0 + 0.49))  # Pa, Poisson 0.49
+PDMS_MASS = 1030.0 * 0.010 * 0.003  # kg/m: density x 10 x 3 mm
 MAX_INCREMENTS = 200  # increments (or Newmark steps) of a full-range step: a step stays fast
 FRICTION_KEYS = ("grip_forward", "grip_backward", "slide_forward", "slide_backward")
 GRIP_TIME_CONSTANT = 0.5  # s, the feet's engage/release time (presets.GRIP_TIME)
@@ -67,6 +84,7 @@ class Scene:
     feet: FrictionParams
     grip_feet: GripFeetParams  # the feet with `gripping_feet`
     wires: SMAWires | None  # the wire groups with `sma_wires` (sized to the body)
+    ambient: float  # degC, still air around the wires (`ambient_temperature`)
 
     @property
     def weight(self) -> float:
@@ -107,8 +125,9 @@ def build(kw: dict[str, Any], effects: frozenset, n_substeps: int) -> Scene:
                              kw["grip_time_constant"], kw["friction_coefficients"])  # fmt: skip
     grip = grip_feet_params(feet, kw["grip_threshold"])
     wires = wire_groups(kw, params, max_curvature, head["n_ctrl"], "sma_wires" in effects)
+    ambient = check_range("ambient_temperature", kw["ambient_temperature"], -40.0, 60.0)
     return Scene(**head, actuator_rate_limit=act.rate_limit, actuator_params=act, feet=feet,
-                 grip_feet=grip, wires=wires)  # fmt: skip
+                 grip_feet=grip, wires=wires, ambient=ambient)  # fmt: skip
 
 
 def grip_feet_params(feet: FrictionParams, threshold: Any) -> GripFeetParams:

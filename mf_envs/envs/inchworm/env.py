@@ -11,31 +11,15 @@ from mf_envs._validate import check_range
 from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.inchworm import build, render, spec
+from mf_envs.envs.inchworm.build import PDMS_E, PDMS_G, PDMS_MASS, SEED_SCENE_EFFECTS
 from mf_envs.physics.beam import NewtonDivergence
 from mf_envs.physics.beam.contact.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS
 from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS, make_driven
 
-# the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
-SEED_SCENE_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
 AVAILABLE_EFFECTS = {**INCHWORM_EFFECTS, **DRIVE_EFFECTS}
 # issue 31: the buildable robot's SMA wires and feet that must grip
 DEFAULT_EFFECTS = (*SEED_SCENE_EFFECTS, "sma_wires", "gripping_feet")
-# issue 16's robot: the seed's body with a lag actuator and Coulomb friction feet
-ISSUE16_EFFECTS = (*SEED_SCENE_EFFECTS, "actuator_dynamics", "friction")
-# the seed's body (§4.10, Eqs. 99-103): gym.make("Inchworm-v0", **RIOS2017_SCENE) is the
-# dissertation's scene, bit for bit as before issue 31
-RIOS2017_BODY = {
-    "length": 0.3, "width": 0.02, "height": 0.01, "youngs_modulus": 2.4e9,
-    "shear_modulus": 0.96e9, "mass_per_length": 0.278, "max_curvature": 13.0,
-}  # fmt: skip
-RIOS2017_SCENE = {**RIOS2017_BODY, "effects": SEED_SCENE_EFFECTS}
-# issue 16's default robot (the seed's body on friction feet through a lag actuator)
-ISSUE16_SCENE = {**RIOS2017_BODY, "effects": ISSUE16_EFFECTS, "grip_time_constant": 0.2}
-# the default body: PDMS after Wang et al. 2014 (physics.inchworm.presets.BuildableInchworm)
-PDMS_E = 1.5e6  # Pa
-PDMS_G = PDMS_E / (2.0 * (1.0 + 0.49))  # Pa, Poisson 0.49
-PDMS_MASS = 1030.0 * 0.010 * 0.003  # kg/m: density x 10 x 3 mm
 CURVATURE_OBS_LIMIT = spec.CURVATURE_OBS_LIMIT
 REACTION_OBS_LIMIT = spec.REACTION_OBS_LIMIT
 # what a diverging solve raises: a failed step ends the episode (numerical_failure)
@@ -46,35 +30,22 @@ SOLVER_ERRORS += (FloatingPointError, OverflowError)
 class InchwormEnv(MFEnv):
     """
     ## Description
-    A slender soft robot modelled as a planar geometrically exact active beam with three-node C1
-    elements (Rios 2017 §4.7-4.10, Eqs. 68-83): the actuation curvature kappa#(S) is the
-    pre-curvature of the active law M3 = EI (kappa - kappa#) (Eq. 53); the body's shape follows
-    from equilibrium (quasi-static by default, as in the seed; Newmark dynamics with `inertia`).
-    Both ends rest on the ground (z = 0, Eq. 100); with `anchor_switching` the agent chooses
-    which foot grips. Curling with the head anchored pulls the tail forward; uncurling with the
-    tail anchored pushes the head forward. Goal: crawl forward (+x) with little energy.
-
-    The default robot (issue 31) is one that could be built, after Wang et al. 2014 (SMA wires
-    in PDMS): a 60 x 10 x 3 mm PDMS body (E = 1.5 MPa) bent by Flexinol HT wires of 0.15 mm
-    at 0.6 mm under the neutral axis, sized to hold EI max_curvature at the maker's 172 MPa
-    (`physics.inchworm.presets`, `physics.actuators.sizing`). `sma_wires`: one wire group per
-    control point, heated by the commanded duty cycle of its rated current (Joule heating,
-    still-air cooling fitted to the maker's cooling times, martensite fraction with hysteresis,
-    latent heat; `physics.actuators.sma`), kappa# = -max_curvature (1 - xi); the effort is the
-    electrical energy. `gripping_feet`: a foot anchors only above the engagement threshold
-    (`grip_threshold`); below it it slides on its smooth face at the isotropic slide_forward
-    coefficient; the friction is regularised and solved together with the beam
-    (`physics.beam.contact.grip_feet`); the engagement follows the grip command with
-    `grip_time_constant`. The dissertation's scene is `RIOS2017_SCENE` (the seed's body E =
-    2.4 GPa, 20 x 10 mm, L = 0.3 m, kinematic anchors of Eq. 102, kappa# as commanded:
-    `gym.make("Inchworm-v0", **RIOS2017_SCENE)`); issue 16's robot (the seed's body through a
-    rate-limited lag on Coulomb friction feet, `actuator_dynamics`, `friction`) is
-    `ISSUE16_SCENE`. With `terrain` the body rests on Bekker/Janosi soil (Eqs. 56-57).
-
-    Control step and the wires: control_dt = 0.1 s against the wires' 2.9 s contraction at the
-    rated current and 1.3 s relaxation in still air: a cycle needs tens of steps; a gait whose
-    cycle is shorter than the cooling time does not relax the wires and stops.
-    `info["quasi_static_error"]` estimates the neglected inertia over the feet's friction.
+    A soft robot as a planar geometrically exact active beam with C1 elements (Rios 2017
+    §4.7-4.10): kappa#(S) is the pre-curvature of the active law M3 = EI (kappa - kappa#) (Eq.
+    53); the shape follows from equilibrium (quasi-static; Newmark dynamics with `inertia`). Both
+    ends rest on the ground (Eq. 100); with `anchor_switching` the agent chooses which foot
+    grips. Goal: crawl forward (+x) with little energy. Default (issue 31): a buildable robot
+    after Wang et al. 2014, a 60 x 10 x 3 mm PDMS body bent by Flexinol wires sized to the moment
+    (`physics.inchworm.presets`); `sma_wires`: one wire group per control point heated by the
+    commanded duty cycle (Joule heat, still-air cooling, martensite fraction with hysteresis;
+    `physics.actuators.sma`), kappa# = -max_curvature (1 - xi), effort = electrical energy;
+    `gripping_feet`: a foot anchors only above `grip_threshold`, below it slides on its smooth
+    face, regularised friction solved with the beam (`physics.beam.contact.grip_feet`). The
+    dissertation's scene: `gym.make("Inchworm-v0", **RIOS2017_SCENE)` (kinematic anchors of
+    Eq. 102, kappa# as commanded); issue 16's robot (lag actuator, Coulomb feet):
+    `**ISSUE16_SCENE` (both in `mf_envs.envs.inchworm`); `terrain`: Bekker/Janosi soil. The
+    wires contract in 2.9 s at the rated current and relax in 1.3 s: a gait cycle needs tens of
+    0.1 s steps. `info["quasi_static_error"]`: the neglected inertia over the feet's friction.
 
     ## Action Space
     `Box(-1, 1, (n_control_points + 1,), float32)` with `anchor_switching`, else
@@ -82,11 +53,9 @@ class InchwormEnv(MFEnv):
 
     | Num | Action | Scaling |
     |-----|--------|---------|
-    | 0..n-1 | `sma_wires`: duty cycle of each control point's wire group | (a + 1) / 2 in [0, 1] |
-    |   | otherwise: commanded kappa# at control points S = 0 .. L, linear between | |
-    |   | | kappa# = -max_curvature (a + 1) / 2 [1/m] (the body humps up) |
-    | n | anchor / grip choice | a > 0: head grips, a <= 0: tail grips (with friction or |
-    |   |   | gripping feet: the other foot releases; without switching both feet grip) |
+    | 0..n-1 | duty of each control point's wire group (`sma_wires`) | (a + 1) / 2 in [0, 1] |
+    |   | else kappa# at S = 0 .. L, linear between | -max_curvature (a + 1) / 2 [1/m] |
+    | n | anchor / grip choice | a > 0: head grips, a <= 0: tail (the other foot releases) |
 
     ## Observation Space
     `Box(float32, (2 n + 6,))`, what an on-board robot can sense, laid out by
@@ -132,9 +101,8 @@ class InchwormEnv(MFEnv):
     Truncation after `episode_seconds` (default 40 s = 400 steps of 0.1 s; or give
     `max_episode_steps`). Termination when Newton-Raphson fails even after step halving
     (info["numerical_failure"] = True), or when both Coulomb feet would slip at once (no
-    quasi-static equilibrium: the body would accelerate); render() then draws the last finite
-    state. The physics is translation invariant to round-off at any distance crawled (local
-    coordinates re-centred on the tail, see `mf_envs.physics.inchworm`).
+    quasi-static equilibrium); render() then draws the last finite state. Translation invariant
+    to round-off at any distance crawled (local coordinates, `mf_envs.physics.inchworm`).
 
     ## Arguments
     | Argument | Default | Meaning |
@@ -220,7 +188,6 @@ class InchwormEnv(MFEnv):
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
-        self._ambient = ambient_temperature  # validated by build
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
         self._set_scene(build.build(kw, self.effects, self.n_substeps))  # kwargs as physics params
@@ -337,18 +304,10 @@ class InchwormEnv(MFEnv):
         return spec.observe(self.sim, *args)
 
     def _quasi_static_error(self, dx: np.ndarray, report: Any) -> float:
-        """Inertia over friction of the feet (`spec.quasi_static_error`) from this and the
-        last step's foot displacements; 0 without friction or gripping feet."""
-        if report is None or not ({"friction", "gripping_feet"} & self.effects):
-            return 0.0
-        if self.driven.feet is not None:  # Coulomb feet: the holding limits at the end
-            f = report.feet
-            mu4 = self.driven.feet.params.coefficients
-            limit = spec.holding_capacity(mu4, self.driven.grip, f.ground_x, f.normal)
-        else:
-            limit = spec.grip_capacity(self.scene.grip_feet.law, self.driven.grip, report.normal)
-        qse = spec.quasi_static_error(dx, self._foot_dx, self.control_dt, self.scene.params, limit)
-        return float(qse)
+        """`spec.step_quasi_static_error` of this step (0 without friction or gripping feet)."""
+        return spec.step_quasi_static_error(
+            self.driven, self.scene, report, dx, self._foot_dx, self.control_dt
+        )
 
     def _get_info(self, terms: dict[str, float], report: Any, qse: float = 0.0) -> dict[str, Any]:
         sim = self.sim
@@ -369,22 +328,14 @@ class InchwormEnv(MFEnv):
             "time": self._steps * self.control_dt,
             "electrical_energy": 0.0 if report is None or not self.sma else report.energy,
             "mechanical_work": 0.0 if report is None else report.mechanical_work,
-            "wire_temperature": self._wire_temperature(),
+            "wire_temperature": self.driven.wire_temperature
+            if self.sma
+            else np.full(self.n_ctrl, self.scene.ambient),
             "duty": self.duty.copy(),
             "quasi_static_error": qse,
         }
         info["reward_terms"] = terms  # the convention shared by every env: terms sum to reward
         return info
-
-    def _wire_temperature(self) -> np.ndarray:
-        if self.sma:
-            return self.driven.wire_temperature
-        return np.full(self.n_ctrl, self.scene_ambient)
-
-    @property
-    def scene_ambient(self) -> float:
-        """Ambient temperature [degC] (the wires' without `sma_wires`: the kwarg's value)."""
-        return float(self._ambient)
 
     # ------------------------------------------------------------------ rendering
     def _remember_frame(self, info: dict[str, Any]) -> None:

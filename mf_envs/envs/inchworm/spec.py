@@ -151,3 +151,20 @@ def quasi_static_error(
     half_mass = 0.5 * params.mass_per_length * params.length
     accel = np.abs(np.asarray(dx, float) - np.asarray(dx_prev, float)) / dt**2
     return np.max(half_mass * accel / np.maximum(limit, 1e-12), axis=-1)
+
+
+def step_quasi_static_error(
+    driven: Any, scene: Any, report: Any, dx: np.ndarray, dx_prev: np.ndarray, dt: float
+) -> float:
+    """`quasi_static_error` of a control step of the single env from the feet's displacements
+    of this and the last step [m] and the friction the feet can exert at the step's end
+    (`holding_capacity` on Coulomb feet, `grip_capacity` on gripping feet); 0 when the drive
+    has neither (kinematic anchors, terrain, inertia) or the step failed (report None)."""
+    if report is None or (driven.feet is None and driven.grip_feet is None):
+        return 0.0
+    if driven.feet is not None:
+        f = report.feet
+        limit = holding_capacity(driven.feet.params.coefficients, driven.grip, f.ground_x, f.normal)
+    else:
+        limit = grip_capacity(scene.grip_feet.law, driven.grip, report.normal)
+    return float(quasi_static_error(dx, dx_prev, dt, scene.params, limit))

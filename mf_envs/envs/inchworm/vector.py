@@ -204,7 +204,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         info["electrical_energy"] = electrical
         info["mechanical_work"] = mechanical
         if temperature is None:
-            temperature = np.full((n, env.n_ctrl), float(env.scene_ambient))
+            temperature = np.full((n, env.n_ctrl), env.scene.ambient)
         info["wire_temperature"] = temperature
         info["duty"] = self._duty_now(cmd)
         feet_new = np.stack([info["x_tail"], info["x_head"]], axis=1)
