@@ -30,6 +30,8 @@ EFFECT_NAMES: dict[str, str] = {
     "anchor_switching": "kinematic head/tail anchor switching (ch. 4 Eq. 102)",
     "actuator_dynamics": "actuator lag and rate limit between commanded and realised kappa#",
     "friction": "feet holding by anisotropic Coulomb friction with grip dynamics",
+    "sma_wires": "curvature from SMA wires heated by a duty cycle (Joule heat, cooling, phase)",
+    "gripping_feet": "feet that anchor only above an engagement threshold (regularised friction)",
 }
 
 

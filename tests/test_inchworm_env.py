@@ -9,7 +9,7 @@ from gymnasium.utils.env_checker import check_env
 
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.controllers import baseline_kinds, make_baseline
-from mf_envs.envs.inchworm import SEED_SCENE_EFFECTS
+from mf_envs.envs.inchworm import ISSUE16_SCENE, RIOS2017_BODY, RIOS2017_SCENE
 from mf_envs.physics.beam import NewtonSettings
 
 L = 0.3
@@ -55,7 +55,7 @@ def test_info_keys_and_reward_terms_sum():
 def test_seed_gaits_advance_head_and_tail(kind, per_cycle):
     """Both seed gaits (kappa0# = 13) advance head and tail by the stated distance per cycle
     (body lengths) through the action interface, with no numerical failure (the seed's scene)."""
-    env = gym.make("Inchworm-v0", effects=SEED_SCENE_EFFECTS)
+    env = gym.make("Inchworm-v0", **RIOS2017_SCENE)
     ctrl = make_baseline(env, kind)
     obs, info = env.reset(seed=0, options={"kappa": np.zeros(3)})
     x0 = np.array([info["x_tail"], info["x_head"]])
@@ -78,7 +78,7 @@ def test_newton_failure_ends_episode():
     env = gym.make("Inchworm-v0")
     obs0, _ = env.reset(seed=0)
     env.unwrapped.sim.settings = NewtonSettings(1e-12, 1e-12, 1, 0)  # no budget at all
-    obs, reward, term, _, info = env.step(-np.ones(env.action_space.shape, np.float32))
+    obs, reward, term, _, info = env.step(np.ones(env.action_space.shape, np.float32))
     assert info["numerical_failure"] and term and reward == 0.0
     assert np.all(np.isfinite(obs))
 
@@ -99,7 +99,7 @@ def test_bad_inputs_name_the_parameter():
 
 
 def test_action_shape_follows_anchor_effect_and_inertia_runs():
-    env = gym.make("Inchworm-v0", effects=("gravity", "inertia"))
+    env = gym.make("Inchworm-v0", **RIOS2017_BODY, effects=("gravity", "inertia"))
     assert env.action_space.shape == (3,)
     env.reset(seed=1)
     for _ in range(3):
@@ -118,14 +118,16 @@ def test_render_rgb_array():
     env.close()
 
 
-@pytest.mark.parametrize("effects, crawl", [(SEED_SCENE_EFFECTS, 0.5 * L), (None, 0.01 * L)])
-def test_reset_far_from_origin_is_a_translated_copy(effects, crawl):
+@pytest.mark.parametrize(
+    "scene, crawl", [(RIOS2017_SCENE, 0.5 * L), (ISSUE16_SCENE, 0.01 * L), ({}, -np.inf)]
+)
+def test_reset_far_from_origin_is_a_translated_copy(scene, crawl):
     """reset(options={"x_tail": 9.0}) must not raise (it did: NewtonDivergence, round-off of
     absolute nodal x); the episode is the x = 0 episode shifted by 9 m, in the seed's scene and
     with the default actuators and friction feet (which work in the local coordinates too)."""
 
     def roll(x_tail):
-        env = gym.make("Inchworm-v0", effects=effects)
+        env = gym.make("Inchworm-v0", **scene)
         ctrl = make_baseline(env, "seed_uniform", steps_per_cycle=4)
         obs, info = env.reset(seed=2, options={"x_tail": x_tail})
         out, xs = [obs], [info["x_tail"]]
@@ -163,7 +165,7 @@ def test_render_after_numerical_failure_shows_last_finite_frame():
 def test_long_seed_gait_episode_crawls_past_10_m():
     """The training helper's failure (numerical_failure at x_tail ~ 8-10 m): the coarsest seed
     gait through the env from x = 0 to past 10 m, every cycle advancing by the same distance."""
-    env = gym.make("Inchworm-v0", max_episode_steps=10_000, effects=SEED_SCENE_EFFECTS)
+    env = gym.make("Inchworm-v0", max_episode_steps=10_000, **RIOS2017_SCENE)
     ctrl = make_baseline(env, "seed_uniform", steps_per_cycle=2)
     obs, info = env.reset(seed=0, options={"kappa": np.zeros(3)})
     xs = [info["x_tail"]]

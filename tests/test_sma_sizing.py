@@ -45,7 +45,9 @@ def test_buildable_preset_is_buildable():
     assert s.count * s.per_wire >= s.force  # the wires hold the hump
     assert 0.02 <= s.wire_strain <= b.alloy.repeatable_strain[1]
     assert s.reset_margin > 1.0  # the straightening body re-stretches the cool wires
-    assert b.kappa * b.length == pytest.approx(3.9, rel=1e-9)  # the seed's kappa0# L
+    # kappa L = 3 rad: a circular arc's chord 2 sin(kL/2)/k = 2/3 L, the published stride L/3
+    chord = 2.0 * math.sin(b.kappa * b.length / 2.0) / b.kappa
+    assert 1.0 - chord / b.length == pytest.approx(1.0 / 3.0, rel=0.01)
     assert b.beam().EI == pytest.approx(ei, rel=1e-12)
     assert b.wires().n_wires == s.count
     assert {"youngs_modulus", "wire", "lever_arm", "length"} <= set(SOURCES)

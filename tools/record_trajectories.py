@@ -26,6 +26,15 @@ SHIP_IRREGULAR = (*GyroStabilizerEnv.DEFAULT_EFFECTS, "irregular_waves")
 
 # the floating GOWEC under its id (FloatingGOWEC-v0; GOWEC-v1 before it had its own id)
 FLOATING = "FloatingGOWEC-v0" if "FloatingGOWEC-v0" in gym.registry else "GOWEC-v1"
+INCHWORM_SEED_BODY = {
+    "length": 0.3,
+    "width": 0.02,
+    "height": 0.01,
+    "youngs_modulus": 2.4e9,
+    "shear_modulus": 0.96e9,
+    "mass_per_length": 0.278,
+    "max_curvature": 13.0,
+}
 STEPS = {"GOWEC-v0": 300, "GyroStabilizer-v0": 300, "Inchworm-v0": 40, "FloatingGOWEC-v0": 300}
 VARIANTS = {
     "GOWEC-v0": [
@@ -38,7 +47,24 @@ VARIANTS = {
         {"gimbal_drive": "torque"},
         {"effects": SHIP_IRREGULAR},
     ],
-    "Inchworm-v0": [{}, {"effects": ("gravity", "inertia", "anchor_switching")}],
+    # the seed's body spelled out (the default robot changed in issue 31); the cases run the
+    # same physics on a commit before it
+    "Inchworm-v0": [
+        {},
+        {**INCHWORM_SEED_BODY, "effects": ("gravity", "inertia", "anchor_switching")},
+        {**INCHWORM_SEED_BODY, "effects": ("gravity", "shear_deformation", "anchor_switching")},
+        {
+            **INCHWORM_SEED_BODY,
+            "grip_time_constant": 0.2,
+            "effects": (
+                "gravity",
+                "shear_deformation",
+                "anchor_switching",
+                "actuator_dynamics",
+                "friction",
+            ),
+        },
+    ],
     "FloatingGOWEC-v0": [{}, {"significant_wave_height": 1.5}],
 }
 VECTOR_STEPS = 120  # native vector env, 3 rows, fixed random actions, NEXT_STEP autoreset
@@ -152,7 +178,10 @@ if __name__ == "__main__":
                     res[f"{env_id}|{vi}|{mode}|{k}"] = v
                 print(env_id, vi, mode, r["rew"].sum(), flush=True)
             real = FLOATING if env_id == "FloatingGOWEC-v0" else env_id
-            if gym.spec(real).vector_entry_point and (env_id != "Inchworm-v0" or not kw):
+            friction = "friction" in kw.get("effects", ())
+            if gym.spec(real).vector_entry_point and (
+                env_id != "Inchworm-v0" or not kw or friction
+            ):
                 r = run_vector(env_id, kw)
                 for k, v in r.items():
                     res[f"{env_id}|{vi}|vector|{k}"] = v

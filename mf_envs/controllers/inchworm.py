@@ -22,6 +22,7 @@ observation is not used.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
 
@@ -32,10 +33,14 @@ from mf_envs._validate import check_int, check_positive, positive_scalar
 from mf_envs.controllers import register
 from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.actuators.curvature import RateLimitedLag
+from mf_envs.physics.actuators.sma import maker_times
+from mf_envs.physics.inchworm import quasistatic as qs
 from mf_envs.physics.inchworm.drive import (
     CommandFn,
     cosine_gait,
+    heat_cool_gait,
     make_driven,
+    run_duty_loop,
     run_open_loop,
     square_gait,
 )
@@ -44,6 +49,7 @@ ENV_ID = DECLARATION.env_id
 
 SEED_STEPS_PER_CYCLE = 40  # the seed's scene (no actuator dynamics)
 WARMUP_SECONDS = 1.5  # the tuning's warm-up: the actuator's full range takes 1 s (rate limit)
+WIRE_WARMUP_SECONDS = 10.0  # the SMA wires' warm-up: a kept-warm wire settles in ~3 cycles
 
 
 class OpenLoopGait:
@@ -87,6 +93,82 @@ class OpenLoopGait:
         return np.clip(a, -1.0, 1.0).astype(np.float32), None
 
 
+class WireGait:
+    """Open-loop duty cycles of the SMA wire groups (`sma_wires`, issue 31) with Eq. 102 grips
+    on the wires' predicted kappa#: the gait keeps its own copy of the wires' state (the env's
+    own kernel, synchronised at reset) and advances it with the duties it commands, so it stays
+    open loop (the observation is not used).
+
+    `duty(t, kappa_now, model)` -> duties (n,) in [0, 1]; `model(duty)` predicts kappa# (n,)
+    [1/m] after one step from the gait's copy without changing it."""
+
+    def __init__(
+        self, env: Any, duty: Callable, period: float, curling: Callable | None = None
+    ) -> None:
+        self.curling = curling
+        self.base = env.unwrapped
+        self.dt = float(self.base.control_dt)
+        self.duty_fn = duty
+        self.period = positive_scalar("period", period)
+        self.steps_per_cycle = max(1, int(round(self.period / self.dt)))
+        self.switching = bool(self.base.switching)
+        self.wires = self.base.scene.wires
+        self.reset()
+
+    def reset(self) -> None:
+        self.k = 0
+        self.sma = np.array(self.base.driven.sma, float)
+        self.kappa_now = np.array(self.base.driven.kappa_ctrl, float)
+
+    def model(self, duty: np.ndarray, advance: bool = False) -> np.ndarray:
+        """kappa# [1/m] after one step at `duty` (the gait's copy advanced when `advance`)."""
+        thermal, tt, p_full, k_full, _g = self.wires.kernel_args()
+        work = self.sma if advance else self.sma.copy()
+        out = np.empty(len(duty))
+        qs.sma_advance(work, np.asarray(duty, float), self.dt, thermal, tt, p_full, k_full, out)
+        return out
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        del obs, deterministic  # open loop
+        self.k += 1
+        duty = np.clip(np.asarray(self.duty_fn(self.k * self.dt, self.kappa_now, self.model),
+                                  float), 0.0, 1.0)  # fmt: skip
+        kappa = self.model(duty, advance=True)
+        change, self.kappa_now = kappa - self.kappa_now, kappa
+        a = 2.0 * duty - 1.0
+        if self.switching:  # Eq. 102: the head grips while the body curls
+            if self.curling is not None:  # by the gait's phase (the wires lag the command)
+                head = bool(self.curling(self.k * self.dt))
+            else:  # on the predicted kappa# (neutral counted as loading)
+                head = float(np.mean(change)) <= 0.0
+            a = np.append(a, 1.0 if head else -1.0)
+        return np.clip(a, -1.0, 1.0).astype(np.float32), None
+
+
+def wire_cycle(env: Any) -> float:
+    """The fastest seed-gait cycle of the wires [s]: their contraction time at the rated
+    current plus their relaxation time in still air (`sma.maker_times`)."""
+    t_c, t_r = maker_times(env.unwrapped.scene.wires.params)
+    return t_c + t_r
+
+
+def tracking_duty(target: CommandFn) -> Callable:
+    """Duties that bring each group's predicted kappa# closest to target(t) (n,) [1/m] after
+    the step: bisection on the duty (kappa# after a step is monotone in it); cooling cannot
+    be commanded, so a target above the wire's relaxation gives duty 0."""
+
+    def duty(t: float, kappa_now: np.ndarray, model: Callable) -> np.ndarray:
+        goal = np.asarray(target(t), float)
+        lo, hi = np.zeros(len(goal)), np.ones(len(goal))
+        for _ in range(12):  # kappa# decreases (curls more) with the duty
+            mid = 0.5 * (lo + hi)
+            more = model(mid) > goal  # not curled enough: more heat
+            lo, hi = np.where(more, mid, lo), np.where(more, hi, mid)
+        return 0.5 * (lo + hi)
+
+    return duty
+
+
 class SeedGait(OpenLoopGait):
     """Eqs. 101/103: kappa# = -kappa0 (c1 + c2 S / L) (1 + cos(2 pi t / T - pi)) / 2."""
 
@@ -116,14 +198,98 @@ class SeedGait(OpenLoopGait):
         super().__init__(env, cosine_gait(self.kappa0, shape, period), period)
 
 
-def seed_uniform(env: Any, **params: Any) -> SeedGait:
-    """Eq. 101: uniform actuation curvature."""
+def seed_wire_gait(env: Any, c1: float, c2: float, steps_per_cycle: int | None = None):
+    """The seed's gait (Eqs. 101/103, peak kappa0# = max_curvature) on the SMA wires: duties
+    tracking it (`tracking_duty`) at the wires' fastest cycle (`wire_cycle`, rounded up to
+    whole control steps) unless steps_per_cycle is given."""
+    base = env.unwrapped
+    dt = base.control_dt
+    if steps_per_cycle is None:
+        steps_per_cycle = max(2, int(np.ceil(wire_cycle(env) / dt - 1e-9)))
+    n = check_int("steps_per_cycle", steps_per_cycle, low=2)
+    shape = c1 + c2 * base.S_ctrl / base.params.length
+    if base.max_curvature * max(abs(c1), abs(c1 + c2)) > base.max_curvature * (1 + 1e-12):
+        raise ValueError("c1: the gait exceeds the env's max_curvature")
+    period = n * dt
+    target = cosine_gait(base.max_curvature, shape, period)
+
+    def curling(t: float) -> bool:  # the commanded kappa# decreases over the step
+        return float(np.mean(target(t) - target(t - dt))) <= 0.0
+
+    return WireGait(env, tracking_duty(target), period, curling)
+
+
+def seed_uniform(env: Any, **params: Any):
+    """Eq. 101: uniform actuation curvature (on the SMA wires: tracked by the duties)."""
+    if env.unwrapped.sma:
+        return seed_wire_gait(env, 1.0, 0.0, params.get("steps_per_cycle"))
     return SeedGait(env, c1=1.0, c2=0.0, **params)
 
 
-def seed_linear(env: Any, c1: float = 0.2, c2: float = 0.8, **params: Any) -> SeedGait:
+def seed_linear(env: Any, c1: float = 0.2, c2: float = 0.8, **params: Any):
     """Eq. 103: actuation growing linearly from tail to head."""
+    if env.unwrapped.sma:
+        return seed_wire_gait(env, c1, c2, params.get("steps_per_cycle"))
     return SeedGait(env, c1=c1, c2=c2, **params)
+
+
+# the validation gait (docs/inchworm.md): the wires heated at their rated current until the
+# model's wire has contracted (maker's test, 2.9 s for the 0.15 mm HT wire at 0.4 A), then
+# cooled for the maker's still-air relaxation time (1.2 s, Dynalloy F1140)
+VALIDATION_HEAT, VALIDATION_COOL = 2.9, 1.2
+
+
+def heat_cool(
+    env: Any,
+    t_heat: float = VALIDATION_HEAT,
+    t_cool: float = VALIDATION_COOL,
+    duty_off: float = 0.0,
+) -> WireGait:
+    """Square wave of the SMA wires (`drive.heat_cool_gait`): all groups at duty 1 for t_heat
+    [s], then at duty_off for t_cool [s]; Eq. 102 grips. Defaults: the validation timing."""
+    base = env.unwrapped
+    if not base.sma:
+        raise ValueError("effects: heat_cool drives the SMA wires; the scene has no 'sma_wires'")
+    check_positive("t_heat", t_heat)
+    check_positive("t_cool", t_cool)
+    if not 0.0 <= duty_off <= 1.0:
+        raise ValueError(f"duty_off: must lie in [0, 1], got {duty_off}")
+    fn = heat_cool_gait(float(t_heat), float(t_cool), base.n_ctrl, float(duty_off))
+    # the head grips while the wires are heated, the tail while they cool (Eq. 102 on the
+    # command: the wires' kappa# follows it with the thermal lag)
+    gait = WireGait(env, lambda t, _k, _m: fn(t), float(t_heat + t_cool),
+                    lambda t: bool(fn(t)[0] == 1.0))  # fmt: skip
+    gait.t_heat, gait.t_cool, gait.duty_off = float(t_heat), float(t_cool), float(duty_off)
+    return gait
+
+
+@lru_cache(maxsize=8)
+def _tune_wires(config: tuple) -> tuple[float, float, float, float]:
+    """(t_heat [s], t_cool [s], duty_off, speed [L/s]) of the fastest `heat_cool_gait` of the
+    SMA robot configured by `config` (`drive_config()`): scipy.optimize.brute over heating
+    times 0.5-4 s (0.5 s apart), cooling times 0.2-2 s (0.3 s apart) and keep-warm duties 0,
+    0.15, 0.3,
+    each from the robot at rest, the speed of the feet's midpoint over two cycles after a
+    warm-up of at least two cycles and WIRE_WARMUP_SECONDS (the wires' periodic state)."""
+    cfg = dict(config)
+    dt = cfg.pop("control_dt")
+    cfg.pop("max_curvature")
+    n = cfg["n_control_points"]
+
+    def neg_speed(x: np.ndarray) -> float:
+        t_heat, t_cool, off = float(x[0]), float(x[1]), float(x[2])
+        if t_heat <= 0.0 or t_cool <= 0.0 or not 0.0 <= off < 1.0:
+            return 0.0
+        driven = make_driven(**cfg)
+        driven.reset(np.zeros(n))
+        period = t_heat + t_cool
+        warm = max(2, int(np.ceil(WIRE_WARMUP_SECONDS / period)))
+        m = run_duty_loop(driven, heat_cool_gait(t_heat, t_cool, n, off), period, dt, 2, warm)
+        return -m.speed
+
+    grid = (slice(0.5, 4.01, 0.5), slice(0.2, 2.01, 0.3), slice(0.0, 0.31, 0.15))
+    x, fval, _grid, _jout = brute(neg_speed, grid, finish=None, full_output=True)
+    return float(x[0]), float(x[1]), float(x[2]), float(-fval)
 
 
 @lru_cache(maxsize=8)
@@ -180,6 +346,9 @@ def tuned(
     bias [1/m] optimised for speed on the env's physics (`_tune`, cached per configuration;
     a few minutes on the defaults) unless all three are given."""
     base = env.unwrapped
+    if base.sma:  # issue 31: the SMA robot's square wave of duties
+        t_heat, t_cool, off, _speed = _tune_wires(base.drive_config())
+        return heat_cool(env, t_heat, t_cool, off)
     if period is None or amplitude is None or bias is None:
         t_opt, a_opt, b_opt, _ = _tune(base.drive_config(), max_evals)
         period = t_opt if period is None else period
@@ -201,3 +370,4 @@ def tuned(
 register(ENV_ID, "seed_uniform", seed_uniform, default=True)
 register(ENV_ID, "seed_linear", seed_linear)
 register(ENV_ID, "tuned", tuned)
+register(ENV_ID, "heat_cool", heat_cool)

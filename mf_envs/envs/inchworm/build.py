@@ -19,14 +19,41 @@ from typing import Any
 from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs.inchworm.spec import CURVATURE_OBS_LIMIT
 from mf_envs.physics.actuators.curvature import SMA_RATE_LIMIT, SMA_TIME_CONSTANT, ActuatorParams
+from mf_envs.physics.actuators.sizing import size_wires
+from mf_envs.physics.actuators.sma import FLEXINOL_HT, FLEXINOL_LT, SMAWireParams, flexinol_wire
 from mf_envs.physics.beam.contact.friction import FrictionParams
+from mf_envs.physics.beam.contact.grip import GripFeetParams, GripLaw
 from mf_envs.physics.inchworm import InchwormParams
+from mf_envs.physics.inchworm.drive import SMAWires
+from mf_envs.physics.inchworm.presets import V_GRIP, V_SLIDE
 from mf_envs.physics.terrain import SOILS
 
+# the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
+SEED_SCENE_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
+# issue 16's robot: the seed's body with a lag actuator and Coulomb friction feet
+ISSUE16_EFFECTS = (*SEED_SCENE_EFFECTS, "actuator_dynamics", "friction")
+# the seed's body (§4.10, Eqs. 99-103): gym.make("Inchworm-v0", **RIOS2017_SCENE) is the
+# dissertation's scene, bit for bit as before issue 31
+RIOS2017_BODY = {
+    "length": 0.3, "width": 0.02, "height": 0.01, "youngs_modulus": 2.4e9,
+    "shear_modulus": 0.96e9, "mass_per_length": 0.278, "max_curvature": 13.0,
+}  # fmt: skip
+RIOS2017_SCENE = {**RIOS2017_BODY, "effects": SEED_SCENE_EFFECTS}
+# issue 16's default robot (the seed's body on friction feet through a lag actuator)
+ISSUE16_SCENE = {**RIOS2017_BODY, "effects": ISSUE16_EFFECTS, "grip_time_constant": 0.2}
+# the default body: PDMS after Wang et al. 2014 (physics.inchworm.presets.BuildableInchworm)
+PDMS_E = 1.5e6  # Pa
+PDMS_G = PDMS_E / (2.0 * (1.0 + 0.49))  # Pa, Poisson 0.49
+PDMS_MASS = 1030.0 * 0.010 * 0.003  # kg/m: density x 10 x 3 mm
 MAX_INCREMENTS = 200  # increments (or Newmark steps) of a full-range step: a step stays fast
 FRICTION_KEYS = ("grip_forward", "grip_backward", "slide_forward", "slide_backward")
-GRIP_TIME_CONSTANT = 0.2  # s, FrictionParams' default engage/release time
+GRIP_TIME_CONSTANT = 0.5  # s, the feet's engage/release time (presets.GRIP_TIME)
 DEFAULT_EPISODE_STEPS = 400
+ALLOYS = {"HT": FLEXINOL_HT, "LT": FLEXINOL_LT}
+# default effort weight with `sma_wires`: SMA_EFFORT_SCALE / (m_A g L^2) per joule of
+# electrical energy (docs/inchworm.md: an SMA crawler's electrical cost of transport is
+# ~1e4, so the lifting-equivalent weight of the mechanical scenes would drown the progress)
+SMA_EFFORT_SCALE = 1e-4
 __all__ = [
     "GRIP_TIME_CONSTANT",
     "SMA_RATE_LIMIT",
@@ -55,6 +82,9 @@ class Scene:
     actuator_rate_limit: float  # 1/(m s), with `actuator_dynamics`
     actuator_params: ActuatorParams
     feet: FrictionParams
+    grip_feet: GripFeetParams  # the feet with `gripping_feet`
+    wires: SMAWires | None  # the wire groups with `sma_wires` (sized to the body)
+    ambient: float  # degC, still air around the wires (`ambient_temperature`)
 
     @property
     def weight(self) -> float:
@@ -78,6 +108,8 @@ def build(kw: dict[str, Any], effects: frozenset, n_substeps: int) -> Scene:
     effort = kw["effort_weight"]
     if effort is None:
         effort = 1.0 / (params.mass_per_length * params.gravity * L * L)
+        if "sma_wires" in effects:
+            effort *= SMA_EFFORT_SCALE
     head = dict(
         params=params,
         max_curvature=max_curvature,
@@ -91,7 +123,65 @@ def build(kw: dict[str, Any], effects: frozenset, n_substeps: int) -> Scene:
     )
     act, feet = robot_params(kw["actuator_time_constant"], kw["actuator_rate_limit"],
                              kw["grip_time_constant"], kw["friction_coefficients"])  # fmt: skip
-    return Scene(**head, actuator_rate_limit=act.rate_limit, actuator_params=act, feet=feet)
+    grip = grip_feet_params(feet, kw["grip_threshold"])
+    wires = wire_groups(kw, params, max_curvature, head["n_ctrl"], "sma_wires" in effects)
+    ambient = check_range("ambient_temperature", kw["ambient_temperature"], -40.0, 60.0)
+    return Scene(**head, actuator_rate_limit=act.rate_limit, actuator_params=act, feet=feet,
+                 grip_feet=grip, wires=wires, ambient=ambient)  # fmt: skip
+
+
+def grip_feet_params(feet: FrictionParams, threshold: Any) -> GripFeetParams:
+    """The gripping feet (`grip.GripLaw`): the threshold, the gripping coefficients of
+    `friction_coefficients`, its slide_forward as the isotropic smooth face (slide_backward is
+    not used), the regularisation speeds of the preset, the grip time constant."""
+    th = check_range("grip_threshold", threshold, 0.0, 0.8)
+    if min(feet.grip_forward, feet.grip_backward) < feet.slide_forward:
+        raise ValueError(
+            "friction_coefficients: the gripping coefficients must not be below slide_forward"
+        )
+    law = GripLaw(threshold=th, width=0.2, mu_slide=feet.slide_forward,
+                  grip_forward=feet.grip_forward, grip_backward=feet.grip_backward,
+                  v_slide=V_SLIDE, v_grip=V_GRIP)  # fmt: skip
+    return GripFeetParams(law, feet.engage_time, feet.release_time)
+
+
+def wire_groups(
+    kw: dict[str, Any], params: InchwormParams, max_curvature: float, n_ctrl: int, on: bool
+) -> SMAWires | None:
+    """The SMA wire groups (one per control point, `drive.SMAWires`) sized to the body: the
+    wires at `wire_lever_arm` must hold EI max_curvature at the maker's 172 MPa
+    (`sizing.size_wires`) with their strain max_curvature x lever arm inside the alloy's
+    repeatable range. The wire kwargs are checked always, the sizing with `sma_wires` only
+    (None without it)."""
+    diameter = check_range("wire_diameter", kw["wire_diameter"], 1e-6, 1e-2)
+    try:
+        flexinol_wire(diameter)
+    except ValueError as exc:
+        raise ValueError(f"wire_diameter: {str(exc).split(': ', 1)[1]}") from None
+    lever = check_range("wire_lever_arm", kw["wire_lever_arm"], 1e-6, 1.0)
+    alloy = ALLOYS[check_choice("wire_alloy", kw["wire_alloy"], tuple(ALLOYS))]
+    ambient = check_range("ambient_temperature", kw["ambient_temperature"], -40.0, 60.0)
+    if not on:
+        return None
+    if lever > params.height / 2.0:
+        raise ValueError(
+            f"wire_lever_arm: {lever} m puts the wires outside the section (height / 2)"
+        )
+    try:
+        sizing = size_wires(params.youngs_modulus, params.width, params.height, max_curvature,
+                            diameter, lever, alloy)  # fmt: skip
+    except ValueError as exc:
+        raise ValueError(f"max_curvature: {str(exc).split(': ', 1)[1]}") from None
+    if ambient >= alloy.martensite_finish:
+        raise ValueError(
+            f"ambient_temperature: {ambient} degC is not below Mf = {alloy.martensite_finish} "
+            f"degC of {alloy.name} (the wires would never relax)"
+        )
+    group = SMAWireParams(
+        diameter=diameter, length=params.length / n_ctrl, n_wires=sizing.count, alloy=alloy,
+        strain_max=sizing.wire_strain, ambient=ambient, name="Inchworm-v0 body wires",
+    )  # fmt: skip
+    return SMAWires(group, max_curvature, n_ctrl)
 
 
 def episode_steps(max_episode_steps: Any, episode_seconds: Any, seconds_to_steps) -> int:
@@ -109,7 +199,8 @@ def drive_kwargs(scene: Scene, effects: frozenset) -> dict[str, Any]:
     """`make_driven`'s arguments: the scene's robot with these effects."""
     return dict(params=scene.params, effects=effects, n_control_points=scene.n_ctrl,
                 actuator=scene.actuator_params, friction=scene.feet,
-                increment_factor=scene.increment_factor, soil=scene.soil)  # fmt: skip
+                increment_factor=scene.increment_factor, soil=scene.soil,
+                wires=scene.wires, grip_feet=scene.grip_feet)  # fmt: skip
 
 
 def step_budget(

@@ -133,3 +133,71 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
             d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales, obs[i],
         )  # fmt: skip
         fields.centerline_into(d, xo[i], le, xis, line[i])
+
+
+@numba.njit(cache=True, nogil=True)
+def step_rows_grip(lo, hi, active, actions, state, work, cfg, out):
+    """`step_rows` for the scenes on gripping feet (`quasistatic.grip_step`; issue 31's
+    default: SMA wires): every active row runs what `InchwormEnv.step` runs.
+
+    state = (d (N, n_dof), x_origin (N,), lag kappa# (N, n), realised kappa_ctrl (N, n), feet
+    (N, 4), SMA state (N, 5, n), commanded kappa# (N, n), head grips (N,) bool, duty (N, n));
+    cfg = (switching, max_curvature, control_dt, min_substeps, act, feet, S_ctrl, gauss_S,
+    f_ext, beam constants, observation geometry, (length, max_curvature or 1, weight),
+    centerline xis, sma (bool), (T_amb, Af - T_amb, bound) of the temperature observation);
+    out = (status, report (N, qs.N_GRIP_REPORT), before (N, 3) = (x_origin, local x of the
+    tail, local x of the head), obs, elastic energy, centerline, kappa# at the Gauss points)."""
+    d_all, xo, lag, kc, ft, sma, cmd_all, head, duty_all = state
+    vec, ab, wk, piv, kap = work
+    (switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc, geo, scales, xis,
+     is_sma, tobs) = cfg  # fmt: skip
+    status, rep, before, obs, energy, line, kg = out
+    n = cmd_all.shape[1]
+    nd = d_all.shape[1]
+    length = scales[0]
+    for i in range(lo, hi):
+        if not active[i]:
+            continue
+        cmd = np.empty(n)
+        duty = np.empty(n)
+        for k in range(n):
+            duty[k] = 0.5 * (actions[i, k] + 1.0)
+            cmd[k] = -max_curv * 0.5 * (actions[i, k] + 1.0)
+        grip = np.ones(2)
+        grips_head = True
+        if switching:
+            grips_head = actions[i, n] > 0.0
+            grip[0] = 0.0 if grips_head else 1.0
+            grip[1] = 1.0 if grips_head else 0.0
+        d = d_all[i]
+        before[i, 0] = xo[i]
+        before[i, 1] = d[0]
+        before[i, 2] = d[nd - 5]
+        sc = (vec[i], ab[i], wk[i], piv[i], kap[i])
+        st = qs.grip_step(
+            (d, lag[i], kc[i], ft[i], sma[i]), duty if is_sma else cmd, grip, dt, min_sub, act,
+            feet, s_ctrl, gauss_s, f_ext, bc, sc, rep[i],
+        )  # fmt: skip
+        status[i] = st
+        if st == 0:
+            cmd_all[i] = cmd
+            duty_all[i] = duty
+            head[i] = grips_head
+            shift = d[0]
+            if abs(shift) > length:
+                for j in range(0, nd, 6):
+                    d[j] -= shift
+                xo[i] += shift
+        kg[i] = np.interp(gauss_s.ravel(), s_ctrl, kc[i]).reshape(gauss_s.shape)
+        le = bc[0]
+        energy[i] = el.assemble_into(d, le, kg[i], bc[1], bc[2], bc[3], False, vec[i][0], ab[i])
+        second = np.empty(n)
+        for k in range(n):
+            if is_sma:
+                second[k] = min(max((sma[i, 0, k] - tobs[0]) / tobs[1], -tobs[2]), tobs[2])
+            else:
+                second[k] = cmd_all[i, k]
+        observe_row(
+            d, xo[i], kg[i], second, head[i], np.zeros(2), True, geo, f_ext, scales, obs[i],
+        )  # fmt: skip
+        fields.centerline_into(d, xo[i], le, xis, line[i])

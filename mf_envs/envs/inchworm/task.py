@@ -47,7 +47,7 @@ DECLARATION = EnvDeclaration(
     metric=Metric("tail_advance_per_step", True, "m"),
     episode_metrics=episode_metrics,
     info_keys=("x_head", "x_tail", "centerline"),
-    bad_reset_options=(("x_tail", 1e17), ("kappa", [1.0, 2.0]), ("kappa", [0.0, 0.0, -14.0])),
+    bad_reset_options=(("x_tail", 1e17), ("kappa", [1.0, 2.0]), ("kappa", [0.0, 0.0, -51.0])),
     randomize={
         **{k: (0.5, 1.5) for k in SOIL_KWARGS},
         "youngs_modulus": (0.8, 1.2),

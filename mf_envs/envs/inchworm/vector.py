@@ -21,9 +21,12 @@ from typing import Any
 import numpy as np
 
 from mf_envs.envs._vector import BatchedVectorEnv
+from mf_envs.envs.inchworm import spec
 from mf_envs.envs.inchworm.env import InchwormEnv
-from mf_envs.envs.inchworm.rows import step_rows
+from mf_envs.envs.inchworm.rows import step_rows, step_rows_grip
+from mf_envs.physics.beam.contact import grip_feet as gf
 from mf_envs.physics.beam.contact import stick_slip as ss
+from mf_envs.physics.inchworm import quasistatic as qs
 
 CENTERLINE_PER_ELEMENT = 8  # points per element of info["centerline"] (Inchworm.centerline)
 
@@ -39,21 +42,27 @@ class InchwormVectorEnv(BatchedVectorEnv):
 
     @classmethod
     def supports(cls, **env_kwargs: Any) -> bool:
-        """Only the friction scene (the default effects include it) is compiled."""
+        """Only the scenes on friction or gripping feet (the default) are compiled."""
         from mf_envs.effects import resolve_effects
         from mf_envs.envs.inchworm.env import AVAILABLE_EFFECTS, DEFAULT_EFFECTS
 
         effects = resolve_effects(env_kwargs.get("effects"), AVAILABLE_EFFECTS, DEFAULT_EFFECTS)
-        return "friction" in effects
+        return bool({"friction", "gripping_feet"} & effects)
 
     def _alloc(self, n: int) -> None:
         env = self.template
-        if "friction" not in env.effects:
+        self._grip = "gripping_feet" in env.effects
+        if "friction" not in env.effects and not self._grip:
             raise ValueError(
-                "effects: the native Inchworm-v0 vector env runs the friction scene (the "
-                f"compiled quasi-static step); got {sorted(env.effects)}; use "
-                "vectorization_mode='sync' for other scenes"
+                "effects: the native Inchworm-v0 vector env runs the scenes on friction or "
+                f"gripping feet (the compiled quasi-static steps); got {sorted(env.effects)}; "
+                "use vectorization_mode='sync' for other scenes"
             )
+        self._foot_dx = np.zeros((n, 2))
+        self._duty = np.zeros((n, env.n_ctrl))  # the friction scene's (the kernel has none)
+        if self._grip:
+            self._alloc_grip(n)
+            return
         driven, model = env.driven, env.sim.model
         nd, nc, ne = model.n_dof, env.n_ctrl, model.n_elements
         self._state = (
@@ -78,9 +87,58 @@ class InchwormVectorEnv(BatchedVectorEnv):
         self._lo = self.single_observation_space.low
         self._hi = self.single_observation_space.high
 
+    def _alloc_grip(self, n: int) -> None:
+        env = self.template
+        driven, model = env.driven, env.sim.model
+        nd, nc, ne = model.n_dof, env.n_ctrl, model.n_elements
+        self._state = (
+            np.zeros((n, nd)), np.zeros(n), np.zeros((n, nc)), np.zeros((n, nc)),
+            np.zeros((n, 4)), np.zeros((n, 5, nc)), np.zeros((n, nc)), np.ones(n, bool),
+            np.zeros((n, nc)),
+        )  # fmt: skip
+        sc = driven.grip_scratch
+        self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in sc)
+        xis = np.linspace(0.0, 1.0, CENTERLINE_PER_ELEMENT + 1)[:-1]
+        sma = env.sma
+        scales = (env.params.length, 1.0 if sma else env.max_curvature, env.scene.weight)
+        if sma:
+            w = env.scene.wires.params
+            tobs = (
+                w.ambient,
+                w.alloy.austenite_finish - w.ambient,
+                spec.WIRE_TEMPERATURE_OBS_LIMIT,
+            )
+        else:
+            tobs = (0.0, 1.0, 1.0)
+        self._cfg = (
+            env.switching, env.max_curvature, env.control_dt, 1, *driven.grip_kernel_args(),
+            env.obs_geometry, scales, xis, sma, tobs,
+        )  # fmt: skip
+        n_pts = CENTERLINE_PER_ELEMENT * ne + 1
+        self._out = (
+            np.zeros(n, np.int64), np.zeros((n, qs.N_GRIP_REPORT)), np.zeros((n, 3)),
+            np.zeros((n, 2 * nc + 6), np.float32), np.zeros(n), np.zeros((n, n_pts, 2)),
+            np.zeros((n, ne, 4)),
+        )  # fmt: skip
+        self._steps = np.zeros(n, np.int64)
+        self._lo = self.single_observation_space.low
+        self._hi = self.single_observation_space.high
+
     def _load(self, i: int) -> None:
         env = self.template
         sim, driven = env.sim, env.driven
+        self._foot_dx[i] = 0.0
+        if self._grip:
+            d, xo, lag, kc, ft, sma, cmd, head, duty = self._state
+            d[i], xo[i] = sim.state.d, sim.x_origin
+            lag[i] = driven.lag.kappa if driven.lag is not None else driven.kappa_ctrl
+            kc[i] = driven.kappa_ctrl
+            ft[i, :2], ft[i, 2:] = driven.g, driven.v_feet
+            sma[i] = driven.sma if driven.sma is not None else 0.0
+            cmd[i], head[i], duty[i] = env.kappa_command, sim.anchor == "head", env.duty
+            self._steps[i] = 0
+            return
+        self._duty[i] = env.duty
         d, xo, lag, kc, g, slip, cmd, head = self._state
         d[i], xo[i] = sim.state.d, sim.x_origin
         lag[i] = driven.lag.kappa if driven.lag is not None else driven.kappa_ctrl
@@ -94,13 +152,19 @@ class InchwormVectorEnv(BatchedVectorEnv):
         return int(sum(a.nbytes for a in arrays))
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
+        if self._grip:
+            return self._step_grip(actions, active)
         env = self.template
         status, rep, before, obs, energy_el, line, _ = self._out
         status[~active] = ss.OK
+        d, xo, _, kc, g, _, cmd, head = self._state
+        nd = d.shape[1]
+        feet_old = np.stack([xo + d[:, 0], xo + d[:, nd - 5]], axis=1)
         self.blocks.run(step_rows, active, actions, self._state, self._work, self._cfg, self._out)
         self._steps[active] += 1
-        d, xo, _, kc, g, _, cmd, head = self._state
         ok = status == ss.OK
+        upd = ok & active
+        self._duty[upd] = 0.5 * (actions[upd, : env.n_ctrl] + 1.0)
         eff = env.driven.meter.efficiency
         energy = np.where(ok, rep[:, ss.REP_POS] / eff, 0.0)
         advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
@@ -123,8 +187,40 @@ class InchwormVectorEnv(BatchedVectorEnv):
             "newton_iterations": np.where(ok, rep[:, ss.REP_ITER], 0).astype(np.int64),
             "increments": np.where(ok, rep[:, ss.REP_INC], 0).astype(np.int64),
             "time": self._steps * env.control_dt,
-            "reward_terms": {"progress": progress, "effort": effort},
         }
+        mu4 = env.driven.feet.params.coefficients
+        normal = rep[:, ss.REP_N : ss.REP_N + 2]
+        limit = spec.holding_capacity(mu4, g, rep[:, ss.REP_GX : ss.REP_GX + 2], normal)
+        mech = np.where(ok, rep[:, ss.REP_POS], 0.0)
+        self._finish_info(info, np.zeros(self.num_envs), mech, None,
+                          cmd, feet_old, limit, ok, active, progress, effort)  # fmt: skip
+        return self._finish_batch(obs, reward, info, ok, active)
+
+    def _finish_info(self, info, electrical, mechanical, temperature, cmd, feet_old, limit, ok,
+                     active, progress, effort) -> None:  # fmt: skip
+        """The keys issue 31 added (`spec.INFO_KEYS`) and the reward terms."""
+        env = self.template
+        n = self.num_envs
+        info["electrical_energy"] = electrical
+        info["mechanical_work"] = mechanical
+        if temperature is None:
+            temperature = np.full((n, env.n_ctrl), env.scene.ambient)
+        info["wire_temperature"] = temperature
+        info["duty"] = self._duty_now(cmd)
+        feet_new = np.stack([info["x_tail"], info["x_head"]], axis=1)
+        dx = np.where(ok[:, None], feet_new - feet_old, 0.0)
+        qse = spec.quasi_static_error(dx, self._foot_dx, env.control_dt, env.params, limit)
+        info["quasi_static_error"] = np.where(ok, qse, 0.0)
+        self._foot_dx = np.where(active[:, None], dx, self._foot_dx)
+        info["reward_terms"] = {"progress": progress, "effort": effort}
+
+    def _duty_now(self, cmd: np.ndarray) -> np.ndarray:
+        if self._grip:
+            return self._state[8].copy()
+        return self._duty.copy()
+
+    def _finish_batch(self, obs, reward, info, ok, active) -> tuple[Any, ...]:
+        env = self.template
         finite = ok & np.isfinite(obs).all(axis=1) & np.isfinite(reward)
         info["numerical_failure"] = ~finite
         for key in list(info):
@@ -136,3 +232,49 @@ class InchwormVectorEnv(BatchedVectorEnv):
         reward[term] = 0.0
         trunc = self._steps >= env.max_steps
         return obs_out, reward, term, trunc, info
+
+    def _step_grip(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
+        """`_step_batch` on gripping feet (`rows.step_rows_grip`)."""
+        env = self.template
+        status, rep, before, obs, energy_el, line, _ = self._out
+        status[~active] = gf.OK
+        d, xo, _, kc, ft, sma, cmd, head, duty = self._state
+        nd = d.shape[1]
+        feet_old = np.stack([xo + d[:, 0], xo + d[:, nd - 5]], axis=1)
+        self.blocks.run(
+            step_rows_grip, active, actions, self._state, self._work, self._cfg, self._out
+        )
+        self._steps[active] += 1
+        ok = status == gf.OK
+        if env.sma:
+            energy = np.where(ok, rep[:, qs.REP_ELEC], 0.0)
+        else:
+            energy = np.where(ok, rep[:, qs.REP_A2POS] / env.driven.meter.efficiency, 0.0)
+        advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
+        progress = advance / env.params.length
+        effort = -env.effort_weight * energy
+        reward = progress + effort
+        info: dict[str, Any] = {
+            "x_head": xo + d[:, nd - 5],
+            "x_tail": xo + d[:, 0],
+            "centerline": line.copy(),
+            "anchor": np.array(["head" if h else "tail" for h in head], dtype=object),
+            "kappa_sharp": kc.copy(),
+            "kappa_command": cmd.copy(),
+            "actuation_power": np.where(ok, rep[:, qs.REP_A2NET] / env.control_dt, 0.0),
+            "actuation_energy": energy,
+            "grip": ft[:, :2].copy(),
+            "foot_slip": np.where(ok[:, None], rep[:, gf.REP_SLIP : gf.REP_SLIP + 2], 0.0),
+            "elastic_energy": energy_el.copy(),
+            "newton_iterations": np.where(ok, rep[:, gf.REP_ITER], 0).astype(np.int64),
+            "increments": np.where(ok, rep[:, qs.REP_SUBSTEPS], 0).astype(np.int64),
+            "time": self._steps * env.control_dt,
+        }
+        normal = rep[:, gf.REP_N : gf.REP_N + 2]
+        limit = spec.grip_capacity(env.scene.grip_feet.law, ft[:, :2], normal)
+        temperature = sma[:, 0, :].copy() if env.sma else None
+        electrical = energy if env.sma else np.zeros(self.num_envs)
+        mechanical = np.where(ok, rep[:, qs.REP_WIRE], 0.0)
+        self._finish_info(info, electrical, mechanical, temperature, cmd, feet_old, limit, ok,
+                          active, progress, effort)  # fmt: skip
+        return self._finish_batch(obs, reward, info, ok, active)

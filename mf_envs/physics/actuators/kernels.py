@@ -49,3 +49,19 @@ def n_substeps(lag_k, kappa_ctrl, command, dt, min_sub, has_lag, tau, rate, limi
         else:
             big = max(big, abs(command[k] - kappa_ctrl[k]))
     return max(1, min_sub, int(np.ceil(big / limit - 1e-12)))
+
+
+@numba.njit(cache=True)
+def wire_work(d0, d1, k0, k1, ei, le):
+    """Mechanical work [J] the actuator delivers over the increment when it bends the body by
+    applying the moment EI kappa# (what wires at a lever arm do: force x shortening): the
+    trapezoid of int EI kappa# (d kappa / dt) dS, configuration d0 -> d1, kappa# k0 -> k1
+    (n_el, 4). Positive when curling (kappa# and d kappa both negative): the body's elastic
+    strain energy the wires must supply (returned to the wires, and lost, on release)."""
+    w = 0.0
+    for e in range(le.shape[0]):
+        for q in range(el.N_GAUSS):
+            kap0 = el.kappa_at(d0, 6 * e, le[e], el.GAUSS_XI[q])
+            kap1 = el.kappa_at(d1, 6 * e, le[e], el.GAUSS_XI[q])
+            w += le[e] * el.GAUSS_W[q] * ei * 0.5 * (k0[e, q] + k1[e, q]) * (kap1 - kap0)
+    return w

@@ -30,7 +30,9 @@ from mf_envs.physics.actuators.curvature import (
     increment_work,
     kappa_at_gauss,
 )
-from mf_envs.physics.beam import NewmarkState, static
+from mf_envs.physics.actuators.sma import SMAWireParams
+from mf_envs.physics.beam import NewmarkState, NewtonDivergence, static
+from mf_envs.physics.beam.contact import grip_feet as gf
 from mf_envs.physics.beam.contact import stick_slip as ss
 from mf_envs.physics.beam.contact.feet import (
     FootReport,
@@ -39,6 +41,7 @@ from mf_envs.physics.beam.contact.feet import (
     raise_status,
 )
 from mf_envs.physics.beam.contact.friction import FrictionParams
+from mf_envs.physics.beam.contact.grip import GripFeetParams
 from mf_envs.physics.inchworm import quasistatic as qs
 from mf_envs.physics.inchworm.model import Inchworm, InchwormParams
 
@@ -46,23 +49,83 @@ DRIVE_EFFECTS = {
     "actuator_dynamics": "actuator lag + rate limit on kappa# (off = kappa# as commanded)",
     "friction": "feet holding by anisotropic Coulomb friction with grip dynamics (off = the "
     "kinematic anchors of Eq. 102; implies the weight)",
+    "sma_wires": "kappa# from SMA wire groups heated by a commanded duty cycle (Joule heating, "
+    "still-air cooling, martensite fraction with hysteresis); the effort is electrical energy",
+    "gripping_feet": "feet that anchor only above an engagement threshold, regularised friction "
+    "(issue 31; implies the weight)",
 }
 GRIP_COMMANDS = {"head": (0.0, 1.0), "tail": (1.0, 0.0), None: (1.0, 1.0)}  # (tail, head)
+
+
+@dataclass(frozen=True)
+class SMAWires:
+    """The wire groups of an SMA-driven body: one group per control point, each of `params`
+    (its n_wires, a length of body / control points), at a lever arm under the neutral axis such
+    that a fully contracted group holds kappa# = -kappa_full [1/m] (kappa_full = the recovery
+    strain / lever arm)."""
+
+    params: SMAWireParams
+    kappa_full: float
+    n_groups: int
+
+    @property
+    def group_power(self) -> float:
+        """Electrical power [W] of one group at duty 1 (rated current)."""
+        p = self.params
+        return p.current**2 * p.resistance_per_length * p.length * p.n_wires
+
+    @property
+    def power_per_length(self) -> float:
+        """Joule power per length of one wire at duty 1 [W/m]."""
+        return self.params.current**2 * self.params.resistance_per_length
+
+    def state_for(self, kappa_ctrl: np.ndarray) -> np.ndarray:
+        """SMA state (5, n) of groups at rest holding kappa# (n,) [1/m] in [-kappa_full, 0]:
+        at ambient (xi = 1) for kappa# = 0, else warm on the heating branch at the temperature
+        whose martensite fraction is 1 + kappa# / kappa_full (a wire heated to there)."""
+        a = self.params.alloy
+        xi = np.clip(1.0 + np.asarray(kappa_ctrl, float) / self.kappa_full, 0.0, 1.0)
+        out = np.empty((5, len(xi)))
+        t_amb = self.params.ambient
+        temp = (
+            a.austenite_start
+            + (a.austenite_finish - a.austenite_start) * np.arccos(2.0 * xi - 1.0) / np.pi
+        )
+        out[qs.SMA_T] = np.where(xi >= 1.0, t_amb, temp)
+        out[qs.SMA_XI] = xi
+        out[qs.SMA_DIR] = np.where(xi >= 1.0, -1.0, 1.0)  # sma_kernels COOLING / HEATING
+        out[qs.SMA_TR] = t_amb
+        out[qs.SMA_XIR] = 1.0
+        return out
+
+    def kernel_args(self) -> tuple:
+        """((hp, cap, T_amb), (As, Af, Ms, Mf, L/c), power per length [W/m], kappa_full,
+        group power [W])."""
+        thermal, tt = self.params.kernel_args()
+        return thermal, tt, self.power_per_length, self.kappa_full, self.group_power
 
 
 @dataclass
 class DriveReport:
     """One control step: kappa_sharp (n,) realised at the control points [1/m]; energy [J]
-    drawn by the actuators (positive work / efficiency); net_work [J] (signed, A2); increments
-    and Newton iterations; slip (2,) [m] of tail, head (friction); feet: the friction feet's
-    report (None with kinematic anchors)."""
+    drawn by the actuators (positive work / efficiency; with `sma_wires` the electrical
+    energy); net_work [J] (signed, A2); wire_work [J]: the positive work of the bending moment
+    EI kappa# on the body (`kernels.wire_work`, with gripping feet); increments and Newton
+    iterations; slip (2,) [m] of tail, head (friction); ground_x, normal (2,) [N] of the feet
+    at the end (friction feet); feet: the friction feet's report (None otherwise);
+    mechanical_work [J]: the actuator's positive mechanical work (wire_work with gripping
+    feet, else the positive work of A2)."""
 
     kappa_sharp: np.ndarray
     energy: float = 0.0
     net_work: float = 0.0
+    wire_work: float = 0.0
+    mechanical_work: float = 0.0
     increments: int = 0
     iterations: int = 0
     slip: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    ground_x: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    normal: np.ndarray = field(default_factory=lambda: np.zeros(2))
     feet: FootReport | None = None
 
 
@@ -75,15 +138,37 @@ class DrivenInchworm:
         S_ctrl: np.ndarray,
         actuator: ActuatorParams | None = None,
         friction: FrictionParams | None = None,
+        wires: SMAWires | None = None,
+        grip_feet: GripFeetParams | None = None,
     ) -> None:
         if friction is not None and ("inertia" in sim.effects or sim.terrain is not None):
             raise ValueError("effects: 'friction' is quasi-static and excludes inertia, terrain")
+        if grip_feet is not None and ("inertia" in sim.effects or sim.terrain is not None):
+            raise ValueError(
+                "effects: 'gripping_feet' is quasi-static and excludes inertia, terrain"
+            )
+        if grip_feet is not None and friction is not None:
+            raise ValueError("effects: 'friction' and 'gripping_feet' are two foot models")
+        if wires is not None and actuator is not None:
+            raise ValueError("effects: 'actuator_dynamics' and 'sma_wires' are two actuators")
         self.sim, self.S_ctrl = sim, np.asarray(S_ctrl, float)
         self.actuator = actuator
         self.lag = RateLimitedLag(actuator, len(S_ctrl)) if actuator is not None else None
         self.feet = FrictionFeet(sim.model, friction, sim.settings) if friction else None
         self.meter = EnergyMeter(actuator.efficiency if actuator is not None else 1.0)
         self.kappa_ctrl = np.zeros(len(S_ctrl))
+        self.wires, self.grip_feet = wires, grip_feet
+        self.sma = wires.state_for(self.kappa_ctrl) if wires is not None else None
+        self.g = np.array([0.0, 1.0])  # gripping feet's engagement (tail, head)
+        self.v_feet = np.zeros(2)  # their velocities in the last increment [m/s] (predictor)
+        self.electrical_energy = 0.0  # J, with sma_wires
+        self.wire_work = 0.0  # J, positive work of EI kappa# on the body (gripping feet)
+        if grip_feet is not None:
+            model = sim.model
+            nodes = (0, model.n_elements)
+            self.foot_x = np.array([model.dof(n, "z1") for n in nodes])
+            self.foot_z = np.array([model.dof(n, "z2") for n in nodes])
+            self.grip_scratch = gf.scratch(model.n_elements)
 
     def reset(self, kappa_ctrl: np.ndarray, x_tail: float = 0.0) -> None:
         """Straight body at x_tail [m], actuated to kappa_ctrl (n,) [1/m] at rest with the head
@@ -95,6 +180,11 @@ class DrivenInchworm:
             self.lag.reset(self.kappa_ctrl)
         if self.feet is not None:
             self.feet.reset(GRIP_COMMANDS["head"])
+        if self.wires is not None:
+            self.sma = self.wires.state_for(self.kappa_ctrl)
+        self.g = np.array(GRIP_COMMANDS["head"], float)
+        self.v_feet = np.zeros(2)
+        self.electrical_energy = self.wire_work = 0.0
         self.meter = EnergyMeter(self.meter.efficiency)
 
     @property
@@ -103,14 +193,35 @@ class DrivenInchworm:
         kinematically anchored foot."""
         if self.feet is not None:
             return self.feet.g.copy()
+        if self.grip_feet is not None:
+            return self.g.copy()
         return np.array([self.sim.anchor == "tail", self.sim.anchor == "head"], float)
+
+    @property
+    def wire_temperature(self) -> np.ndarray:
+        """Temperature [degC] of each control point's wire group (NaN without `sma_wires`)."""
+        if self.sma is None:
+            return np.full(len(self.S_ctrl), np.nan)
+        return self.sma[qs.SMA_T].copy()
 
     def _gauss(self, kappa_ctrl: np.ndarray) -> np.ndarray:
         return kappa_at_gauss(self.S_ctrl, kappa_ctrl, self.sim.model.gauss_S)
 
     def _path(self, command: np.ndarray, dt: float, min_substeps: int) -> np.ndarray:
-        """kappa# at the control points at the substep ends, (n_sub + 1, n) [1/m]."""
+        """kappa# at the control points at the substep ends, (n_sub + 1, n) [1/m] (with
+        `sma_wires` command is the duty cycle; the wires' state advances)."""
         limit = self.sim.increment_factor * self.sim.params.max_dkappa
+        if self.wires is not None:
+            thermal, tt, p_full, k_full, _gp = self.wires.kernel_args()
+            end, work = np.empty(len(command)), self.sma.copy()
+            qs.sma_advance(work, command, dt, thermal, tt, p_full, k_full, end)
+            n = int(np.ceil(np.max(np.abs(end - self.kappa_ctrl)) / limit - 1e-12))
+            n = max(n, min_substeps, 1)
+            path = np.empty((n + 1, len(command)))
+            path[0] = self.kappa_ctrl
+            for j in range(1, n + 1):
+                qs.sma_advance(self.sma, command, dt / n, thermal, tt, p_full, k_full, path[j])
+            return path
         if self.lag is None:
             n = int(np.ceil(np.max(np.abs(command - self.kappa_ctrl)) / limit - 1e-12))
             n = max(n, min_substeps, 1)
@@ -123,15 +234,25 @@ class DrivenInchworm:
         return path
 
     def step(
-        self, command: np.ndarray, anchor: str | None, dt: float, min_substeps: int = 1
+        self,
+        command: np.ndarray,
+        anchor: str | None,
+        dt: float,
+        min_substeps: int = 1,
+        grip: np.ndarray | None = None,
     ) -> DriveReport:
-        """Hold the commanded kappa# (n,) [1/m] and the grip (`anchor`: "head"/"tail" grips,
-        None: both with friction, Eq. 102 with kinematic anchors) for dt [s], in at least
-        min_substeps substeps (e.g. the Newmark steps of `inertia`).
+        """Hold the commanded kappa# (n,) [1/m] (with `sma_wires`: the duty cycles (n,) in
+        [0, 1]) and the grip (`anchor`: "head"/"tail" grips, None: both with friction, Eq. 102
+        with kinematic anchors) for dt [s], in at least min_substeps substeps (e.g. the Newmark
+        steps of `inertia`). With gripping feet `grip` (2,) in [0, 1] overrides the engagement
+        command of `anchor` (the feet still follow it with their time constants).
         Raises NewtonDivergence / NoQuasiStaticEquilibrium when the physics fails."""
         command = np.asarray(command, float).reshape(self.kappa_ctrl.shape)
         if self.feet is not None:
             return self._frictional(command, anchor, dt, min_substeps)
+        if self.grip_feet is not None:
+            grip = GRIP_COMMANDS[anchor] if grip is None else grip
+            return self._gripping(command, np.asarray(grip, float), dt, min_substeps, anchor)
         path = self._path(command, dt, min_substeps)
         gauss = [self._gauss(k) for k in path]
         n = len(path) - 1
@@ -143,7 +264,79 @@ class DrivenInchworm:
         self.kappa_ctrl = path[-1].copy()
         rep.energy = self.meter.input_energy - energy0
         rep.net_work = self.meter.net - net0
+        rep.mechanical_work = rep.energy * self.meter.efficiency
+        if self.wires is not None:
+            rep.energy = float(np.sum(command)) * self.wires.group_power * dt
+            self.electrical_energy += rep.energy
         return rep
+
+    def grip_kernel_args(self) -> tuple:
+        """(act, feet, S_ctrl, gauss_S, f_ext, beam constants) of `quasistatic.grip_step`."""
+        key = (self.sim.settings, self.sim.increment_factor)
+        if getattr(self, "_grip_key", None) != key:
+            self._grip_args, self._grip_key = self._grip_kernel_args(), key
+        return self._grip_args
+
+    def _grip_kernel_args(self) -> tuple:
+        sim, lag, gp = self.sim, self.lag, self.grip_feet
+        tau, rate = (lag.params.time_constant, lag.params.rate_limit) if lag else (1.0, 1.0)
+        mode = qs.ACT_SMA if self.wires else (qs.ACT_LAG if lag else qs.ACT_DIRECT)
+        if self.wires is not None:
+            thermal, tt, p_full, k_full, group = self.wires.kernel_args()
+        else:
+            thermal, tt, p_full, k_full, group = (
+                (1.0, 1.0, 0.0),
+                (1.0, 2.0, 1.0, 0.0, 0.0),
+                0.0,
+                1.0,
+                0.0,
+            )
+        limit = sim.increment_factor * sim.params.max_dkappa
+        act = (mode, tau, rate, limit, sim.model.params.EI, thermal, tt, p_full, k_full, group)
+        feet = (self.foot_x, self.foot_z, gp.law.kernel_args(), gp.engage_time, gp.release_time)
+        bc = static.constants(sim.model, sim.settings)
+        return act, feet, self.S_ctrl, sim.model.gauss_S, sim.f_ext, bc
+
+    def _gripping(
+        self, command: np.ndarray, grip: np.ndarray, dt: float, min_substeps: int, anchor
+    ) -> DriveReport:
+        """One step on gripping feet in the compiled `quasistatic.grip_step`."""
+        sim = self.sim
+        d = sim.state.d.copy()
+        lag_k = self.lag.kappa if self.lag is not None else self.kappa_ctrl.copy()
+        sma = self.sma if self.sma is not None else np.zeros((5, len(command)))
+        feet = np.concatenate([self.g, self.v_feet])
+        state = (d, lag_k, self.kappa_ctrl, feet, sma)
+        rep = np.zeros(qs.N_GRIP_REPORT)
+        status = qs.grip_step(
+            state, command, grip, dt, min_substeps, *self.grip_kernel_args(),
+            self.grip_scratch, rep,
+        )  # fmt: skip
+        if status != gf.OK:
+            raise NewtonDivergence("Newton failed even after halving the increment")
+        self.g, self.v_feet = feet[:2].copy(), feet[2:].copy()
+        if self.lag is not None:
+            self.lag.command = command.copy()
+        self.meter.add_totals(rep[qs.REP_A2POS], rep[qs.REP_A2NET])
+        out = DriveReport(kappa_sharp=self.kappa_ctrl.copy(), increments=int(rep[qs.REP_SUBSTEPS]))
+        out.iterations = int(rep[gf.REP_ITER])
+        out.slip = rep[gf.REP_SLIP : gf.REP_SLIP + 2].copy()
+        out.ground_x = rep[gf.REP_GX : gf.REP_GX + 2].copy()
+        out.normal = rep[gf.REP_N : gf.REP_N + 2].copy()
+        out.net_work = float(rep[qs.REP_A2NET])
+        out.wire_work = out.mechanical_work = float(rep[qs.REP_WIRE])
+        self.wire_work += out.wire_work
+        if self.wires is not None:
+            out.energy = float(rep[qs.REP_ELEC])
+            self.electrical_energy += out.energy
+        else:
+            out.energy = rep[qs.REP_A2POS] / self.meter.efficiency
+        z = np.zeros_like(d)
+        sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
+        sim.kappa = self._gauss(self.kappa_ctrl)
+        sim.anchor = anchor or "head"
+        sim._recenter()  # noqa: SLF001 - same package: the local origin follows the tail
+        return out
 
     def _kinematic(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> int:
         sim, n, iterations = self.sim, len(gauss) - 1, 0
@@ -193,6 +386,7 @@ class DrivenInchworm:
         out.iterations, out.slip = out.feet.iterations, out.feet.slip.copy()
         out.energy = rep[ss.REP_POS] / self.meter.efficiency
         out.net_work = float(rep[ss.REP_NET])
+        out.mechanical_work = float(rep[ss.REP_POS])
         z = np.zeros_like(d)
         sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
         sim.kappa = self._gauss(self.kappa_ctrl)
@@ -209,12 +403,14 @@ def make_driven(
     friction: FrictionParams,
     increment_factor: float = 1.0,
     soil: str = "dry_sand",
+    wires: SMAWires | None = None,
+    grip_feet: GripFeetParams | None = None,
 ) -> DrivenInchworm:
     """A DrivenInchworm with control points evenly spaced from tail to head; `effects` may name
     the beam's effects and those of DRIVE_EFFECTS (which switch actuator and friction on).
     `friction` implies the weight (Coulomb friction needs a normal load, like `terrain`)."""
     beam_effects = frozenset(effects) - set(DRIVE_EFFECTS)
-    if "friction" in effects:
+    if "friction" in effects or "gripping_feet" in effects:
         beam_effects |= {"gravity"}
     sim = Inchworm(
         params,
@@ -227,6 +423,8 @@ def make_driven(
         np.linspace(0.0, params.length, n_control_points),
         actuator if "actuator_dynamics" in effects else None,
         friction if "friction" in effects else None,
+        wires if "sma_wires" in effects else None,
+        grip_feet if "gripping_feet" in effects else None,
     )
 
 
@@ -298,6 +496,52 @@ def run_open_loop(
         c = command((k + 1) * dt)
         driven.step(c, grip_for(driven, c, dt), dt)
     dist, energy = sim.x_tail - x0, driven.meter.input_energy - e0
+    p, span = sim.params, n_meas * dt
+    weight = p.mass_per_length * p.gravity * p.length
+    cot = energy / (weight * dist) if dist > 0.0 else float("inf")
+    return GaitMetrics(dist / span / p.length, dist / p.length * period / span, cot, energy, dist)
+
+
+# ---------------------------------------------------------------------- SMA duty gaits
+DutyFn = Callable[[float], np.ndarray]  # t [s] -> duty cycles (n,) in [0, 1]
+
+
+def heat_cool_gait(t_heat: float, t_cool: float, n: int, duty_off: float = 0.0) -> DutyFn:
+    """Every wire group at duty 1 for t_heat [s], then at duty_off (0: the current off; > 0:
+    kept warm) for t_cool [s]: the SMA inchworm's square wave (period t_heat + t_cool)."""
+    period = t_heat + t_cool
+
+    def duty(t: float) -> np.ndarray:
+        phase = t % period
+        phase = 0.0 if phase > period - 1e-9 else phase  # snap round-off at the switches
+        return np.full(n, 1.0 if phase < t_heat - 1e-9 else duty_off)
+
+    return duty
+
+
+def run_duty_loop(
+    driven: DrivenInchworm,
+    duty: DutyFn,
+    period: float,
+    dt: float,
+    n_cycles: int = 2,
+    warmup_cycles: int = 1,
+) -> GaitMetrics:
+    """`run_open_loop` for the SMA wires (`sma_wires`): duty(t) (a `heat_cool_gait`) held over
+    control steps of dt [s], the head gripping while the wires are heated at duty 1, the tail
+    otherwise (Eq. 102 on the command); the distance is the feet's midpoint's (a body still
+    curling up over the warm-up does not count as crawling); the cost of transport is
+    electrical."""
+    sim = driven.sim
+    n_warm = int(round(warmup_cycles * period / dt))
+    n_meas = int(round(n_cycles * period / dt))
+    x0 = e0 = 0.0
+    for k in range(n_warm + n_meas):
+        if k == n_warm:
+            x0, e0 = 0.5 * (sim.x_tail + sim.x_head), driven.electrical_energy
+        u = duty((k + 1) * dt)
+        driven.step(u, "head" if u[0] == 1.0 else "tail", dt)
+    dist, energy = 0.5 * (sim.x_tail + sim.x_head) - x0, driven.electrical_energy - e0
     p, span = sim.params, n_meas * dt
     weight = p.mass_per_length * p.gravity * p.length
     cot = energy / (weight * dist) if dist > 0.0 else float("inf")

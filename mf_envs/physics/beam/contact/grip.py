@@ -57,10 +57,18 @@ class GripLaw:
         check_positive("width", self.width)
         if self.threshold + self.width > 1.0:
             raise ValueError(f"threshold: threshold + width must be <= 1, got {self}")
-        for name in ("mu_slide", "grip_forward", "grip_backward", "v_slide", "v_grip"):
+        for name in ("mu_slide", "grip_forward", "grip_backward"):  # 0: frictionless
+            check_nonnegative(name, getattr(self, name))
+        for name in ("v_slide", "v_grip"):
             check_positive(name, getattr(self, name))
         if min(self.grip_forward, self.grip_backward) < self.mu_slide:
             raise ValueError("grip_forward: gripping coefficients must not be below mu_slide")
+
+    def kernel_args(self) -> np.ndarray:
+        """(threshold, width, mu_slide, grip_forward, grip_backward, v_slide, v_grip), the
+        layout of the compiled law (`grip_feet.foot_force`)."""
+        return np.array([self.threshold, self.width, self.mu_slide, self.grip_forward,
+                         self.grip_backward, self.v_slide, self.v_grip])  # fmt: skip
 
     def grip_fraction(self, g: float) -> float:
         """phi(g): C1 smoothstep, 0 at and below the threshold, 1 at threshold + width."""
@@ -73,6 +81,20 @@ class GripLaw:
         slide = self.mu_slide * v / math.hypot(v, self.v_slide)
         grip = self.grip_fraction(g) * (mu_g - self.mu_slide) * v / math.hypot(v, self.v_grip)
         return -max(normal, 0.0) * (slide + grip)
+
+
+@dataclass(frozen=True)
+class GripFeetParams:
+    """Two feet with the law `law` whose engagement follows its command with the time constants
+    engage_time, release_time [s] (exact first-order response, `friction.grip_response`)."""
+
+    law: GripLaw = GripLaw()
+    engage_time: float = 0.5
+    release_time: float = 0.5
+
+    def __post_init__(self) -> None:
+        check_positive("grip_time_constant", self.engage_time)
+        check_positive("grip_time_constant", self.release_time)
 
 
 def split_velocity(law: GripLaw, rate: float, g_tail: float, g_head: float, normal) -> float:
