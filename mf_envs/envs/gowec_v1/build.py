@@ -87,6 +87,20 @@ def build(kw: dict[str, Any]) -> Scene:
     )  # fmt: skip
 
 
+def default_effects(scene: Scene, hull: Any) -> tuple[str, ...]:
+    """The device's default effects; with a user's `hull` (a pitch-only table) without
+    "surge_heave", and without "quadratic_drag" when that table has no geometry (radius,
+    draft, z_G): asking for either explicitly is a ValueError (`floating_model`)."""
+    effects = DEVICES[scene.device].effects
+    if hull is None:
+        return effects
+    drop = {"surge_heave"}
+    h = hull if isinstance(hull, HullCoefficients) else None
+    if h is not None and not all(math.isfinite(x) for x in (h.radius, h.draft, h.zg)):
+        drop.add("quadratic_drag")
+    return tuple(e for e in effects if e not in drop)
+
+
 def floating_model(
     scene: Scene, kw: dict[str, Any], effects: frozenset
 ) -> tuple[HullCoefficients, FloatingModel]:

@@ -142,7 +142,7 @@ class GOWECV1Env(MFEnv):
                              "physics_dt",
                              DEVICES[self.scene.device].physics_dt if physics_dt is None
                              else physics_dt, 1e-5, 1.0),
-                         default_effects=DEVICES[self.scene.device].effects)  # fmt: skip
+                         default_effects=build.default_effects(self.scene, hull))  # fmt: skip
         self.irregular = self.scene.hs_given or "irregular_waves" in self.effects
         self._base_substeps = self.n_substeps
         self.hull, self.model = build.floating_model(self.scene, kw, self.effects)
