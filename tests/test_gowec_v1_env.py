@@ -219,3 +219,33 @@ def test_render_rgb_array():
     env.step(np.zeros(1, np.float32))
     img = env.render()
     assert img.shape == (360, 480, 3) and img.dtype == np.uint8 and img.std() > 5
+
+
+@pytest.mark.parametrize("device", ["iswec_class", "seed_buoy"])
+def test_tripping_on_purpose_never_pays(device):
+    """Issue 32 item 2: a constant full torque (the gimbal overspeeds or the hull passes the
+    pitch limit: the episode ends early) returns less than holding still for the whole episode,
+    and less than the best baseline; the termination is charged the running loss left."""
+    kw = dict(device=device, episode_seconds=60.0)
+
+    def ret(policy):
+        env = gym.make("FloatingGOWEC-v0", **kw)
+        c = make_baseline(env, policy) if policy in ("efficient_pto",) else None
+        obs, _ = env.reset(seed=2000)
+        if c:
+            c.reset()
+        total, done, term, steps = 0.0, False, False, 0
+        while not done:
+            a = c.predict(obs)[0] if c else np.full(1, policy, np.float32)
+            obs, r, term, trunc, info = env.step(a)
+            total += r
+            steps += 1
+            done = term or trunc
+        return total, term, steps, info
+
+    trip, ended, steps, info = ret(1.0)
+    still, _, _, _ = ret(0.0)
+    best, _, _, _ = ret("efficient_pto")
+    assert ended and steps < 3000  # it did trip early
+    assert info["reward_terms"]["shutdown_loss"] < 0.0
+    assert trip < still and trip < best
