@@ -200,8 +200,8 @@ class LinearPTOController:
         return np.zeros(1, dtype=np.float32), None
 
 
-register(ENV_ID, "pll", PLLController, default=True)
+register(ENV_ID, "pll", PLLController)
 register(ENV_ID, "bang_bang", SquareWaveController)
 register(ENV_ID, "linear_pto", LinearPTOController)
-register(ENV_ID, "efficient_pto", EfficientPTOController)
+register(ENV_ID, "efficient_pto", EfficientPTOController, default=True)  # the strongest
 register(ENV_ID, "passive_damper", PassiveDamperController)
