@@ -56,6 +56,8 @@ def test_api_contract():
     iswec = env.unwrapped  # the default: the ISWEC-class cylinder's pitch block
     assert iswec.hydrostatic_stiffness() == pytest.approx(8.0907e6, rel=1e-4)
     assert iswec.natural_period() == pytest.approx(5.806, rel=1e-3)
+    # two units of J = 1.2e4 kg m^2 at 250 rpm: 2 x 1/2 J w^2 = 8.22 MJ, reported, not charged
+    assert iswec.spool_up_energy() == pytest.approx(2 * 0.5 * 1.2e4 * (250 * math.pi / 30) ** 2)
     # deep-water flux rho g^2 a^2 T / (8 pi) (Eq. 19 with Hs = 2 a... regular-wave form)
     assert u.wave_power_flux() == pytest.approx(1025 * 9.81**2 * 6.0 / (8 * math.pi), rel=1e-12)
     a = [env.reset(seed=3)[0] for _ in range(2)]

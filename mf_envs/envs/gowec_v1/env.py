@@ -235,6 +235,12 @@ class GOWECV1Env(MFEnv):
         """Rotor loss (W) while the rotor spins, else 0."""
         return self.rotor_loss * (self.model.psid != 0.0)
 
+    def spool_up_energy(self) -> float:
+        """Kinetic energy (J) the rotors' motors put in to reach speed, n 1/2 J psi'^2: reported,
+        not charged (a device spins up once, then runs for weeks; the running loss is charged)."""
+        p = self.model.p
+        return 0.5 * self.model.units * p.gyro[0] * p.psid**2
+
     def shutdown_energy(self, steps: Any) -> Any:
         """Rotor running loss (J) of the episode's steps left after `steps` (int or array): what
         a termination (overspeed, pitch limit) is charged, so that ending early never pays."""
