@@ -64,15 +64,16 @@ def test_api_contract():
     assert np.array_equal(a[0], a[1])
 
 
-@pytest.mark.parametrize(
-    "device, kind", [("seed_buoy", "pll"), ("iswec_class", "efficient_pto")]
-)
+@pytest.mark.parametrize("device, kind", [("seed_buoy", "pll"), ("iswec_class", "efficient_pto")])
 def test_energy_balance_irregular(device, kind):
     """300 s of JONSWAP Hs 1.5 m, Tp 6 s: excitation work = radiated + viscous (linear and the
     quadratic drag's work relative to the water) + PTO + stored - rotor-motor work, to 1 %;
     on the ISWEC-class default the drag dissipates a real share of it."""
     env = gym.make(
-        "FloatingGOWEC-v0", significant_wave_height=1.5, peak_period=6.0, episode_seconds=300,
+        "FloatingGOWEC-v0",
+        significant_wave_height=1.5,
+        peak_period=6.0,
+        episode_seconds=300,
         device=device,
     )
     _, info = _episode(env, kind, seed=11)

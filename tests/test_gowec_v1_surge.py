@@ -74,8 +74,12 @@ def _frequency_domain(m: FloatingModel, w: float, surge: bool):
     states = {
         "x55": x55[:, 0] * iw * (-Al),
         "trans": np.concatenate(
-            [blocks["11"][1][:, 0] * iw * S, blocks["15"][1][:, 0] * iw * Al,
-             blocks["51"][1][:, 0] * iw * S, blocks["33"][1][:, 0] * iw * Zh]  # fmt: skip
+            [
+                blocks["11"][1][:, 0] * iw * S,
+                blocks["15"][1][:, 0] * iw * Al,
+                blocks["51"][1][:, 0] * iw * S,
+                blocks["33"][1][:, 0] * iw * Zh,
+            ]  # fmt: skip
         ),
     }
     return -Al, S, Zh, states

@@ -152,9 +152,12 @@ def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
         return math.exp(r.x), kc
     # k = k_c + ks x^2 >= k_c > 0 (a negative gimbal spring destabilises the gimbal)
     ks = abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period)  # scale of k
-    r = minimize(lambda x: -net_electrical_power(raw, math.exp(x[0]), kc + x[1] ** 2 * ks),
-                 np.array([math.log(c0), math.sqrt(max(k0 - kc, 0.0) / ks)]),
-                 method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1.0, "maxiter": 300})
+    r = minimize(
+        lambda x: -net_electrical_power(raw, math.exp(x[0]), kc + x[1] ** 2 * ks),
+        np.array([math.log(c0), math.sqrt(max(k0 - kc, 0.0) / ks)]),
+        method="Nelder-Mead",
+        options={"xatol": 1e-3, "fatol": 1.0, "maxiter": 300},
+    )
     best = (math.exp(r.x[0]), float(kc + r.x[1] ** 2 * ks))
     cp, _ = efficient_pto(raw, passive=True)  # never worse than the damper
     if net_electrical_power(raw, cp, kc) > net_electrical_power(raw, *best):

@@ -99,7 +99,7 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
             f"{ex['torque_limit'] / 1e3:.0f} kN m (per unit); the torque clips and power peaks"
         ))  # fmt: skip
         ax[3].legend(loc="upper left", fontsize=8)
-    fig.suptitle("FloatingGOWEC-v0 on a regular wave a = 1 m, T = 6 s (efficiency-aware linear PTO)")
+    fig.suptitle("FloatingGOWEC-v0, regular wave a = 1 m, T = 6 s (efficiency-aware linear PTO)")
     fig.tight_layout()
     files = [out / "gowec_v1_episode.png"]
     fig.savefig(files[0], dpi=100)

@@ -8,7 +8,11 @@ import dataclasses
 import math
 from typing import Any
 
+import numpy as np
+from gymnasium import spaces
+
 from mf_envs._validate import check_choice, check_int, check_range
+from mf_envs.envs.gowec_v1 import spec
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import HullCoefficients, load_hull
@@ -87,6 +91,16 @@ def build(kw: dict[str, Any]) -> Scene:
     )  # fmt: skip
 
 
+def observation(max_gimbal_rate: float, wave_preview: Any) -> tuple[np.ndarray, spaces.Box]:
+    """(preview times (s, (N_PREVIEW,) or empty), observation space): the layout's bounds and,
+    when wave_preview > 0, N_PREVIEW elevation slots up to wave_preview s ahead."""
+    hi = spec.OBS.high({"max_gimbal_rate": max_gimbal_rate})
+    preview = check_range("wave_preview", wave_preview, 0.0, 120.0)
+    times = preview * np.arange(1, spec.N_PREVIEW + 1) / spec.N_PREVIEW if preview else np.zeros(0)
+    hi = np.concatenate([hi, np.full(times.size, spec.MAX_ELEVATION)]).astype(np.float32)
+    return times, spaces.Box(-hi, hi, dtype=np.float32)
+
+
 def default_effects(scene: Scene, hull: Any) -> tuple[str, ...]:
     """The device's default effects; with a user's `hull` (a pitch-only table) without
     "surge_heave", and without "quadratic_drag" when that table has no geometry (radius,
@@ -125,8 +139,10 @@ def floating_model(
                           three_dof=three)  # fmt: skip
     if "surge_heave" in effects:
         if three is None:
-            raise ValueError("effects: 'surge_heave' needs a hull with surge/heave/pitch data "
-                             "(device='iswec_class'); this hull rotates about a fixed G")  # fmt: skip
+            raise ValueError(
+                "effects: 'surge_heave' needs a hull with surge/heave/pitch data "
+                "(device='iswec_class'); this hull rotates about a fixed G"
+            )
         model.set_translation(True, dev.mooring_stiffness)
     crit = 2.0 * math.sqrt(hull.stiffness * (model.p.inertia[0]))
     bv = kw["viscous_damping"]

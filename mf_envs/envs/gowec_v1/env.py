@@ -46,15 +46,12 @@ SPECTRA = build.SPECTRA
 class GOWECV1Env(MFEnv):
     """
     ## Description
-    The GOWEC of Rios (2017, Sec. 3.2) floating: a vertical-cylinder buoy (default: radius 2.5 m,
-    draft 2 m, Capytaine BEM coefficients shipped with the package; `hull=` takes another) free in
-    pitch theta (about e1) and roll rho (about e2), obeying the Cummins equation
-    (I + A_inf) q'' + int K(t - s) q'(s) ds + C q = M_exc + M_gyro, with one gyroscope (gimbal
-    about e2, Seakeeper 26 rotor; by default the seed's mirrored pair, whose roll and yaw
-    reactions cancel) two-way coupled through the B-matrix equations
-    (`mf_envs.physics.gowec.hydro.floating`). The generator torque on the gimbal axis is applied
-    inside the physics substeps. Yaw and translation of the buoy are held by the mooring.
-    See docs/gowec_v1.md for the model, the coefficients and their checks.
+    The GOWEC of Rios (2017, Sec. 3.2) floating. Default `device="iswec_class"`: a cylinder of
+    ISWEC's footprint (radius 6 m, draft 2.5 m, 290 t; Capytaine BEM coefficients shipped) in
+    pitch theta (about e1), roll rho (about e2), surge and heave: Cummins equation with Morison
+    drag and a mooring spring, two-way coupled to a mirrored pair of gyros (H = 3.14e5 N m s
+    each) by the B-matrix equations (`physics.gowec.hydro.floating`); generator torque inside
+    the substeps. `device="seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md has the rest.
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: generator torque command / max_generator_torque. The drive adds
@@ -70,32 +67,43 @@ class GOWECV1Env(MFEnv):
     motoring, minus rotor_loss. P_ref (> 0, W) is Eq. 88
     (n/2 H beta0 w^2, the locked-gimbal power) with beta0 the rotor-off pitch amplitude from the
     RAO at the wave (irregular: a = Hs / (2 sqrt 2), T = peak_period): `reference_power()`.
+    Terms (`info["reward_terms"]`): `net_electrical_energy`, and `shutdown_loss` (< 0 only on a
+    terminating step: the rotor loss of the steps left, / (P_ref control_dt)).
 
     ## Starting State
-    Buoy at rest, level; gimbal angle uniform in [-0.1, 0.1] rad, at rest; random wave phases.
+    Buoy at rest, level; gimbal angle uniform in [-0.1, 0.1] rad, at rest; random wave phases;
+    the incident wave ramps in over `wave_ramp` s.
     `reset(options=...)`: buoy_pitch, buoy_roll (rad), gimbal_angle (rad), gimbal_rate (rad/s).
 
     ## Episode End
     Truncation after `episode_seconds`; termination if |phi'| > max_gimbal_rate ("overspeed"),
-    |theta| or |rho| > 1 rad ("out_of_range") or a numerical failure.
+    |theta| or |rho| > pitch_limit ("out_of_range"; 20 deg on the ISWEC-class device) or a
+    numerical failure. A termination by overspeed or pitch limit is charged the rotor loss of
+    the steps left (`reward_terms["shutdown_loss"]`): ending early never pays.
 
     ## Arguments
     | argument | default | meaning |
     |---|---|---|
+    | device | "iswec_class" | named device (`hydro/devices.py`); None kwargs take its values |
     | wave_amplitude, wave_period, wave_direction | 1 m, 6 s, pi/2 | regular wave (Eq. 89) |
-    | significant_wave_height, peak_period | None, 6 s | irregular sea (Hs, Tp) when Hs is set |
+    | significant_wave_height, peak_period | None, 6 s | irregular sea (Hs, Tp) if Hs is set |
     | spectrum, gamma, n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
-    | rotor_inertia, rotor_speed | Seakeeper 26 | rotor J3 (kg m^2), psi' (rad/s) |
-    | gyro_units | 2 | 2 = the seed's mirrored pair (phi, -phi; spins +-psi'), 1 = one unit |
-    | generator_efficiency, motor_efficiency | 0.8, = generator | eta_g, eta_m |
-    | max_generator_torque, max_generator_power | 10 kN m, 50 kW | PTO limits |
-    | rotor_loss | 3000 W | rotor power while spinning (Table 3-1 spool-up, Seakeeper 26) |
-    | viscous_damping | 5 % of critical | linear viscous pitch/roll damping (N m s/rad) |
-    | hull | None (default) | `HullCoefficients` or path of an .npz (`from_capytaine`) |
-    | episode_seconds, control_dt, physics_dt | 120 s, 0.02 s, 0.005 s | timing |
+    | rotor_inertia, rotor_speed | device (1.2e4 kg m^2, 250 rpm) | rotor J3 (kg m^2), psi' |
+    | gyro_units | device (2) | 2: the seed's mirrored pair (phi, -phi; spins +-psi'); 1: one |
+    | generator_efficiency, motor_efficiency | device (0.9), = generator | eta_g, eta_m |
+    | max_generator_torque, max_generator_power | device (150 kN m, 130 kW) | PTO limits per unit |
+    | rotor_loss | device (3000 W) | running loss of all units while spinning |
+    | viscous_damping | device (0; seed buoy 5 % of critical) | linear damping (N m s/rad) |
+    | drag_coefficient | device (1) | Morison C_d of keel plate and side |
+    | pitch_limit, wave_ramp | device (20 deg, 10 s) | episode-ending tilt (rad), wave ramp (s) |
+    | wave_preview | 0 | s of incident elevation ahead in 8 more observation slots (0: none) |
+    | hull | None (the device's) | `HullCoefficients` or path of an .npz (`from_capytaine`) |
+    | episode_seconds, control_dt, physics_dt | 120 s, 0.02 s, device (0.01 s) | timing |
 
     ## Version History
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency (issue 14).
+    - v0 (0.5): the ISWEC-class device by default, surge and heave, Morison drag, wave ramp,
+      pitch limit, shutdown charge, the wave elevation in the observation (issue 29).
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
@@ -149,14 +157,9 @@ class GOWECV1Env(MFEnv):
         self.buoy_radius = self.hull.radius if math.isfinite(self.hull.radius) else 0.0
         self.max_steps = self._episode_steps(self.episode_seconds)
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
-        hi = spec.OBS.high({"max_gimbal_rate": self.max_gimbal_rate})
-        preview = check_range("wave_preview", wave_preview, 0.0, 120.0)
-        self.preview_times = preview * np.arange(1, spec.N_PREVIEW + 1) / spec.N_PREVIEW
-        if preview == 0.0:
-            self.preview_times = np.zeros(0)
-        hi = np.concatenate([hi, np.full(self.preview_times.size, spec.MAX_ELEVATION)])
-        hi = hi.astype(np.float32)
-        self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
+        self.preview_times, self.observation_space = build.observation(
+            self.max_gimbal_rate, wave_preview
+        )
         self.energy_scale = 1.0 / (self.reference_power() * self.control_dt)
         self.wave: waves.WaveField = waves.regular_wave(
             self.wave_amplitude, self.wave_period, self.wave_direction
@@ -304,7 +307,8 @@ class GOWECV1Env(MFEnv):
         self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
         info.update(
-            reward_terms={"net_electrical_energy": 0.0, "shutdown_loss": 0.0}, overspeed=False,
+            reward_terms={"net_electrical_energy": 0.0, "shutdown_loss": 0.0},
+            overspeed=False,
             out_of_range=False,
         )
         return self._get_obs(), info

@@ -11,6 +11,7 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
+from mf_envs.envs.gowec_v1.spec import I_ELEVATION
 from mf_envs.physics.gowec.hydro.batch import elevation, end_state, step_row, step_work
 from mf_envs.physics.gowec.hydro.floating import ramp
 
@@ -31,9 +32,10 @@ def observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs):
         finite = finite and math.isfinite(x)
     for j in range(preview.shape[0] + 1):
         tj = t if j == 0 else t + preview[j - 1]
+        k = I_ELEVATION + j  # the probe, then the preview slots after the layout
         x = np.float32(elevation(tj, amp, om, eps) * ramp(tj, tramp))
-        x = min(max(x, lo[8 + j]), hi[8 + j])
-        obs[8 + j] = x
+        x = min(max(x, lo[k]), hi[k])
+        obs[k] = x
         finite = finite and math.isfinite(x)
     return finite
 
