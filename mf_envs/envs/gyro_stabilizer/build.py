@@ -12,11 +12,12 @@ Arguments of `GyroStabilizerEnv` handled here (SI units):
 | hull | None | `Hull`, "yacht" (default), "mss_naval_vessel" or a dict of Hull fields |
 | coupling | None | `ship.coupling.SwayRollYaw`; None/True: MSS's navalvessel.m coefficients
 with hull "mss_naval_vessel", off for other hulls; False: off |
-| gimbal_drive | "electric" | electric, brake, damper, pendulous, spring, kinematic ("servo" =
-kinematic, "torque" = electric: the v0 names) |
+| gimbal_drive | None | brake (Seakeeper preset), electric (seed preset), damper, pendulous,
+spring, kinematic ("servo" = kinematic, "torque" = electric: the v0 names) |
 | gimbal_loop_gain | None | K_p of the rate loop, N m s/rad (sets drive_bandwidth) |
-| max_gimbal_torque | None | drive torque limit, N m (None: 0.1 H) |
-| max_drive_power | 1000 | motoring power limit, W |
+| max_gimbal_torque | None | drive torque limit, N m (None: seed 0.1 H; Seakeeper preset:
+brake relief T_r, electric H p_d, `unit_drive`) |
+| max_drive_power | None | motoring power limit, W (None: seed 1000; Seakeeper H p_d r_cap) |
 | drive_bandwidth | 20 | rate-loop bandwidth, rad/s |
 | gimbal_damping | None | brake c, N m s/rad (passive default n H^2 / sqrt(C44 J)) |
 | gimbal_stiffness | None | m g l (pendulous) or spring k, N m/rad (default J_g w_n^2) |
@@ -29,17 +30,23 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Iterable
 from typing import Any
 
 from mf_envs._validate import check_choice, check_int, check_range, check_shape
 from mf_envs.effects import resolve_effects
 from mf_envs.envs.base import MAX_SUBSTEPS
+from mf_envs.physics import constants
+from mf_envs.physics.ship import seakeeper as SK
+from mf_envs.physics.ship.brake import BrakeParams
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DriveParams, drive_machine, drive_stable_step
 from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.model import SHIP_EFFECTS, GimbalDrive
-from mf_envs.physics.ship.params import GyroParams, ShipParams, capacity_ratio
+from mf_envs.physics.ship.params import GyroParams, ShipParams, capacity_ratio, seakeeper_gyro
+
+RPM = constants.RPM
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,22 +75,33 @@ class Scene:
     effective_slope: float
     roll_scale: float
     effort_weight: float
+    preset: str = "seed"
+    units: int = 1  # identical units lumped in each gyro (`gyro` is their sum)
+    unit_name: str = ""
+    rotor_power: float = 0.0  # W, running power of all units (0: not modelled, seed preset)
+    design_roll_rate: float = math.nan  # rad/s, the drive sizing's p_d (Seakeeper preset)
+    cushion: Any = None  # `ship.brake.BrakeParams` of the cushioned stops (None: inelastic)
+    mount_moment_bound: float = math.inf  # N m per unit (`unit_drive`)
+    hull_damping: str = "rule_of_thumb"
     table_dt: float = math.nan  # the irregular-sea table's step, set by `timed`
 
 
 def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
     """The `Scene` of the env's kwargs `kw` (all but render_mode); ValueError names the kwarg."""
+    kw = dict(kw)
+    pre = preset_defaults(kw)  # fills the kwargs left None from the preset
     kind = check_choice("gimbal_drive", kw["gimbal_drive"], GIMBAL_DRIVES)
     kind = DRIVE_ALIASES.get(kind, kind)
     tau_s = check_range("servo_time_constant", kw["servo_time_constant"], 1e-3, 10.0)
-    hull = build_hull(kw["hull"], kw["ship_inertia"], kw["roll_stiffness"], kw["roll_damping"],
-                      kw["effective_slope"])  # fmt: skip
     speed = check_range("ship_speed", kw["ship_speed"], 0.0, 50.0)
+    hull = build_hull(kw["hull"], kw["ship_inertia"], kw["roll_stiffness"], kw["roll_damping"],
+                      kw["effective_slope"], pre["hull_damping"], speed)  # fmt: skip
+    k = pre["units"]
     c = dict(hull=hull, coupling=build_coupling(kw["coupling"], kw["hull"]),
              heading=check_range("heading", kw["heading"], -4.0 * math.pi, 4.0 * math.pi),
              ship_speed=speed, ship=build_ship_params(hull, speed), gimbal_drive=kind,
-             gyro=GyroParams(check_range("rotor_inertia", kw["rotor_inertia"], 1e-6, 1e6),
-                             check_range("gimbal_inertia", kw["gimbal_inertia"], 1e-6, 1e6),
+             gyro=GyroParams(k * check_range("rotor_inertia", kw["rotor_inertia"], 1e-6, 1e6),
+                             k * check_range("gimbal_inertia", kw["gimbal_inertia"], 1e-6, 1e6),
                              check_range("rotor_speed", kw["rotor_speed"], -1e4, 1e4)),
              n_gyros=check_int("n_gyros", kw["n_gyros"], 1, 2),
              max_precession_rate=check_range("max_precession_rate", kw["max_precession_rate"],
@@ -92,6 +110,16 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
                                           math.pi))  # fmt: skip
     machine = build_machine(kind, c["gyro"], hull, c["n_gyros"], c["max_precession_rate"],
                             c["max_gimbal_angle"], kw)  # fmt: skip
+    c.update(preset=pre["preset"], units=k, unit_name=pre["unit_name"],
+             rotor_power=pre["unit_power"] * k * c["n_gyros"],
+             hull_damping=pre["hull_damping"])  # fmt: skip
+    if pre["preset"] != "seed" and machine is not None:  # the Seakeeper unit's hardware
+        p_d = kw["design_roll_rate"]
+        if p_d is None:  # a 10 deg roll at the natural roll period (docs/stabilizer_physics.md)
+            p_d = math.radians(10.0) * math.sqrt(hull.roll_stiffness / hull.roll_inertia())
+        p_d = _positive("design_roll_rate", p_d, 10.0)
+        machine, cushion, bound = unit_drive(machine, c["gyro"], k, p_d, kw)
+        c.update(design_roll_rate=p_d, cushion=cushion, mount_moment_bound=bound)
     c["drive"] = GimbalDrive("servo" if machine is None else "torque", servo_time_constant=tau_s,
                              max_rate=c["max_precession_rate"], max_angle=c["max_gimbal_angle"],
                              machine=machine)  # fmt: skip
@@ -103,7 +131,9 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
     c.update(_sea(kw, c["ship"], c["effects"]), effective_slope=hull.effective_slope,
              roll_scale=check_range("roll_scale", kw["roll_scale"], 1e-6, 10.0))  # fmt: skip
     # effort_weight >= 0: a negative weight would pay for drive energy
-    return Scene(**c, effort_weight=check_range("effort_weight", kw["effort_weight"], 0.0, 1e6))
+    scene = Scene(**c, effort_weight=check_range("effort_weight", kw["effort_weight"], 0.0, 1e6))
+    warn_capacity(scene)
+    return scene
 
 
 def _sea(kw: dict[str, Any], ship: ShipParams, effects: frozenset) -> dict[str, Any]:
@@ -134,6 +164,118 @@ def timed(scene: Scene, physics_dt: float) -> Scene:
     return dataclasses.replace(scene, table_dt=min(0.5 * physics_dt, 0.01))
 
 
+PRESETS = ("seakeeper_7000", "seed")
+HULL_DAMPINGS = ("ikeda", "rule_of_thumb")
+# the Seakeeper preset's unit on each hull preset: (unit, gyros, units per gyro), docs page
+UNIT_OF_HULL = {
+    "yacht": (SK.SEAKEEPER_7000, 1, 1),
+    "mss_naval_vessel": (SK.SEED_TABLE_3_1["35"], 2, 4),
+}
+# W per unit: rotor running power. No maker's figure was found for the Model 7000 (nor any
+# Seakeeper); chosen: the spool-up power of the seed's Table 3-1 units of neighbouring H
+# (Seakeeper 5 and 9: 2,000 W), an upper bound (docs/stabilizer_physics.md); the Table 3-1 units
+# their own spool-up power
+RUNNING_POWER_7000 = 2000.0
+CUSHION_TRAVEL = math.radians(10.0)  # cushion from 50 deg to the Model 7000's 60 deg
+CUSHION_START = math.radians(50.0)
+
+
+def preset_defaults(kw: dict[str, Any]) -> dict[str, Any]:
+    """Fill the kwargs left None from `kw["preset"]` in place; returns the preset's other
+    numbers (units per gyro, unit name, running power, hull damping). "seed": the issue-15
+    default (the seed's Table 3-1 Seakeeper 9 on the yacht, electric drive, inelastic stops,
+    rule-of-thumb damping). "seakeeper_7000": one Seakeeper Model 7000 on the yacht (the MSS
+    vessel: 2 x 4 Table 3-1 Seakeeper 35), the hydraulic brake, cushioned stops, Ikeda damping
+    (docs/stabilizer_physics.md)."""
+    preset = check_choice("preset", kw["preset"], PRESETS)
+    hull_key = kw["hull"] if isinstance(kw["hull"], str) else "yacht"
+    if preset == "seed":
+        gyro = seakeeper_gyro("9")
+        unit, n, k, name, power = None, 1, 1, "Seakeeper 9 (seed Table 3-1)", 0.0
+        fill = {"gimbal_drive": "electric", "max_gimbal_angle": math.pi / 3,
+                "max_drive_power": 1000.0, "hull_damping": "rule_of_thumb"}  # fmt: skip
+    else:
+        unit, n, k = UNIT_OF_HULL.get(hull_key, UNIT_OF_HULL["yacht"])
+        gyro = unit.gyro_params()
+        name = unit.name
+        power = RUNNING_POWER_7000 if unit is SK.SEAKEEPER_7000 else unit.spool_up_power
+        fill = {"gimbal_drive": "brake", "max_gimbal_angle": CUSHION_START,
+                "max_drive_power": None, "hull_damping": "ikeda"}  # fmt: skip
+    if kw.get("rotor_inertia") is not None or kw.get("rotor_speed") is not None:
+        name = f"gyro (rotor kwargs; {preset} preset)"
+    fill.update(rotor_inertia=gyro.rotor_inertia, gimbal_inertia=gyro.gimbal_inertia,
+                rotor_speed=gyro.rotor_speed, n_gyros=n)  # fmt: skip
+    for key, value in fill.items():
+        if kw.get(key) is None:
+            kw[key] = value
+    if kw["units_per_gyro"] is not None:
+        k = check_int("units_per_gyro", kw["units_per_gyro"], 1, 64)
+    damping = check_choice("hull_damping", kw["hull_damping"], HULL_DAMPINGS)
+    return {"preset": preset, "units": k, "unit_name": name,
+            "unit_power": power, "hull_damping": damping}  # fmt: skip
+
+
+def unit_drive(
+    machine: DriveParams, gyro: GyroParams, units: int, p_d: float, kw: dict[str, Any]
+) -> tuple[DriveParams, BrakeParams, float]:
+    """The Seakeeper preset's drive hardware (docs/stabilizer_physics.md, "The unit"): the drive
+    `machine` of `build_machine` given the unit's rate cap r_cap = max_rate, its cushioned
+    stops (`ship.brake.BrakeParams.design` for the lumped gyro: H, J_g, design roll rate p_d,
+    travel `CUSHION_TRAVEL` beyond max_angle) and torque ratings: brake relief T_r
+    (`BrakeParams.relief_torque`), electric max_torque = H p_d (holds the gyroscopic torque up
+    to the design roll rate) and motoring power H p_d r_cap; the passive drives' brake valve as
+    given. Returns (drive, cushion, mount-moment bound per unit in N m):
+    sqrt((H r_cap)^2 + (T + M_s)^2) / units, T the drive's torque rating (the cap's too), M_s the
+    cushion's largest torque (`BrakeParams.stop_moment_bound`)."""
+    h = abs(gyro.angular_momentum)
+    jg = gyro.gimbal_inertia + gyro.rotor_j1
+    r = machine.max_rate
+    cushion = BrakeParams.design(max(h, 1e-9), jg, p_d, r, CUSHION_TRAVEL, machine.max_angle)
+    rep: dict[str, Any] = {"rate_cap": r, "stop_stiffness": cushion.stop_stiffness,
+                           "stop_damping": cushion.stop_damping}  # fmt: skip
+    if machine.kind == "electric":
+        if kw["max_gimbal_torque"] is None:
+            rep["max_torque"] = max(h * p_d, machine.max_torque if h == 0.0 else 0.0)
+        if kw["max_drive_power"] is None:
+            rep["max_power"] = rep.get("max_torque", machine.max_torque) * r
+        rep["cap_torque"] = rep.get("max_torque", machine.max_torque)
+    elif machine.kind == "brake":
+        if kw["max_gimbal_torque"] is None:
+            rep["max_torque"] = cushion.relief_torque
+        rep["cap_torque"] = rep.get("max_torque", machine.max_torque)
+    else:  # passive: the same relief valve holds the cap
+        rep["cap_torque"] = cushion.relief_torque
+    drive = dataclasses.replace(machine, **rep)
+    t = drive.cap_torque if not drive.active else max(drive.max_torque, drive.cap_torque)
+    bound = math.hypot(h * r, t + cushion.stop_moment_bound) / units
+    return drive, cushion, bound
+
+
+def warn_capacity(scene: Scene) -> None:
+    """One-line warning when the gyros' capacity in the design sea (`ship.seakeeper.capacity`:
+    regular beam sea at the roll resonance, steepness 1/50, the rate cap) is far from 1
+    (below 0.5 or above 2): the gyros are then too small or much larger than the hull needs."""
+    hull, gyro = scene.hull, scene.gyro
+    if "hydrostatic_restoring" not in scene.effects or "gyroscopic" not in scene.effects:
+        return
+    if gyro.angular_momentum == 0.0 or hull.roll_stiffness <= 0.0:
+        return
+    unit = SK.GyroUnit("lumped", abs(gyro.angular_momentum) * scene.n_gyros,
+                       abs(gyro.rotor_speed) / RPM if gyro.rotor_speed else 1.0, "scene",
+                       max_precession=min(scene.max_gimbal_angle, math.pi / 2))  # fmt: skip
+    try:
+        cap = SK.capacity(unit, hull, 1, max_precession_rate=scene.max_precession_rate)
+    except (ValueError, ZeroDivisionError):
+        return
+    if not 0.5 <= cap <= 2.0:
+        warnings.warn(
+            f"GyroStabilizer-v0: capacity {cap:.2f} of {scene.n_gyros} x {scene.units} "
+            f"{scene.unit_name or 'gyro'} on this hull (design sea: beam, resonance, "
+            "steepness 1/50; ship.seakeeper.capacity), far from 1",
+            stacklevel=4,
+        )
+
+
 GIMBAL_DRIVES = (
     "electric", "brake", "damper", "pendulous", "spring", "kinematic", "servo", "torque",
 )  # fmt: skip
@@ -147,23 +289,30 @@ def build_hull(
     roll_stiffness: float | None,
     roll_damping: float | None,
     effective_slope: float | None,
+    hull_damping: str = "rule_of_thumb",
+    speed: float = 0.0,
 ) -> Hull:
     """The `Hull`: a `Hull`, a preset name, or a dict of field overrides on the yacht; the v0
-    kwargs ship_inertia, roll_stiffness, roll_damping, effective_slope override it last."""
+    kwargs ship_inertia, roll_stiffness, roll_damping, effective_slope override it last.
+    hull_damping "ikeda": the yacht preset's roll damping from its particulars
+    (`Hull.yacht(roll_damping_method="ikeda")`); a given Hull keeps its own."""
     if hull is None:
-        base = Hull.yacht()
+        base = Hull.yacht(roll_damping_method=hull_damping, speed=speed)
     elif isinstance(hull, Hull):
         base = hull
     elif isinstance(hull, str):
         if hull not in HULL_PRESETS:
             raise ValueError(f"hull: must be one of {sorted(HULL_PRESETS)}, got {hull!r}")
-        base = HULL_PRESETS[hull]()
+        base = (Hull.yacht(roll_damping_method=hull_damping, speed=speed) if hull == "yacht"
+                else HULL_PRESETS[hull]())  # fmt: skip
     elif isinstance(hull, dict):
         bad = sorted(set(hull) - {f.name for f in dataclasses.fields(Hull)})
         if bad:
             raise ValueError(f"hull: unknown fields {bad}")
         try:
-            base = dataclasses.replace(Hull.yacht(), **hull)
+            base = dataclasses.replace(
+                Hull.yacht(roll_damping_method=hull_damping, speed=speed), **hull
+            )
         except ValueError as exc:  # Hull names its field: say it is inside `hull`
             raise ValueError(f"hull.{exc}") from None
     else:
@@ -226,7 +375,9 @@ def build_machine(
     chosen (a bad value is an error even where the drive ignores it)."""
     loop_gain = _optional("gimbal_loop_gain", kw["gimbal_loop_gain"], MAX_DRIVE_GAIN, True)
     max_torque = _optional("max_gimbal_torque", kw["max_gimbal_torque"], MAX_DRIVE_GAIN, True)
-    max_power = _positive("max_drive_power", kw["max_drive_power"], MAX_DRIVE_GAIN)
+    max_power = 1000.0  # None: the Seakeeper preset sizes it (`unit_drive`)
+    if kw["max_drive_power"] is not None:
+        max_power = _positive("max_drive_power", kw["max_drive_power"], MAX_DRIVE_GAIN)
     bandwidth = _positive("drive_bandwidth", kw["drive_bandwidth"], MAX_BANDWIDTH)
     damping = _optional("gimbal_damping", kw["gimbal_damping"], MAX_DRIVE_GAIN)
     stiffness = _optional("gimbal_stiffness", kw["gimbal_stiffness"], MAX_DRIVE_GAIN)
