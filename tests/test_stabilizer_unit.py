@@ -192,3 +192,71 @@ def test_ikeda_hull_damping_is_the_method_at_the_stated_particulars():
     assert gym.make(ENV_ID, hull_damping="rule_of_thumb").unwrapped.ship.roll_damping == (
         rule.roll_damping
     )
+
+
+SENSED = (*DEFAULT_EFFECTS, "sensor_noise", "sensor_delay")
+
+
+def test_sensor_noise_has_the_documented_spread_and_keeps_the_true_reward():
+    from mf_envs.envs.gyro_stabilizer.spec import sensor_sigma
+
+    env = gym.make(ENV_ID, effects=(*DEFAULT_EFFECTS, "sensor_noise"), episode_seconds=200.0)
+    clean = gym.make(ENV_ID, episode_seconds=200.0)
+    sigma = sensor_sigma(0.05)
+    # 0.007 deg/s/sqrt(Hz) (BMI270) over the 10 Hz Nyquist band of a 20 Hz control rate
+    assert sigma[1] == pytest.approx(math.radians(0.007) * math.sqrt(10.0))
+    o1, _ = env.reset(seed=7)
+    o2, _ = clean.reset(seed=7)
+    err, rew = [], []
+    for _ in range(4000):
+        a = np.zeros(1, np.float32)
+        n1, r1, _, _, _ = env.step(a)
+        n2, r2, _, _, _ = clean.step(a)
+        err.append(n1.astype(float) - n2)
+        rew.append(r1 - r2)
+    err = np.array(err)
+    # the same physics (noise only on what the controller sees): the spread is the noise's
+    np.testing.assert_allclose(err.std(0), sigma, rtol=0.1)
+    assert np.max(np.abs(rew)) == 0.0  # the reward scores the true roll
+    env.reset(seed=7)
+    again = [env.step(np.zeros(1, np.float32))[0] for _ in range(5)]
+    env.reset(seed=7)
+    np.testing.assert_array_equal(again, [env.step(np.zeros(1, np.float32))[0] for _ in range(5)])
+
+
+def test_sensor_delay_returns_the_reading_of_whole_control_steps_ago():
+    env = gym.make(ENV_ID, effects=(*DEFAULT_EFFECTS, "sensor_delay"), sensor_delay_time=0.1)
+    clean = gym.make(ENV_ID)
+    assert env.unwrapped._delay == 2  # 0.1 s = two 0.05 s control steps
+    rng = np.random.default_rng(0)
+    d0, _ = env.reset(seed=3)
+    c0, _ = clean.reset(seed=3)
+    np.testing.assert_array_equal(d0, c0)
+    seen, true = [d0], [c0]
+    for a in rng.uniform(-1, 1, 50):
+        act = np.array([a], np.float32)
+        seen.append(env.step(act)[0])
+        true.append(clean.step(act)[0])
+    np.testing.assert_array_equal(seen[3:], true[1:-2])  # obs at step k = state at k - 2
+    np.testing.assert_array_equal(seen[1], true[0])  # before the delay has passed: the start
+    with pytest.raises(ValueError, match="effects"):
+        gym.make_vec(ENV_ID, 2, vectorization_mode="vector_entry_point", effects=SENSED)
+
+
+def test_spool_up_reset_option_slows_the_rotor_and_draws_spool_up_power():
+    env = gym.make(ENV_ID).unwrapped
+    h = env.angular_momentum
+    env.reset(seed=2, options={"spool_up": 0.4})
+    for a in np.random.default_rng(2).uniform(-1, 1, 40):
+        info = env.step(np.array([a], np.float32))[4]
+        expect = -0.4 * h * info["gimbal_rate"] * math.cos(info["gimbal_angle"])
+        assert info["gyro_moment"] == pytest.approx(expect, rel=1e-12, abs=1e-9)
+        assert info["rotor_power"] == env.spool_up_power == 2000.0
+    env.reset(seed=2)  # a reset without the option: full speed, running power
+    info = env.step(np.ones(1, np.float32))[4]
+    assert info["gyro_moment"] == pytest.approx(
+        -h * info["gimbal_rate"] * math.cos(info["gimbal_angle"]), rel=1e-12
+    )
+    for bad in (0.0, 1.5, -0.1, math.nan):
+        with pytest.raises(ValueError, match="spool_up"):
+            env.reset(options={"spool_up": bad})

@@ -79,6 +79,7 @@ class Scene:
     units: int = 1  # identical units lumped in each gyro (`gyro` is their sum)
     unit_name: str = ""
     rotor_power: float = 0.0  # W, running power of all units (0: not modelled, seed preset)
+    spool_up_power: float = 0.0  # W, all units' spool-up power (reset option spool_up)
     design_roll_rate: float = math.nan  # rad/s, the drive sizing's p_d (Seakeeper preset)
     cushion: Any = None  # `ship.brake.BrakeParams` of the cushioned stops (None: inelastic)
     mount_moment_bound: float = math.inf  # N m per unit (`unit_drive`)
@@ -112,6 +113,7 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
                             c["max_gimbal_angle"], kw)  # fmt: skip
     c.update(preset=pre["preset"], units=k, unit_name=pre["unit_name"],
              rotor_power=pre["unit_power"] * k * c["n_gyros"],
+             spool_up_power=pre["spool_power"] * k * c["n_gyros"],
              hull_damping=pre["hull_damping"])  # fmt: skip
     if pre["preset"] != "seed" and machine is not None:  # the Seakeeper unit's hardware
         p_d = kw["design_roll_rate"]
@@ -192,6 +194,7 @@ def preset_defaults(kw: dict[str, Any]) -> dict[str, Any]:
     if preset == "seed":
         gyro = seakeeper_gyro("9")
         unit, n, k, name, power = None, 1, 1, "Seakeeper 9 (seed Table 3-1)", 0.0
+        spool = SK.SEED_TABLE_3_1["9"].spool_up_power
         fill = {"gimbal_drive": "electric", "max_gimbal_angle": math.pi / 3,
                 "max_drive_power": 1000.0, "hull_damping": "rule_of_thumb"}  # fmt: skip
     else:
@@ -199,6 +202,7 @@ def preset_defaults(kw: dict[str, Any]) -> dict[str, Any]:
         gyro = unit.gyro_params()
         name = unit.name
         power = RUNNING_POWER_7000 if unit is SK.SEAKEEPER_7000 else unit.spool_up_power
+        spool = power  # the same motor's rating (RUNNING_POWER_7000's note)
         fill = {"gimbal_drive": "brake", "max_gimbal_angle": CUSHION_START,
                 "max_drive_power": None, "hull_damping": "ikeda"}  # fmt: skip
     if kw.get("rotor_inertia") is not None or kw.get("rotor_speed") is not None:
@@ -212,7 +216,7 @@ def preset_defaults(kw: dict[str, Any]) -> dict[str, Any]:
         k = check_int("units_per_gyro", kw["units_per_gyro"], 1, 64)
     damping = check_choice("hull_damping", kw["hull_damping"], HULL_DAMPINGS)
     return {"preset": preset, "units": k, "unit_name": name,
-            "unit_power": power, "hull_damping": damping}  # fmt: skip
+            "unit_power": power, "spool_power": spool, "hull_damping": damping}  # fmt: skip
 
 
 def unit_drive(

@@ -187,6 +187,8 @@ class GyroStabilizerEnv(MFEnv):
         units_per_gyro: int | None = None,
         design_roll_rate: float | None = None,
         hull_damping: str | None = None,
+        sensor_noise_scale: float = 1.0,
+        sensor_delay_time: float = 0.1,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
@@ -208,6 +210,18 @@ class GyroStabilizerEnv(MFEnv):
         self._obs = np.zeros(spec.OBS.size, dtype=np.float32)
         self._y, self._R = initial_state()
         self._t, self._steps = 0.0, 0
+        # what the controller sees: opt-in effects, nothing to do per step when both are off
+        scale = check_range("sensor_noise_scale", sensor_noise_scale, 0.0, 1e3)
+        delay = check_range("sensor_delay_time", sensor_delay_time, 0.0, 60.0)
+        self._sigma = (
+            spec.sensor_sigma(self.control_dt, scale) if "sensor_noise" in self.effects else None
+        )
+        self._delay = (
+            max(1, round(delay / self.control_dt)) if "sensor_delay" in self.effects else 0
+        )
+        self._sensed = self._sigma is not None or self._delay > 0
+        self._buf = np.zeros((self._delay + 1, spec.OBS.size), dtype=np.float32)
+        self._spool = 1.0  # rotor speed fraction of this episode (reset option spool_up)
 
     @property
     def angular_momentum(self) -> float:
@@ -239,16 +253,36 @@ class GyroStabilizerEnv(MFEnv):
             roll, y, self._out, self._steps * self.control_dt, terms, self._energy
         )
         truncated = self._steps >= self.max_steps
+        if self._sensed and ok:
+            obs = self._sense(obs)
         if not (ok and math.isfinite(reward)):
             return self._finish_step(obs, reward, False, truncated, info, False)
         if self.render_mode is not None:  # what render() draws if the state later blows up
             self._frame_state = (R.copy(), float(y[3]), self._t)
         return self._step_ok(obs, reward, False, truncated, info)
 
+    def _sense(self, obs: np.ndarray) -> np.ndarray:
+        """The observation as the controller sees it (`sensor_noise`, `sensor_delay`): noise
+        from `self.np_random` (spec.sensor_sigma), then the reading of `_delay` control steps
+        ago; clipped to the observation bounds. The reward keeps the true roll."""
+        if self._sigma is not None:
+            noisy = obs + self._sigma * self.np_random.standard_normal(obs.shape[0])
+            obs = np.clip(noisy, -OBS_HIGH, OBS_HIGH).astype(np.float32)
+        if self._delay > 0:
+            self._buf[:-1] = self._buf[1:]
+            self._buf[-1] = obs
+            obs = self._buf[0].copy()
+        return obs
+
     def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         phi_max = self.max_gimbal_angle if "gimbal_limits" in self.effects else math.pi
         bounds = {"roll": 0.5 * math.pi, "roll_rate": 10.0, "gimbal_angle": phi_max}
         for key, value in opts.items():
+            if key == "spool_up":  # rotor speed fraction, (0, 1]
+                opts[key] = check_range(key, value, 0.0, 1.0)
+                if opts[key] <= 0.0:
+                    raise ValueError(f"spool_up: must be in (0, 1], got {value!r}")
+                continue
             b = bounds.get(key, 4.0 * math.pi)
             opts[key] = check_range(key, value, -b, b)
         return opts
@@ -260,6 +294,10 @@ class GyroStabilizerEnv(MFEnv):
         gimbal = float(opts.get("gimbal_angle", 0.0))
         phase = float(opts.get("wave_phase", rng.uniform(*rows.PHASE0)))
         self._P = rows.pack(self.scene, phase)
+        self._spool = float(opts.get("spool_up", 1.0))
+        if self._spool < 1.0:  # the rotor spooling up: slower, drawing its spool-up power
+            self._P[Slot.PSID] *= self._spool
+            self._P[Slot.PROTOR] = self.spool_up_power
         self._tab = (
             rows.irregular_table(self.scene, self.np_random, self.episode_seconds)
             if "irregular_waves" in self.effects
@@ -276,7 +314,11 @@ class GyroStabilizerEnv(MFEnv):
         terms0 = {"roll": 0.0, "effort": 0.0}
         info = spec.step_info(roll0, self._y, self._out, 0.0, terms0, 0.0)
         self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
-        return self._obs.copy(), info
+        obs = self._obs.copy()
+        if self._sensed:
+            self._buf[:] = obs  # the sensors read the initial state until the delay has passed
+            obs = self._sense(obs)
+        return obs, info
 
     def batch_row(self) -> dict[str, Any]:
         """What the native vector env copies into its row after a reset (names of

@@ -23,7 +23,26 @@ OBS = ObsLayout(
 )
 REWARD_TERMS = ("roll", "effort")
 N_OUT = 6  # the ship kernel's out vector (`physics.ship.kernels.N_OUT`), reported in the info
-RESET_OPTIONS = ("roll", "roll_rate", "gimbal_angle", "wave_phase")
+RESET_OPTIONS = ("roll", "roll_rate", "gimbal_angle", "wave_phase", "spool_up")
+# `sensor_noise` (opt-in effect): white noise per observation, standard deviation per sample at
+# the control rate f_s = 1 / control_dt over the Nyquist band f_s / 2 (docs/stabilizer_physics.md
+# §6): rate gyro 0.007 deg/s/sqrt(Hz) (Bosch BMI270, typical, performance mode), roll from the
+# accelerometer 0.16 mg/sqrt(Hz) / g rad/sqrt(Hz) (same sensor), gimbal angle from a 12-bit
+# absolute encoder (quantisation 2 pi / 4096 / sqrt(12) rad), gimbal rate its difference over
+# one control step (sqrt(2) x that / control_dt). Densities in SI: rad/s/sqrt(Hz), rad/sqrt(Hz).
+GYRO_NOISE_DENSITY = math.radians(0.007)
+TILT_NOISE_DENSITY = 0.16e-3
+ENCODER_NOISE = 2.0 * math.pi / 4096.0 / math.sqrt(12.0)
+
+
+def sensor_sigma(control_dt: float, scale: float = 1.0) -> np.ndarray:
+    """Per-sample noise standard deviations (OBS order, SI) at control step control_dt (s)."""
+    band = math.sqrt(0.5 / control_dt)  # sqrt(Nyquist bandwidth), sqrt(Hz)
+    rate = GYRO_NOISE_DENSITY * band
+    return scale * np.array([TILT_NOISE_DENSITY * band, rate, rate, rate, ENCODER_NOISE,
+                             math.sqrt(2.0) * ENCODER_NOISE / control_dt])  # fmt: skip
+
+
 # step and reset info, SI; the state is reported as is, also after a numerical failure
 INFO_KEYS = (
     "roll",  # rad, roll angle (unclipped)

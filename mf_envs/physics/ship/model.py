@@ -53,6 +53,9 @@ from mf_envs.physics.ship.params import GyroParams, ShipParams
 
 SHIP_EFFECTS: dict[str, str] = {
     "gimbal_damping": "bearing friction c phi' of an active gimbal drive (torque drive)",
+    # what the controller sees (GyroStabilizer-v0's observation; no physics term)
+    "sensor_noise": "IMU and gimbal-encoder noise on the observation (GyroStabilizer-v0)",
+    "sensor_delay": "observation delayed by whole control steps (GyroStabilizer-v0)",
     "quadratic_roll_damping": "quadratic roll damping -B44q |p| p (MSS K_|p|p)",
 }
 SHIP_EFFECTS.update(
