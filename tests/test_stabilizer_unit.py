@@ -6,7 +6,7 @@ The acceptance stress test (`test_unit_holds_its_limits_under_abusive_actions`):
 bang-bang, chatter and random actions on the default scene and in JONSWAP Hs 1.5 m (Tp 5 s): the
 precession rate never exceeds the cap by more than 10 %, the gimbal never passes the cushion's
 travel, no numerical failure, the mount moment below the documented bound
-(`build.unit_drive`). Stepped on the native vector env (20 rows, one per seed), which equals
+(`ship.unit.unit_drive`). Stepped on the native vector env (20 rows, one per seed), which equals
 the single env bit for bit (tests/test_vector_envs.py).
 """
 

@@ -16,7 +16,7 @@ with hull "mss_naval_vessel", off for other hulls; False: off |
 spring, kinematic ("servo" = kinematic, "torque" = electric: the v0 names) |
 | gimbal_loop_gain | None | K_p of the rate loop, N m s/rad (sets drive_bandwidth) |
 | max_gimbal_torque | None | drive torque limit, N m (None: seed 0.1 H; Seakeeper preset:
-brake relief T_r, electric H p_d, `unit_drive`) |
+brake relief T_r, electric H p_d, `ship.unit.unit_drive`) |
 | max_drive_power | None | motoring power limit, W (None: seed 1000; Seakeeper H p_d r_cap) |
 | drive_bandwidth | 20 | rate-loop bandwidth, rad/s |
 | gimbal_damping | None | brake c, N m s/rad (passive default n H^2 / sqrt(C44 J)) |
@@ -37,16 +37,13 @@ from typing import Any
 from mf_envs._validate import check_choice, check_int, check_range, check_shape
 from mf_envs.effects import resolve_effects
 from mf_envs.envs.base import MAX_SUBSTEPS
-from mf_envs.physics import constants
-from mf_envs.physics.ship import seakeeper as SK
-from mf_envs.physics.ship.brake import BrakeParams
+from mf_envs.physics.ship import unit as U
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DriveParams, drive_machine, drive_stable_step
 from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.model import SHIP_EFFECTS, GimbalDrive
-from mf_envs.physics.ship.params import GyroParams, ShipParams, capacity_ratio, seakeeper_gyro
-
-RPM = constants.RPM
+from mf_envs.physics.ship.params import GyroParams, ShipParams, capacity_ratio
+from mf_envs.physics.ship.unit import CUSHION_START, CUSHION_TRAVEL  # noqa: F401 (re-exported)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,7 +79,7 @@ class Scene:
     spool_up_power: float = 0.0  # W, all units' spool-up power (reset option spool_up)
     design_roll_rate: float = math.nan  # rad/s, the drive sizing's p_d (Seakeeper preset)
     cushion: Any = None  # `ship.brake.BrakeParams` of the cushioned stops (None: inelastic)
-    mount_moment_bound: float = math.inf  # N m per unit (`unit_drive`)
+    mount_moment_bound: float = math.inf  # N m per unit (`ship.unit.unit_drive`)
     hull_damping: str = "rule_of_thumb"
     table_dt: float = math.nan  # the irregular-sea table's step, set by `timed`
 
@@ -90,7 +87,7 @@ class Scene:
 def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
     """The `Scene` of the env's kwargs `kw` (all but render_mode); ValueError names the kwarg."""
     kw = dict(kw)
-    pre = preset_defaults(kw)  # fills the kwargs left None from the preset
+    pre = U.preset_defaults(kw)  # fills the kwargs left None from the preset
     kind = check_choice("gimbal_drive", kw["gimbal_drive"], GIMBAL_DRIVES)
     kind = DRIVE_ALIASES.get(kind, kind)
     tau_s = check_range("servo_time_constant", kw["servo_time_constant"], 1e-3, 10.0)
@@ -117,10 +114,9 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
              hull_damping=pre["hull_damping"])  # fmt: skip
     if pre["preset"] != "seed" and machine is not None:  # the Seakeeper unit's hardware
         p_d = kw["design_roll_rate"]
-        if p_d is None:  # a 10 deg roll at the natural roll period (docs/stabilizer_physics.md)
-            p_d = math.radians(10.0) * math.sqrt(hull.roll_stiffness / hull.roll_inertia())
-        p_d = _positive("design_roll_rate", p_d, 10.0)
-        machine, cushion, bound = unit_drive(machine, c["gyro"], k, p_d, kw)
+        p_d = _positive("design_roll_rate", U.design_roll_rate(hull) if p_d is None else p_d, 10)
+        given = (kw["max_gimbal_torque"] is not None, kw["max_drive_power"] is not None)
+        machine, cushion, bound = U.unit_drive(machine, c["gyro"], k, p_d, *given)
         c.update(design_roll_rate=p_d, cushion=cushion, mount_moment_bound=bound)
     c["drive"] = GimbalDrive("servo" if machine is None else "torque", servo_time_constant=tau_s,
                              max_rate=c["max_precession_rate"], max_angle=c["max_gimbal_angle"],
@@ -134,7 +130,12 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
              roll_scale=check_range("roll_scale", kw["roll_scale"], 1e-6, 10.0))  # fmt: skip
     # effort_weight >= 0: a negative weight would pay for drive energy
     scene = Scene(**c, effort_weight=check_range("effort_weight", kw["effort_weight"], 0.0, 1e6))
-    warn_capacity(scene)
+    if {"hydrostatic_restoring", "gyroscopic"} <= scene.effects:
+        msg = U.capacity_message(scene.hull, scene.gyro, scene.n_gyros, scene.units,
+                                 scene.unit_name or "gyro", scene.max_gimbal_angle,
+                                 scene.max_precession_rate)  # fmt: skip
+        if msg:
+            warnings.warn(msg, stacklevel=3)
     return scene
 
 
@@ -164,120 +165,6 @@ def _sea(kw: dict[str, Any], ship: ShipParams, effects: frozenset) -> dict[str, 
 def timed(scene: Scene, physics_dt: float) -> Scene:
     """The scene with the irregular-sea table step of the env's (rounded) physics step."""
     return dataclasses.replace(scene, table_dt=min(0.5 * physics_dt, 0.01))
-
-
-PRESETS = ("seakeeper_7000", "seed")
-HULL_DAMPINGS = ("ikeda", "rule_of_thumb")
-# the Seakeeper preset's unit on each hull preset: (unit, gyros, units per gyro), docs page
-UNIT_OF_HULL = {
-    "yacht": (SK.SEAKEEPER_7000, 1, 1),
-    "mss_naval_vessel": (SK.SEED_TABLE_3_1["35"], 2, 4),
-}
-# W per unit: rotor running power. No maker's figure was found for the Model 7000 (nor any
-# Seakeeper); chosen: the spool-up power of the seed's Table 3-1 units of neighbouring H
-# (Seakeeper 5 and 9: 2,000 W), an upper bound (docs/stabilizer_physics.md); the Table 3-1 units
-# their own spool-up power
-RUNNING_POWER_7000 = 2000.0
-CUSHION_TRAVEL = math.radians(10.0)  # cushion from 50 deg to the Model 7000's 60 deg
-CUSHION_START = math.radians(50.0)
-
-
-def preset_defaults(kw: dict[str, Any]) -> dict[str, Any]:
-    """Fill the kwargs left None from `kw["preset"]` in place; returns the preset's other
-    numbers (units per gyro, unit name, running power, hull damping). "seed": the issue-15
-    default (the seed's Table 3-1 Seakeeper 9 on the yacht, electric drive, inelastic stops,
-    rule-of-thumb damping). "seakeeper_7000": one Seakeeper Model 7000 on the yacht (the MSS
-    vessel: 2 x 4 Table 3-1 Seakeeper 35), the hydraulic brake, cushioned stops, Ikeda damping
-    (docs/stabilizer_physics.md)."""
-    preset = check_choice("preset", kw["preset"], PRESETS)
-    hull_key = kw["hull"] if isinstance(kw["hull"], str) else "yacht"
-    if preset == "seed":
-        gyro = seakeeper_gyro("9")
-        unit, n, k, name, power = None, 1, 1, "Seakeeper 9 (seed Table 3-1)", 0.0
-        spool = SK.SEED_TABLE_3_1["9"].spool_up_power
-        fill = {"gimbal_drive": "electric", "max_gimbal_angle": math.pi / 3,
-                "max_drive_power": 1000.0, "hull_damping": "rule_of_thumb"}  # fmt: skip
-    else:
-        unit, n, k = UNIT_OF_HULL.get(hull_key, UNIT_OF_HULL["yacht"])
-        gyro = unit.gyro_params()
-        name = unit.name
-        power = RUNNING_POWER_7000 if unit is SK.SEAKEEPER_7000 else unit.spool_up_power
-        spool = power  # the same motor's rating (RUNNING_POWER_7000's note)
-        fill = {"gimbal_drive": "brake", "max_gimbal_angle": CUSHION_START,
-                "max_drive_power": None, "hull_damping": "ikeda"}  # fmt: skip
-    if kw.get("rotor_inertia") is not None or kw.get("rotor_speed") is not None:
-        name = f"gyro (rotor kwargs; {preset} preset)"
-    fill.update(rotor_inertia=gyro.rotor_inertia, gimbal_inertia=gyro.gimbal_inertia,
-                rotor_speed=gyro.rotor_speed, n_gyros=n)  # fmt: skip
-    for key, value in fill.items():
-        if kw.get(key) is None:
-            kw[key] = value
-    if kw["units_per_gyro"] is not None:
-        k = check_int("units_per_gyro", kw["units_per_gyro"], 1, 64)
-    damping = check_choice("hull_damping", kw["hull_damping"], HULL_DAMPINGS)
-    return {"preset": preset, "units": k, "unit_name": name,
-            "unit_power": power, "spool_power": spool, "hull_damping": damping}  # fmt: skip
-
-
-def unit_drive(
-    machine: DriveParams, gyro: GyroParams, units: int, p_d: float, kw: dict[str, Any]
-) -> tuple[DriveParams, BrakeParams, float]:
-    """The Seakeeper preset's drive hardware (docs/stabilizer_physics.md, "The unit"): the drive
-    `machine` of `build_machine` given the unit's rate cap r_cap = max_rate, its cushioned
-    stops (`ship.brake.BrakeParams.design` for the lumped gyro: H, J_g, design roll rate p_d,
-    travel `CUSHION_TRAVEL` beyond max_angle) and torque ratings: brake relief T_r
-    (`BrakeParams.relief_torque`), electric max_torque = H p_d (holds the gyroscopic torque up
-    to the design roll rate) and motoring power H p_d r_cap; the passive drives' brake valve as
-    given. Returns (drive, cushion, mount-moment bound per unit in N m):
-    sqrt((H r_cap)^2 + (T + M_s)^2) / units, T the drive's torque rating (the cap's too), M_s the
-    cushion's largest torque (`BrakeParams.stop_moment_bound`)."""
-    h = abs(gyro.angular_momentum)
-    jg = gyro.gimbal_inertia + gyro.rotor_j1
-    r = machine.max_rate
-    cushion = BrakeParams.design(max(h, 1e-9), jg, p_d, r, CUSHION_TRAVEL, machine.max_angle)
-    rep: dict[str, Any] = {"rate_cap": r, "stop_stiffness": cushion.stop_stiffness,
-                           "stop_damping": cushion.stop_damping}  # fmt: skip
-    if machine.kind == "electric":
-        if kw["max_gimbal_torque"] is None:
-            rep["max_torque"] = max(h * p_d, machine.max_torque if h == 0.0 else 0.0)
-        if kw["max_drive_power"] is None:
-            rep["max_power"] = rep.get("max_torque", machine.max_torque) * r
-        rep["cap_torque"] = rep.get("max_torque", machine.max_torque)
-    elif machine.kind == "brake":
-        if kw["max_gimbal_torque"] is None:
-            rep["max_torque"] = cushion.relief_torque
-        rep["cap_torque"] = rep.get("max_torque", machine.max_torque)
-    else:  # passive: the same relief valve holds the cap
-        rep["cap_torque"] = cushion.relief_torque
-    drive = dataclasses.replace(machine, **rep)
-    t = drive.cap_torque if not drive.active else max(drive.max_torque, drive.cap_torque)
-    bound = math.hypot(h * r, t + cushion.stop_moment_bound) / units
-    return drive, cushion, bound
-
-
-def warn_capacity(scene: Scene) -> None:
-    """One-line warning when the gyros' capacity in the design sea (`ship.seakeeper.capacity`:
-    regular beam sea at the roll resonance, steepness 1/50, the rate cap) is far from 1
-    (below 0.5 or above 2): the gyros are then too small or much larger than the hull needs."""
-    hull, gyro = scene.hull, scene.gyro
-    if "hydrostatic_restoring" not in scene.effects or "gyroscopic" not in scene.effects:
-        return
-    if gyro.angular_momentum == 0.0 or hull.roll_stiffness <= 0.0:
-        return
-    unit = SK.GyroUnit("lumped", abs(gyro.angular_momentum) * scene.n_gyros,
-                       abs(gyro.rotor_speed) / RPM if gyro.rotor_speed else 1.0, "scene",
-                       max_precession=min(scene.max_gimbal_angle, math.pi / 2))  # fmt: skip
-    try:
-        cap = SK.capacity(unit, hull, 1, max_precession_rate=scene.max_precession_rate)
-    except (ValueError, ZeroDivisionError):
-        return
-    if not 0.5 <= cap <= 2.0:
-        warnings.warn(
-            f"GyroStabilizer-v0: capacity {cap:.2f} of {scene.n_gyros} x {scene.units} "
-            f"{scene.unit_name or 'gyro'} on this hull (design sea: beam, resonance, "
-            "steepness 1/50; ship.seakeeper.capacity), far from 1",
-            stacklevel=4,
-        )
 
 
 GIMBAL_DRIVES = (
@@ -379,7 +266,7 @@ def build_machine(
     chosen (a bad value is an error even where the drive ignores it)."""
     loop_gain = _optional("gimbal_loop_gain", kw["gimbal_loop_gain"], MAX_DRIVE_GAIN, True)
     max_torque = _optional("max_gimbal_torque", kw["max_gimbal_torque"], MAX_DRIVE_GAIN, True)
-    max_power = 1000.0  # None: the Seakeeper preset sizes it (`unit_drive`)
+    max_power = 1000.0  # None: the Seakeeper preset sizes it (`ship.unit.unit_drive`)
     if kw["max_drive_power"] is not None:
         max_power = _positive("max_drive_power", kw["max_drive_power"], MAX_DRIVE_GAIN)
     bandwidth = _positive("drive_bandwidth", kw["drive_bandwidth"], MAX_BANDWIDTH)
