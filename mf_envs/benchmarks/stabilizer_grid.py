@@ -21,7 +21,7 @@ Encounter: a stern-quartering sea met at 5 m/s is met at w_e = w - w^2 U cos(bet
 g / (4 U cos beta) = 0.69 rad/s, far below the roll resonance 1.70 rad/s (`physics.ship.seas`).
 
     python -m mf_envs.benchmarks.stabilizer_grid [--seeds 5] [--seconds 120] [--out DIR]
-        [--quick]
+        [--quick] [--policy PPO_FOLDER ...]
 
 writes `stabilizer_grid.csv` and `stabilizer_grid.md` (the table of docs/stabilizer_physics.md
 §5) into DIR (default `bench_out/`), with a progress bar per episode batch.
@@ -67,8 +67,12 @@ def cells(quick: bool = False) -> list[dict[str, Any]]:
     return out
 
 
+POLICIES: dict[str, Any] = {}  # controller name -> a loaded PPO policy (`--policy`)
+
+
 def _episode(kw: dict[str, Any], kind: str | None, seed: int, seconds: float) -> dict[str, float]:
-    """One episode: RMS roll after SETTLE (rad), peak mount moment (N m), mean drive power (W)."""
+    """One episode: RMS roll after SETTLE (rad), peak mount moment (N m), mean drive power (W);
+    kind: None (rotor off), a baseline, "passive" or a name in `POLICIES`."""
     import gymnasium as gym
 
     import mf_envs  # noqa: F401
@@ -81,7 +85,7 @@ def _episode(kw: dict[str, Any], kind: str | None, seed: int, seconds: float) ->
         kw["gimbal_drive"] = "damper"
     env = gym.make(ENV_ID, episode_seconds=seconds, **kw)
     obs, _ = env.reset(seed=seed)
-    ctrl = make_baseline(env, kind) if kind in ("pid", "lqr") else None
+    ctrl = make_baseline(env, kind) if kind in ("pid", "lqr") else POLICIES.get(kind)
     sq, n, mount, energy = 0.0, 0, 0.0, 0.0
     done = False
     zero = np.zeros(1, np.float32)
@@ -122,9 +126,10 @@ def run(seeds: tuple[int, ...], seconds: float, quick: bool = False) -> list[dic
     """Rows (cell, controller, metric, mean, std, n_seeds) of the grid, with a progress bar."""
     from tqdm import tqdm
 
+    controllers = CONTROLLERS + tuple(POLICIES)
     grid = cells(quick)
     rows: list[dict[str, Any]] = []
-    bar = tqdm(total=len(grid) * (1 + len(CONTROLLERS)) * len(seeds), desc="stabilizer grid",
+    bar = tqdm(total=len(grid) * (1 + len(controllers)) * len(seeds), desc="stabilizer grid",
                unit="episode")  # fmt: skip
     for cell in grid:
         off = []
@@ -137,7 +142,7 @@ def run(seeds: tuple[int, ...], seconds: float, quick: bool = False) -> list[dic
                 "speed": cell["ship_speed"], "n_seeds": len(seeds)}  # fmt: skip
         rows.append({**base, "controller": "rotor_off", "metric": "rms_roll",
                      "mean": float(np.mean(off)), "std": float(np.std(off, ddof=1))})  # fmt: skip
-        for kind in CONTROLLERS:
+        for kind in controllers:
             res = []
             for s in seeds:
                 res.append(_episode(cell, kind, s, seconds))
@@ -159,16 +164,19 @@ def table(rows: list[dict[str, Any]]) -> str:
     by: dict[tuple[str, str, str], dict] = {(r["cell"], r["controller"], r["metric"]): r
                                             for r in rows}  # fmt: skip
     names = list(dict.fromkeys(r["cell"] for r in rows))
+    ctrls = tuple(dict.fromkeys(r["controller"] for r in rows if r["metric"] == "rr"))
+    cs = "/".join(ctrls)
     head = (
-        "| Hs m | Tp s | heading | U m/s | demand | roll off (deg RMS) | RR pid | RR lqr | "
-        "RR passive | peak mount kN m (pid/lqr/passive) | drive W (pid/lqr/passive) |"
+        "| Hs m | Tp s | heading | U m/s | demand | roll off (deg RMS) | "
+        + "".join(f"RR {c} | " for c in ctrls)
+        + f"peak mount kN m ({cs}) | drive W ({cs}) |"
     )
-    lines = [head, "|" + "---|" * 11]
+    lines = [head, "|" + "---|" * (8 + len(ctrls))]
     for c in names:
         off = by[(c, "rotor_off", "rms_roll")]
-        rr = [by[(c, k, "rr")] for k in CONTROLLERS]
-        pm = "/".join(f"{by[(c, k, 'peak_mount')]['mean'] / 1e3:.1f}" for k in CONTROLLERS)
-        dp = "/".join(f"{by[(c, k, 'drive_power')]['mean']:.0f}" for k in CONTROLLERS)
+        rr = [by[(c, k, "rr")] for k in ctrls]
+        pm = "/".join(f"{by[(c, k, 'peak_mount')]['mean'] / 1e3:.1f}" for k in ctrls)
+        dp = "/".join(f"{by[(c, k, 'drive_power')]['mean']:.0f}" for k in ctrls)
         hd = "beam" if abs(off["heading_deg"] - 90) < 1 else "quartering"
         rrs = " | ".join(f"{100 * r['mean']:.0f} ± {100 * r['std']:.0f} %" for r in rr)
         lines.append(f"| {off['hs']:g} | {off['tp']:.2f} | {hd} | {off['speed']:g} | "
@@ -183,7 +191,20 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--seconds", type=float, default=120.0, help="episode length, s")
     p.add_argument("--out", type=Path, default=Path("bench_out"))
     p.add_argument("--quick", action="store_true", help="only Hs 0.8 m (8 cells)")
+    p.add_argument(
+        "--policy",
+        type=Path,
+        action="append",
+        default=[],
+        help="a PPO policy folder (mf-envs train's output) benched as ppo, ppo2, ...",
+    )
     a = p.parse_args(argv)
+    if a.policy:
+        from mf_envs.train.policy import load_policy
+
+        POLICIES.clear()
+        for i, path in enumerate(a.policy):
+            POLICIES["ppo" if i == 0 else f"ppo{i + 1}"] = load_policy(ENV_ID, path)
     if not 1 <= a.seeds <= 1000 or not SETTLE < a.seconds <= 3600:
         p.error("--seeds in [1, 1000], --seconds in (10, 3600]")
     rows = run(tuple(range(100, 100 + a.seeds)), a.seconds, a.quick)

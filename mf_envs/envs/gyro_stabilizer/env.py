@@ -201,6 +201,8 @@ class GyroStabilizerEnv(MFEnv):
         )
         self.episode_seconds = float(episode_seconds)
         self._set_scene(build.timed(scene, self.physics_dt))
+        # the rotor speed the preset resolved (rad/s): domain randomisation's nominal value
+        self.rotor_speed = self.gyro.rotor_speed
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
         self._P = rows.pack(self.scene, 0.0)
