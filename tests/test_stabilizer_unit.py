@@ -260,3 +260,14 @@ def test_spool_up_reset_option_slows_the_rotor_and_draws_spool_up_power():
     for bad in (0.0, 1.5, -0.1, math.nan):
         with pytest.raises(ValueError, match="spool_up"):
             env.reset(options={"spool_up": bad})
+
+
+def test_gyro_unit_names_the_seed_table_units_and_the_7000():
+    for name, unit in (("16", SK.SEED_TABLE_3_1["16"]), ("7000", SK.SEAKEEPER_7000)):
+        env = gym.make(ENV_ID, gyro_unit=name).unwrapped
+        assert env.angular_momentum == pytest.approx(unit.angular_momentum, rel=1e-12)
+        assert env.unit_name == unit.name and env.drive.machine.kind == "brake"
+    seed9 = gym.make(ENV_ID, preset="seed", gyro_unit="9").unwrapped
+    assert seed9.gyro == gym.make(ENV_ID, preset="seed").unwrapped.gyro
+    with pytest.raises(ValueError, match="gyro_unit"):
+        gym.make(ENV_ID, gyro_unit="99")

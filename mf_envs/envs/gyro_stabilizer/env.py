@@ -106,6 +106,7 @@ class GyroStabilizerEnv(MFEnv):
     | hull, coupling | None | the hull and its sway-roll-yaw coupling: `build` module doc |
     | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 (overrides hull) |
     | n_gyros | None | 1 or 2 (counter-rotating pair); preset: 1 (MSS vessel 2) |
+    | gyro_unit | None | "7000" or a seed Table 3-1 model ("3DC", "5", "9", "16", "26", "35") |
     | units_per_gyro | None | identical units precessing together per gyro (MSS vessel 4) |
     | rotor_inertia | None | rotor polar J3^(3) per unit, kg m^2 (7000: 6.7; seed: 9.549) |
     | gimbal_inertia | None | gimbal J2^(2) per unit, kg m^2 (assumed = rotor_inertia) |
@@ -184,6 +185,7 @@ class GyroStabilizerEnv(MFEnv):
         roll_scale: float = 0.1745,
         effort_weight: float = 1.0e-3,
         preset: str = "seakeeper_7000",
+        gyro_unit: str | None = None,
         units_per_gyro: int | None = None,
         design_roll_rate: float | None = None,
         hull_damping: str | None = None,

@@ -56,8 +56,18 @@ class PresetUnit:
     spool_up_power: float
 
 
-def preset_unit(preset: str, hull_key: str) -> PresetUnit:
-    """The gyro of `preset` (one of PRESETS) on the hull preset `hull_key` (module doc)."""
+UNITS = {"7000": SK.SEAKEEPER_7000, **SK.SEED_TABLE_3_1}  # `gyro_unit` names
+
+
+def preset_unit(preset: str, hull_key: str, unit_name: str | None = None) -> PresetUnit:
+    """The gyro of `preset` (one of PRESETS) on the hull preset `hull_key` (module doc), or the
+    unit `unit_name` (a key of UNITS: "7000" or a seed Table 3-1 model) as one gyro."""
+    if unit_name is not None:
+        unit = check_choice("gyro_unit", unit_name, tuple(UNITS))
+        u = UNITS[unit]
+        power = RUNNING_POWER_7000 if u is SK.SEAKEEPER_7000 else u.spool_up_power
+        return PresetUnit(u.gyro_params(), 1, 1, u.name, 0.0 if preset == "seed" else power,
+                          power)  # fmt: skip
     if preset == "seed":
         sk9 = SK.SEED_TABLE_3_1["9"]
         return PresetUnit(seakeeper_gyro("9"), 1, 1, sk9.name, 0.0, sk9.spool_up_power)
@@ -147,7 +157,8 @@ def preset_defaults(kw: dict[str, Any]) -> dict[str, Any]:
     electric drive, inelastic stops, rule-of-thumb damping). "seakeeper_7000": the unit of
     `ship.unit.UNIT_OF_HULL`, the hydraulic brake, cushions, Ikeda damping."""
     preset = check_choice("preset", kw["preset"], PRESETS)
-    pu = preset_unit(preset, kw["hull"] if isinstance(kw["hull"], str) else "yacht")
+    pu = preset_unit(preset, kw["hull"] if isinstance(kw["hull"], str) else "yacht",
+                     kw.get("gyro_unit"))  # fmt: skip
     name = pu.name
     if kw.get("rotor_inertia") is not None or kw.get("rotor_speed") is not None:
         name = f"gyro (rotor kwargs; {preset} preset)"
