@@ -113,6 +113,11 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
              spool_up_power=pre["spool_power"] * k * c["n_gyros"],
              hull_damping=pre["hull_damping"])  # fmt: skip
     if pre["preset"] != "seed" and machine is not None:  # the Seakeeper unit's hardware
+        if c["max_gimbal_angle"] > math.radians(80.0):  # + the cushion's 10 deg < 90 deg
+            raise ValueError(
+                "max_gimbal_angle: the Seakeeper preset's cushions start there and travel "
+                f"10 deg, so it must be <= 80 deg, got {math.degrees(c['max_gimbal_angle']):.1f}"
+            )
         p_d = kw["design_roll_rate"]
         p_d = _positive("design_roll_rate", U.design_roll_rate(hull) if p_d is None else p_d, 10)
         given = (kw["max_gimbal_torque"] is not None, kw["max_drive_power"] is not None)
@@ -296,8 +301,9 @@ def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: floa
     if dt_max < 2e-6 or cdt / (0.5 * min(cdt, dt_max)) > MAX_SUBSTEPS:
         raise ValueError(
             f"gimbal_damping, gimbal_stiffness, gimbal_loop_gain, drive_bandwidth, ship_inertia, "
-            f"gimbal_inertia: this drive needs physics steps below {dt_max:.3g} s (RK4 limit, "
-            f"`ship.drive.stable_physics_dt`), more than {MAX_SUBSTEPS} per control step; "
+            f"gimbal_inertia, rotor_inertia, rotor_speed, max_precession_rate, design_roll_rate "
+            f"(the unit's cushions): this drive needs physics steps below {dt_max:.3g} s (RK4 "
+            f"limit, `ship.drive.stable_physics_dt`), more than {MAX_SUBSTEPS} per control step; "
             "soften the drive or enlarge the inertias"
         )
     return 0.5 * min(cdt, dt_max)

@@ -77,7 +77,10 @@ def preset_unit(preset: str, hull_key: str, unit_name: str | None = None) -> Pre
 
 
 def design_roll_rate(hull: Any) -> float:
-    """p_d (rad/s): a 10 deg roll at the hull's natural roll frequency (a choice, module doc)."""
+    """p_d (rad/s): a 10 deg roll at the hull's natural roll frequency (a choice, module doc);
+    a hull without roll stiffness: at a 10 s period (`drive.drive_machine`'s fallback)."""
+    if hull.roll_stiffness <= 0.0:
+        return math.radians(10.0) * 2.0 * math.pi / 10.0
     return math.radians(10.0) * math.sqrt(hull.roll_stiffness / hull.roll_inertia())
 
 
