@@ -35,7 +35,9 @@ def _actions(pattern: str, rng: np.random.Generator, n: int) -> np.ndarray:
 
 @pytest.mark.parametrize("pattern", ["bang", "chatter", "random"])
 def test_drive_survives_20_seeds_at_defaults(pattern):
-    env = gym.make(ENV_ID)
+    """The seed preset's electric drive (issue 15's default); the Seakeeper preset's unit:
+    tests/test_stabilizer_unit.py."""
+    env = gym.make(ENV_ID, preset="seed")
     drive = env.unwrapped.drive.machine
     failures = 0
     for seed in range(20):
@@ -96,10 +98,13 @@ def test_hull_kwargs_reach_every_field():
     """A hull set completely (Hull) and the same hull by kwargs roll identically; a preset
     name (its sway-roll-yaw coupling off, the Hull carries none) and a dict of fields too."""
     h = Hull.mss_naval_vessel()
-    a = gym.make(ENV_ID, hull=h, wave_moment_amplitude=2e5)
-    b = gym.make(ENV_ID, hull="mss_naval_vessel", coupling=False, wave_moment_amplitude=2e5)
+    # the same gyros for all three (the Seakeeper preset picks its units by the hull's name)
+    gyros = dict(rotor_inertia=50.0, gimbal_inertia=50.0, rotor_speed=600.0, n_gyros=1)
+    a = gym.make(ENV_ID, hull=h, wave_moment_amplitude=2e5, **gyros)
+    b = gym.make(ENV_ID, hull="mss_naval_vessel", coupling=False, wave_moment_amplitude=2e5,
+                 units_per_gyro=1, **gyros)  # fmt: skip
     c = gym.make(ENV_ID, hull={f: getattr(h, f) for f in h.__dataclass_fields__},
-                 wave_moment_amplitude=2e5)  # fmt: skip
+                 wave_moment_amplitude=2e5, **gyros)  # fmt: skip
     outs = []
     for env in (a, b, c):
         env.reset(seed=3)

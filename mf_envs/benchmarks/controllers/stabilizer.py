@@ -1,10 +1,13 @@
 """GyroStabilizer-v0 baselines: RMS roll reduction RR = 1 - RMS_on / RMS_off on several seas.
 
-Scenes (the default 18 t yacht + one Seakeeper 9 on the torque-limited electric drive, natural
+Scenes (the default 18 t yacht + one Seakeeper Model 7000 on its hydraulic brake since issue 30,
+before it a Seakeeper 9 on an electric drive; the irregular-sea grid: `stabilizer_grid`; natural
 roll period T_n = 3.70 s, M0 = 8 kN m):
-- `resonance`: regular beam wave at T_n (capacity M0 / (H w sin(phi_max)) = 0.60);
+- `resonance`: regular beam wave at T_n (capacity M0 / (H w sin(phi_max)) = 0.88; 0.60 for
+  the Seakeeper 9);
 - `below_resonance` / `above_resonance`: regular waves at 0.6 T_n and 1.6 T_n;
-- `resonance_overload`: regular wave at T_n with 2 M0 (capacity 1.21 > 1, see the bounds below);
+- `resonance_overload`: regular wave at T_n with 2 M0 (capacity 1.75; 1.21 for the Seakeeper 9;
+  see the bounds below);
 - `jonswap_beam`: long-crested JONSWAP beam sea, Hs = 0.6 m, Tp = T_n;
 - `jonswap_quartering`: bow-quartering JONSWAP sea (beta = 135 deg) at 5 m/s, Hs = 1 m,
   Tp = 5.3 s, met at the encounter frequency near the roll resonance (`physics.ship.seas`).
@@ -243,7 +246,7 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
     ax.axhline(0, color="0.5", lw=0.8)
     ax.grid(alpha=0.3, axis="y")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax.set_title("GyroStabilizer-v0 baselines (18 t yacht, Seakeeper 9)")
+    ax.set_title("GyroStabilizer-v0 baselines (18 t yacht, Seakeeper Model 7000)")
     if low < FLOOR:
         ax.set_xlabel(f"bars below {FLOOR:g} are cut at the axis and labelled with their value",
                       fontsize=7)  # fmt: skip

@@ -12,11 +12,12 @@ Arguments of `GyroStabilizerEnv` handled here (SI units):
 | hull | None | `Hull`, "yacht" (default), "mss_naval_vessel" or a dict of Hull fields |
 | coupling | None | `ship.coupling.SwayRollYaw`; None/True: MSS's navalvessel.m coefficients
 with hull "mss_naval_vessel", off for other hulls; False: off |
-| gimbal_drive | "electric" | electric, brake, damper, pendulous, spring, kinematic ("servo" =
-kinematic, "torque" = electric: the v0 names) |
+| gimbal_drive | None | brake (Seakeeper preset), electric (seed preset), damper, pendulous,
+spring, kinematic ("servo" = kinematic, "torque" = electric: the v0 names) |
 | gimbal_loop_gain | None | K_p of the rate loop, N m s/rad (sets drive_bandwidth) |
-| max_gimbal_torque | None | drive torque limit, N m (None: 0.1 H) |
-| max_drive_power | 1000 | motoring power limit, W |
+| max_gimbal_torque | None | drive torque limit, N m (None: seed 0.1 H; Seakeeper preset:
+brake relief T_r, electric H p_d, `ship.unit.unit_drive`) |
+| max_drive_power | None | motoring power limit, W (None: seed 1000; Seakeeper H p_d r_cap) |
 | drive_bandwidth | 20 | rate-loop bandwidth, rad/s |
 | gimbal_damping | None | brake c, N m s/rad (passive default n H^2 / sqrt(C44 J)) |
 | gimbal_stiffness | None | m g l (pendulous) or spring k, N m/rad (default J_g w_n^2) |
@@ -29,17 +30,20 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Iterable
 from typing import Any
 
 from mf_envs._validate import check_choice, check_int, check_range, check_shape
 from mf_envs.effects import resolve_effects
 from mf_envs.envs.base import MAX_SUBSTEPS
+from mf_envs.physics.ship import unit as U
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DriveParams, drive_machine, drive_stable_step
 from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.model import SHIP_EFFECTS, GimbalDrive
 from mf_envs.physics.ship.params import GyroParams, ShipParams, capacity_ratio
+from mf_envs.physics.ship.unit import CUSHION_START, CUSHION_TRAVEL  # noqa: F401 (re-exported)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,22 +72,34 @@ class Scene:
     effective_slope: float
     roll_scale: float
     effort_weight: float
+    preset: str = "seed"
+    units: int = 1  # identical units lumped in each gyro (`gyro` is their sum)
+    unit_name: str = ""
+    rotor_power: float = 0.0  # W, running power of all units (0: not modelled, seed preset)
+    spool_up_power: float = 0.0  # W, all units' spool-up power (reset option spool_up)
+    design_roll_rate: float = math.nan  # rad/s, the drive sizing's p_d (Seakeeper preset)
+    cushion: Any = None  # `ship.brake.BrakeParams` of the cushioned stops (None: inelastic)
+    mount_moment_bound: float = math.inf  # N m per unit (`ship.unit.unit_drive`)
+    hull_damping: str = "rule_of_thumb"
     table_dt: float = math.nan  # the irregular-sea table's step, set by `timed`
 
 
 def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
     """The `Scene` of the env's kwargs `kw` (all but render_mode); ValueError names the kwarg."""
+    kw = dict(kw)
+    pre = U.preset_defaults(kw)  # fills the kwargs left None from the preset
     kind = check_choice("gimbal_drive", kw["gimbal_drive"], GIMBAL_DRIVES)
     kind = DRIVE_ALIASES.get(kind, kind)
     tau_s = check_range("servo_time_constant", kw["servo_time_constant"], 1e-3, 10.0)
-    hull = build_hull(kw["hull"], kw["ship_inertia"], kw["roll_stiffness"], kw["roll_damping"],
-                      kw["effective_slope"])  # fmt: skip
     speed = check_range("ship_speed", kw["ship_speed"], 0.0, 50.0)
+    hull = build_hull(kw["hull"], kw["ship_inertia"], kw["roll_stiffness"], kw["roll_damping"],
+                      kw["effective_slope"], pre["hull_damping"], speed)  # fmt: skip
+    k = pre["units"]
     c = dict(hull=hull, coupling=build_coupling(kw["coupling"], kw["hull"]),
              heading=check_range("heading", kw["heading"], -4.0 * math.pi, 4.0 * math.pi),
              ship_speed=speed, ship=build_ship_params(hull, speed), gimbal_drive=kind,
-             gyro=GyroParams(check_range("rotor_inertia", kw["rotor_inertia"], 1e-6, 1e6),
-                             check_range("gimbal_inertia", kw["gimbal_inertia"], 1e-6, 1e6),
+             gyro=GyroParams(k * check_range("rotor_inertia", kw["rotor_inertia"], 1e-6, 1e6),
+                             k * check_range("gimbal_inertia", kw["gimbal_inertia"], 1e-6, 1e6),
                              check_range("rotor_speed", kw["rotor_speed"], -1e4, 1e4)),
              n_gyros=check_int("n_gyros", kw["n_gyros"], 1, 2),
              max_precession_rate=check_range("max_precession_rate", kw["max_precession_rate"],
@@ -92,6 +108,21 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
                                           math.pi))  # fmt: skip
     machine = build_machine(kind, c["gyro"], hull, c["n_gyros"], c["max_precession_rate"],
                             c["max_gimbal_angle"], kw)  # fmt: skip
+    c.update(preset=pre["preset"], units=k, unit_name=pre["unit_name"],
+             rotor_power=pre["unit_power"] * k * c["n_gyros"],
+             spool_up_power=pre["spool_power"] * k * c["n_gyros"],
+             hull_damping=pre["hull_damping"])  # fmt: skip
+    if pre["preset"] != "seed" and machine is not None:  # the Seakeeper unit's hardware
+        if c["max_gimbal_angle"] > math.radians(80.0):  # + the cushion's 10 deg < 90 deg
+            raise ValueError(
+                "max_gimbal_angle: the Seakeeper preset's cushions start there and travel "
+                f"10 deg, so it must be <= 80 deg, got {math.degrees(c['max_gimbal_angle']):.1f}"
+            )
+        p_d = kw["design_roll_rate"]
+        p_d = _positive("design_roll_rate", U.design_roll_rate(hull) if p_d is None else p_d, 10)
+        given = (kw["max_gimbal_torque"] is not None, kw["max_drive_power"] is not None)
+        machine, cushion, bound = U.unit_drive(machine, c["gyro"], k, p_d, *given)
+        c.update(design_roll_rate=p_d, cushion=cushion, mount_moment_bound=bound)
     c["drive"] = GimbalDrive("servo" if machine is None else "torque", servo_time_constant=tau_s,
                              max_rate=c["max_precession_rate"], max_angle=c["max_gimbal_angle"],
                              machine=machine)  # fmt: skip
@@ -103,7 +134,14 @@ def build(kw: dict[str, Any], default_effects: tuple[str, ...]) -> Scene:
     c.update(_sea(kw, c["ship"], c["effects"]), effective_slope=hull.effective_slope,
              roll_scale=check_range("roll_scale", kw["roll_scale"], 1e-6, 10.0))  # fmt: skip
     # effort_weight >= 0: a negative weight would pay for drive energy
-    return Scene(**c, effort_weight=check_range("effort_weight", kw["effort_weight"], 0.0, 1e6))
+    scene = Scene(**c, effort_weight=check_range("effort_weight", kw["effort_weight"], 0.0, 1e6))
+    if {"hydrostatic_restoring", "gyroscopic"} <= scene.effects:
+        msg = U.capacity_message(scene.hull, scene.gyro, scene.n_gyros, scene.units,
+                                 scene.unit_name or "gyro", scene.max_gimbal_angle,
+                                 scene.max_precession_rate)  # fmt: skip
+        if msg:
+            warnings.warn(msg, stacklevel=3)
+    return scene
 
 
 def _sea(kw: dict[str, Any], ship: ShipParams, effects: frozenset) -> dict[str, Any]:
@@ -147,23 +185,30 @@ def build_hull(
     roll_stiffness: float | None,
     roll_damping: float | None,
     effective_slope: float | None,
+    hull_damping: str = "rule_of_thumb",
+    speed: float = 0.0,
 ) -> Hull:
     """The `Hull`: a `Hull`, a preset name, or a dict of field overrides on the yacht; the v0
-    kwargs ship_inertia, roll_stiffness, roll_damping, effective_slope override it last."""
+    kwargs ship_inertia, roll_stiffness, roll_damping, effective_slope override it last.
+    hull_damping "ikeda": the yacht preset's roll damping from its particulars
+    (`Hull.yacht(roll_damping_method="ikeda")`); a given Hull keeps its own."""
     if hull is None:
-        base = Hull.yacht()
+        base = Hull.yacht(roll_damping_method=hull_damping, speed=speed)
     elif isinstance(hull, Hull):
         base = hull
     elif isinstance(hull, str):
         if hull not in HULL_PRESETS:
             raise ValueError(f"hull: must be one of {sorted(HULL_PRESETS)}, got {hull!r}")
-        base = HULL_PRESETS[hull]()
+        base = (Hull.yacht(roll_damping_method=hull_damping, speed=speed) if hull == "yacht"
+                else HULL_PRESETS[hull]())  # fmt: skip
     elif isinstance(hull, dict):
         bad = sorted(set(hull) - {f.name for f in dataclasses.fields(Hull)})
         if bad:
             raise ValueError(f"hull: unknown fields {bad}")
         try:
-            base = dataclasses.replace(Hull.yacht(), **hull)
+            base = dataclasses.replace(
+                Hull.yacht(roll_damping_method=hull_damping, speed=speed), **hull
+            )
         except ValueError as exc:  # Hull names its field: say it is inside `hull`
             raise ValueError(f"hull.{exc}") from None
     else:
@@ -226,7 +271,9 @@ def build_machine(
     chosen (a bad value is an error even where the drive ignores it)."""
     loop_gain = _optional("gimbal_loop_gain", kw["gimbal_loop_gain"], MAX_DRIVE_GAIN, True)
     max_torque = _optional("max_gimbal_torque", kw["max_gimbal_torque"], MAX_DRIVE_GAIN, True)
-    max_power = _positive("max_drive_power", kw["max_drive_power"], MAX_DRIVE_GAIN)
+    max_power = 1000.0  # None: the Seakeeper preset sizes it (`ship.unit.unit_drive`)
+    if kw["max_drive_power"] is not None:
+        max_power = _positive("max_drive_power", kw["max_drive_power"], MAX_DRIVE_GAIN)
     bandwidth = _positive("drive_bandwidth", kw["drive_bandwidth"], MAX_BANDWIDTH)
     damping = _optional("gimbal_damping", kw["gimbal_damping"], MAX_DRIVE_GAIN)
     stiffness = _optional("gimbal_stiffness", kw["gimbal_stiffness"], MAX_DRIVE_GAIN)
@@ -254,8 +301,9 @@ def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: floa
     if dt_max < 2e-6 or cdt / (0.5 * min(cdt, dt_max)) > MAX_SUBSTEPS:
         raise ValueError(
             f"gimbal_damping, gimbal_stiffness, gimbal_loop_gain, drive_bandwidth, ship_inertia, "
-            f"gimbal_inertia: this drive needs physics steps below {dt_max:.3g} s (RK4 limit, "
-            f"`ship.drive.stable_physics_dt`), more than {MAX_SUBSTEPS} per control step; "
+            f"gimbal_inertia, rotor_inertia, rotor_speed, max_precession_rate, design_roll_rate "
+            f"(the unit's cushions): this drive needs physics steps below {dt_max:.3g} s (RK4 "
+            f"limit, `ship.drive.stable_physics_dt`), more than {MAX_SUBSTEPS} per control step; "
             "soften the drive or enlarge the inertias"
         )
     return 0.5 * min(cdt, dt_max)

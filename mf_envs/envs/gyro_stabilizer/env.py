@@ -15,8 +15,8 @@ from mf_envs.envs.gyro_stabilizer import build, render, rows, spec
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.hulls import Hull
+from mf_envs.physics.ship.layout import Slot
 from mf_envs.physics.ship.model import SHIP_EFFECTS, initial_state
-from mf_envs.physics.ship.params import seakeeper_gyro
 
 AVAILABLE_EFFECTS = SHIP_EFFECTS
 DEFAULT_EFFECTS = (
@@ -29,7 +29,6 @@ DEFAULT_EFFECTS = (
     "wave_moment",
     "gimbal_limits",
 )
-_SK9 = seakeeper_gyro("9")
 OBS_HIGH = spec.OBS.high()
 _ROLL = spec.OBS.index("roll")
 
@@ -43,21 +42,32 @@ class GyroStabilizerEnv(MFEnv):
     rate psi' inside a gimbal that precesses about the ship's athwartships axis e_2. Precessing
     at phi' gives the roll moment -n H phi' cos(phi), H = J3 psi' (Eq. 123). The physics is the
     numba fast path of `mf_envs.physics.ship.kernels` (agrees with the multibody engine to
-    round-off). Defaults: an 18 t, 12-13 m motor yacht (`physics.ship.hulls.Hull.yacht`, roll
-    period 3.70 s) with one Seakeeper 9 (Table 3-1: H = 9 000 N m s), beam seas at the roll
-    resonance, M0 = 8 000 N m: capacity M0 / (H w sin(phi_max)) = 0.60. Rotor off: RMS roll
-    11.2 deg; on the default torque-limited electric drive `pid`, `rate` and `lqr` cut it by
-    91 %, 91 % and 96 % (`benchmarks/controllers/stabilizer.py`). The gimbal drive is a
-    machine (`physics.ship.drive`); seas (`physics.ship.seas`) are met at `heading` and
-    `ship_speed` (encounter frequency); the hull is one `physics.ship.hulls.Hull`.
+    round-off).
+
+    Defaults (`preset="seakeeper_7000"`, issue 30; docs/stabilizer_physics.md §4): one
+    Seakeeper Model 7000 (J = 6.7 kg m^2 at 10,000 rpm, H = 7 016 N m s; +-60 deg precession;
+    sold for 15.9-24.9 t boats) on the 18 t, 12-13 m motor yacht (`physics.ship.hulls.Hull.
+    yacht`, roll period 3.70 s, roll damping by the simplified Ikeda method), its closed-circuit
+    hydraulic brake as the gimbal drive (it only dissipates), the precession rate capped at
+    max_precession_rate in the physics, cushioned stops from 50 to 60 deg; beam seas at the roll
+    resonance, M0 = 8 000 N m. `preset="seed"`: the issue-15 default (the seed's Table 3-1
+    Seakeeper 9 on the same yacht, a torque-limited electric drive, inelastic stops, the
+    rule-of-thumb damping), bit for bit. The gimbal drive is a machine (`physics.ship.drive`);
+    seas (`physics.ship.seas`) are met at `heading` and `ship_speed` (encounter frequency); the
+    hull is one `physics.ship.hulls.Hull`.
     The seed's model: `effects=("gyroscopic",)` (+ "gimbal_inertia", "wave_moment": Figs. 3-10/11).
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: precession-rate command / max_precession_rate (rad/s scaled).
-    For gyro 1 (gyro 2 mirrors it). The electric drive follows it with a PI rate loop inside
-    each RK stage, torque <= max_gimbal_torque (0.1 H), motoring power <= max_drive_power,
-    speed <= 1.1 max_precession_rate, inelastic end stops; "brake" only dissipates; "damper",
+    For gyro 1 (gyro 2 mirrors it). The active drives follow it with a PI rate loop inside
+    each RK stage: "brake" (the default: the hydraulic brake's valve, torque opposing phi' only,
+    up to its relief torque), "electric" (four-quadrant; torque <= max_gimbal_torque, motoring
+    power <= max_drive_power); "damper" (the brake at a fixed valve: tau = -c phi'),
     "pendulous" (Schlick 1906), "spring" are passive (action ignored); "kinematic" is v0's servo.
+    Seakeeper preset: every drive meets the unit's rate cap (|phi'| <= max_precession_rate,
+    enforced after each physics step by a torque <= the relief torque) and cushioned stops
+    (spring-damper from max_gimbal_angle over 10 deg). Seed preset: speed <= 1.1
+    max_precession_rate (motoring), torque 0.1 H, inelastic stops.
 
     ## Observation Space
     `Box(float32, (6,))`, what a real controller measures, laid out by
@@ -75,7 +85,9 @@ class GyroStabilizerEnv(MFEnv):
     ## Rewards
     `reward = roll + effort`, the terms in `info["reward_terms"]`: roll = -(roll / roll_scale)^2,
     effort = -effort_weight * E, E = int n |tau phi'| dt the step's drive energy (J). Info keys:
-    `spec.INFO_KEYS` (SI; `drive_torque` N m, `drive_power` W, `drive_energy` J).
+    `spec.INFO_KEYS` (SI; `drive_torque` N m, `drive_power` W, `drive_energy` J,
+    `mount_moment` N m per unit: |(H phi', drive + cushion torque)|, below `mount_moment_bound`;
+    `rotor_power` W, the rotors' running power, 0 in the seed preset).
 
     ## Starting State
     Roll uniform in +-0.05 rad, roll rate in +-0.02 rad/s, pitch/yaw rates 0, gimbal at 0 and
@@ -90,25 +102,30 @@ class GyroStabilizerEnv(MFEnv):
     ## Arguments
     | Argument | default | meaning |
     |---|---|---|
+    | preset | "seakeeper_7000" | or "seed" (module doc); sets the None defaults below |
     | hull, coupling | None | the hull and its sway-roll-yaw coupling: `build` module doc |
     | ship_inertia | (45 850, 148 781, 163 659) | hull (J1, J2, J3), kg m^2 (overrides hull) |
-    | n_gyros | 1 | 1 or 2 (counter-rotating pair) |
-    | rotor_inertia | 9.549 | rotor polar J3^(3), kg m^2 (Seakeeper 9) |
-    | gimbal_inertia | 9.549 | gimbal J2^(2), kg m^2 (assumed) |
-    | rotor_speed | 942.5 | psi', rad/s (9 000 rpm) |
+    | n_gyros | None | 1 or 2 (counter-rotating pair); preset: 1 (MSS vessel 2) |
+    | gyro_unit | None | "7000" or a seed Table 3-1 model ("3DC", "5", "9", "16", "26", "35") |
+    | units_per_gyro | None | identical units precessing together per gyro (MSS vessel 4) |
+    | rotor_inertia | None | rotor polar J3^(3) per unit, kg m^2 (7000: 6.7; seed: 9.549) |
+    | gimbal_inertia | None | gimbal J2^(2) per unit, kg m^2 (assumed = rotor_inertia) |
+    | rotor_speed | None | psi', rad/s (7000: 1047.2 = 10 000 rpm; seed: 942.5) |
+    | design_roll_rate | None | p_d, rad/s: the unit's sizing (None: 10 deg x w_n) |
+    | hull_damping | None | "ikeda" (Seakeeper preset) or "rule_of_thumb" (seed) |
     | wave_moment_amplitude | 8 000 | M0, N m |
     | wave_period | None | s; None = natural roll period (resonance), 10 s without restoring |
     | roll_stiffness | 158 922 | C44 = rho g V GM, N m/rad (the GZ shape follows it) |
     | roll_damping | 7 481 | linear B44, N m s/rad (quadratic B44q: hull field) |
     | max_precession_rate | 2.0 | rad/s |
-    | max_gimbal_angle | pi/3 | rad (end stops) |
+    | max_gimbal_angle | None | rad: end stops (seed pi/3) or cushions' start (7000: 50 deg) |
     | episode_seconds | 30 | s |
     | effects | see DEFAULT_EFFECTS | tuple of names from `SHIP_EFFECTS` |
     | control_dt | 0.05 | s |
     | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |
     | form | "exact" | "seed": Eqs. 123-128 as printed |
     | servo_time_constant | 0.05 | s |
-    | gimbal_drive | "electric" | and the drive arguments: `build` module doc |
+    | gimbal_drive | None | "brake" (7000), "electric" (seed); drive arguments: `build` doc |
     | heading, ship_speed, wave_spreading | pi/2, 0, None | seas: `build` module doc |
     | significant_wave_height | 0.6 | m (irregular_waves, JONSWAP, peak period = wave_period) |
     | effective_slope | None | r_eff of the wave roll moment (hull field; yacht 0.7) |
@@ -120,7 +137,10 @@ class GyroStabilizerEnv(MFEnv):
 
     ## Version History
     - v0: initial release; issue 15 made the torque-limited electric drive the default, added
-      heading, speed, short-crested seas, the Hull dataclass and the energy effort term.
+      heading, speed, short-crested seas, the Hull dataclass and the energy effort term;
+      issue 30 made a Seakeeper Model 7000 with its hydraulic brake, rate cap and cushioned
+      stops the default (`preset="seed"` keeps the previous default) and added the info keys
+      `mount_moment`, `rotor_power`.
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
@@ -132,26 +152,26 @@ class GyroStabilizerEnv(MFEnv):
     def __init__(
         self,
         ship_inertia: Iterable[float] | None = None,
-        n_gyros: int = 1,
-        rotor_inertia: float = _SK9.rotor_inertia,
-        gimbal_inertia: float = _SK9.gimbal_inertia,
-        rotor_speed: float = _SK9.rotor_speed,
+        n_gyros: int | None = None,
+        rotor_inertia: float | None = None,
+        gimbal_inertia: float | None = None,
+        rotor_speed: float | None = None,
         wave_moment_amplitude: float = 8000.0,
         wave_period: float | None = None,
         roll_stiffness: float | None = None,
         roll_damping: float | None = None,
         max_precession_rate: float = 2.0,
-        max_gimbal_angle: float = math.pi / 3,
+        max_gimbal_angle: float | None = None,
         episode_seconds: float = 30.0,
         effects: Iterable[str] | str | None = None,
         control_dt: float = 0.05,
         physics_dt: float | None = None,
         form: str = "exact",
         servo_time_constant: float = 0.05,
-        gimbal_drive: str = "electric",
+        gimbal_drive: str | None = None,
         gimbal_loop_gain: float | None = None,
         max_gimbal_torque: float | None = None,
-        max_drive_power: float = 1000.0,
+        max_drive_power: float | None = None,
         drive_bandwidth: float = 20.0,
         gimbal_damping: float | None = None,
         gimbal_stiffness: float | None = None,
@@ -164,6 +184,13 @@ class GyroStabilizerEnv(MFEnv):
         effective_slope: float | None = None,
         roll_scale: float = 0.1745,
         effort_weight: float = 1.0e-3,
+        preset: str = "seakeeper_7000",
+        gyro_unit: str | None = None,
+        units_per_gyro: int | None = None,
+        design_roll_rate: float | None = None,
+        hull_damping: str | None = None,
+        sensor_noise_scale: float = 1.0,
+        sensor_delay_time: float = 0.1,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
@@ -176,15 +203,29 @@ class GyroStabilizerEnv(MFEnv):
         )
         self.episode_seconds = float(episode_seconds)
         self._set_scene(build.timed(scene, self.physics_dt))
+        # the rotor speed the preset resolved (rad/s): domain randomisation's nominal value
+        self.rotor_speed = self.gyro.rotor_speed
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
         self._P = rows.pack(self.scene, 0.0)
         self._tab = np.zeros((1, 2))
-        self._out = np.zeros(4)
+        self._out = np.zeros(K.N_OUT)
         self._energy = 0.0
         self._obs = np.zeros(spec.OBS.size, dtype=np.float32)
         self._y, self._R = initial_state()
         self._t, self._steps = 0.0, 0
+        # what the controller sees: opt-in effects, nothing to do per step when both are off
+        scale = check_range("sensor_noise_scale", sensor_noise_scale, 0.0, 1e3)
+        delay = check_range("sensor_delay_time", sensor_delay_time, 0.0, 60.0)
+        self._sigma = (
+            spec.sensor_sigma(self.control_dt, scale) if "sensor_noise" in self.effects else None
+        )
+        self._delay = (
+            max(1, round(delay / self.control_dt)) if "sensor_delay" in self.effects else 0
+        )
+        self._sensed = self._sigma is not None or self._delay > 0
+        self._buf = np.zeros((self._delay + 1, spec.OBS.size), dtype=np.float32)
+        self._spool = 1.0  # rotor speed fraction of this episode (reset option spool_up)
 
     @property
     def angular_momentum(self) -> float:
@@ -216,16 +257,36 @@ class GyroStabilizerEnv(MFEnv):
             roll, y, self._out, self._steps * self.control_dt, terms, self._energy
         )
         truncated = self._steps >= self.max_steps
+        if self._sensed and ok:
+            obs = self._sense(obs)
         if not (ok and math.isfinite(reward)):
             return self._finish_step(obs, reward, False, truncated, info, False)
         if self.render_mode is not None:  # what render() draws if the state later blows up
             self._frame_state = (R.copy(), float(y[3]), self._t)
         return self._step_ok(obs, reward, False, truncated, info)
 
+    def _sense(self, obs: np.ndarray) -> np.ndarray:
+        """The observation as the controller sees it (`sensor_noise`, `sensor_delay`): noise
+        from `self.np_random` (spec.sensor_sigma), then the reading of `_delay` control steps
+        ago; clipped to the observation bounds. The reward keeps the true roll."""
+        if self._sigma is not None:
+            noisy = obs + self._sigma * self.np_random.standard_normal(obs.shape[0])
+            obs = np.clip(noisy, -OBS_HIGH, OBS_HIGH).astype(np.float32)
+        if self._delay > 0:
+            self._buf[:-1] = self._buf[1:]
+            self._buf[-1] = obs
+            obs = self._buf[0].copy()
+        return obs
+
     def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         phi_max = self.max_gimbal_angle if "gimbal_limits" in self.effects else math.pi
         bounds = {"roll": 0.5 * math.pi, "roll_rate": 10.0, "gimbal_angle": phi_max}
         for key, value in opts.items():
+            if key == "spool_up":  # rotor speed fraction, (0, 1]
+                opts[key] = check_range(key, value, 0.0, 1.0)
+                if opts[key] <= 0.0:
+                    raise ValueError(f"spool_up: must be in (0, 1], got {value!r}")
+                continue
             b = bounds.get(key, 4.0 * math.pi)
             opts[key] = check_range(key, value, -b, b)
         return opts
@@ -237,6 +298,10 @@ class GyroStabilizerEnv(MFEnv):
         gimbal = float(opts.get("gimbal_angle", 0.0))
         phase = float(opts.get("wave_phase", rng.uniform(*rows.PHASE0)))
         self._P = rows.pack(self.scene, phase)
+        self._spool = float(opts.get("spool_up", 1.0))
+        if self._spool < 1.0:  # the rotor spooling up: slower, drawing its spool-up power
+            self._P[Slot.PSID] *= self._spool
+            self._P[Slot.PROTOR] = self.spool_up_power
         self._tab = (
             rows.irregular_table(self.scene, self.np_random, self.episode_seconds)
             if "irregular_waves" in self.effects
@@ -245,13 +310,19 @@ class GyroStabilizerEnv(MFEnv):
         self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
         self._t, self._energy = 0.0, 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
-        self._out[:] = (0.0, mw, *K.drive_output(0.0, self._y, self._R, 0.0, self._P))
+        tau0, pow0 = K.drive_output(0.0, self._y, self._R, 0.0, self._P)
+        mount0 = K.mount_moment(self._y, tau0, self._P)
+        self._out[:] = (0.0, mw, tau0, pow0, mount0, self._P[Slot.PROTOR])
         roll0 = K.roll_of(self._R)
         rows.observe(roll0, self._y, self._R, self._obs)
         terms0 = {"roll": 0.0, "effort": 0.0}
         info = spec.step_info(roll0, self._y, self._out, 0.0, terms0, 0.0)
         self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
-        return self._obs.copy(), info
+        obs = self._obs.copy()
+        if self._sensed:
+            self._buf[:] = obs  # the sensors read the initial state until the delay has passed
+            obs = self._sense(obs)
+        return obs, info
 
     def batch_row(self) -> dict[str, Any]:
         """What the native vector env copies into its row after a reset (names of

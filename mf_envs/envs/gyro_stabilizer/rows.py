@@ -62,11 +62,11 @@ ROLL0, RATE0, PHASE0 = (-0.05, 0.05), (-0.02, 0.02), (0.0, 2.0 * math.pi)  # res
 @numba.njit(cache=True, inline="always")
 def _info_row(c, roll, y, out, energy):
     """Info columns (COLS order) of one row: roll, body rates, gimbal angle/rate, moments,
-    drive torque/power, the step's drive energy (`spec.step_info`)."""
+    drive torque/power, mount moment, rotor power, the step's drive energy (`spec.step_info`)."""
     c[0] = roll
     for j in range(5):
         c[1 + j] = y[j]
-    for j in range(4):
+    for j in range(K.N_OUT):
         c[6 + j] = out[j]
     c[C_ENERGY] = energy
 
@@ -152,6 +152,8 @@ def reset_rows(idx, draws, ptr, p_sign, t, y, R, P, tab, out, steps, obs, cols):
         out[i, 0] = 0.0
         out[i, 1] = K.external_moment(0.0, y[i], Ri, P[i], tab[i])[3]
         out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i])
+        out[i, 4] = K.mount_moment(y[i], out[i, 2], P[i])
+        out[i, 5] = P[i, Slot.PROTOR]
         roll0 = K.roll_of(Ri)
         observe(roll0, y[i], Ri, obs[i])
         _info_row(cols[i], roll0, y[i], out[i], 0.0)
@@ -197,6 +199,8 @@ def pack(scene: Scene, phase: float) -> np.ndarray:
         hull.gz_cubic,
         scene.coupling,
         scene.ship_speed,
+        scene.units,
+        scene.rotor_power,
     )
 
 

@@ -22,7 +22,27 @@ OBS = ObsLayout(
     Field("gimbal_rate", "rad/s", 20.0, "gimbal rate phi'"),
 )
 REWARD_TERMS = ("roll", "effort")
-RESET_OPTIONS = ("roll", "roll_rate", "gimbal_angle", "wave_phase")
+N_OUT = 6  # the ship kernel's out vector (`physics.ship.kernels.N_OUT`), reported in the info
+RESET_OPTIONS = ("roll", "roll_rate", "gimbal_angle", "wave_phase", "spool_up")
+# `sensor_noise` (opt-in effect): white noise per observation, standard deviation per sample at
+# the control rate f_s = 1 / control_dt over the Nyquist band f_s / 2 (docs/stabilizer_physics.md
+# §6): rate gyro 0.007 deg/s/sqrt(Hz) (Bosch BMI270, typical, performance mode), roll from the
+# accelerometer 0.16 mg/sqrt(Hz) / g rad/sqrt(Hz) (same sensor), gimbal angle from a 12-bit
+# absolute encoder (quantisation 2 pi / 4096 / sqrt(12) rad), gimbal rate its difference over
+# one control step (sqrt(2) x that / control_dt). Densities in SI: rad/s/sqrt(Hz), rad/sqrt(Hz).
+GYRO_NOISE_DENSITY = math.radians(0.007)
+TILT_NOISE_DENSITY = 0.16e-3
+ENCODER_NOISE = 2.0 * math.pi / 4096.0 / math.sqrt(12.0)
+
+
+def sensor_sigma(control_dt: float, scale: float = 1.0) -> np.ndarray:
+    """Per-sample noise standard deviations (OBS order, SI) at control step control_dt (s)."""
+    band = math.sqrt(0.5 / control_dt)  # sqrt(Nyquist bandwidth), sqrt(Hz)
+    rate = GYRO_NOISE_DENSITY * band
+    return scale * np.array([TILT_NOISE_DENSITY * band, rate, rate, rate, ENCODER_NOISE,
+                             math.sqrt(2.0) * ENCODER_NOISE / control_dt])  # fmt: skip
+
+
 # step and reset info, SI; the state is reported as is, also after a numerical failure
 INFO_KEYS = (
     "roll",  # rad, roll angle (unclipped)
@@ -35,6 +55,8 @@ INFO_KEYS = (
     "wave_moment",  # N m, wave roll moment
     "drive_torque",  # N m, the drive's torque on gyro 1's gimbal
     "drive_power",  # W, n tau phi' (negative: braking)
+    "mount_moment",  # N m, per unit: |(H phi', drive + cushion torque)| (kernels.mount_moment)
+    "rotor_power",  # W, the rotors' running power (all units; spool-up power when spooling)
     "drive_energy",  # J, int n |tau phi'| dt over the step
     "time",  # s, steps x control_dt
     "reward_terms",  # {"roll", "effort"}, sums to the reward (effort: drive energy, J)
@@ -70,16 +92,17 @@ def reward_terms(roll_obs, energy, roll_scale: float, effort_weight: float) -> d
 
 
 def step_info(roll, y, out, time, terms, energy) -> dict[str, Any]:
-    """The info of a state: y (N_STATE,) ship state, out (4,) (gyro, wave moment N m, drive
-    torque N m, drive power W) and the step's drive energy (J), or batched (N, N_STATE), (N, 4)
-    with roll (N,), time (N,), energy (N,) (columns copied)."""
+    """The info of a state: y (N_STATE,) ship state, out (6,) (gyro, wave moment N m, drive
+    torque N m, drive power W, mount moment N m, rotor power W; `physics.ship.kernels.N_OUT`)
+    and the step's drive energy (J), or batched (N, N_STATE), (N, 6) with roll (N,), time (N,),
+    energy (N,) (columns copied)."""
     if y.ndim == 1:
-        cols = [float(y[j]) for j in range(5)] + [float(out[j]) for j in range(4)]
+        cols = [float(y[j]) for j in range(5)] + [float(out[j]) for j in range(N_OUT)]
         cols.append(float(energy))
     else:
-        cols = [y[:, j].copy() for j in range(5)] + [out[:, j].copy() for j in range(4)]
+        cols = [y[:, j].copy() for j in range(5)] + [out[:, j].copy() for j in range(N_OUT)]
         cols.append(np.asarray(energy, dtype=np.float64).copy())
-    info = {"roll": roll, **dict(zip(INFO_KEYS[1:11], cols))}
+    info = {"roll": roll, **dict(zip(INFO_KEYS[1 : 7 + N_OUT], cols))}
     info["time"] = time
     info["reward_terms"] = terms
     return info

@@ -66,8 +66,23 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
     single_env_cls = GyroStabilizerEnv
     DRAWS_PER_RESET = 3
 
+    @classmethod
+    def supports(cls, **env_kwargs: Any) -> bool:
+        """The compiled rows have no sensor model: `sensor_noise`/`sensor_delay` run on the
+        single env (`vectorization_mode="sync"`)."""
+        from mf_envs.effects import resolve_effects
+        from mf_envs.envs.gyro_stabilizer.env import AVAILABLE_EFFECTS, DEFAULT_EFFECTS
+
+        eff = resolve_effects(env_kwargs.get("effects"), AVAILABLE_EFFECTS, DEFAULT_EFFECTS)
+        return not ({"sensor_noise", "sensor_delay"} & set(eff))
+
     def _alloc(self, n: int) -> None:
         env = self.template
+        if {"sensor_noise", "sensor_delay"} & set(env.effects):
+            raise ValueError(
+                "effects: the native GyroStabilizer-v0 vector env has no sensor model; use "
+                "vectorization_mode='sync' for sensor_noise / sensor_delay"
+            )
         self.b = alloc_batch(n, K.N_STATE, K.N_PARAMS, (1, 2))
         self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
         self._cols = np.zeros((n, N_COLS))

@@ -12,13 +12,13 @@ import numpy as np
 def alloc_batch(n_envs: int, n_state: int, n_params: int, table_shape: tuple[int, int]):
     """Zeroed batch arrays, R = identity: t (N,) s, time; y (N, n_state) state vectors (see
     `ship.kernels`); R (N, 3, 3) attitudes (inertial <- ship); P (N, n_params) packed
-    parameters; tab (N, L, 2) wave tables; out (N, 4) (gyro roll moment, wave moment N m, drive
-    torque N m, drive power W)."""
+    parameters; tab (N, L, 2) wave tables; out (N, 6) (`kernels.N_OUT`: gyro roll moment, wave
+    moment N m, drive torque N m, drive power W, mount moment per unit N m, rotor power W)."""
     return {
         "t": np.zeros(n_envs),
         "y": np.zeros((n_envs, n_state)),
         "R": np.tile(np.eye(3), (n_envs, 1, 1)),
         "P": np.zeros((n_envs, n_params)),
         "tab": np.zeros((n_envs, *table_shape)),
-        "out": np.zeros((n_envs, 4)),
+        "out": np.zeros((n_envs, 6)),
     }

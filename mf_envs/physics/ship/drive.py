@@ -77,9 +77,10 @@ from mf_envs._validate import (
 
 DRIVE_KINDS = ("electric", "brake", "damper", "pendulous", "spring")
 KIND_ELECTRIC, KIND_BRAKE, KIND_DAMPER, KIND_PENDULOUS, KIND_SPRING = 1, 2, 3, 4, 5
-# packed drive vector D
+# packed drive vector D (the last five: the Seakeeper unit's rate cap and cushioned stops)
 DKIND, DTMAX, DRMAX, DPMAX, DKP, DKI, DFF, DC, DK, DPHIMAX, DTSTOP = range(11)
-N_DRIVE = 11
+DRCAP, DTCAP, DASTOP, DKS, DCS = range(11, 16)
+N_DRIVE = 16
 RATE_FADE = 0.1  # motoring torque fades to 0 between max_rate and (1 + RATE_FADE) max_rate
 
 
@@ -96,6 +97,10 @@ class DriveParams:
     active drives); stiffness: k = m g l (pendulous) or the spring rate (spring), N m/rad.
     max_angle: end stops +-phi_max, rad; stop_time: t_stop of the active drives' stop
     envelope, s.
+    rate_cap: the unit's precession-rate cap r_cap, rad/s (0: none; `cap_rate`); cap_torque:
+    the largest torque the cap may apply, N m (the relief valve; 0: none);
+    stop_stiffness k_s (N m/rad), stop_damping c_s (N m s/rad): cushioned stops engaging at
+    +-max_angle (`cushion_torque`; k_s = 0: the inelastic hard stop `end_stop`).
     """
 
     kind: str = "electric"
@@ -109,9 +114,15 @@ class DriveParams:
     stiffness: float = 0.0
     max_angle: float = math.pi / 3
     stop_time: float = 0.1
+    rate_cap: float = 0.0
+    cap_torque: float = 0.0
+    stop_stiffness: float = 0.0
+    stop_damping: float = 0.0
 
     def __post_init__(self) -> None:
         check_choice("kind", self.kind, DRIVE_KINDS)
+        for name in ("rate_cap", "cap_torque", "stop_stiffness", "stop_damping"):
+            check_nonnegative(name, getattr(self, name))
         for name in ("max_torque", "max_rate", "max_power", "bandwidth", "damping_ratio"):
             check_positive(name, getattr(self, name))
         for name in ("feedforward", "damping", "stiffness"):
@@ -142,6 +153,8 @@ class DriveParams:
         D[DFF] = self.feedforward if self.active else 0.0
         D[DC], D[DK] = self.damping, self.stiffness
         D[DPHIMAX], D[DTSTOP] = self.max_angle, self.stop_time
+        D[DRCAP], D[DTCAP] = self.rate_cap, self.cap_torque
+        D[DASTOP], D[DKS], D[DCS] = self.max_angle, self.stop_stiffness, self.stop_damping
         return D
 
 
@@ -240,6 +253,38 @@ def end_stop(phi: float, phid: float, phi_max: float):
     return phi, phid, 0.0
 
 
+@kernel(forceinline=True)
+def cushion_torque(phi: float, phid: float, D: np.ndarray, o: int = 0) -> float:
+    """Torque (N m) of the cushioned end stops on the gimbal at angle phi (rad), rate phid
+    (rad/s): a spring-damper engaging at +-a_s that only pushes (`brake.stop_torque`),
+    -sign(phi) max(0, k_s d + c_s d'), d = |phi| - a_s > 0; 0 without cushions (k_s = 0)."""
+    ks = D[o + DKS]
+    if ks <= 0.0:
+        return 0.0
+    d = abs(phi) - D[o + DASTOP]
+    if d <= 0.0:
+        return 0.0
+    s = 1.0 if phi > 0.0 else -1.0
+    return -s * max(0.0, ks * d + D[o + DCS] * s * phid)
+
+
+@kernel(forceinline=True)
+def cap_rate(phid: float, dt: float, jg: float, D: np.ndarray, o: int = 0):
+    """(phi', rate jump in rad/s) after the unit's precession-rate cap over a physics step dt
+    (s) on a gimbal of inertia jg (kg m^2): |phi'| above r_cap is brought back to r_cap by a
+    torque of at most cap_torque (N m), so the jump is at most cap_torque dt / jg. This is the
+    flow-limiting valve of the hydraulic brake as a rate constraint (the stiff valve law of
+    `brake.brake_torque` would need steps of ~1e-4 s; docs/stabilizer_physics.md §4)."""
+    r = D[o + DRCAP]
+    a = abs(phid)
+    if r <= 0.0 or a <= r:
+        return phid, 0.0
+    jump = min(a - r, D[o + DTCAP] * dt / jg) if D[o + DTCAP] > 0.0 else a - r
+    if phid > 0.0:
+        return phid - jump, -jump
+    return phid + jump, jump
+
+
 # ---------------------------------------------------------------------- step-size bound
 def rk4_amplification(z: complex | NDArray) -> NDArray[np.float64]:
     """|R(z)| = |1 + z + z^2/2 + z^3/6 + z^4/24| of classical RK4 at z = h lambda."""
@@ -281,12 +326,15 @@ class RollGimbal:
         check_nonnegative("angular_momentum", self.angular_momentum)
 
 
-def roll_gimbal_matrix(D: NDArray[np.float64], plant: RollGimbal, saturated: bool) -> NDArray:
+def roll_gimbal_matrix(
+    D: NDArray[np.float64], plant: RollGimbal, saturated: bool, contact: bool = False
+) -> NDArray:
     """A (5, 5) of x = [roll, roll rate, phi, phi', z] linearised about rest (SI units).
 
     J r'' = -C r - B r' - n H phi';  J_g phi'' = H r' + tau;  tau from `drive_torque` with the
     loop closed (saturated=False) or its output frozen (saturated=True: the passive parts only,
-    z' = -(K_i / K_p) z from the back-calculation).
+    z' = -(K_i / K_p) z from the back-calculation); `contact`: also on a cushioned stop
+    (its spring k_s and damper c_s added).
     """
     J, Jg = plant.roll_inertia, plant.gimbal_inertia
     H, n = plant.angular_momentum, plant.n_gyros
@@ -295,7 +343,10 @@ def roll_gimbal_matrix(D: NDArray[np.float64], plant: RollGimbal, saturated: boo
     A = np.zeros((5, 5))
     A[0, 1] = A[2, 3] = 1.0
     A[1] = [-plant.roll_stiffness / J, -plant.roll_damping / J, 0.0, -n * H / J, 0.0]
-    A[3] = [0.0, H * (1.0 - ff) / Jg, -k / Jg, -(kp + D[DC]) / Jg, ki / Jg]
+    c = D[DC]
+    if contact:
+        k, c = k + D[DKS], c + D[DCS]
+    A[3] = [0.0, H * (1.0 - ff) / Jg, -k / Jg, -(kp + c) / Jg, ki / Jg]
     A[4, 3] = -1.0 if ki > 0.0 else 0.0
     if saturated and D[DKI] > 0.0:
         A[4, 4] = -D[DKI] / D[DKP]
@@ -304,10 +355,13 @@ def roll_gimbal_matrix(D: NDArray[np.float64], plant: RollGimbal, saturated: boo
 
 def stable_physics_dt(D: NDArray[np.float64], plant: RollGimbal) -> float:
     """Largest RK4 physics step (s) for which the linearised roll-gimbal-drive system is stable
-    with the loop closed and with it saturated (module doc)."""
+    with the loop closed and with it saturated (module doc), also on a cushioned stop."""
     h = math.inf
-    for sat in (False, True):
-        for lam in np.linalg.eigvals(roll_gimbal_matrix(D, plant, sat)):
+    cases = [(False, False), (True, False)]
+    if D[DKS] > 0.0:  # on a cushioned stop, loop working or saturated
+        cases += [(False, True), (True, True)]
+    for sat, contact in cases:
+        for lam in np.linalg.eigvals(roll_gimbal_matrix(D, plant, sat, contact)):
             h = min(h, _rk4_max_step(complex(lam)))
     return h
 

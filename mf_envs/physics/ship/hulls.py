@@ -91,6 +91,8 @@ class Hull:
         gm: float = 0.9,
         gm_longitudinal: float = 25.0,
         length_wl: float = 11.5,
+        roll_damping_method: str = "rule_of_thumb",
+        speed: float = 0.0,
     ) -> Hull:
         """The default 18 t, 12-13 m motor yacht (GyroStabilizer-v0). Field by field:
 
@@ -106,6 +108,9 @@ class Hull:
         heave: rho g A_wp (C_wp = 0.75), damping ratio 0.2; surge/sway damping 0.05 m 1/s.
         effective_slope 0.7. These are rules of thumb (no published yacht data);
         `mss_naval_vessel` is the hull with published coefficients.
+
+        roll_damping_method="ikeda": B44 and B44q instead from the simplified Ikeda method
+        (`yacht_ikeda_damping`, at ship speed `speed` in m/s); B66 keeps the rule of thumb.
         """
         m, b, gml, lwl = displacement, beam, gm_longitudinal, length_wl
         for name, value in (("displacement", m), ("beam", b), ("gm", gm),
@@ -117,6 +122,14 @@ class Hull:
         a44 = 0.2 * j44
         c44, c55 = m * G * gm, m * G * gml
         b44 = 2.0 * 0.04 * math.sqrt(c44 * (j44 + a44))
+        b44_lin, b44_quad = b44, 2.5 * b44
+        if roll_damping_method == "ikeda":
+            tn = 2.0 * math.pi * math.sqrt((j44 + a44) / c44)
+            b44_lin, b44_quad = yacht_ikeda_damping(lwl, b, m, tn, speed)
+        elif roll_damping_method != "rule_of_thumb":
+            raise ValueError(
+                f"hull_damping: must be 'ikeda' or 'rule_of_thumb', got {roll_damping_method!r}"
+            )
         awp = 0.75 * lwl * b
         bm = 0.75 * lwl * b**3 / (12.0 * m / RHO_SEA)
         return cls(
@@ -126,8 +139,8 @@ class Hull:
             roll_stiffness=c44,
             gz_bm_over_gm=bm / gm,
             gz_cubic=0.0,
-            roll_damping=b44,
-            roll_damping_quadratic=2.5 * b44,
+            roll_damping=b44_lin,
+            roll_damping_quadratic=b44_quad,
             roll_damping_speed=0.0,
             pitch_stiffness=c55,
             pitch_damping=2.0 * 0.2 * math.sqrt(c55 * j55),
@@ -228,6 +241,34 @@ class Hull:
             heave_damping=self.heave_damping,
             surge_sway_damping=self.surge_sway_damping,
         )
+
+
+# the yacht's particulars for Ikeda's method (docs/stabilizer_physics.md, "Roll damping"): the
+# simplified method's range is 2.5 <= B/d <= 4.5, 0.5 <= Cb <= 0.85, 0.9 <= Cm <= 0.99; an 18 t,
+# 11.5 x 4.2 m hull has Cb = V / (L B d) = 0.39 at B/d = 4.5 (and less deeper), below it, where
+# the wave-damping regression collapses (damping ratio 0.002). Chosen: d = B / 4.5, Cb and Cm at
+# the range's edge (0.5, 0.9), OG = -0.4 m (G 0.4 m above the waterline), no bilge keels,
+# roll amplitude 10 deg (the design roll of the drive sizing) at the natural roll period.
+YACHT_IKEDA = {"b_over_d": 4.5, "cb": 0.5, "cm": 0.9, "og": -0.4, "amplitude_deg": 10.0}
+
+
+def yacht_ikeda_damping(
+    length: float, beam: float, mass: float, roll_period: float, speed: float = 0.0
+) -> tuple[float, float]:
+    """(B44 in N m s/rad, B44q in N m s^2/rad^2) of a yacht hull by the simplified Ikeda
+    method (`ship.roll_damping`, Kawahara, Maekawa & Ikeda 2011) with the particulars
+    `YACHT_IKEDA` at the roll period (s) and ship speed (m/s); split by
+    `RollDamping.linear_quadratic`. The displacement `mass` only scales the result: nabla =
+    mass / rho replaces Cb L B d (the method's non-dimensional damping is per rho nabla B^2)."""
+    from mf_envs.physics.ship.roll_damping import HullParticulars, roll_damping
+
+    p = YACHT_IKEDA
+    h = HullParticulars(length, beam, beam / p["b_over_d"], p["cb"], p["cm"], p["og"],
+                        roll_period, math.radians(p["amplitude_deg"]), speed=speed)  # fmt: skip
+    r = roll_damping(h, validity="ignore")  # on the range's edge (B/d = 4.5 to round-off)
+    lin, quad = r.linear_quadratic()
+    f = (mass / RHO_SEA) / h.displacement_volume  # the hull's own displacement
+    return lin * f, quad * f
 
 
 def roll_decay(

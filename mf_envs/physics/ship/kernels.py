@@ -46,7 +46,7 @@ from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
 from mf_envs.frames.steppers import make_rkmk4, rk4_work, rkmk4_rwork
 from mf_envs.physics.ship.coupling import N_COUPLING, solve_sway_roll_yaw
-from mf_envs.physics.ship.drive import end_stop
+from mf_envs.physics.ship.drive import DKS, DRCAP, cap_rate, cushion_torque, end_stop
 from mf_envs.physics.ship.layout import (  # noqa: F401 (re-exported)
     CPL0,
     DRV0,
@@ -74,6 +74,9 @@ from mf_envs.physics.ship.loads import (  # noqa: F401 (re-exported: the kernels
 )
 
 # P: the packed parameter vector of `layout.KernelParams`, indexed P[S.NAME]
+# out (N_OUT,): gyro roll moment, wave moment, drive torque (N m), drive power (W), mount moment
+# per unit (N m; |(H phi', drive + cushion torque)| of one unit), rotor running power (W, all)
+N_OUT = 6
 N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt (J), sway v (m/s)
 Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
@@ -170,15 +173,19 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
         c, s = math.cos(phi), math.sin(phi)
     else:  # once per stage (the drive and the balance share them), from the step's start
         c, s = sincos_near(phi, near[0], near[1], near[2])
+    tg = 0.0  # the torque on the gimbal: drive, plus the cushioned stops if the unit has them
     if free:
         tau, dz = gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c, s)
+        tg = tau
+        if P[DRV0 + DKS] > 0.0:
+            tg = tau + cushion_torque(phi, phid, P, DRV0)
     elif mode == GIMBAL_SERVO:
         phidd = gimbal_motion(0.0, phi, phid, u, P)[2]  # the servo keeps phi, phi'
         tau = P[S.D2] * phidd - gyro_gimbal_torque(w1, w3, phi, P, c, s)  # what it applies
     m1, m2, m3 = hull_moment(w1, w2, w3, r20, r21, r22, P)
     roll = math.atan2(r21, r22) if P[S.CPLON] > 0.5 else 0.0
     a1, a2, a3, _, phidd, dv = ship_accel(
-        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tau, v, roll
+        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll
     )
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
@@ -249,7 +256,10 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     if mode == GIMBAL_SINUSOIDAL or mode == GIMBAL_CONTINUOUS:
         y[3], y[4] = inp[2][0], inp[2][1]
     elif mode == GIMBAL_TORQUE and P[S.LIMITS] > 0.5:
-        _stop_gimbal(y, P)
+        if P[DRV0 + DKS] > 0.0 or P[DRV0 + DRCAP] > 0.0:
+            _cap_gimbal(y, dt, P)  # the unit's rate cap; its cushions act inside the stages
+        else:
+            _stop_gimbal(y, P)
     return inp[0]
 
 
@@ -274,6 +284,16 @@ def _stop_gimbal(y, P):
     hull takes the reaction that keeps L_2 = J_yy w2 + J_g phi' (the pair's cancels)."""
     phi, phid, jump = end_stop(y[3], y[4], P[S.PHIMAX])
     y[3], y[4] = phi, phid
+    if jump != 0.0 and int(P[S.NGYRO]) == 1:
+        y[1] -= P[S.D2] * jump / (P[S.J2] + P[S.D2])
+
+
+@kernel
+def _cap_gimbal(y, dt, P):
+    """The unit's precession-rate cap (`ship.drive.cap_rate`) after a step of dt (s); one gyro's
+    hull takes the reaction that keeps L_2 = J_yy w2 + J_g phi' (the pair's cancels)."""
+    phid, jump = cap_rate(y[4], dt, P[S.D2], P, DRV0)
+    y[4] = phid
     if jump != 0.0 and int(P[S.NGYRO]) == 1:
         y[1] -= P[S.D2] * jump / (P[S.J2] + P[S.D2])
 
@@ -304,7 +324,8 @@ def gyro_moment(y, P):
 def advance(t, y, R, u, dt, n_sub, P, tab, out):
     """n_sub RK4 steps of size dt with the command u held; returns the new time.
     out[0], out[1] <- gyro roll moment and wave moment (N m) at the end; out[2], out[3] <- gyro
-    1's drive torque (N m) and the drive power n tau phi' (W) at the end (`drive_output`)."""
+    1's drive torque (N m) and the drive power n tau phi' (W) at the end (`drive_output`);
+    out[4] <- the mount moment per unit (N m, `mount_moment`), out[5] <- rotor power (W)."""
     return advance_with(t, y, R, u, dt, n_sub, P, tab, out, rk4_work(y.shape[0]), rkmk4_rwork())
 
 
@@ -319,7 +340,21 @@ def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
     out[0] = gyro_moment(y, P)
     out[1] = mw
     out[2], out[3] = drive_output(t, y, R, u, P)
+    out[4] = mount_moment(y, out[2], P)
+    out[5] = P[S.PROTOR]
     return t
+
+
+@kernel
+def mount_moment(y, tau, P):
+    """Moment (N m) one unit's foundation takes (`N_OUT` doc): |(H phi', tau_g)| / units, the
+    precession moment H phi' (roll and yaw of the unit's frame) and the gimbal-axis torque
+    tau_g = drive torque tau (N m, of the lumped gyro) + cushion torque."""
+    hp = P[S.JR3] * P[S.PSID] * y[4]
+    tg = tau
+    if P[DRV0 + DKS] > 0.0:
+        tg = tau + cushion_torque(y[3], y[4], P, DRV0)
+    return math.sqrt(hp * hp + tg * tg) / P[S.UNITS]
 
 
 @kernel

@@ -71,6 +71,8 @@ class KernelParams:
     gz3: float = 0.0  # cubic GZ term over GM, 1/rad^2 (`ship.hulls.Hull.gz_cubic`)
     speed: float = 0.0  # ship speed U, m/s (sway-roll-yaw coupling)
     cplon: float = 0.0  # 1: sway-roll-yaw coupling on (`ship.coupling`)
+    units: float = 1.0  # identical units lumped in each gyro (mount moment per unit)
+    protor: float = 0.0  # rotor running (or spool-up) power of all units, W (reported)
     # blocks (a tuple field fills len slots NAME_0 .. NAME_{len-1}; BLOCKS gives the lengths)
     drive: tuple[float, ...] = (0.0,) * N_DRIVE  # `ship.drive.DriveParams.pack` (may hold inf)
     coupling: tuple[float, ...] = (0.0,) * N_COUPLING  # `ship.coupling.SwayRollYaw.pack`

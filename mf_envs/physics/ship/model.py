@@ -46,13 +46,16 @@ from mf_envs.effects import EFFECT_NAMES, resolve_effects
 from mf_envs.frames.so3 import rot_x
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.coupling import SwayRollYaw
-from mf_envs.physics.ship.drive import DPHIMAX, DriveParams
+from mf_envs.physics.ship.drive import DCS, DKS, DPHIMAX, DRCAP, DriveParams
 from mf_envs.physics.ship.kernels import gyro_roll_moment  # noqa: F401 (public name)
 from mf_envs.physics.ship.layout import KernelParams
 from mf_envs.physics.ship.params import GyroParams, ShipParams
 
 SHIP_EFFECTS: dict[str, str] = {
     "gimbal_damping": "bearing friction c phi' of an active gimbal drive (torque drive)",
+    # what the controller sees (GyroStabilizer-v0's observation; no physics term)
+    "sensor_noise": "IMU and gimbal-encoder noise on the observation (GyroStabilizer-v0)",
+    "sensor_delay": "observation delayed by whole control steps (GyroStabilizer-v0)",
     "quadratic_roll_damping": "quadratic roll damping -B44q |p| p (MSS K_|p|p)",
 }
 SHIP_EFFECTS.update(
@@ -143,6 +146,8 @@ def pack_params(
     ship_gz_cubic: float = 0.0,
     coupling: SwayRollYaw | None = None,
     speed: float = 0.0,
+    units: int = 1,
+    rotor_power: float = 0.0,
 ) -> NDArray[np.float64]:
     """The packed float64 parameter vector P of `ship.kernels` for this scene.
 
@@ -151,7 +156,9 @@ def pack_params(
     `ship.hulls.Hull.gz_cubic`). coupling: sway-roll-yaw coefficients (`ship.coupling`): with
     them the sway equation and the coupling terms are on, at ship speed `speed` (m/s); they
     exist only for hulls with published coupling data, so this is a switch on the hull's data,
-    not a named effect every hull could turn on.
+    not a named effect every hull could turn on. units: identical units lumped in each gyro
+    (`gyro` is their sum; only the reported mount moment per unit uses it); rotor_power: the
+    rotors' running power, W (reported in `kernels.advance`'s out[5]).
     """
     n = check_int("n_gyros", n_gyros, 1, 2)
     check_choice("form", form, FORMS)
@@ -164,6 +171,8 @@ def pack_params(
         **_wave_slots(wave, eff, table_dt),
         "gz3": ship_gz_cubic if "hydrostatic_restoring" in eff else 0.0,
         "speed": check_nonnegative("speed", speed),
+        "units": float(check_int("units", units, 1, 64)),
+        "protor": check_nonnegative("rotor_power", rotor_power),
     }
     if coupling is not None:
         kp.update(cplon=1.0, coupling=tuple(map(float, coupling.pack())))
@@ -219,8 +228,9 @@ def _drive_slots(drive: GimbalDrive, eff: frozenset[str], d2: float) -> dict[str
         if m.active and "gimbal_damping" not in eff:  # bearing friction of an active drive
             m = dataclasses.replace(m, damping=0.0)
         D = m.pack(d2)
-        if "gimbal_limits" not in eff:  # no end stops: the drive's stop envelope is off too
-            D[DPHIMAX] = math.inf
+        if "gimbal_limits" not in eff:  # no end stops: the drive's stop envelope is off too,
+            D[DPHIMAX] = math.inf  # and so are the unit's rate cap and cushions
+            D[DRCAP] = D[DKS] = D[DCS] = 0.0
         kp["drive"] = tuple(map(float, D))
     return dict(
         kp,
