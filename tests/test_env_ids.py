@@ -98,7 +98,7 @@ def test_old_id_vectorises(mode):
             assert isinstance(venv, gym.vector.SyncVectorEnv)
         assert venv.spec.id == NEW
         obs, _ = venv.reset(seed=0)
-        assert obs.shape == (2, 8)
+        assert obs.shape == (2, 9)  # 9 slots since issue 29 (the wave elevation)
     finally:
         venv.close()
 

@@ -107,6 +107,19 @@ def test_analytic_random_bodies(J, w0):
     assert np.max(np.abs(analytic_omega(J, w0, t) - ref)) < 1e-7 * np.linalg.norm(w0)
 
 
+@pytest.mark.parametrize(
+    "J, w0",
+    [((1.0, 2.0, 3.0), (0.0, 1.0, 1.3e-157)), ((3.0, 2.0, 1.0), (1.3e-157, 1.0, 0.0))],
+)
+def test_intermediate_axis_with_a_subnormal_deviation(J, w0):
+    """Hypothesis found these: a deviation of 1e-157 from the permanent rotation about the
+    intermediate axis made 1 - m subnormal and the solution NaN; it stays on the axis to
+    round-off for t = 0..4 s (the deviation grows as e^{lam t})."""
+    t = np.linspace(0.0, 4.0, 41)
+    w = analytic_omega(J, w0, t)
+    assert np.all(np.isfinite(w)) and np.max(np.abs(w - np.asarray(w0))) < 1e-12
+
+
 def test_racket_period_and_invariants():
     s = elliptic_solution(RACKET_J, RACKET_W0)
     assert s.period == pytest.approx(6.767881, abs=1e-6)  # docs/design.md

@@ -176,8 +176,11 @@ def elliptic_solution(J: ArrayLike, omega0: ArrayLike) -> EllipticSolution:
     b = mid
     side = int(np.sign(s_b))
     p_c, p_a = (-s_of(c), s_of(a)) if not stationary else (0.0, 0.0)
-    # p_a = 0 or J_c = J_b here only if a deviation below ~1e-154 underflowed: constant then
-    if stationary or p_a == 0.0 or Jn[c] == Jn[b]:
+    # p_a ~ 0 or J_c = J_b here only if the deviation from a permanent rotation is below
+    # ~1e-140 of the spin (p_a, a square, below 1e-280: subnormal or underflowed, where the
+    # ratios below lose every digit): the solution leaves the axis as 1e-140 e^{lam t}, a
+    # constant to machine precision for any t < 300 / lam
+    if stationary or abs(p_a) < 1e-280 or Jn[c] == Jn[b]:
         one = np.ones(3)
         return EllipticSolution(J, w0, (a, b, c), np.abs(w0), one, 0.0, 0.0, 0.0, 1.0, side, True)
     Ja, Jb, Jc = Jn[a], Jn[b], Jn[c]
@@ -188,6 +191,8 @@ def elliptic_solution(J: ArrayLike, omega0: ArrayLike) -> EllipticSolution:
     lam = math.sqrt((Jc - Jb) * p_a / (Ja * Jb * Jc))
     m = min(max((Jb - Ja) * p_c / ((Jc - Jb) * p_a), 0.0), 1.0)
     m1 = min(max((Jc - Ja) * s_b / ((Jc - Jb) * p_a), 0.0), 1.0)
+    if m1 < 1e-280:  # subnormal: the elliptic functions lose every digit; on the separatrix
+        m1 = 0.0
     sign = np.ones(3)
     sign[a] = 1.0 if wn[a] >= 0.0 else -1.0
     sign[c] = 1.0 if wn[c] >= 0.0 else -1.0
