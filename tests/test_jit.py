@@ -94,3 +94,24 @@ def test_the_checks_catch_a_kernel_that_breaks_the_rules() -> None:
         assert len(_jit.array_returns()) == 1 and "returns_argument" in _jit.array_returns()[0]
     finally:
         del _jit.KERNELS[n_kernels:]
+
+
+def test_kernel_caches_are_stamped_by_the_whole_package(tmp_path, monkeypatch):
+    """A cached kernel must not survive a change to a callee in another file (a stale cached
+    GyroStabilizer-v0 step raised ZeroDivisionError after a merge): mf_envs' kernels use the
+    package-stamped locator (`mf_envs._cache`), and the stamp changes with any file's bytes."""
+    from mf_envs import _cache
+    from mf_envs.physics.gowec.hydro import floating
+
+    loc = floating.deriv._cache._impl._locator
+    assert type(loc).__name__ == "_PackageLocator"
+    assert loc.get_source_stamp() == _cache.package_stamp()
+    (tmp_path / "a.py").write_text("x = 1\n")
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "b.py").write_text("y = 2\n")
+    monkeypatch.setattr(_cache, "_ROOT", tmp_path)
+    monkeypatch.setattr(_cache, "_STAMP", None)
+    s1 = _cache.package_stamp()
+    monkeypatch.setattr(_cache, "_STAMP", None)
+    (tmp_path / "sub" / "b.py").write_text("y = 3\n")
+    assert _cache.package_stamp() != s1
