@@ -29,10 +29,15 @@ The PTO torque M_g = clip(tau_cmd + c phi' + k phi) (torque and power limits) is
 RK4 stage: a damper held over a control step is unstable once c dt / J > 2 (docs/design.md).
 `engine_model` builds the same system in the general multibody engine; a test checks the two.
 
-State y: [theta, rho, phi, theta', rho', phi', x_theta (nr), x_rho (nr), E_exc, E_rad, E_visc,
+Issue 29 adds, each free when off: quadratic Morison drag relative to the incident wave's
+water (`drag_loads`), a ramp of the incident wave (`ramp`), and surge along the wave and heave
+(`translation_params` in `model`; `mechanics` eliminates s'' so the solve stays 3 x 3).
+
+State y: [theta, rho, phi, theta', rho', phi', x_theta (nr), x_rho (nr), (with surge and heave
+free: s, z, s', z', the stacked radiation states of K11, K15, K51, K33), E_exc, E_rad, E_visc,
 E_pto, E_elec, E_motor] with the energies (J) integrated by the same RK4 as the motion:
-excitation work, radiated, viscous, PTO mechanical (positive harvested), PTO electrical (eta_g
-when generating, 1/eta_m when motoring), rotor-motor work.
+excitation work, radiated, viscous and drag, PTO mechanical (positive harvested), PTO
+electrical (eta_g when generating, 1/eta_m when motoring), rotor-motor work (`energy_index`).
 """
 
 from __future__ import annotations
@@ -483,7 +488,7 @@ def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray,
 
 
 def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction: float) -> NDArray:
-    """The sea parameters `sp` (SP_LEN,) of `sea_inputs` / `drag_moments` for a vertical
+    """The sea parameters `sp` (SP_LEN,) of `sea_inputs` / `drag_loads` for a vertical
     cylinder hull (radius R, draft d, z_G from `hull`) and drag coefficient C_d (0 = off):
     - keel plate: N_KEEL nodes on a ring of radius r* = R (32 / (25 pi))^(1/3) at angles
       direction + j pi/3, each of area pi R^2 / N_KEEL, so that for a rigid rotation the ring

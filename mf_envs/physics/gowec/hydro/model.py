@@ -134,7 +134,7 @@ class FloatingModel:
         return self.p.n_state + (4 + int(tp[fl.TP_NT]) if tp[fl.TP_ON] else 0)
 
     def set_drag(self, drag_coefficient: float) -> None:
-        """Quadratic Morison drag on the keel plate and the side (`floating.drag_moments`) with
+        """Quadratic Morison drag on the keel plate and the side (`floating.drag_loads`) with
         the drag coefficient C_d (0 = off, no cost)."""
         self.drag_coefficient = float(drag_coefficient)
         self.set_sea(self.wave)
