@@ -98,7 +98,7 @@ class GOWECV1Env(MFEnv):
     | pitch_limit, wave_ramp | device (20 deg, 10 s) | episode-ending tilt (rad), wave ramp (s) |
     | wave_preview | 0 | s of incident elevation ahead in 8 more observation slots (0: none) |
     | hull | None (the device's) | `HullCoefficients` or path of an .npz (`from_capytaine`) |
-    | episode_seconds, control_dt, physics_dt | 120 s, 0.02 s, device (0.01 s) | timing |
+    | episode_seconds, control_dt, physics_dt | 120 s, 0.02 s, device (0.02 s) | timing |
 
     ## Version History
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency (issue 14).

@@ -103,7 +103,7 @@ DEVICES: dict[str, FloatingDevice] = {
         drag_coefficient=1.0, viscous_fraction=0.0, pitch_limit=math.radians(20.0),
         wave_ramp=10.0, mooring_stiffness=3.0e3,
         effects=("gyroscopic", "radiation", "viscous_damping", "quadratic_drag", "surge_heave"),
-        physics_dt=0.01,
+        physics_dt=0.02,
     ),
     "seed_buoy": FloatingDevice(
         name="seed_buoy", hull_file=DEFAULT_HULL_FILE, three_dof=False,
