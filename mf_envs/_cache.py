@@ -8,8 +8,9 @@ after a merge that changed the stabilizer's physics kernels, a cached `GyroStabi
 raised ZeroDivisionError until the caches were deleted; a user upgrading in place keeps the
 `__pycache__` files (pip does not list them) and would meet the same.
 
-`install()` puts a locator in front of numba's (`numba.core.caching.CacheImpl` tries its
-locator classes in order; this one is numba's own in-tree locator with another stamp): for a
+`install()` puts two locators in front of numba's (`numba.core.caching.CacheImpl` tries its
+locator classes in order; these are numba's own NUMBA_CACHE_DIR and in-tree locators, in
+numba's order, with another stamp): for a
 function defined in a file of this package, the source stamp is one hash of every `.py` file of
 the package (paths and bytes, computed once per process, a few ms), so any change to any of them
 invalidates every cached kernel, which numba then recompiles and stores again. Functions outside
@@ -45,20 +46,34 @@ def install() -> None:
         return
     from numba.core import caching
 
+    def _inside(py_file: str) -> bool:
+        try:
+            return Path(py_file).resolve().is_relative_to(_ROOT)
+        except (OSError, ValueError):
+            return False
+
+    class _PackageUserDirLocator(caching.UserProvidedCacheLocator):
+        """numba's NUMBA_CACHE_DIR locator (used only when that is set, as numba's) for this
+        package's files, with `package_stamp()` as the source stamp."""
+
+        @classmethod
+        def from_function(cls, py_func, py_file):  # noqa: ANN001, ANN206
+            return super().from_function(py_func, py_file) if _inside(py_file) else None
+
+        def get_source_stamp(self):  # noqa: ANN201
+            return package_stamp()
+
     class _PackageLocator(caching.InTreeCacheLocator):
         """numba's in-tree locator (cache beside the source) for this package's files, with
         `package_stamp()` as the source stamp."""
 
         @classmethod
         def from_function(cls, py_func, py_file):  # noqa: ANN001, ANN206
-            try:
-                inside = Path(py_file).resolve().is_relative_to(_ROOT)
-            except (OSError, ValueError):
-                return None
-            return super().from_function(py_func, py_file) if inside else None
+            return super().from_function(py_func, py_file) if _inside(py_file) else None
 
         def get_source_stamp(self):  # noqa: ANN201
             return package_stamp()
 
-    caching.CacheImpl._locator_classes.insert(0, _PackageLocator)
+    # numba's order: a user-provided NUMBA_CACHE_DIR first, then beside the source
+    caching.CacheImpl._locator_classes[:0] = [_PackageUserDirLocator, _PackageLocator]
     _INSTALLED = True

@@ -313,8 +313,8 @@ def eddy_speed_factor(h: HullParticulars) -> float:
     """B_E(U) / B_E(0) = K^2 / (1 + K^2), K = 0.04 omega L / U (module doc); 1 at U = 0."""
     if h.speed == 0.0:
         return 1.0
-    k2 = (0.04 * h.omega * h.length / h.speed) ** 2
-    return k2 / (1.0 + k2)
+    u = h.speed / (0.04 * h.omega * h.length)  # 1 / K: no overflow at a subnormal speed
+    return 1.0 / (1.0 + u * u)
 
 
 def lift_hat(h: HullParticulars) -> float:
