@@ -24,7 +24,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
-from mf_envs.controllers import make_baseline
+from mf_envs.benchmarks.controllers.gowec_v1 import episode
 from mf_envs.physics.gowec.hydro.devices import DEVICES
 
 ENV_ID = "FloatingGOWEC-v0"
@@ -38,30 +38,16 @@ KINDS = ("pll", "efficient_pto")
 
 
 def run(kind: str, scale: float, sea: dict, seed: int, seconds: float) -> dict:
-    """Net electrical and mechanical power (W) over the last half of one episode."""
-    dev = DEVICES["iswec_class"]
-    env = gym.make(ENV_ID, rotor_inertia=dev.rotor_inertia * scale, episode_seconds=seconds,
-                   **sea)  # fmt: skip
-    ctrl = make_baseline(env, kind)
-    obs, _ = env.reset(seed=seed)
-    ctrl.reset()
-    pe, pm, done = [], [], False
-    term = False
-    while not done:
-        a, _ = ctrl.predict(obs)
-        obs, _, term, trunc, info = env.step(a)
-        pe.append(info["power"])
-        pm.append(info["power_mechanical"])
-        done = term or trunc
-    u = env.unwrapped
+    """Net electrical and mechanical power (W) over the last half of one episode (the bench's
+    `episode`), and the gyro-to-wave moment ratio of the device with H scaled by `scale`."""
+    kw = dict(rotor_inertia=DEVICES["iswec_class"].rotor_inertia * scale, **sea)
+    r = episode(kind, seed, seconds, **kw)
+    u = gym.make(ENV_ID, **kw).unwrapped
     w = 2.0 * math.pi / u.wave_period
     X = abs(u.hull.at(w)[2]) * u.wave_amplitude
     ratio = u.model.units * u.model.p.gyro[0] * u.model.psid * w / X
-    h = len(pe) // 2
-    out = dict(kind=kind, scale=scale, ratio=ratio, net_W=float(np.mean(pe[h:])),
-               mech_W=float(np.mean(pm[h:])), terminated=bool(term))  # fmt: skip
-    env.close()
-    return out
+    return dict(kind=kind, scale=scale, ratio=ratio, net_W=r["Pe"], mech_W=r["P"],
+                terminated=bool(r["terminated"]))  # fmt: skip
 
 
 def sweep(seconds: float = 200.0, seeds=(2000, 2001)) -> list[dict]:

@@ -88,10 +88,9 @@ def pitch_hull(c: ThreeDofCoefficients) -> HullCoefficients:
     )  # fmt: skip
 
 
-# the ISWEC-class flywheel: a steel disc (7850 kg/m^3) 2.4 m across, 0.35 m thick
-_FLYWHEEL_MASS = 7850.0 * math.pi * 1.2**2 * 0.35  # 12.43 t
-_FLYWHEEL_J = 0.5 * _FLYWHEEL_MASS * 1.2**2  # 8.95e3 kg m^2 for a plain disc ...
-ISWEC_ROTOR_INERTIA = 1.2e4  # ... kg m^2 with a heavier rim (chosen; docs/gowec_v1.md)
+# the ISWEC-class flywheel: a plain steel disc 2.4 m across and 0.35 m thick would be 12.4 t and
+# 8.95e3 kg m^2; with a heavier rim (chosen; docs/gowec_v1.md):
+ISWEC_ROTOR_INERTIA = 1.2e4  # kg m^2
 ISWEC_ROTOR_SPEED = 250.0 * RPM  # rad/s (chosen)
 
 DEVICES: dict[str, FloatingDevice] = {

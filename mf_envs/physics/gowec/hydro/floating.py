@@ -90,18 +90,6 @@ def excitation_coefficients(
     return -math.sin(direction) * c, math.cos(direction) * c
 
 
-@kernel(forceinline=True)
-def excitation(t, om, cp, cr):
-    """(M_x, M_y) (N m) at time t: sum Re(c e^{-i w t}) (cp, cr complex (n,))."""
-    mx = 0.0
-    my = 0.0
-    for i in range(om.shape[0]):
-        c, s = math.cos(om[i] * t), math.sin(om[i] * t)
-        mx += cp[i].real * c + cp[i].imag * s
-        my += cr[i].real * c + cr[i].imag * s
-    return mx, my
-
-
 # quadratic drag (issue 29): N_KEEL nodes on the keel plate, N_SIDE on the side, and the sea's
 # per-node water velocities; the sea parameters `sp` (SP_LEN,) = [drag on (0/1), ramp time (s),
 # c_keel (N_KEEL) = 1/2 rho C_d area (kg/m), x_keel, y_keel (N_KEEL, m from the axis),
@@ -136,7 +124,8 @@ def ramp(t, tr):
 
 @kernel(forceinline=True)
 def sea_inputs(t, om, cp, cr, dk, sp):
-    """The sea at time t (s), ramped (`ramp`): (M_x, M_y) (N m) as `excitation`, then the
+    """The sea at time t (s), ramped (`ramp`): (M_x, M_y) (N m), sum Re(c e^{-i w t}) of the
+    excitation coefficients cp (pitch) and cr (roll) (`excitation_coefficients`), then the
     water's vertical velocity at the N_KEEL keel nodes and its horizontal speed along the wave
     direction at the N_SIDE side nodes (m/s), then the surge force along the wave and the heave
     force (N), each sum Re(dk[i, j] e^{-i w_i t}) (zeros, and no work, when neither the drag
