@@ -11,6 +11,7 @@ EXTRAS = {
     "torch": "train",
     "safetensors": "train",
     "rich": "train",
+    "rliable": "train",
     "elastica": "compare",
     "mhkit": "compare",
     "pygame": "render",

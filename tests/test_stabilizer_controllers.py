@@ -98,7 +98,8 @@ def test_lqr_gain_and_poles():
 
 
 def test_kinds_registered():
-    assert baseline_kinds(ENV_ID) == ["pid", "continuous", "lqr", "rate", "sinusoidal"]
+    # the default (the strongest) first
+    assert baseline_kinds(ENV_ID) == ["lqr", "continuous", "pid", "rate", "sinusoidal"]
     with pytest.raises(ValueError, match="period"):
         make_baseline(gym.make(ENV_ID), "sinusoidal", period=-1.0)
 

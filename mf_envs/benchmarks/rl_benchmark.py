@@ -1,0 +1,291 @@
+"""RL benchmark on a headline task: algorithms x training seeds, frozen test seeds, one window,
+interquartile means with stratified-bootstrap 95 % intervals (rliable) (issue 32 items 4-5).
+
+    python -m mf_envs.benchmarks.rl_benchmark --task stabilizer_irregular --out bench_rl
+    python -m mf_envs.benchmarks.rl_benchmark --algos sac --seeds 0 1 2 3 4   # more seeds
+
+Protocol (docs/benchmark.md):
+- **Training**: `mf_envs.train.train` with the shipped rl-zoo3 entry of each algorithm
+  (`configs/<algo>.yml`) plus the task's env kwargs, one run per (algorithm, training seed),
+  on the task's budget; a new sea every reset.
+- **Test seeds**: `TEST_SEEDS` (20000-20019), frozen, never used by training (training episodes
+  draw from the trainer's seeds, its evaluation callback from 10000+): each seed draws a new
+  irregular-sea realisation, not just a phase.
+- **Window**: every controller, learned or classical, is scored on the same episodes of
+  `eval_seconds` and the same window (the env's metric after its settling time).
+- **Policies**: the final policy of each run (the `best` checkpoint is not used).
+- **Score**: the task's normalised score per episode (the stabilizer: RMS roll reduction
+  1 - rms_on / rms_off against the same sea with the rotor off); a run's score is its mean
+  over the test seeds; per algorithm the interquartile mean over runs and its stratified
+  bootstrap 95 % interval (`rliable.library.get_interval_estimates`, 2000 resamples; with 3
+  runs the IQM trims nothing and is the mean). Baselines are deterministic: their interval is
+  the bootstrap over the 20 test episodes.
+
+Writes `<out>/<task>/results.json`, `table.md`, `learning_curves.png` and the runs under
+`<out>/<task>/runs/`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+TEST_SEEDS = tuple(range(20_000, 20_020))
+TRAIN_SEEDS = (0, 1, 2)
+ALGOS = ("sac", "td3", "ppo")
+
+
+@dataclass(frozen=True)
+class Task:
+    """A headline task: the env, its scene, budgets, baselines and the normalised score."""
+
+    name: str
+    env_id: str
+    env_kwargs: dict[str, Any]
+    eval_seconds: float
+    budgets: dict[str, int]
+    baselines: tuple[str, ...]
+    ceiling: float
+    ceiling_note: str
+    score_name: str
+    reference_kwargs: Callable[[dict[str, Any]], dict[str, Any]] = field(repr=False)
+
+
+def _rotor_off(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """The stabilizer's reference scene: the same sea with the rotor off."""
+    return {**kwargs, "effects": tuple(e for e in kwargs["effects"] if e != "gyroscopic")}
+
+
+def _stabilizer_irregular() -> Task:
+    from mf_envs.benchmarks.stabilizer_grid import cells
+
+    cell = next(c for c in cells() if c["name"] == "Hs0.8_Tp5.92_beam_U0")
+    kw = {k: v for k, v in cell.items() if k != "name"}
+
+    return Task(
+        name="stabilizer_irregular",
+        env_id="GyroStabilizer-v0",
+        env_kwargs=kw,
+        eval_seconds=120.0,
+        budgets={"ppo": 50_000, "sac": 20_000, "td3": 20_000},
+        baselines=("random", "pid", "lqr"),
+        ceiling=1.0,
+        ceiling_note="RMS roll reduction 1 (no roll left); no causal bound computed",
+        score_name="rms_roll_reduction",
+        reference_kwargs=_rotor_off,
+    )
+
+
+def _stabilizer_resonance() -> Task:
+    """The default scene (regular beam wave at the roll resonance): the easy task, where the
+    issue-32 review saw SAC beat the classical controllers; a test seed sets only the wave's
+    phase and the start, so its 20 episodes are nearly one."""
+    from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
+
+    irregular = _stabilizer_irregular()
+    return Task(
+        name="stabilizer_resonance",
+        env_id="GyroStabilizer-v0",
+        env_kwargs={"effects": tuple(DEFAULT_EFFECTS)},
+        eval_seconds=120.0,
+        budgets=irregular.budgets,
+        baselines=irregular.baselines,
+        ceiling=1.0,
+        ceiling_note=irregular.ceiling_note,
+        score_name=irregular.score_name,
+        reference_kwargs=_rotor_off,
+    )
+
+
+TASKS: dict[str, Callable[[], Task]] = {
+    "stabilizer_irregular": _stabilizer_irregular,
+    "stabilizer_resonance": _stabilizer_resonance,
+}
+
+
+# ------------------------------------------------------------------------------- evaluation
+class _Random:
+    """Uniform random actions from a seeded generator (one per episode)."""
+
+    def __init__(self, space: Any, seed: int) -> None:
+        self.space, self.rng = space, np.random.default_rng(seed)
+
+    def reset(self) -> None:
+        return None
+
+    def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        return self.rng.uniform(self.space.low, self.space.high).astype(self.space.dtype), None
+
+
+class _Zero(_Random):
+    def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        return np.zeros(self.space.shape, self.space.dtype), None
+
+
+def _metric(task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Path | None) -> float:
+    """The env's primary metric (the stabilizer: RMS roll after its settling time) of one test
+    episode of `kind` (a baseline, "random", "zero", or the policy in `run`)."""
+    import gymnasium as gym
+
+    from mf_envs.controllers import make_baseline
+    from mf_envs.train.evaluate import primary_metric, run_episode
+    from mf_envs.train.policy import load_policy
+
+    env = gym.make(task.env_id, **kwargs)
+    try:
+        if run is not None:
+            ctrl: Any = load_policy(task.env_id, run)
+        elif kind in ("random", "zero"):
+            ctrl = (_Random if kind == "random" else _Zero)(env.action_space, seed)
+        else:
+            ctrl = make_baseline(env, kind)
+        return float(run_episode(task.env_id, env, ctrl, seed)[primary_metric(task.env_id).name])
+    finally:
+        env.close()
+
+
+def episode_scores(task: Task, kind: str, run: Path | None = None) -> np.ndarray:
+    """Normalised score of `kind` (a baseline, "random", or the policy in `run`) on each test
+    seed: 1 - metric / metric of the same sea in the reference (rotor-off) scene."""
+    kw = {**task.env_kwargs, "episode_seconds": task.eval_seconds}
+    ref = task.reference_kwargs(kw)
+    return np.array([1.0 - _metric(task, kw, kind, s, run) / _metric(task, ref, "zero", s, None)
+                     for s in TEST_SEEDS])  # fmt: skip
+
+
+def interval(scores: np.ndarray, reps: int = 2000, seed: int = 0) -> dict[str, float]:
+    """IQM and stratified-bootstrap 95 % interval of `scores` (runs,) or (runs, tasks)
+    (rliable); the mean and its sample std beside them."""
+    from rliable import library, metrics
+
+    m = np.atleast_2d(np.asarray(scores, dtype=float))
+    if m.shape[0] == 1:
+        m = m.T
+    # rliable takes a legacy RandomState; arch, under it, also draws from numpy's global one
+    np.random.seed(seed)  # noqa: NPY002
+    state = np.random.RandomState(seed)  # noqa: NPY002
+    point, ci = library.get_interval_estimates(
+        {"x": m}, metrics.aggregate_iqm, reps=reps, random_state=state
+    )
+    flat, (lo, hi) = m.ravel(), np.ravel(ci["x"])[:2]
+    return {"iqm": float(point["x"]), "lo": float(lo), "hi": float(hi), "mean": float(flat.mean()),
+            "std": float(flat.std(ddof=1)) if flat.size > 1 else 0.0,
+            "n": int(m.shape[0])}  # fmt: skip
+
+
+# ------------------------------------------------------------------------------- training
+def write_config(task: Task, algo: str, folder: Path) -> Path:
+    """The shipped rl-zoo3 entry of `algo` for the env plus the task's env kwargs and budget,
+    written as `folder/<algo>.yml` (the file `mf-envs train --config` reads)."""
+    import yaml
+
+    from mf_envs.train.config import default_config, read_config
+
+    entry = dict(read_config(default_config(algo))[task.env_id])
+    entry["n_timesteps"] = int(task.budgets[algo])
+    entry["env_kwargs"] = {k: list(v) if isinstance(v, tuple) else v
+                           for k, v in task.env_kwargs.items()}  # fmt: skip
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"{algo}.yml"
+    path.write_text(yaml.safe_dump({task.env_id: entry}, sort_keys=False))
+    return path
+
+
+def train_runs(task: Task, algos: Sequence[str], seeds: Sequence[int], out: Path) -> dict:
+    """Train every (algorithm, seed) not already on disk; {algo: [(seed, run_dir, wall_s)]}."""
+    from mf_envs.train import policy
+    from mf_envs.train.trainer import train
+
+    runs: dict[str, list[tuple[int, Path, float]]] = {}
+    for algo in algos:
+        cfg = write_config(task, algo, out / "configs")
+        for s in seeds:
+            final = out / "runs" / task.env_id / ("" if algo == "ppo" else algo) / f"seed{s}"
+            if not (final / policy.POLICY_FILE).is_file():
+                t0 = time.time()
+                train(task.env_id, seed=s, config=cfg, out=out / "runs", algo=algo,
+                      final_eval_seeds=(), force=True)  # fmt: skip
+                print(f"{algo} seed {s}: trained in {time.time() - t0:.0f} s", flush=True)
+            runs.setdefault(algo, []).append(
+                (s, final, float(policy.read_meta(final)["wall_time_s"]))
+            )
+    return runs
+
+
+# ------------------------------------------------------------------------------- report
+def table(task: Task, rows: dict[str, dict[str, Any]]) -> str:
+    head = (f"| controller | runs | {task.score_name}: IQM [95 % CI] | mean ± std | "
+            "of ceiling | budget (steps) | wall per run (s) |")  # fmt: skip
+    lines = [head, "|---|---|---|---|---|---|---|"]
+    for name, r in rows.items():
+        lines.append(
+            f"| {name} | {r['n']} | {r['iqm']:.3f} [{r['lo']:.3f}, {r['hi']:.3f}] | "
+            f"{r['mean']:.3f} ± {r['std']:.3f} | {r['iqm'] / task.ceiling:.0%} | "
+            f"{r.get('budget', '-')} | {r.get('wall', '-')} |"
+        )
+    lines.append(f"| ceiling | | {task.ceiling:g} ({task.ceiling_note}) | | 100% | | |")
+    return "\n".join(lines)
+
+
+def curves(task: Task, runs: dict, path: Path) -> Path:
+    from mf_envs.train.curves import plot_learning_curves
+
+    folders, labels = [], []
+    for algo, items in runs.items():
+        for s, run, _ in items:
+            if (run / "evaluations.npz").is_file():
+                folders.append(run)
+                labels.append(f"{algo} seed {s}")
+    return plot_learning_curves(folders, path, f"{task.env_id}: {task.name}", labels)
+
+
+def run(task_name: str, algos: Sequence[str], seeds: Sequence[int], out: Path) -> dict[str, Any]:
+    task = TASKS[task_name]()
+    folder = out / task.name
+    folder.mkdir(parents=True, exist_ok=True)
+    runs = train_runs(task, algos, seeds, folder)
+    rows: dict[str, dict[str, Any]] = {}
+    for kind in task.baselines:
+        rows[kind] = interval(episode_scores(task, kind))
+        print(f"{kind}: {rows[kind]}", flush=True)
+    for algo, items in runs.items():
+        per_run = np.array([episode_scores(task, algo, run).mean() for _, run, _ in items])
+        rows[algo] = {**interval(per_run), "budget": task.budgets[algo],
+                      "wall": f"{np.median([w for *_, w in items]):.0f}",
+                      "per_run": per_run.tolist()}  # fmt: skip
+        print(f"{algo}: {rows[algo]}", flush=True)
+    md = table(task, rows)
+    (folder / "table.md").write_text(md + "\n")
+    result = {"task": task.name, "env_id": task.env_id, "env_kwargs": task.env_kwargs,
+              "eval_seconds": task.eval_seconds, "test_seeds": list(TEST_SEEDS),
+              "train_seeds": list(seeds), "rows": rows}  # fmt: skip
+    (folder / "results.json").write_text(json.dumps(result, indent=1, default=str))
+    if any(items for items in runs.values()):
+        curves(task, runs, folder / "learning_curves.png")
+    print(md)
+    return result
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--task", choices=sorted(TASKS), default="stabilizer_irregular")
+    p.add_argument("--algos", nargs="*", choices=ALGOS, default=list(ALGOS))
+    p.add_argument("--seeds", nargs="+", type=int, default=list(TRAIN_SEEDS))
+    p.add_argument("--out", type=Path, default=Path("bench_rl"))
+    a = p.parse_args(argv)
+    if any(s < 0 or math.isnan(s) for s in a.seeds):
+        raise SystemExit("--seeds: training seeds must be >= 0")
+    run(a.task, a.algos, a.seeds, a.out)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
