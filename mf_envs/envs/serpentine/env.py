@@ -17,8 +17,9 @@ from mf_envs.physics.beam.solver import BeamModel
 AVAILABLE_EFFECTS = {
     "friction": "anisotropic Coulomb belly friction (mu, backward_ratio mu, lateral_ratio mu)",
     "viscous_ground": "viscous ground f = -(c_t v_t t + c_n v_n n) (exclusive with friction)",
+    "actuator_dynamics": "muscles as a first-order lag of the command (actuator_time_constant)",
 }
-DEFAULT_EFFECTS = ("friction",)
+DEFAULT_EFFECTS = ("friction", "actuator_dynamics")
 MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 
@@ -125,6 +126,9 @@ class SerpentineEnv(MFEnv):
         effort_weight: float | None = None,
         reset_noise_scale: float = 0.05,
         initial_heading_range: float = math.pi,
+        material_damping: float = 0.01,
+        actuator_time_constant: float = 0.1,
+        actuator_rate_limit: float = 1000.0,
         effects: Any = None,
         render_mode: str | None = None,
     ) -> None:
@@ -146,7 +150,7 @@ class SerpentineEnv(MFEnv):
         self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
         self.state[0] = self.model.straight()
         self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
-        self._sc = rows.scratch(self.model)
+        self._sc = rows.scratch(self.model, n)
         self._body, self._rep = np.zeros(5), np.zeros(rows.N_REPORT)
         self._obs = np.zeros(self.obs_layout.size, np.float32)
         self._steps = 0
