@@ -45,7 +45,7 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
     allocation here). damping: the Kelvin-Voigt retardation time tau [s] (module docstring).
     Returns the Newton iterations, or -1 on failure."""
     work, piv, buf, pbar, ab, de, shift, alg = sc[0], sc[1], sc[8], sc[9], sc[10], sc[11], sc[12], sc[13]
-    r, x, dth, vth = buf[0], buf[1], buf[2], buf[3]
+    r, x, dth, vth, prev = buf[0], buf[1], buf[2], buf[3], buf[4]
     for i in range(d0.shape[0]):
         d[i] = d0[i] + dt * v0[i]  # predictor: constant velocity
     qxi, qw, stiff, u_scale = quad
@@ -80,19 +80,35 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
             assemble_ground(dth, vth, le, p, m_a, law, r, ab, -th, -2.0 * th / dt)
         if band_solve_into(ab, r, work, piv, x) != 0:
             return -it
+        halved = False
+        if it > 1:
+            # a correction that reverses the previous one is a friction point flipping its
+            # slip direction every iteration (a 2-cycle of Newton on the Coulomb law): half of
+            # it lands between the two states, near zero slip, where the law is smooth
+            dot, n_x, n_p = 0.0, 0.0, 0.0
+            for i in range(nd):
+                dot += x[i] * prev[i]
+                n_x += x[i] * x[i]
+                n_p += prev[i] * prev[i]
+            if dot < -0.5 * np.sqrt(n_x * n_p):
+                halved = True
+                for i in range(nd):
+                    x[i] *= 0.5
+        for i in range(nd):
+            prev[i] = x[i]
         step = 0.0
         for i in range(nd):
             if not np.isfinite(x[i]):
                 return -it
             d[i] += x[i]
             step = max(step, abs(x[i]) / u_scale[i])
-        if step < tol:
+        if step < tol and not halved:
             for i in range(nd):
                 v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
             return it
-        # stagnation (friction states cycling): a correction not below half of the one two
-        # iterations back will not converge within max_iter; give up, the caller splits
-        if it >= 4 and step > 0.5 * back2:
+        # stagnation (friction states cycling): a correction not below the one two iterations
+        # back will not converge within max_iter; give up, the caller splits
+        if it >= 5 and step > back2:
             return -it
         back2, back1 = back1, step
     return -max_iter
@@ -277,7 +293,7 @@ def _scratch(n_dof, n_elements):
         np.empty(n_dof),
         np.empty(n_dof),
         np.empty(n_dof),
-        np.empty((4, n_dof)),
+        np.empty((5, n_dof)),
         np.empty(n_dof),
         np.zeros((N_BAND, n_dof)),
         np.empty((n_elements, MAX_QUAD, 3)),
