@@ -5,8 +5,9 @@ the same bits.
   m_A, as `SnakeHistory.com`);
 - `observe_row`: the observation (`spec.observation_layout`) in one compiled function;
 - `step_row`: one control step of one snake: the action scaled to kappa# at the control
-  points, linear in S between them (`build.interpolation`) and linear in time from the previous
-  command to the new one over the control step (a first-order hold), integrated by
+  points, linear in S between them (`build.interpolation`); in time the muscles follow it as
+  the rate-limited lag of `physics.actuators` (`actuator_dynamics`) or linearly from the
+  previous command over the control step (a first-order hold), integrated by
   `physics.serpentine.kernels.advance_linear` in `n_substeps` physics steps; the muscles'
   positive work (actuation energy) and the observation;
 - `step_rows`: `step_row` for every active row of a batch (the native vector env), in blocks on

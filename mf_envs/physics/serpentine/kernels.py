@@ -20,6 +20,19 @@ tolerance). The ground force is evaluated at th in [1/2, 1]:
 * th = 1/2: the midpoint. The ground's discrete work is dt F_g(v_mid) . v_mid <= 0, an exact
   discrete energy balance, but v_{n+1} = 2 v_mid - v_n rings (sign flips) while a point sticks.
 
+Kelvin-Voigt body (`damping` = the retardation time tau [s]): every stress gains the rate term
+of a viscoelastic solid, sigma = D (eps - eps# + tau d eps / dt), discretised as the step's
+mean strain rate: sigma = D (eps_mid + tau (eps_b - eps_a) / dt) with eps_mid the scheme's
+midpoint elastic strain. That is `beam.algorithmic`'s theta-stress at theta = 1/2 + tau / dt,
+plus a strain shift that takes the actuation's own rate out of the damper (it acts on the total
+curvature rate, in parallel with the active spring: a snapping command is slowed, not
+amplified). The step then dissipates exactly (tau / dt) int deps^T D deps dS >= 0 and still
+conserves linear momentum; the muscles' work is against the elastic moment only
+(`muscle_work`). tau = 0 is the conserving scheme.
+
+Newton safeguards: a correction that reverses the previous one (cosine below -1/2: a friction
+point flipping its slip direction every iteration, a 2-cycle on the Coulomb law) is halved and
+never accepted as the converged one; no progress over two iterations (stagnation) gives up early.
 A step whose Newton fails is retried as 2, 4, ... sub-steps (actuation interpolated exactly:
 kappa# is a function of t), at most 2^max_halvings.
 """
@@ -120,8 +133,9 @@ def advance(
     damping=0.0,
 ):  # fmt: skip
     """d, v at t -> t + dt in place, splitting the step on Newton failure. Returns the Newton
-    iterations spent (failed attempts included), or -1 if even 2^max_halvings sub-steps failed. damping: Kelvin-Voigt
-    retardation time [s] (module docstring); scratch: `make_scratch`."""
+    iterations spent (failed attempts included), or -1 if even 2^max_halvings sub-steps
+    failed. damping: Kelvin-Voigt retardation time [s] (module docstring); scratch:
+    `make_scratch`."""
     a_gp, phi_gp, w, t_ramp = gait
     k0, k1, d0, v0, d1, v1 = scratch[2:8]
     total = 0
