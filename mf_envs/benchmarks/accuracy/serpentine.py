@@ -40,7 +40,8 @@ def _elastica(quick: bool) -> list[dict]:
             continue
         v = se.forward_speed(t, com)
         out.append(accuracy_row("serpentine_elastica", f"n_el={n}", dt, abs(v - v_ref) / v_ref,
-                                wall, "dt [s]", speed_mm_s=1e3 * v, reference_speed_mm_s=1e3 * v_ref,
+                                wall, "dt [s]", speed_mm_s=1e3 * v,
+                                reference_speed_mm_s=1e3 * v_ref,
                                 reference=f"n_el={ref_n} dt={ref_dt:g}",
                                 newton_per_step=its / (se.N_PERIODS * se.PERIOD / dt)))  # fmt: skip
     return out

@@ -54,7 +54,7 @@ class SerpentineEnv(MFEnv):
     | n | sin_heading | sin(psi_head - target direction) | +-1 | |
     | n+1 | cos_heading | cos(psi_head - target direction) | +-1 | |
     | n+2..n+3 | velocity | v_com / L along, across the mean axis | +-10 | 1/s |
-    | n+4..2n+3 | curvature_command | the muscles' kappa# / max_curvature (the lag's state) | +-1 | |
+    | n+4..2n+3 | curvature_command | muscles' kappa# / max_curvature (the lag's state) | +-1 | |
 
     psi_head is the frame angle at the head; the mean axis is the mean frame angle.
 
@@ -86,7 +86,7 @@ class SerpentineEnv(MFEnv):
     | n_elements | 6 | C1 elements, 2..64 |
     | max_curvature | 25 | action scale [1/m], max_curvature L <= 20 |
     | n_control_points | 7 | actuation control points, 2..64 |
-    | control_dt, physics_dt | 0.05, 0.025 | s per step, implicit physics step (1 % in speed: docs) |
+    | control_dt, physics_dt | 0.05, 0.025 | s per step, implicit physics step (1 % in speed) |
     | episode_seconds | 20 | episode length [s] (10 periods of the reference gait) |
     | friction_coefficient | 0.892 | forward Coulomb mu = L / (T^2 g Fr), T = 2 s, Fr = 0.1 |
     | backward_ratio, lateral_ratio | 1.5, 2 | backward, lateral coefficient / mu |
@@ -98,7 +98,7 @@ class SerpentineEnv(MFEnv):
     | material_damping | 0.01 | Kelvin-Voigt retardation time tau [s] of the body, in [0, 10] |
     | actuator_time_constant | 0.1 | muscle lag [s] with `actuator_dynamics`, in [1e-4, 100] |
     | actuator_rate_limit | 1000 | muscle curvature rate limit [1/(m s)], in [1e-3, 1e6] |
-    | effects | friction, actuator_dynamics | viscous_ground instead of friction; () frictionless and unlagged |
+    | effects | friction, actuator_dynamics | viscous_ground for friction; () none of them |
 
     ## Version History
     * v0: initial release (issue 33).

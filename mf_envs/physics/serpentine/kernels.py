@@ -56,8 +56,10 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring). d, v receive the result,
     from the constant-velocity predictor d = d0 + dt v0; sc: the `make_scratch` tuple (no
     allocation here). damping: the Kelvin-Voigt retardation time tau [s] (module docstring).
-    Returns the Newton iterations, or -1 on failure."""
-    work, piv, buf, pbar, ab, de, shift, alg = sc[0], sc[1], sc[8], sc[9], sc[10], sc[11], sc[12], sc[13]
+    Returns the Newton iterations, or minus the iterations spent on failure (no convergence in
+    max_iter, stagnation, a singular or non-finite correction)."""
+    work, piv, buf, pbar, ab = sc[0], sc[1], sc[8], sc[9], sc[10]
+    de, shift, alg = sc[11], sc[12], sc[13]
     r, x, dth, vth, prev = buf[0], buf[1], buf[2], buf[3], buf[4]
     for i in range(d0.shape[0]):
         d[i] = d0[i] + dt * v0[i]  # predictor: constant velocity
