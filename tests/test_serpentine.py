@@ -283,3 +283,13 @@ def test_kelvin_voigt_body_keeps_its_momentum_and_loses_energy():
         loss[tau] = 1.0 - energy[-1] / energy[0]
     assert abs(loss[0.0]) < 1e-9
     assert 0.01 < loss[0.005] < 0.99
+
+
+def test_snake_bench_scene_without_pyelastica_is_skipped(monkeypatch, capsys):
+    import sys
+
+    from mf_envs.benchmarks.speed import snake_elastica as se
+
+    monkeypatch.setitem(sys.modules, "elastica", None)
+    assert se.rows(quick=True) == []
+    assert 'pip install "mf-envs[compare]"' in capsys.readouterr().err

@@ -206,7 +206,18 @@ def rows(quick: bool) -> list[dict]:
     against ours at `BENCHED`, `steps_per_s` = simulated seconds per wall second (the same 22 s
     in both), `ratio` = ours / PyElastica; each row carries both speeds, their ratio and each
     code's error against its own converged run: ours against `CONVERGED`; PyElastica's from
-    its first-order mesh convergence (n = 25 vs 50: error(50) ~ |v50 - v25|; quick: skipped)."""
+    its first-order mesh convergence (n = 25 vs 50: error(50) ~ |v50 - v25|; quick: skipped).
+    Without PyElastica (the `compare` extra) the scene is skipped with a note."""
+    import importlib.util
+    import sys
+
+    if importlib.util.find_spec("elastica") is None:
+        print(
+            "bench speed: skipping snake_elastica (needs PyElastica: "
+            'pip install "mf-envs[compare]")',
+            file=sys.stderr,
+        )
+        return []
     t_end = N_PERIODS * PERIOD
     run_elastica(n_elem=50, t_end=0.01)  # numba warm-up
     t, com, wall_e = run_elastica(50, 1e-4)
