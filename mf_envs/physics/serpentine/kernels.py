@@ -33,6 +33,8 @@ conserves linear momentum; the muscles' work is against the elastic moment only
 Newton safeguards: a correction that reverses the previous one (cosine below -1/2: a friction
 point flipping its slip direction every iteration, a 2-cycle on the Coulomb law) is halved and
 never accepted as the converged one; no progress over two iterations (stagnation) gives up early.
+Converged: a correction below tol, or, in the quadratic phase, the next correction predicted
+below tol / 1000 (e_k+1 ~ K e_k^2 with K from the last two corrections).
 A step whose Newton fails is retried as 2, 4, ... sub-steps (actuation interpolated exactly:
 kappa# is a function of t), at most 2^max_halvings.
 """
@@ -117,7 +119,10 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
                 return -it
             d[i] += x[i]
             step = max(step, abs(x[i]) / u_scale[i])
-        if step < tol and not halved:
+        # converged: this correction below tol, or (quadratic phase, e_k+1 ~ K e_k^2 with K from
+        # the last two corrections) the next one predicted below tol / 1000
+        quad_next = it > 1 and step < back1 and step * step * step < 1e-3 * tol * back1 * back1
+        if (step < tol or quad_next) and not halved:
             for i in range(nd):
                 v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
             return it
