@@ -135,6 +135,8 @@ def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
             c0[j] = c1[j]
             if tau_a > 0.0:
                 c1[j] = cmd[j]
+            elif s + 1 == n_sub:
+                c1[j] = u[j]  # the command itself at the step's end (no rounding)
             else:
                 c1[j] = cmd[j] + (s + 1) / n_sub * (u[j] - cmd[j])
         if tau_a > 0.0:

@@ -189,11 +189,17 @@ def assemble_algorithmic_into(
             for i in range(11):
                 fe[i] += w * (bb[0, i] * sig[0] + bb[1, i] * sig[1] + bb[2, i] * sig[2])
             if tangent:
+                # the material part sum_r Bbar_ri D_r B_rj; the bending row r = 2 of Bbar and B
+                # is exactly zero outside the psi dofs (8..10), where its term is skipped (an
+                # exact zero added: the same bits)
+                s0, s1, s2 = stiff[g, 0], stiff[g, 1], stiff[g, 2]
                 for i in range(11):
                     for j in range(11):
                         kij = 0.0
-                        for r in range(3):
-                            kij += bb[r, i] * stiff[g, r] * bt[r, j]
+                        kij += bb[0, i] * s0 * bt[0, j]
+                        kij += bb[1, i] * s1 * bt[1, j]
+                        if i >= 8 and j >= 8:
+                            kij += bb[2, i] * s2 * bt[2, j]
                         ke[i, j] += w * theta * kij
                 _geo(ke, w, sig[0], sig[1], dnz, npsi, dh, cb, sb, geo)
         for i in range(11):
