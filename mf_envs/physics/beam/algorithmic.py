@@ -52,14 +52,14 @@ def _bbar(dnz, npsi, dnpsi, za, zb, pa, pb):
     """Rows (3, 11) of Bbar, B(b), and the derivatives of the psi entries of Bbar
     (dh (2, 3): d h_r / d(z1'_b, z2'_b, psi_b))."""
     bb, bt, dh = np.empty((3, 11)), np.empty((3, 11)), np.empty((2, 3))
-    cb, sb = _bbar_into(dnz, npsi, dnpsi, za[0], za[1], zb[0], zb[1], pa, pb, bb, bt, dh)
+    _, _, cb, sb = _bbar_into(dnz, npsi, dnpsi, za[0], za[1], zb[0], zb[1], pa, pb, bb, bt, dh)
     return bb, bt, dh, cb, sb
 
 
 @numba.njit(cache=True)
 def _bbar_into(dnz, npsi, dnpsi, za1, za2, zb1, zb2, pa, pb, bb, bt, dh):
     """`_bbar` into caller arrays bb, bt (3, 11), dh (2, 3) (no allocation); returns cos, sin
-    of psi_b. za = (za1, za2), zb = (zb1, zb2): z' at a and b."""
+    of psi_a and of psi_b. za = (za1, za2), zb = (zb1, zb2): z' at a and b."""
     ca, sa, cb, sb = np.cos(pa), np.sin(pa), np.cos(pb), np.sin(pb)
     cbar, sbar = 0.5 * (ca + cb), 0.5 * (sa + sb)
     pm = 0.5 * (pa + pb)
@@ -85,7 +85,7 @@ def _bbar_into(dnz, npsi, dnpsi, za1, za2, zb1, zb2, pa, pb, bb, bt, dh):
     dh[1, 0], dh[1, 1] = -0.5 * sig * cm, -0.5 * sig * sm
     dh[0, 2] = 0.5 * dsig * u1 - 0.5 * sig * (cm * z1m + sm * z2m)
     dh[1, 2] = 0.5 * dsig * u2 - 0.5 * sig * (-sm * z1m + cm * z2m)
-    return cb, sb
+    return ca, sa, cb, sb
 
 
 @numba.njit(cache=True)
@@ -169,9 +169,9 @@ def assemble_algorithmic_into(
             b2 = dnz[0] * deb[4] + dnz[1] * deb[5] + dnz[2] * deb[6] + dnz[3] * deb[7]
             pb = npsi[0] * deb[8] + npsi[1] * deb[9] + npsi[2] * deb[10]
             kb = dnpsi[0] * deb[8] + dnpsi[1] * deb[9] + dnpsi[2] * deb[10]
-            cb, sb = _bbar_into(dnz, npsi, dnpsi, a1, a2, b1, b2, pa, pb, bb, bt, dh)
-            ea0 = np.cos(pa) * a1 + np.sin(pa) * a2 - 1.0
-            ea1 = -np.sin(pa) * a1 + np.cos(pa) * a2
+            ca, sa, cb, sb = _bbar_into(dnz, npsi, dnpsi, a1, a2, b1, b2, pa, pb, bb, bt, dh)
+            ea0 = ca * a1 + sa * a2 - 1.0
+            ea1 = -sa * a1 + ca * a2
             ea2 = ka
             eb0 = cb * b1 + sb * b2 - 1.0
             eb1 = -sb * b1 + cb * b2
