@@ -1,12 +1,12 @@
 """Serpenoid gaits for Serpentine-v0, driven through the env's action interface.
 
-* `serpenoid` (default): Hirose's serpenoid curve kappa#(S, t) = a sin(2 pi (L - S) / lambda
+* `serpenoid`: Hirose's serpenoid curve kappa#(S, t) = a sin(2 pi (L - S) / lambda
   - w t) at the control points (the wave runs head to tail, the body crawls head first, as
   `physics.serpentine.gait.serpenoid(direction=-1)`), PyElastica's snake's numbers (a = 20 1/m,
   lambda = L, T = 2 s); the command of step k is the curve at the step's end, t = (k + 1) dt;
 * `tuned`: the same curve with (a, lambda, T) optimised by scipy (Nelder-Mead, bounded) for
   the speed of the centre of mass on a short horizon (`tune`; the numbers are `TUNED`);
-* `heading`: the tuned serpenoid plus a curvature bias -gain x heading error, the error being
+* `heading` (default, the strongest): the tuned serpenoid plus a curvature bias -gain x heading error, the error being
   the head's heading relative to the target direction (observed as sin, cos) low-pass filtered
   over one gait period (the head swings with the wave), so the snake arcs toward the target.
 
@@ -120,9 +120,12 @@ def tune(env: Any, x0: tuple = ELASTICA, max_evals: int = 40) -> tuple[tuple, fl
     return tuple(float(v) for v in res.x), float(-res.fun)
 
 
-register(ENV_ID, "serpenoid", Serpenoid, default=True)
+# the default is the strongest on the default scene (issue 32 item 4; the start heading is
+# random, so the open-loop gaits crawl off target): `mf-envs evaluate`, seeds 1000-1004, speed
+# heading 0.0581, tuned 0.0137, serpenoid 0.0051 m/s
+register(ENV_ID, "heading", HeadingSerpenoid, default=True)
+register(ENV_ID, "serpenoid", Serpenoid)
 register(ENV_ID, "tuned", lambda env, **kw: Serpenoid(env, *TUNED, **kw))
-register(ENV_ID, "heading", HeadingSerpenoid)
 
 
 def main(argv: list[str] | None = None) -> None:
