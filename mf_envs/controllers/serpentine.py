@@ -6,9 +6,10 @@
   lambda = L, T = 2 s); the command of step k is the curve at the step's end, t = (k + 1) dt;
 * `tuned`: the same curve with (a, lambda, T) optimised by scipy (Nelder-Mead, bounded) for
   the speed of the centre of mass on a short horizon (`tune`; the numbers are `TUNED`);
-* `heading` (default, the strongest): the tuned serpenoid plus a curvature bias -gain x heading error, the error being
-  the head's heading relative to the target direction (observed as sin, cos) low-pass filtered
-  over one gait period (the head swings with the wave), so the snake arcs toward the target.
+* `heading` (default, the strongest): the tuned serpenoid plus a curvature bias -gain x heading
+  error, the error being the head's heading relative to the target direction (observed as sin,
+  cos) low-pass filtered over one gait period (the head swings with the wave), so the snake
+  arcs toward the target.
 
 The open-loop gaits ignore the observation; `heading` reads only its heading slots.
 """
