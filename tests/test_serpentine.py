@@ -230,3 +230,66 @@ def test_matches_pyelastica_continuum_snake():
     ref, ours = se.forward_speed(t_ref, com_ref), se.forward_speed(t, com)
     assert ref == pytest.approx(0.02786, rel=0.01)  # the issue's measurement
     assert ours == pytest.approx(ref, rel=0.01)
+
+
+class _AlwaysOn(BellyFriction):
+    """A zero law that still asks for the ground assembly (to compare with the skipped one)."""
+
+    @property
+    def active(self) -> bool:
+        return True
+
+
+def test_a_ground_law_that_is_off_costs_nothing_and_changes_nothing():
+    """effects=() / a zero law: `packed()` flags it off and the time loop skips the ground
+    assembly; assembling the zero law instead gives the same bits (the skipped terms are exact
+    zeros), and the frictionless body still conserves linear momentum to round-off."""
+    assert not BellyFriction(0.0, 0.0, 0.0).active
+    assert BellyFriction(0.0, 0.0, 0.0).packed()[9] == 0.0
+    assert not BellyFriction(0.1, 0.1, 0.1, viscous=True).active  # viscous with c = 0
+    assert BellyFriction(0.0, 0.0, 0.0, drag_rate=1e-3).active
+    assert BellyFriction(*MU).packed()[9] == 1.0
+    s0 = _snake(n_el=6)
+    gait = serpenoid(s0.model.gauss_S, 15.0, 0.35, 0.5, ramp_time=0.25)
+    v = np.zeros(s0.model.n_dof)
+    v[0::6], v[2::6] = 0.03, -0.01
+    runs = []
+    for law in (_frictionless(), _AlwaysOn(0.0, 0.0, 0.0)):
+        s = _snake(n_el=6, ground=law, gait=gait)
+        runs.append(s.simulate(0.3, 0.01, v0=v, tol=1e-12))
+    np.testing.assert_array_equal(runs[0].d, runs[1].d)
+    np.testing.assert_array_equal(runs[0].v, runs[1].v)
+    p, _ = runs[0].momentum()
+    assert np.max(np.abs(p - p[0])) < 1e-11 * np.linalg.norm(p[0])
+
+
+def test_kelvin_voigt_body_keeps_its_momentum_and_loses_energy():
+    """material_damping: an internal force (linear momentum to round-off) that only
+    dissipates: the released bent body's energy decreases at every step at tau = 5 ms and is
+    conserved at tau = 0 (the energy-momentum scheme)."""
+    s0 = _snake(n_el=8)
+    shape = s0.model.gauss_S.shape
+    gait = WaveGait(np.full(shape, 6.0), 2 * np.pi * s0.model.gauss_S / 0.35, 0.0)  # frozen
+    ksh = gait.kappa(0.0)
+    loss = {}
+    for tau in (0.0, 0.005):
+        s = Serpentine(s0.model.params, _frictionless(), gait, material_damping=tau)
+        h = s.simulate(1.0, 0.005, tol=1e-12)
+        energy = h.kinetic_energy() + np.array([s.model.elastic_energy(d, ksh) for d in h.d])
+        p, _ = h.momentum()
+        assert np.max(np.abs(p)) < 1e-12
+        if tau > 0.0:
+            assert np.all(np.diff(energy) <= 1e-12 * energy[0])
+        loss[tau] = 1.0 - energy[-1] / energy[0]
+    assert abs(loss[0.0]) < 1e-9
+    assert 0.01 < loss[0.005] < 0.99
+
+
+def test_snake_bench_scene_without_pyelastica_is_skipped(monkeypatch, capsys):
+    import sys
+
+    from mf_envs.benchmarks.speed import snake_elastica as se
+
+    monkeypatch.setitem(sys.modules, "elastica", None)
+    assert se.rows(quick=True) == []
+    assert 'pip install "mf-envs[compare]"' in capsys.readouterr().err

@@ -195,6 +195,64 @@ def _row(name, t, com, wall):
     return v5, wall
 
 
+# our converged run (the speed moves < 1e-4 relative beyond it: `accuracy.serpentine`)
+CONVERGED = (40, 0.0025)
+# ours as benched: the cheapest settings whose speed is within 1e-3 of the converged run
+BENCHED = ((10, 0.01), (6, 0.02))
+
+
+def rows(quick: bool) -> list[dict]:
+    """`mf-envs bench speed` rows: 22 s of PyElastica's snake (n = 50, dt = 1e-4, numba warm)
+    against ours at `BENCHED`, `steps_per_s` = simulated seconds per wall second (the same 22 s
+    in both), `ratio` = ours / PyElastica; each row carries both speeds, their ratio and each
+    code's error against its own converged run: ours against `CONVERGED`; PyElastica's from
+    its first-order mesh convergence (n = 25 vs 50: error(50) ~ |v50 - v25|; quick: skipped).
+    Without PyElastica (the `compare` extra) the scene is skipped with a note."""
+    import importlib.util
+    import sys
+
+    if importlib.util.find_spec("elastica") is None:
+        print(
+            "bench speed: skipping snake_elastica (needs PyElastica: "
+            'pip install "mf-envs[compare]")',
+            file=sys.stderr,
+        )
+        return []
+    t_end = N_PERIODS * PERIOD
+    run_elastica(n_elem=50, t_end=0.01)  # numba warm-up
+    t, com, wall_e = run_elastica(50, 1e-4)
+    v_e = forward_speed(t, com)
+    err_e = float("nan")
+    if not quick:
+        t25, com25, _ = run_elastica(25, 1e-4)
+        err_e = abs(v_e - forward_speed(t25, com25)) / v_e
+    t, com, _, _ = run_ours(*CONVERGED)
+    v_conv = forward_speed(t, com)
+    out = []
+    for n_el, dt in BENCHED:
+        t, com, wall, its = run_ours(n_el, dt)
+        v = forward_speed(t, com)
+        out.append(
+            {
+                "case": "continuum_snake_22s",
+                "variant": f"ours n={n_el} dt={dt:g} vs PyElastica n=50 dt=1e-4",
+                "steps_per_s": t_end / wall,
+                "reference": "PyElastica 1.0 continuum snake",
+                "reference_steps_per_s": t_end / wall_e,
+                "ratio": wall_e / wall,
+                "wall_s": wall,
+                "reference_wall_s": wall_e,
+                "speed_mm_s": 1e3 * v,
+                "reference_speed_mm_s": 1e3 * v_e,
+                "speed_ratio": v / v_e,
+                "error_vs_own_converged": abs(v - v_conv) / v_conv,
+                "reference_error_vs_own_converged": err_e,
+                "newton_per_step": its / (t_end / dt),
+            }
+        )
+    return out
+
+
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="skip PyElastica's 25-element run")

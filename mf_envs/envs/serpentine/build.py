@@ -47,6 +47,9 @@ class Scene:
     reset_noise_scale: float
     initial_heading_range: float  # rad
     gravity: float  # m/s^2, normal to the ground
+    material_damping: float  # s, Kelvin-Voigt retardation time of the body
+    actuator_time_constant: float  # s, first-order lag of the muscles (0: first-order hold)
+    actuator_rate_limit: float  # 1/(m s), the muscles' largest curvature rate
 
     @property
     def length(self) -> float:
@@ -99,6 +102,9 @@ def build(kw: dict[str, Any], effects: frozenset) -> Scene:
             f"curvature observation bound), got {max_curvature:g} 1/m x {L:g} m"
         )
     weight = params.mass_per_length * G * L
+    tau_a = kw["actuator_time_constant"]
+    check_range("actuator_time_constant", tau_a, 1e-4, 100.0)  # validated whatever the effects
+    rate_a = check_range("actuator_rate_limit", kw["actuator_rate_limit"], 1e-3, 1e6)
     effort = kw["effort_weight"]
     effort = EFFORT_SCALE / (weight * L) if effort is None else effort
     return Scene(
@@ -112,6 +118,13 @@ def build(kw: dict[str, Any], effects: frozenset) -> Scene:
             "initial_heading_range", kw["initial_heading_range"], 0.0, np.pi
         ),
         gravity=G,
+        material_damping=check_range("material_damping", kw["material_damping"], 0.0, 10.0),
+        actuator_time_constant=(
+            check_range("actuator_time_constant", tau_a, 1e-4, 100.0)
+            if "actuator_dynamics" in effects
+            else 0.0
+        ),
+        actuator_rate_limit=rate_a,
     )
 
 

@@ -17,8 +17,9 @@ from mf_envs.physics.beam.solver import BeamModel
 AVAILABLE_EFFECTS = {
     "friction": "anisotropic Coulomb belly friction (mu, backward_ratio mu, lateral_ratio mu)",
     "viscous_ground": "viscous ground f = -(c_t v_t t + c_n v_n n) (exclusive with friction)",
+    "actuator_dynamics": "muscles as a first-order lag of the command (actuator_time_constant)",
 }
-DEFAULT_EFFECTS = ("friction",)
+DEFAULT_EFFECTS = ("friction", "actuator_dynamics")
 MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 
@@ -27,8 +28,9 @@ class SerpentineEnv(MFEnv):
     ## Description
     A soft serpentine robot lying on flat ground (Rios 2017 §4.5 II), modelled as a planar
     geometrically exact active C1 beam (`mf_envs.physics.serpentine`) sized like PyElastica's
-    continuum snake: L = 0.35 m, radius 0.011 L, E = 1 MPa, rho = 1000 kg/m^3. Its muscles set
-    the active curvature kappa#(S, t) (M3 = EI (kappa - kappa#)); the belly slides on
+    continuum snake: L = 0.35 m, radius 0.011 L, E = 1 MPa, rho = 1000 kg/m^3, a Kelvin-Voigt
+    elastomer (retardation time 10 ms). Its muscles set the active curvature kappa#(S, t)
+    (M3 = EI (kappa - kappa#)), lagging their command; the belly slides on
     anisotropic Coulomb friction (forward mu, backward 1.5 mu, lateral 2 mu, mu from the
     Froude number 0.1 at a 2 s period), stepped by the implicit energy-momentum scheme with the
     friction's consistent tangent. Lateral undulation turns the lateral friction into thrust.
@@ -36,9 +38,11 @@ class SerpentineEnv(MFEnv):
 
     ## Action Space
     `Box(-1, 1, (n_control_points,), float32)`: kappa# = max_curvature * a at the control
-    points S_j = j L / (n - 1), tail (S = 0) to head (S = L), linear in S between them; each
-    step the command moves linearly in time from the previous one to the new one (it is
-    reached at the end of the step).
+    points S_j = j L / (n - 1), tail (S = 0) to head (S = L), linear in S between them. With
+    `actuator_dynamics` (default) the muscles' kappa# follows the command as the rate-limited
+    first-order lag of `physics.actuators.curvature` (A1: time constant actuator_time_constant,
+    rate at most actuator_rate_limit), exactly at the physics steps' ends; without it the
+    command moves linearly in time from the previous one to the new one over the step.
 
     ## Observation Space
     `Box(float32, (2 n + 4,))`, what an on-board robot senses, laid out by
@@ -50,7 +54,7 @@ class SerpentineEnv(MFEnv):
     | n | sin_heading | sin(psi_head - target direction) | +-1 | |
     | n+1 | cos_heading | cos(psi_head - target direction) | +-1 | |
     | n+2..n+3 | velocity | v_com / L along, across the mean axis | +-10 | 1/s |
-    | n+4..2n+3 | curvature_command | commanded kappa# / max_curvature | +-1 | |
+    | n+4..2n+3 | curvature_command | muscles' kappa# / max_curvature (the lag's state) | +-1 | |
 
     psi_head is the frame angle at the head; the mean axis is the mean frame angle.
 
@@ -82,7 +86,7 @@ class SerpentineEnv(MFEnv):
     | n_elements | 6 | C1 elements, 2..64 |
     | max_curvature | 25 | action scale [1/m], max_curvature L <= 20 |
     | n_control_points | 7 | actuation control points, 2..64 |
-    | control_dt, physics_dt | 0.05, 0.025 | s per step, implicit physics step |
+    | control_dt, physics_dt | 0.05, 0.025 | s per step, implicit physics step (1 % in speed) |
     | episode_seconds | 20 | episode length [s] (10 periods of the reference gait) |
     | friction_coefficient | 0.892 | forward Coulomb mu = L / (T^2 g Fr), T = 2 s, Fr = 0.1 |
     | backward_ratio, lateral_ratio | 1.5, 2 | backward, lateral coefficient / mu |
@@ -91,7 +95,10 @@ class SerpentineEnv(MFEnv):
     | effort_weight | None | [1/J] >= 0; None: 0.1 / (m_A g L^2) |
     | reset_noise_scale | 0.05 | start curvature noise / max_curvature, in [0, 1] |
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
-    | effects | friction | also viscous_ground (instead of friction); () frictionless |
+    | material_damping | 0.01 | Kelvin-Voigt retardation time tau [s] of the body, in [0, 10] |
+    | actuator_time_constant | 0.1 | muscle lag [s] with `actuator_dynamics`, in [1e-4, 100] |
+    | actuator_rate_limit | 1000 | muscle curvature rate limit [1/(m s)], in [1e-3, 1e6] |
+    | effects | friction, actuator_dynamics | viscous_ground for friction; () none of them |
 
     ## Version History
     * v0: initial release (issue 33).
@@ -125,6 +132,9 @@ class SerpentineEnv(MFEnv):
         effort_weight: float | None = None,
         reset_noise_scale: float = 0.05,
         initial_heading_range: float = math.pi,
+        material_damping: float = 0.01,
+        actuator_time_constant: float = 0.1,
+        actuator_rate_limit: float = 1000.0,
         effects: Any = None,
         render_mode: str | None = None,
     ) -> None:
@@ -146,7 +156,7 @@ class SerpentineEnv(MFEnv):
         self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
         self.state[0] = self.model.straight()
         self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
-        self._sc = rows.scratch(self.model)
+        self._sc = rows.scratch(self.model, n)
         self._body, self._rep = np.zeros(5), np.zeros(rows.N_REPORT)
         self._obs = np.zeros(self.obs_layout.size, np.float32)
         self._steps = 0

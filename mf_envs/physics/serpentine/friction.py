@@ -33,7 +33,7 @@ import numpy as np
 
 from mf_envs._validate import check_nonnegative, check_positive
 from mf_envs.physics.beam.banded import HALF_BW
-from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, _shape
+from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, _shape_into
 
 LOC = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])  # element dof -> offset from 6 e (Eq. 71c)
 
@@ -61,8 +61,19 @@ class BellyFriction:
         check_nonnegative("couple_damping", self.couple_damping)
         check_positive("slip_speed", self.slip_speed)
 
+    @property
+    def active(self) -> bool:
+        """False if the law's force is identically zero (every coefficient of it is 0): the
+        time loop then skips the ground assembly (an effect that is off costs nothing)."""
+        coeffs = (
+            (self.c_tangential, self.c_normal)
+            if self.viscous
+            else (self.mu_forward, self.mu_backward, self.mu_lateral)
+        )
+        return any(c > 0.0 for c in (*coeffs, self.drag_rate, self.couple_damping))
+
     def packed(self) -> np.ndarray:
-        """The compiled layout (mu_f, mu_b, mu_n, v_eps, viscous, c_t, c_n, nu_v, c_w)."""
+        """The compiled layout (mu_f, mu_b, mu_n, v_eps, viscous, c_t, c_n, nu_v, c_w, active)."""
         return np.array(
             [
                 self.mu_forward,
@@ -74,6 +85,7 @@ class BellyFriction:
                 self.c_normal,
                 self.drag_rate,
                 self.couple_damping,
+                1.0 if self.active else 0.0,
             ]
         )
 
@@ -128,6 +140,7 @@ def assemble_ground(d, v, le, p, m_a, law, f, ab, cd, cv):
     de = np.empty(11)
     ve = np.empty(11)
     pf = np.empty(8)
+    nz, dnz, npsi, dnpsi = np.empty(4), np.empty(4), np.empty(3), np.empty(3)
     nu_v, c_w = law[7], law[8]
     power = 0.0
     for e in range(ne):
@@ -136,7 +149,7 @@ def assemble_ground(d, v, le, p, m_a, law, f, ab, cd, cv):
             de[k] = d[base + LOC[k]]
             ve[k] = v[base + LOC[k]]
         for g in range(N_GAUSS):
-            nz, dnz, npsi, dnpsi = _shape(GAUSS_XI[g], le[e])
+            _shape_into(GAUSS_XI[g], le[e], nz, dnz, npsi, dnpsi)
             w = GAUSS_W[g] * le[e]
             v1 = nz[0] * ve[0] + nz[1] * ve[1] + nz[2] * ve[2] + nz[3] * ve[3]
             v2 = nz[0] * ve[4] + nz[1] * ve[5] + nz[2] * ve[6] + nz[3] * ve[7]

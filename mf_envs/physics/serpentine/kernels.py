@@ -20,6 +20,21 @@ tolerance). The ground force is evaluated at th in [1/2, 1]:
 * th = 1/2: the midpoint. The ground's discrete work is dt F_g(v_mid) . v_mid <= 0, an exact
   discrete energy balance, but v_{n+1} = 2 v_mid - v_n rings (sign flips) while a point sticks.
 
+Kelvin-Voigt body (`damping` = the retardation time tau [s]): every stress gains the rate term
+of a viscoelastic solid, sigma = D (eps - eps# + tau d eps / dt), discretised as the step's
+mean strain rate: sigma = D (eps_mid + tau (eps_b - eps_a) / dt) with eps_mid the scheme's
+midpoint elastic strain. That is `beam.algorithmic`'s theta-stress at theta = 1/2 + tau / dt,
+plus a strain shift that takes the actuation's own rate out of the damper (it acts on the total
+curvature rate, in parallel with the active spring: a snapping command is slowed, not
+amplified). The step then dissipates exactly (tau / dt) int deps^T D deps dS >= 0 and still
+conserves linear momentum; the muscles' work is against the elastic moment only
+(`muscle_work`). tau = 0 is the conserving scheme.
+
+Newton safeguards: a correction that reverses the previous one (cosine below -1/2: a friction
+point flipping its slip direction every iteration, a 2-cycle on the Coulomb law) is halved and
+never accepted as the converged one; no progress over two iterations (stagnation) gives up early.
+Converged: a correction below tol, or, in the quadratic phase, the next correction predicted
+below tol / 1000 (e_k+1 ~ K e_k^2 with K from the last two corrections).
 A step whose Newton fails is retried as 2, 4, ... sub-steps (actuation interpolated exactly:
 kappa# is a function of t), at most 2^max_halvings.
 """
@@ -30,30 +45,43 @@ import numba
 import numpy as np
 
 from mf_envs.physics.beam import element as el
-from mf_envs.physics.beam.algorithmic import assemble_algorithmic
-from mf_envs.physics.beam.banded import HALF_BW, band_solve_into
+from mf_envs.physics.beam.algorithmic import algorithmic_scratch, assemble_algorithmic_into
+from mf_envs.physics.beam.banded import HALF_BW, N_BAND, band_solve_into
 from mf_envs.physics.serpentine.friction import assemble_ground
 from mf_envs.physics.serpentine.gait import gait_kappa_into
 
+MAX_QUAD = 6  # quadrature points per element (`beam.element.quadrature`: 4 seed, 6 sri)
+
 
 @numba.njit(cache=True)
-def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, d, v, work, piv):
+def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, d, v, sc, damping):
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring). d, v receive the result,
-    from the constant-velocity predictor d = d0 + dt v0. Returns the Newton iterations, or -1
-    on failure."""
+    from the constant-velocity predictor d = d0 + dt v0; sc: the `make_scratch` tuple (no
+    allocation here). damping: the Kelvin-Voigt retardation time tau [s] (module docstring).
+    Returns the Newton iterations, or minus the iterations spent on failure (no convergence in
+    max_iter, stagnation, a singular or non-finite correction)."""
+    work, piv, buf, pbar, ab = sc[0], sc[1], sc[8], sc[9], sc[10]
+    de, shift, alg = sc[11], sc[12], sc[13]
+    r, x, dth, vth, prev = buf[0], buf[1], buf[2], buf[3], buf[4]
     for i in range(d0.shape[0]):
         d[i] = d0[i] + dt * v0[i]  # predictor: constant velocity
     qxi, qw, stiff, u_scale = quad
     p, m_a, law = ground
     nd = d0.shape[0]
-    shift = np.zeros((le.shape[0], qxi.shape[0], 3))
+    rate = damping / dt
+    theta_s = 0.5 + rate  # Kelvin-Voigt: sigma = D (eps_mid + tau (eps_b - eps_a) / dt)
+    for e in range(le.shape[0]):
+        for g in range(qxi.shape[0]):
+            shift[e, g, 0] = 0.0
+            shift[e, g, 1] = 0.0
+            # the damper acts on the total curvature rate, not on kappa - kappa#
+            shift[e, g, 2] = -rate * (k1[e, g] - k0[e, g]) if g < 4 else 0.0
     c_a = 2.0 / (dt * dt)
-    r = np.empty(nd)
-    x = np.empty(nd)
-    dth = np.empty(nd)
-    vth = np.empty(nd)
+    back2, back1 = np.inf, np.inf
     for it in range(1, max_iter + 1):
-        pbar, ab, _ = assemble_algorithmic(d0, d, le, k0, k1, qxi, qw, stiff, 0.5, shift, True, 1.0)
+        assemble_algorithmic_into(
+            d0, d, le, k0, k1, qxi, qw, stiff, theta_s, shift, True, 1.0, pbar, ab, de, alg
+        )
         for i in range(nd):
             x[i] = d[i] - d0[i] - dt * v0[i]
             v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
@@ -65,46 +93,77 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
                 mij = mass[HALF_BW + i - j, j]
                 r[i] -= c_a * mij * x[j]
                 ab[HALF_BW + i - j, j] += c_a * mij
-        assemble_ground(dth, vth, le, p, m_a, law, r, ab, -th, -2.0 * th / dt)
+        if law[9] > 0.0:  # a ground force (effects on)
+            assemble_ground(dth, vth, le, p, m_a, law, r, ab, -th, -2.0 * th / dt)
         if band_solve_into(ab, r, work, piv, x) != 0:
-            return -1
+            return -it
+        halved = False
+        if it > 1:
+            # a correction that reverses the previous one is a friction point flipping its
+            # slip direction every iteration (a 2-cycle of Newton on the Coulomb law): half of
+            # it lands between the two states, near zero slip, where the law is smooth
+            dot, n_x, n_p = 0.0, 0.0, 0.0
+            for i in range(nd):
+                dot += x[i] * prev[i]
+                n_x += x[i] * x[i]
+                n_p += prev[i] * prev[i]
+            if dot < -0.5 * np.sqrt(n_x * n_p):
+                halved = True
+                for i in range(nd):
+                    x[i] *= 0.5
+        for i in range(nd):
+            prev[i] = x[i]
         step = 0.0
         for i in range(nd):
             if not np.isfinite(x[i]):
-                return -1
+                return -it
             d[i] += x[i]
             step = max(step, abs(x[i]) / u_scale[i])
-        if step < tol:
+        # converged: this correction below tol, or (quadratic phase, e_k+1 ~ K e_k^2 with K from
+        # the last two corrections) the next one predicted below tol / 1000
+        quad_next = it > 1 and step < back1 and step * step * step < 1e-3 * tol * back1 * back1
+        if (step < tol or quad_next) and not halved:
             for i in range(nd):
                 v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
             return it
-    return -1
+        # stagnation (friction states cycling): a correction not below the one two iterations
+        # back will not converge within max_iter; give up, the caller splits
+        if it >= 5 and step > back2:
+            return -it
+        back2, back1 = back1, step
+    return -max_iter
 
 
 @numba.njit(cache=True)
-def advance(d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_halvings, scratch):
+def advance(
+    d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_halvings, scratch,
+    damping=0.0,
+):  # fmt: skip
     """d, v at t -> t + dt in place, splitting the step on Newton failure. Returns the Newton
-    iterations used, or -1 if even 2^max_halvings sub-steps failed."""
+    iterations spent (failed attempts included), or -1 if even 2^max_halvings sub-steps
+    failed. damping: Kelvin-Voigt retardation time [s] (module docstring); scratch:
+    `make_scratch`."""
     a_gp, phi_gp, w, t_ramp = gait
-    work, piv, k0, k1, d0, v0, d1, v1 = scratch
+    k0, k1, d0, v0, d1, v1 = scratch[2:8]
+    total = 0
     for level in range(max_halvings + 1):
         n_sub = 2**level
         h = dt / n_sub
         for i in range(d.shape[0]):
             d0[i] = d[i]
             v0[i] = v[i]
-        total = 0
         ok = True
         for k in range(n_sub):
             gait_kappa_into(a_gp, phi_gp, w, t_ramp, t + k * h, k0)
             gait_kappa_into(a_gp, phi_gp, w, t_ramp, t + (k + 1) * h, k1)
             its = _newton_step(
-                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, work, piv
-            )
+                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, scratch,
+                damping,
+            )  # fmt: skip
+            total += abs(its)
             if its < 0:
                 ok = False
                 break
-            total += its
             for i in range(d.shape[0]):
                 d0[i] = d1[i]
                 v0[i] = v1[i]
@@ -136,22 +195,13 @@ def run(
     d_out,
     v_out,
     t_out,
+    damping=0.0,
 ):
     """n_steps steps of dt from (d, v) at t0 (in place); every `every` steps (and at the start)
     the state goes to row j of d_out, v_out (rows, n_dof) and t_out. Returns (total Newton
-    iterations, index of the failed step or -1)."""
+    iterations, index of the failed step or -1). damping: Kelvin-Voigt retardation time [s]."""
     nd = d.shape[0]
-    ne = le.shape[0]
-    scratch = (
-        np.empty((nd, 3 * HALF_BW + 1)),
-        np.empty(nd, np.int64),
-        np.empty((ne, 4)),
-        np.empty((ne, 4)),
-        np.empty(nd),
-        np.empty(nd),
-        np.empty(nd),
-        np.empty(nd),
-    )
+    scratch = _scratch(nd, le.shape[0])
     total = 0
     j = 0
     for i in range(nd):
@@ -161,8 +211,9 @@ def run(
     for n in range(n_steps):
         t = t0 + n * dt
         its = advance(
-            d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_halvings, scratch
-        )
+            d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_halvings, scratch,
+            damping,
+        )  # fmt: skip
         if its < 0:
             return total, n
         total += its
@@ -188,26 +239,39 @@ def bending_work(d, k, ka, kb, le, ei):
 
 
 @numba.njit(cache=True)
+def muscle_work(d0, d1, k0, k1, le, ei):
+    """The muscles' signed work [J] over a step from d0 (kappa# k0) to d1 (kappa# k1):
+    -int M_el (k1 - k0) dS with the step's elastic moment M_el = EI ((kappa_0 - k0) + (kappa_1
+    - k1)) / 2 (the algorithmic moment of `_newton_step` less its Kelvin-Voigt part: the damper
+    acts on the total curvature rate, in parallel with the active spring, and does no work
+    against kappa#)."""
+    return -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
+
+
+@numba.njit(cache=True)
 def advance_linear(
-    d, v, ka, kb, dt, mass, le, quad, ground, th, tol, max_iter, max_halvings, scratch, ei, out
-):
+    d, v, ka, kb, dt, mass, le, quad, ground, th, tol, max_iter, max_halvings, scratch, ei, out,
+    damping=0.0,
+):  # fmt: skip
     """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4) (a
     commanded actuation held by a first-order hold), splitting the step on Newton failure as
-    `advance`. Returns the Newton iterations used, or -1 (d, v untouched) on failure.
+    `advance`. Returns the Newton iterations spent (failed attempts included), or -1 (d, v
+    untouched) on failure.
 
     out[0] += the muscles' positive work [J] summed over the (sub)steps, out[1] += their signed
-    work: -int sigma_3 (k1 - k0) dS with the step's algorithmic moment sigma_3 = EI ((kappa_0
-    - k0) + (kappa_1 - k1)) / 2 (`beam.algorithmic`, theta = 1/2), the exact discrete balance
-    dKE + dU = W_muscles + F_ground . dd of the scheme (EI: the bending stiffness [N m^2])."""
-    work, piv, k0, k1, d0, v0, d1, v1 = scratch
+    work (`muscle_work`), the exact discrete balance dKE + dU + D = W_muscles + F_ground . dd of
+    the scheme (EI: the bending stiffness [N m^2]; D >= 0 the Kelvin-Voigt dissipation,
+    (damping / h) int Deps^T C Deps dS per sub-step)."""
+    k0, k1, d0, v0, d1, v1 = scratch[2:8]
     ne, ng = ka.shape
+    total = 0
     for level in range(max_halvings + 1):
         n_sub = 2**level
         h = dt / n_sub
         for i in range(d.shape[0]):
             d0[i] = d[i]
             v0[i] = v[i]
-        total, pos, signed = 0, 0.0, 0.0
+        pos, signed = 0.0, 0.0
         ok = True
         for k in range(n_sub):
             s0, s1 = k / n_sub, (k + 1) / n_sub
@@ -216,13 +280,14 @@ def advance_linear(
                     k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
                     k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
             its = _newton_step(
-                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, work, piv
-            )
+                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, scratch,
+                damping,
+            )  # fmt: skip
+            total += abs(its)
             if its < 0:
                 ok = False
                 break
-            total += its
-            w = -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
+            w = muscle_work(d0, d1, k0, k1, le, ei)
             pos += max(w, 0.0)
             signed += w
             for i in range(d.shape[0]):
@@ -238,8 +303,8 @@ def advance_linear(
     return -1
 
 
-def make_scratch(n_dof: int, n_elements: int) -> tuple:
-    """The scratch arrays of `advance` / `advance_linear` for a beam of n_elements."""
+@numba.njit(cache=True)
+def _scratch(n_dof, n_elements):
     return (
         np.empty((n_dof, 3 * HALF_BW + 1)),
         np.empty(n_dof, np.int64),
@@ -249,4 +314,18 @@ def make_scratch(n_dof: int, n_elements: int) -> tuple:
         np.empty(n_dof),
         np.empty(n_dof),
         np.empty(n_dof),
+        np.empty((5, n_dof)),
+        np.empty(n_dof),
+        np.zeros((N_BAND, n_dof)),
+        np.empty((n_elements, MAX_QUAD, 3)),
+        np.empty((n_elements, MAX_QUAD, 3)),
+        algorithmic_scratch(),
     )
+
+
+def make_scratch(n_dof: int, n_elements: int) -> tuple:
+    """The scratch arrays of `advance` / `advance_linear` for a beam of n_elements: the band
+    solver's (work, pivots), kappa# at the sub-step ends, states at the sub-step ends, the
+    Newton vectors, the algorithmic force, its band, strain increments, the damper's strain
+    shift and `algorithmic_scratch` (the step allocates nothing)."""
+    return _scratch(int(n_dof), int(n_elements))

@@ -118,7 +118,8 @@ def _integrate(model: BeamModel, d: np.ndarray, v: np.ndarray | None):
 
 class Serpentine:
     """A serpentine beam (module docstring): beam params, ground law, gait (None: passive),
-    gravity [m/s^2] normal to the ground."""
+    gravity [m/s^2] normal to the ground, material_damping: the Kelvin-Voigt retardation time
+    tau [s] of the body (every strain's stress gains EA tau d(eps)/dt; `kernels`; 0: elastic)."""
 
     def __init__(
         self,
@@ -126,12 +127,14 @@ class Serpentine:
         ground: BellyFriction | None = None,
         gait: WaveGait | None = None,
         gravity: float = G,
+        material_damping: float = 0.0,
     ) -> None:
         if params.mass_per_length <= 0.0:
             raise ValueError("mass_per_length: a crawling body needs mass, got 0")
         self.model = BeamModel(params)
         self.ground = ground if ground is not None else BellyFriction()
         self.gravity = float(check_range("gravity", gravity, 0.0, 1e3))
+        self.material_damping = float(check_range("material_damping", material_damping, 0.0, 10.0))
         shape = self.model.gauss_S.shape
         if gait is None:
             gait = WaveGait(np.zeros(shape), np.zeros(shape), 0.0)
@@ -212,6 +215,7 @@ class Serpentine:
             d_out,
             v_out,
             t_out,
+            self.material_damping,
         )
         if failed >= 0:
             raise NewtonDivergence(
