@@ -18,6 +18,11 @@ forces (`fluid.assemble_water`); tangent
 The water's momentum enters as a difference, so body plus entrained water conserve linear
 momentum exactly (to the Newton tolerance) when F_w = 0. th = 1/2 (default) takes the resistive
 force at the midpoint: second order; th = 1 is implicit Euler on it (first order, L-stable).
+The stresses are taken at theta_s of the strains (`beam.algorithmic`): theta_s = 1/2 conserves
+the stored energy exactly, theta_s > 1/2 dissipates the strain increments' energy
+(theta_s - 1/2) int de^T D de dS per step (the generalised energy-momentum method, Kuhl & Ramm
+1999): it damps the stiff axial, shear and high bending modes that a command jump excites and
+the energy-conserving scheme would keep ringing (first order in the internal force then).
 Why this is a generalisation of `serpentine.kernels._newton_step` rather than a call to it: that
 step hard-wires the ground law and has no configuration-dependent mass; the actuation work and
 the step splitting (`advance_linear`) are the serpentine's, on this step.
@@ -39,8 +44,10 @@ from mf_envs.physics.swimmer.fluid import W_MA, added_momentum, assemble_water
 def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv):
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); water = (nzt, npt, law)
     (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the
-    constant-velocity predictor. Returns the Newton iterations, or -1 on failure."""
+    constant-velocity predictor; th = (theta of the water force, theta of the stresses).
+    Returns the Newton iterations, or -1 on failure."""
     nzt, npt, law = water
+    th, th_s = th
     m_a = law[W_MA]
     nd = d0.shape[0]
     for i in range(nd):
@@ -56,7 +63,9 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     p1 = np.empty(nd)
     added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
     for it in range(1, max_iter + 1):
-        pbar, ab, _ = assemble_algorithmic(d0, d, le, k0, k1, qxi, qw, stiff, 0.5, shift, True, 1.0)
+        pbar, ab, _ = assemble_algorithmic(
+            d0, d, le, k0, k1, qxi, qw, stiff, th_s, shift, True, 1.0
+        )
         for i in range(nd):
             x[i] = d[i] - d0[i] - dt * v0[i]
             v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]

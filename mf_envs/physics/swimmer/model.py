@@ -79,13 +79,16 @@ class Swimmer:
 
     def simulate(self, t_end: float, dt: float, every: int = 1, theta: float = 0.5,
                  d0: np.ndarray | None = None, v0: np.ndarray | None = None, tol: float = 1e-10,
-                 max_iter: int = 12, max_halvings: int = 6) -> SnakeHistory:  # fmt: skip
+                 max_iter: int = 12, max_halvings: int = 6,
+                 stress_theta: float = 0.5) -> SnakeHistory:  # fmt: skip
         """Step from (d0, v0) (default: straight along +x at rest) at t = 0 to t_end [s] with
-        steps dt [s]; theta in [1/2, 1] is where the resistive force is taken (`kernels`)."""
+        steps dt [s]; theta in [1/2, 1] is where the resistive force is taken, stress_theta in
+        [1/2, 1] where the stresses are (`kernels`)."""
         check_positive("t_end", t_end)
         check_positive("dt", dt)
         every = check_int("every", every, low=1)
         check_range("theta", theta, 0.5, 1.0)
+        check_range("stress_theta", stress_theta, 0.5, 1.0)
         check_positive("tol", tol)
         m = self.model
         d = m.straight() if d0 is None else np.array(d0, float)
@@ -102,7 +105,7 @@ class Swimmer:
                 float(g.omega), float(g.ramp_time))  # fmt: skip
         its, failed = kernels.run(
             d, v, float(dt), n_steps, every, m.mass, m.le, (*m.quad, m.u_scale), self.packed,
-            gait, float(theta), float(tol), int(max_iter), int(max_halvings),
+            gait, (float(theta), float(stress_theta)), float(tol), int(max_iter), int(max_halvings),
             make_scratch(m.n_dof, m.n_elements), m.params.EI, d_out, v_out, work_out,
         )  # fmt: skip
         if failed >= 0:
