@@ -32,8 +32,11 @@ from mf_envs.envs.eel.task import DECLARATION
 ENV_ID = DECLARATION.env_id
 HEAD_RATIO = 0.3  # curvature amplitude at the head / at the tail
 WAVE = (40.0, 0.8, 0.4)  # a [1/m], lambda / L, T [s]: a hand-picked anguilliform start
-FAST = WAVE  # replaced by `python -m mf_envs.controllers.eel --tune`
-EFFICIENT = WAVE
+# `python -m mf_envs.controllers.eel --tune` (default env, 4 s horizon, speed and power over
+# 1.5-4 s, Nelder-Mead from WAVE, 60 evaluations each); the fast gait sits on the period bound
+# and saturates the muscles' rate limit (a 2 pi / T > max_curvature_rate)
+FAST = (44.3981, 0.9791, 0.2)  # 0.834 m/s, slip 0.85, Froude efficiency 0.11
+EFFICIENT = (30.532, 0.7501, 0.465)  # 0.208 m/s, slip 0.65, Froude efficiency 0.26
 BOUNDS = ((5.0, 50.0), (0.4, 2.0), (0.2, 1.5))  # a [1/m], lambda / L, T [s]
 
 

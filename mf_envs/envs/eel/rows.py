@@ -31,7 +31,8 @@ from mf_envs.physics.swimmer.model import make_scratch
 # the muscles' signed (net) work [J]
 REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
 N_REPORT = 6
-TOLERANCE, MAX_ITER, MAX_HALVINGS = 1e-8, 12, 6  # the Newton settings
+# the Newton settings: the step test |dd| / u_scale < 1e-6 leaves ~1e-12 once quadratic
+TOLERANCE, MAX_ITER, MAX_HALVINGS = 1e-6, 12, 6
 THETA = (0.5, 0.5)  # (water force, stresses) theta points (`physics.swimmer.kernels`)
 
 
