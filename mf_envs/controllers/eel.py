@@ -25,8 +25,9 @@ from typing import Any
 import numpy as np
 from scipy.optimize import minimize
 
-from mf_envs._validate import check_range, positive_scalar
+from mf_envs._validate import check_range
 from mf_envs.controllers import register
+from mf_envs.controllers.serpentine import HeadingSerpenoid, Serpenoid
 from mf_envs.envs.eel.task import DECLARATION
 
 ENV_ID = DECLARATION.env_id
@@ -40,30 +41,15 @@ EFFICIENT = (30.532, 0.7501, 0.465)  # 0.208 m/s, slip 0.65, Froude efficiency 0
 BOUNDS = ((5.0, 50.0), (0.4, 2.0), (0.2, 1.5))  # a [1/m], lambda / L, T [s]
 
 
-class TravellingWave:
-    """kappa#(S_j, t) (module docstring) plus a bias [1/m]."""
+class TravellingWave(Serpenoid):
+    """kappa#(S_j, t) (module docstring) plus a bias [1/m]: the serpentine's serpenoid
+    (`controllers.serpentine.Serpenoid`, the wave running head to tail) times the envelope."""
 
     def __init__(self, env: Any, amplitude: float = WAVE[0], wavelength: float = WAVE[1],
                  period: float = WAVE[2]) -> None:  # fmt: skip
-        base = env.unwrapped
-        self.base = base
-        self.amplitude = check_range("amplitude", amplitude, 0.0, 1e3)
-        self.wavelength = positive_scalar("wavelength", wavelength)  # in body lengths
-        self.period = positive_scalar("period", period)
-        self.dt = float(base.control_dt)
-        self.scale = 1.0 / float(base.max_curvature)
-        s = np.linspace(0.0, 1.0, base.n_ctrl)  # S / L
+        super().__init__(env, amplitude, wavelength, period)
+        s = np.linspace(0.0, 1.0, self.base.n_ctrl)  # S / L
         self.envelope = HEAD_RATIO + (1.0 - HEAD_RATIO) * (1.0 - s)
-        self.phase = 2.0 * math.pi * (1.0 - s) / self.wavelength
-        self.reset()
-
-    def reset(self) -> None:
-        self.k = 0
-
-    def bias(self, obs: np.ndarray) -> float:
-        """Curvature bias [1/m] (0: straight-line gait)."""
-        del obs
-        return 0.0
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         del deterministic
@@ -76,7 +62,10 @@ class TravellingWave:
 
 
 class HeadingWave(TravellingWave):
-    """The fast wave plus bias = -gain x filtered heading error, |bias| <= max_bias."""
+    """The fast wave plus bias = -gain x filtered heading error, |bias| <= max_bias (the
+    serpentine's `HeadingSerpenoid` filter and bias)."""
+
+    bias = HeadingSerpenoid.bias
 
     def __init__(self, env: Any, gain: float = 10.0, max_bias: float = 10.0,
                  amplitude: float | None = None, wavelength: float | None = None,
@@ -85,22 +74,13 @@ class HeadingWave(TravellingWave):
         self.max_bias = check_range("max_bias", max_bias, 0.0, 1e3)  # 1/m
         layout = env.unwrapped.obs_layout
         self.i_sin, self.i_cos = layout.index("sin_heading"), layout.index("cos_heading")
-        a, lam, per = (
-            x if x is not None else y for x, y in zip((amplitude, wavelength, period), FAST)
-        )
+        given = (amplitude, wavelength, period)
+        a, lam, per = (x if x is not None else y for x, y in zip(given, FAST))
         super().__init__(env, a, lam, per)
 
     def reset(self) -> None:
         super().reset()
-        self.filt: np.ndarray | None = None
-
-    def bias(self, obs: np.ndarray) -> float:
-        sc = np.array([obs[self.i_sin], obs[self.i_cos]], float)
-        if self.filt is None:
-            self.filt = sc
-        self.filt = self.filt + min(1.0, self.dt / self.period) * (sc - self.filt)
-        err = math.atan2(self.filt[0], self.filt[1])
-        return float(np.clip(-self.gain * err, -self.max_bias, self.max_bias))
+        self.filt: np.ndarray | None = None  # the filtered (sin, cos) of the heading error
 
 
 def gait_stats(env: Any, params: tuple[float, float, float], seconds: float = 4.0,

@@ -8,11 +8,10 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
-from mf_envs._validate import check_range
-from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.eel import build, render, rows, spec
 from mf_envs.envs.serpentine.build import initial_dofs
+from mf_envs.envs.serpentine.env import SerpentineEnv
 from mf_envs.physics.beam.solver import BeamModel
 from mf_envs.physics.swimmer.fluid import C_NORMAL, C_TANGENTIAL, RHO_WATER, point_forces
 
@@ -21,7 +20,6 @@ AVAILABLE_EFFECTS = {
     "reactive": "Lighthill's (1960) added mass on the normal velocity and the tail force",
 }
 DEFAULT_EFFECTS = ("resistive", "reactive")
-MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 
 class EelEnv(MFEnv):
@@ -152,14 +150,7 @@ class EelEnv(MFEnv):
         self._track: list[tuple[float, float]] = []
 
     # ------------------------------------------------------------------ API
-    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
-        heading = None
-        if "heading" in opts:
-            heading = check_range("heading", opts["heading"], -MAX_HEADING, MAX_HEADING)
-        kappa = None
-        if "kappa" in opts:
-            kappa = check_curvature_option(opts["kappa"], self.n_ctrl, self.max_curvature)
-        return {"heading": heading, "kappa": kappa}
+    _check_reset_options = SerpentineEnv._check_reset_options  # heading, kappa: the same
 
     def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
         heading, kappa = opts["heading"], opts["kappa"]

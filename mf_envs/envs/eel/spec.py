@@ -4,6 +4,7 @@ points), reward terms, reset options and info keys, shared by the single and the
 from __future__ import annotations
 
 from mf_envs.envs._spec import Field, ObsLayout
+from mf_envs.envs.serpentine.spec import step_info  # noqa: F401  (the same info of a step)
 
 CURVATURE_OBS_LIMIT = 20.0  # |kappa L| bound of the observation (also caps max_curvature * L)
 VELOCITY_OBS_LIMIT = 20.0  # |v_com| / L bound [1/s] (eels cruise at 0.5-2 L/s)
@@ -37,20 +38,3 @@ def observation_layout(n: int) -> ObsLayout:
         Field("tail_rate", "rad/s", TAIL_RATE_OBS_LIMIT, "rate of the tail's frame angle"),
         Field("curvature_command", "", 1.0, "kappa# / max_curvature at the step's end", n),
     )
-
-
-def step_info(x, y, heading, speed, cmd, energy, net, dt, iterations, time, terms) -> dict:
-    """The info of a step (scalars, or (N,) arrays in the vector env)."""
-    return {
-        "x": x,
-        "y": y,
-        "heading": heading,
-        "speed": speed,
-        "kappa_command": cmd,
-        "actuation_energy": energy,
-        "actuation_power": energy / dt,
-        "actuation_net_work": net,
-        "newton_iterations": iterations,
-        "time": time,
-        "reward_terms": terms,
-    }

@@ -2,34 +2,12 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from typing import Any
-
-import numpy as np
-
 from mf_envs.envs.declaration import EnvDeclaration, Metric
+from mf_envs.envs.serpentine.task import DECLARATION as SERPENTINE
+from mf_envs.envs.serpentine.task import episode_metrics
 
-WARMUP_SHARE = 0.25  # share of the episode left out of `speed` (the gait starts from rest)
-
-
-def episode_metrics(
-    env: Any, rewards: Sequence[float], infos: Sequence[Mapping[str, Any]]
-) -> dict[str, float]:
-    """`speed`: mean forward speed of the centre of mass along the target direction after the
-    first quarter of the episode [m/s]; `speed_all` over the whole episode;
-    `energy_per_distance` [J/m] over the whole episode."""
-    speed = np.array([i["speed"] for i in infos[1:]])
-    energy = float(sum(i["actuation_energy"] for i in infos[1:]))
-    start = int(len(speed) * WARMUP_SHARE)
-    dt = float(env.unwrapped.control_dt)
-    distance = float(speed.sum()) * dt
-    return {
-        "speed": float(speed[start:].mean()),
-        "speed_all": float(speed.mean()),
-        "energy_per_distance": energy / distance if distance > 0 else float("inf"),
-    }
-
-
+# the serpentine's metrics (speed after the first quarter of the episode, energy per distance)
+# and its PPO recipe: same reward structure, same beam
 DECLARATION = EnvDeclaration(
     env_id="Eel-v0",
     entry_point="mf_envs.envs.eel.env:EelEnv",
@@ -52,25 +30,7 @@ DECLARATION = EnvDeclaration(
         "youngs_modulus x0.7": {"youngs_modulus": 0.7},
     },
     rllib={"num_envs_per_env_runner": 1, "train_batch_size_per_learner": 2000, "gamma": 0.99},
-    # rl-zoo3 keys (train.config reads them when ppo.yml has no entry): the serpentine's recipe
-    hyperparams={
-        "ppo": {
-            "normalize": "{'norm_obs': True, 'norm_reward': True}",
-            "n_envs": 2,
-            "policy": "MlpPolicy",
-            "n_timesteps": 1e5,
-            "n_steps": 1024,
-            "batch_size": 64,
-            "gae_lambda": 0.95,
-            "gamma": 0.99,
-            "n_epochs": 10,
-            "ent_coef": 0.0,
-            "learning_rate": "lin_3e-4",
-            "clip_range": 0.2,
-            "policy_kwargs": "dict(log_std_init=-0.5, ortho_init=False, activation_fn=nn.Tanh, "
-            "net_arch=dict(pi=[64, 64], vf=[64, 64]))",
-        },
-    },  # fmt: skip
+    hyperparams=SERPENTINE.hyperparams,  # rl-zoo3 keys when ppo.yml has no entry
     vector_target=(64, 5.0e3),
     single_target=("steps_per_s", 1000.0),
     vector_n_max=256,

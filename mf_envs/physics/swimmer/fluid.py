@@ -50,7 +50,9 @@ from mf_envs._validate import check_nonnegative, check_positive
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, shape_functions
 
-LOC = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5])  # element dof -> offset from 6 e (Eq. 71c)
+# LOC: element dof -> offset from 6 e (Eq. 71c); _add_tangent: a point force's tangent
+from mf_envs.physics.serpentine.friction import LOC, _add_tangent
+
 RHO_WATER = 1000.0  # kg/m^3, fresh water
 # Taylor's quadratic law, frozen at the eel's Reynolds numbers (docs/eel.md): C_N the cross-flow
 # drag coefficient of a circular cylinder at 1e3 < Re_d < 1e5; C_T the skin-friction coefficient
@@ -175,6 +177,14 @@ def tail_force(v1, v2, psi, m_a, out):
 
 
 @numba.njit(cache=True, nogil=True)
+def _gather(d, v, base, de, ve):
+    """The element dofs (Eq. 71c order) of d and v from global index 6 e = base into de, ve."""
+    for k in range(11):
+        de[k] = d[base + LOC[k]]
+        ve[k] = v[base + LOC[k]]
+
+
+@numba.njit(cache=True, nogil=True)
 def _gauss_point(de, ve, nz, npsi):
     """Velocity (v1, v2) and frame angle psi at a Gauss point of an element."""
     v1 = nz[0] * ve[0] + nz[1] * ve[1] + nz[2] * ve[2] + nz[3] * ve[3]
@@ -207,9 +217,7 @@ def assemble_water(d, v, le, nzt, npt, law, f, ab, cd, cv):
     ve = np.empty(11)
     for e in range(le.shape[0]):
         base = 6 * e
-        for k in range(11):
-            de[k] = d[base + LOC[k]]
-            ve[k] = v[base + LOC[k]]
+        _gather(d, v, base, de, ve)
         for g in range(N_GAUSS):
             nz, npsi = nzt[e, g], npt[e, g]
             w = GAUSS_W[g] * le[e]
@@ -220,25 +228,8 @@ def assemble_water(d, v, le, nzt, npt, law, f, ab, cd, cv):
                 f[base + LOC[i]] += w * nz[i] * pf[0]
                 f[base + LOC[4 + i]] += w * nz[i] * pf[1]
             if cd != 0.0 or cv != 0.0:
-                _add_point_tangent(ab, base, w, nz, npsi, pf, cd, cv)
+                _add_tangent(ab, base, w, nz, npsi, pf, 0.0, cd, cv)
     return power
-
-
-@numba.njit(cache=True, nogil=True)
-def _add_point_tangent(ab, base, w, nz, npsi, pf, cd, cv):
-    """ab += cd dF/dd + cv dF/dv of a point force with derivatives pf[2:8] (weight w)."""
-    for ci in range(2):
-        for i in range(4):
-            gi = base + LOC[4 * ci + i]
-            for cj in range(2):
-                c = cv * w * nz[i] * pf[2 + 2 * ci + cj]
-                for j in range(4):
-                    gj = base + LOC[4 * cj + j]
-                    ab[HALF_BW + gi - gj, gj] += c * nz[j]
-            c = cd * w * nz[i] * pf[6 + ci]
-            for j in range(3):
-                gj = base + LOC[8 + j]
-                ab[HALF_BW + gi - gj, gj] += c * npsi[j]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -256,9 +247,7 @@ def added_momentum(d, v, le, nzt, npt, m_a, p, ab, cd, cv):
     pf = np.empty(8)
     for e in range(le.shape[0]):
         base = 6 * e
-        for k in range(11):
-            de[k] = d[base + LOC[k]]
-            ve[k] = v[base + LOC[k]]
+        _gather(d, v, base, de, ve)
         for g in range(N_GAUSS):
             nz, npsi = nzt[e, g], npt[e, g]
             w = GAUSS_W[g] * le[e]
@@ -276,7 +265,7 @@ def added_momentum(d, v, le, nzt, npt, m_a, p, ab, cd, cv):
                 p[base + LOC[i]] += w * nz[i] * pf[0]
                 p[base + LOC[4 + i]] += w * nz[i] * pf[1]
             if cd != 0.0 or cv != 0.0:
-                _add_point_tangent(ab, base, w, nz, npsi, pf, cd, cv)
+                _add_tangent(ab, base, w, nz, npsi, pf, 0.0, cd, cv)
     return energy
 
 
@@ -289,9 +278,7 @@ def point_forces(d, v, le, nzt, npt, law, out):
     pf = np.empty(8)
     for e in range(le.shape[0]):
         base = 6 * e
-        for k in range(11):
-            de[k] = d[base + LOC[k]]
-            ve[k] = v[base + LOC[k]]
+        _gather(d, v, base, de, ve)
         for g in range(N_GAUSS):
             nz, npsi = nzt[e, g], npt[e, g]
             v1, v2, psi = _gauss_point(de, ve, nz, npsi)

@@ -21,19 +21,10 @@ from mf_envs._validate import check_int, check_positive, check_range
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.solver import BeamModel, BeamParams, NewtonDivergence
 from mf_envs.physics.serpentine.gait import WaveGait
+from mf_envs.physics.serpentine.kernels import make_scratch
 from mf_envs.physics.serpentine.model import SnakeHistory
 from mf_envs.physics.swimmer import kernels
 from mf_envs.physics.swimmer.fluid import Water, added_momentum, assemble_water, shape_tables
-
-
-def make_scratch(n_dof: int, n_elements: int) -> tuple:
-    """The scratch arrays of `kernels.advance_linear` for a beam of n_elements."""
-    return (
-        np.empty((n_dof, 3 * HALF_BW + 1)),
-        np.empty(n_dof, np.int64),
-        *(np.empty((n_elements, 4)) for _ in range(2)),
-        *(np.empty(n_dof) for _ in range(4)),
-    )
 
 
 class Swimmer:
