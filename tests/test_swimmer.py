@@ -230,3 +230,26 @@ def test_tail_force_gives_lighthills_mean_thrust():
     want = lighthill_thrust(water.added_mass, np.array(ht), np.array(hx), speed)
     assert want > 0.0
     assert np.mean(thrust) == pytest.approx(want, rel=0.05)
+
+
+def test_allocation_free_internal_force_equals_the_beams():
+    """`internal.algorithmic_into` against `beam.algorithmic.assemble_algorithmic` (shift 0) on
+    random configurations and actuations: the same force and tangent to round-off."""
+    from mf_envs.physics.beam.algorithmic import assemble_algorithmic
+    from mf_envs.physics.swimmer.internal import algorithmic_into, make_work, quadrature_tables
+
+    m = BeamModel(rod_params(L, D / 2, 1e6, 1e6 / 1.5, 1000.0, 5))
+    qxi, qw, stiff = m.quad
+    rng = np.random.default_rng(7)
+    tab, work = quadrature_tables(m.le, qxi), make_work()
+    p, ab = np.empty(m.n_dof), np.empty((21, m.n_dof))
+    for theta in (0.5, 0.6, 1.0):
+        da = m.straight() + 0.03 * rng.standard_normal(m.n_dof)
+        db = da + 0.05 * rng.standard_normal(m.n_dof)
+        ka, kb = (20 * rng.standard_normal((5, 4)) for _ in range(2))
+        shift = np.zeros((5, qxi.size, 3))
+        p0, ab0, _ = assemble_algorithmic(da, db, m.le, ka, kb, qxi, qw, stiff, theta, shift,
+                                          True, 1.0)  # fmt: skip
+        algorithmic_into(da, db, m.le, ka, kb, qw, stiff, theta, tab, work, p, ab)
+        assert np.max(np.abs(p - p0)) <= 1e-13 * np.max(np.abs(p0))
+        assert np.max(np.abs(ab - ab0)) <= 1e-13 * np.max(np.abs(ab0))

@@ -25,6 +25,7 @@ from mf_envs.envs.serpentine.rows import body_state
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.kernels import make_scratch
 from mf_envs.physics.swimmer.fluid import shape_tables
+from mf_envs.physics.swimmer.internal import quadrature_tables
 from mf_envs.physics.swimmer.kernels import advance_linear
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
@@ -48,8 +49,10 @@ def pack(scene, model, n_substeps: int, physics_dt: float, control_dt: float,
     ce, cxi = control_points(p.length, scene.n_ctrl, ne)
     water = (*shape_tables(le), scene.water.packed())
     theta = (THETA[0], scene.stress_theta)
+    qxi, qw, stiff = model.quad
+    quad = (qw, stiff, model.u_scale, quadrature_tables(le, qxi))
     return (
-        le, model.mass, (*model.quad, model.u_scale), water, theta, TOLERANCE, MAX_ITER,
+        le, model.mass, quad, water, theta, TOLERANCE, MAX_ITER,
         MAX_HALVINGS, interpolation(model.gauss_S, p.length, scene.n_ctrl), nz, npsi, ce, cxi,
         scene.max_curvature, int(n_substeps), p.length, p.EI, float(target), float(physics_dt),
         scene.max_curvature_rate * float(control_dt),

@@ -25,7 +25,8 @@ the stored energy exactly, theta_s > 1/2 dissipates the strain increments' energ
 the energy-conserving scheme would keep ringing (first order in the internal force then).
 Why this is a generalisation of `serpentine.kernels._newton_step` rather than a call to it: that
 step hard-wires the ground law and has no configuration-dependent mass; the actuation work and
-the step splitting (`advance_linear`) are the serpentine's, on this step.
+the step splitting (`advance_linear`) are the serpentine's, on this step. The internal force is
+`internal.algorithmic_into` (the beam's `assemble_algorithmic` without allocations).
 """
 
 from __future__ import annotations
@@ -33,16 +34,17 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from mf_envs.physics.beam.algorithmic import assemble_algorithmic
-from mf_envs.physics.beam.banded import HALF_BW, band_solve_into
+from mf_envs.physics.beam.banded import HALF_BW, N_BAND, band_solve_into
 from mf_envs.physics.serpentine.gait import gait_kappa_into
 from mf_envs.physics.serpentine.kernels import bending_work
 from mf_envs.physics.swimmer.fluid import W_MA, added_momentum, assemble_water
+from mf_envs.physics.swimmer.internal import algorithmic_into, make_work
 
 
 @numba.njit(cache=True, nogil=True)
 def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv):
-    """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); water = (nzt, npt, law)
+    """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); quad = (weights,
+    rigidities, dof scales, `internal.quadrature_tables`); water = (nzt, npt, law)
     (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the
     constant-velocity predictor; th = (theta of the water force, theta of the stresses).
     Returns the Newton iterations, or -1 on failure."""
@@ -52,8 +54,10 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     nd = d0.shape[0]
     for i in range(nd):
         d[i] = d0[i] + dt * v0[i]
-    qxi, qw, stiff, u_scale = quad
-    shift = np.zeros((le.shape[0], qxi.shape[0], 3))
+    qw, stiff, u_scale, tab = quad
+    pbar = np.empty(nd)
+    ab = np.empty((N_BAND, nd))
+    iw = make_work()
     c_a = 2.0 / (dt * dt)
     r = np.empty(nd)
     x = np.empty(nd)
@@ -63,9 +67,7 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     p1 = np.empty(nd)
     added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
     for it in range(1, max_iter + 1):
-        pbar, ab, _ = assemble_algorithmic(
-            d0, d, le, k0, k1, qxi, qw, stiff, th_s, shift, True, 1.0
-        )
+        algorithmic_into(d0, d, le, k0, k1, qw, stiff, th_s, tab, iw, pbar, ab)
         for i in range(nd):
             x[i] = d[i] - d0[i] - dt * v0[i]
             v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]

@@ -25,6 +25,7 @@ from mf_envs.physics.serpentine.kernels import make_scratch
 from mf_envs.physics.serpentine.model import SnakeHistory
 from mf_envs.physics.swimmer import kernels
 from mf_envs.physics.swimmer.fluid import Water, added_momentum, assemble_water, shape_tables
+from mf_envs.physics.swimmer.internal import quadrature_tables
 
 
 class Swimmer:
@@ -45,6 +46,9 @@ class Swimmer:
             )
         self.gait = gait
         self.tables = shape_tables(self.model.le)
+        qxi, qw, stiff = self.model.quad
+        tab = quadrature_tables(self.model.le, qxi)
+        self.quad = (qw, stiff, self.model.u_scale, tab)  # the kernels' `quad`
 
     @property
     def packed(self) -> tuple:
@@ -95,7 +99,7 @@ class Swimmer:
         gait = (np.ascontiguousarray(g.amplitude, float), np.ascontiguousarray(g.phase, float),
                 float(g.omega), float(g.ramp_time))  # fmt: skip
         its, failed = kernels.run(
-            d, v, float(dt), n_steps, every, m.mass, m.le, (*m.quad, m.u_scale), self.packed,
+            d, v, float(dt), n_steps, every, m.mass, m.le, self.quad, self.packed,
             gait, (float(theta), float(stress_theta)), float(tol), int(max_iter), int(max_halvings),
             make_scratch(m.n_dof, m.n_elements), m.params.EI, d_out, v_out, work_out,
         )  # fmt: skip
