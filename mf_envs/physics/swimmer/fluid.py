@@ -211,10 +211,34 @@ def assemble_water(d, v, le, nzt, npt, law, f, ab, cd, cv):
                 for cj in range(2):
                     ab[HALF_BW + 2 * ci - 2 * cj, 2 * cj] += cv * pf[2 + 2 * ci + cj]
                 ab[HALF_BW + 2 * ci - 4, 4] += cd * pf[6 + ci]
-    if law[W_RESISTIVE] == 0.0:
-        return power
+    if law[W_RESISTIVE] != 0.0:
+        power += _line_load(0, d, v, le, nzt, npt, law, 0.0, f, ab, cd, cv)
+    return power
+
+
+@numba.njit(cache=True, nogil=True)
+def added_point(v1, v2, psi, m_a, out):
+    """The entrained water's momentum at a point: out[0:2] = P = m_a w n [kg/s], out[2:6] =
+    dP/dv = m_a n n^T (row-major) [kg/m], out[6:8] = dP/dpsi = m_a (-v_t n - w t)."""
+    c, s = math.cos(psi), math.sin(psi)
+    vt = c * v1 + s * v2
+    wn = -s * v1 + c * v2
+    out[0], out[1] = -m_a * wn * s, m_a * wn * c
+    out[2], out[3] = m_a * s * s, -m_a * s * c
+    out[4], out[5] = -m_a * s * c, m_a * c * c
+    out[6] = m_a * (vt * s - wn * c)
+    out[7] = m_a * (-vt * c - wn * s)
+
+
+@numba.njit(cache=True, nogil=True)
+def _line_load(kind, d, v, le, nzt, npt, law, m_a, f, ab, cd, cv):
+    """f += int N_z^T q dS and ab += cd dF/dd + cv dF/dv (cd = cv = 0: no tangent) of the point
+    law q at the 4 Gauss points (Eq. 81b): kind 0 Taylor's force (`resistive_point`, law),
+    kind 1 the water's momentum (`added_point`, m_a). Returns int q . v dS."""
     de = np.empty(11)
     ve = np.empty(11)
+    pf = np.empty(8)
+    acc = 0.0
     for e in range(le.shape[0]):
         base = 6 * e
         _gather(d, v, base, de, ve)
@@ -222,51 +246,29 @@ def assemble_water(d, v, le, nzt, npt, law, f, ab, cd, cv):
             nz, npsi = nzt[e, g], npt[e, g]
             w = GAUSS_W[g] * le[e]
             v1, v2, psi = _gauss_point(de, ve, nz, npsi)
-            resistive_point(v1, v2, psi, law, pf)
-            power += w * (pf[0] * v1 + pf[1] * v2)
+            if kind == 0:
+                resistive_point(v1, v2, psi, law, pf)
+            else:
+                added_point(v1, v2, psi, m_a, pf)
+            acc += w * (pf[0] * v1 + pf[1] * v2)
             for i in range(4):
                 f[base + LOC[i]] += w * nz[i] * pf[0]
                 f[base + LOC[4 + i]] += w * nz[i] * pf[1]
             if cd != 0.0 or cv != 0.0:
                 _add_tangent(ab, base, w, nz, npsi, pf, 0.0, cd, cv)
-    return power
+    return acc
 
 
 @numba.njit(cache=True, nogil=True)
 def added_momentum(d, v, le, nzt, npt, m_a, p, ab, cd, cv):
     """Nodal momentum of the entrained water p = int N_z^T m_a w n dS (n_dof,) (set, not added)
     at (d, v), and cd dp/dd + cv dp/dv added to the banded ab (cd = cv = 0: no tangent).
-    Returns the water's kinetic energy int m_a w^2 / 2 dS [J]."""
+    Returns the water's kinetic energy int m_a w^2 / 2 dS [J] (P . v = m_a w^2)."""
     for i in range(p.shape[0]):
         p[i] = 0.0
-    energy = 0.0
     if m_a == 0.0:
-        return energy
-    de = np.empty(11)
-    ve = np.empty(11)
-    pf = np.empty(8)
-    for e in range(le.shape[0]):
-        base = 6 * e
-        _gather(d, v, base, de, ve)
-        for g in range(N_GAUSS):
-            nz, npsi = nzt[e, g], npt[e, g]
-            w = GAUSS_W[g] * le[e]
-            v1, v2, psi = _gauss_point(de, ve, nz, npsi)
-            c, s = math.cos(psi), math.sin(psi)
-            vt = c * v1 + s * v2
-            wn = -s * v1 + c * v2
-            energy += 0.5 * w * m_a * wn * wn
-            pf[0], pf[1] = -m_a * wn * s, m_a * wn * c  # P = m_a w n
-            pf[2], pf[3] = m_a * s * s, -m_a * s * c  # dP/dv = m_a n n^T
-            pf[4], pf[5] = -m_a * s * c, m_a * c * c
-            pf[6] = m_a * (vt * s - wn * c)  # dP/dpsi = m_a (-v_t n - w t)
-            pf[7] = m_a * (-vt * c - wn * s)
-            for i in range(4):
-                p[base + LOC[i]] += w * nz[i] * pf[0]
-                p[base + LOC[4 + i]] += w * nz[i] * pf[1]
-            if cd != 0.0 or cv != 0.0:
-                _add_tangent(ab, base, w, nz, npsi, pf, 0.0, cd, cv)
-    return energy
+        return 0.0
+    return 0.5 * _line_load(1, d, v, le, nzt, npt, p, m_a, p, ab, cd, cv)  # law unused: p
 
 
 @numba.njit(cache=True, nogil=True)
