@@ -49,11 +49,12 @@ import numpy as np
 from mf_envs._validate import check_nonnegative, check_positive
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, shape_functions
+from mf_envs.physics.constants import RHO_FRESHWATER
 
 # LOC: element dof -> offset from 6 e (Eq. 71c); _add_tangent: a point force's tangent
 from mf_envs.physics.serpentine.friction import LOC, _add_tangent
 
-RHO_WATER = 1000.0  # kg/m^3, fresh water
+RHO_WATER = RHO_FRESHWATER  # kg/m^3, the eel's water
 # Taylor's quadratic law, frozen at the eel's Reynolds numbers (docs/eel.md): C_N the cross-flow
 # drag coefficient of a circular cylinder at 1e3 < Re_d < 1e5; C_T the skin-friction coefficient
 # on the wetted perimeter (laminar flat plate 1.328 / sqrt(Re_L) at Re_L = U L / nu ~ 6e4)
