@@ -93,3 +93,26 @@ def test_tuned_gaits_slip_below_one(params):
     stats = gait_stats(gym.make("Eel-v0"), params)
     assert 0.5 < stats["slip"] < 1.0
     assert 0.0 < stats["froude"] < 1.0
+
+
+def test_wave_action_mode_swims_as_the_wave_baseline():
+    """action_mode="wave" with the constant action of the `wave` baseline's (a, lambda / L, T)
+    makes the same kappa# as the baseline in the curvature mode (up to the float32 rounding of
+    the actions): the same swimming speed."""
+    from mf_envs.controllers.eel import WAVE
+    from mf_envs.envs.eel.build import WAVE_FREQUENCY, WAVE_WAVELENGTH
+
+    base = gym.make("Eel-v0")
+    _, ref = _run(base, make_baseline(base, "wave"), 150, {"heading": 0.0, "kappa": np.zeros(7)})
+    env = gym.make("Eel-v0", action_mode="wave")
+    assert env.action_space.shape == (3,)
+    a, lam, period = WAVE
+    u = np.array([a / 50.0, (lam - WAVE_WAVELENGTH[0]) / np.ptp(WAVE_WAVELENGTH),
+                  (1.0 / period - WAVE_FREQUENCY[0]) / np.ptp(WAVE_FREQUENCY)])  # fmt: skip
+    action = (2.0 * u - 1.0).astype(np.float32)
+    env.reset(seed=0, options={"heading": 0.0, "kappa": np.zeros(7)})
+    infos = [env.step(action)[-1] for _ in range(150)]
+    got = np.mean([i["speed"] for i in infos[50:]])
+    want = np.mean([i["speed"] for i in ref[51:]])
+    assert want > 0.1
+    assert got == pytest.approx(want, rel=1e-3)

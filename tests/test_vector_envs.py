@@ -55,7 +55,12 @@ FULL: dict[str, dict[str, Any]] = {
     "FloatingGOWEC-v0": {"significant_wave_height": 2.0, "n_components": 8},
     "Inchworm-v0": {"n_control_points": 5, "n_elements": 8, "reset_noise_scale": 0.5},
     "Serpentine-v0": {"effects": ("viscous_ground",), "n_control_points": 5, "n_elements": 8},
-    "Eel-v0": {"n_control_points": 5, "n_elements": 8, "reset_noise_scale": 0.5},
+    "Eel-v0": {
+        "n_control_points": 5,
+        "n_elements": 8,
+        "reset_noise_scale": 0.5,
+        "action_mode": "wave",
+    },
 }
 # kwargs that blow the state up within a step (numerical-failure path)
 BLOWUP: dict[str, dict[str, Any]] = {

@@ -28,10 +28,10 @@ from scipy.optimize import minimize
 from mf_envs._validate import check_range
 from mf_envs.controllers import register
 from mf_envs.controllers.serpentine import HeadingSerpenoid, Serpenoid
+from mf_envs.envs.eel.build import HEAD_RATIO  # curvature amplitude at the head / at the tail
 from mf_envs.envs.eel.task import DECLARATION
 
 ENV_ID = DECLARATION.env_id
-HEAD_RATIO = 0.3  # curvature amplitude at the head / at the tail
 WAVE = (40.0, 0.8, 0.4)  # a [1/m], lambda / L, T [s]: a hand-picked anguilliform start
 # `python -m mf_envs.controllers.eel --tune` (default env, 4 s horizon, speed and power over
 # 1.5-4 s, Nelder-Mead from WAVE, 60 evaluations each); the fast gait sits on the period bound

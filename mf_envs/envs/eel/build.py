@@ -1,9 +1,11 @@
 """Eel-v0's kwargs -> typed physics parameters, never the env (errors name the kwarg).
 
-`build(kw, effects)` returns the `Scene`: the rod (`physics.serpentine.rod_params`, a solid
-circular section of the body's diameter), the water (`physics.swimmer.Water`: Taylor's
-resistive law with `resistive`, Lighthill's added mass and tail force with `reactive`), the
-actuation range, its rate limit and control points, the reward weight and the start noise.
+`build(kw, effects)` returns the `Scene`: the action mode (curvature commands, or the
+parameters of an anguilliform wave: `HEAD_RATIO`, `WAVE_WAVELENGTH`, `WAVE_FREQUENCY`), the rod
+(`physics.serpentine.rod_params`, a solid circular section of the body's diameter), the water
+(`physics.swimmer.Water`: Taylor's resistive law with `resistive`, Lighthill's added mass and
+tail force with `reactive`), the actuation range, its rate limit and control points, the reward
+weight and the start noise.
 The maps between the control points and the beam and the start shape are the serpentine's
 (`envs.serpentine.build.interpolation`, `control_points`, `initial_dofs`).
 
@@ -25,6 +27,12 @@ from mf_envs.physics.swimmer import Water
 
 LENGTH = 0.2  # m
 DIAMETER_RATIO = 0.06  # body diameter / L
+ACTION_MODES = ("curvature", "wave")
+# action_mode "wave": kappa#(S, t) = a (r + (1 - r) (L - S) / L) sin(2 pi (L - S) / lambda - phi),
+# phi' = 2 pi f; the action's three numbers in [-1, 1] map linearly onto these ranges
+HEAD_RATIO = 0.3  # curvature amplitude at the head / at the tail (anguilliform envelope)
+WAVE_WAVELENGTH = (0.4, 2.0)  # lambda / L
+WAVE_FREQUENCY = (0.5, 5.0)  # f [Hz]
 # effort weight x (body mass x (L / 1 s)^2): effort_weight = EFFORT_SCALE / (m L^2 / s^2)
 EFFORT_SCALE = 0.02
 
@@ -42,6 +50,7 @@ class Scene:
     reset_noise_scale: float
     initial_heading_range: float  # rad
     stress_theta: float  # the stresses' theta point (physics.swimmer.kernels): > 1/2 damps
+    action_mode: str  # "curvature" (kappa# at the control points) or "wave" (a, lambda, f)
 
     @property
     def length(self) -> float:
@@ -79,6 +88,13 @@ def water(kw: dict[str, Any], effects: frozenset, diameter: float) -> Water:
     )
 
 
+def action_mode(value: Any) -> str:
+    """The validated `action_mode` (one of ACTION_MODES)."""
+    if not isinstance(value, str) or value not in ACTION_MODES:
+        raise ValueError(f"action_mode: must be one of {ACTION_MODES}, got {value!r}")
+    return value
+
+
 def build(kw: dict[str, Any], effects: frozenset) -> Scene:
     """The `Scene` of the env's kwargs `kw` under these effects; ValueError names the kwarg."""
     params, dia = _rod(kw)
@@ -105,4 +121,5 @@ def build(kw: dict[str, Any], effects: frozenset) -> Scene:
             "initial_heading_range", kw["initial_heading_range"], 0.0, 3.141592653589793
         ),
         stress_theta=check_range("numerical_damping", kw["numerical_damping"], 0.0, 0.5) + 0.5,
+        action_mode=action_mode(kw["action_mode"]),
     )

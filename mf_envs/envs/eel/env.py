@@ -42,6 +42,12 @@ class EelEnv(MFEnv):
     The command moves towards the target by at most max_curvature_rate x control_dt per step
     (the muscles' finite rate) and linearly in time over the step.
 
+    With `action_mode="wave"` the action is `Box(-1, 1, (3,), float32)`: the tail's curvature
+    amplitude a in [0, max_curvature], the wavelength lambda / L in [0.4, 2] and the frequency f
+    in [0.5, 5] Hz (linear maps) of kappa#(S_j, t) = a (0.3 + 0.7 (L - S_j) / L)
+    sin(2 pi (L - S_j) / lambda - phi), phi advancing by 2 pi f control_dt per step (phi = 0 at
+    reset), the same rate limit and hold.
+
     ## Observation Space
     `Box(float32, (2 n + 6,))`, laid out by `mf_envs.envs.eel.spec.observation_layout(n)` (the
     env's `obs_layout`):
@@ -91,6 +97,7 @@ class EelEnv(MFEnv):
     | reset_noise_scale | 0.05 | start curvature noise / max_curvature, in [0, 1] |
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
     | numerical_damping | 0.1 | theta_s - 1/2 of the stresses, in [0, 0.5] (0: energy-conserving) |
+    | action_mode | "curvature" | or "wave": (amplitude, wavelength, frequency) of the wave |
     | effects | resistive, reactive | either or both; () a body in vacuum |
 
     ## Version History
@@ -123,6 +130,7 @@ class EelEnv(MFEnv):
         reset_noise_scale: float = 0.05,
         initial_heading_range: float = math.pi,
         numerical_damping: float = 0.1,
+        action_mode: str = "curvature",
         effects: Any = None,
         render_mode: str | None = None,
     ) -> None:
@@ -136,13 +144,15 @@ class EelEnv(MFEnv):
         self.cfg = rows.pack(self.scene, self.model, self.n_substeps, self.physics_dt,
                              self.control_dt, self.target_direction)  # fmt: skip
         n, nd = self.n_ctrl, self.model.n_dof
-        self.action_space = spaces.Box(-1.0, 1.0, (n,), np.float32)
+        n_act = n if self.scene.action_mode == "curvature" else 3
+        self.action_space = spaces.Box(-1.0, 1.0, (n_act,), np.float32)
         self.obs_layout = spec.observation_layout(n)
         hi = self.obs_layout.high()
         self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
         self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
         self.state[0] = self.model.straight()
         self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
+        self.phase = np.zeros(1)  # the wave's phase [rad] (action_mode "wave")
         self._sc = rows.scratch(self.model)
         self._body, self._rep = np.zeros(5), np.zeros(rows.N_REPORT)
         self._obs = np.zeros(self.obs_layout.size, np.float32)
@@ -162,6 +172,7 @@ class EelEnv(MFEnv):
         self.state[0] = initial_dofs(sc.params, kappa, heading)
         self.state[1] = 0.0
         self.cmd[:] = kappa
+        self.phase[:] = 0.0
         rows.observe_row(self.state[0], self.state[1], self.cmd, self.cfg, self._body, self._obs)
         self._track = [(self._body[0], self._body[1])]
         info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
@@ -171,7 +182,8 @@ class EelEnv(MFEnv):
         a = self._validate_action(action)
         rep = self._rep
         d, v = self.state[0], self.state[1]
-        rows.step_row(d, v, self.cmd, a, self.cfg, self._sc, self._body, self._obs, rep)
+        rows.step_row(d, v, self.cmd, self.phase, a, self.cfg, self._sc, self._body, self._obs,
+                      rep)  # fmt: skip
         self._steps += 1
         ok = rep[rows.REP_OK] > 0.0 and bool(np.isfinite(self.state).all())
         dx = self._body[0] - rep[rows.REP_X0], self._body[1] - rep[rows.REP_Y0]

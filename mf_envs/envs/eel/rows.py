@@ -5,11 +5,13 @@ same bits.
   centre of mass, its velocity and the mean frame angle come from the serpentine's
   `body_state` (4-point Gauss, uniform m_A);
 - `step_row`: one control step of one eel: the action scaled to a target curvature at the
-  control points; the command moves towards it at most max_curvature_rate x control_dt per step
-  (muscles have a finite rate of contraction) and linearly in time over the step (a first-order
-  hold), linear in S between the control points (`serpentine.build.interpolation`); integrated
-  by `physics.swimmer.kernels.advance_linear` in `n_substeps` physics steps; the muscles'
-  positive work (actuation energy) and the observation;
+  control points (or, with action_mode "wave", the anguilliform wave of the action's amplitude,
+  wavelength and frequency, `target_row`); the command moves towards it at most
+  max_curvature_rate x control_dt per step (muscles have a finite rate of contraction) and
+  linearly in time over the step (a first-order hold), linear in S between the control points
+  (`serpentine.build.interpolation`); integrated by `physics.swimmer.kernels.advance_linear`
+  in `n_substeps` physics steps; the muscles' positive work (actuation energy) and the
+  observation;
 - `step_rows`: `step_row` for every active row of a batch (the native vector env), in blocks on
   threads (`envs._rows.RowBlocks`), which does not change any row's arithmetic.
 """
@@ -40,6 +42,7 @@ THETA = (0.5, 0.5)  # (water force, stresses) theta points (`physics.swimmer.ker
 def pack(scene, model, n_substeps: int, physics_dt: float, control_dt: float,
          target: float) -> tuple:  # fmt: skip
     """The kernels' configuration of a `build.Scene` on its `BeamModel` (module docstring)."""
+    from mf_envs.envs.eel.build import HEAD_RATIO, WAVE_FREQUENCY, WAVE_WAVELENGTH
     from mf_envs.envs.serpentine.build import control_points, interpolation
 
     p, ne = scene.params, model.n_elements
@@ -47,6 +50,7 @@ def pack(scene, model, n_substeps: int, physics_dt: float, control_dt: float,
     nz = np.array([el.shape_functions(x, le[0])[0] for x in el.GAUSS_XI])
     npsi = np.array([el.shape_functions(x, le[0])[2] for x in el.GAUSS_XI])
     ce, cxi = control_points(p.length, scene.n_ctrl, ne)
+    s_ctrl = np.linspace(0.0, 1.0, scene.n_ctrl)  # S / L of the control points
     water = (*shape_tables(le), scene.water.packed())
     theta = (THETA[0], scene.stress_theta)
     qxi, qw, stiff = model.quad
@@ -55,7 +59,9 @@ def pack(scene, model, n_substeps: int, physics_dt: float, control_dt: float,
         le, model.mass, quad, water, theta, TOLERANCE, MAX_ITER,
         MAX_HALVINGS, interpolation(model.gauss_S, p.length, scene.n_ctrl), nz, npsi, ce, cxi,
         scene.max_curvature, int(n_substeps), p.length, p.EI, float(target), float(physics_dt),
-        scene.max_curvature_rate * float(control_dt),
+        scene.max_curvature_rate * float(control_dt), 1 if scene.action_mode == "wave" else 0,
+        HEAD_RATIO + (1.0 - HEAD_RATIO) * (1.0 - s_ctrl), 1.0 - s_ctrl,
+        np.array([*WAVE_WAVELENGTH, *WAVE_FREQUENCY]), float(control_dt),
     )  # fmt: skip
 
 
@@ -87,17 +93,38 @@ def observe_row(d, v, cmd, cfg, body, out):
 
 
 @numba.njit(cache=True, nogil=True)
-def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
+def target_row(cmd, phase, action, cfg, out):
+    """The target kappa# [1/m] at the control points into out (n,): max_curvature x action
+    (action_mode "curvature"), or the anguilliform wave of the action's (amplitude, wavelength,
+    frequency) at the step's end, advancing phase[0] by 2 pi f control_dt ("wave")."""
+    max_curvature = cfg[13]
+    if cfg[20] == 0:
+        for j in range(cmd.shape[0]):
+            out[j] = max_curvature * action[j]
+        return
+    envelope, u, ranges, dt = cfg[21], cfg[22], cfg[23], cfg[24]
+    amp = 0.5 * (action[0] + 1.0) * max_curvature
+    lam = ranges[0] + 0.5 * (action[1] + 1.0) * (ranges[1] - ranges[0])
+    freq = ranges[2] + 0.5 * (action[2] + 1.0) * (ranges[3] - ranges[2])
+    phase[0] = (phase[0] + 2.0 * math.pi * freq * dt) % (2.0 * math.pi)
+    for j in range(cmd.shape[0]):
+        out[j] = amp * envelope[j] * math.sin(2.0 * math.pi * u[j] / lam - phase[0])
+
+
+@numba.njit(cache=True, nogil=True)
+def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
     """One control step of one eel in place (module docstring): d, v (n_dof,), cmd (n,) [1/m]
-    the previous command, action (n,) in [-1, 1]; obs (2 n + 6) float32, body (5,),
-    rep (N_REPORT,) the report. A failed substep stops the step (rep[REP_OK] = 0)."""
+    the previous command, phase (1,) the wave's phase [rad] (action_mode "wave"), action in
+    [-1, 1] ((n,) or (3,)); obs (2 n + 6) float32, body (5,), rep (N_REPORT,) the report. A
+    failed substep stops the step (rep[REP_OK] = 0)."""
     le, mass, quad, water, th, tol, max_iter, max_halvings, interp = cfg[:9]
-    max_curvature, n_sub, ei, h, max_change = cfg[13], cfg[14], cfg[16], cfg[18], cfg[19]
+    n_sub, ei, h, max_change = cfg[14], cfg[16], cfg[18], cfg[19]
     k_old, k_new, ka, kb = sc[8], sc[9], sc[10], sc[11]
     ne, n = le.shape[0], cmd.shape[0]
     new = np.empty(n)
+    target_row(cmd, phase, action, cfg, new)
     for j in range(n):
-        change = max_curvature * action[j] - cmd[j]
+        change = new[j] - cmd[j]
         new[j] = cmd[j] + min(max(change, -max_change), max_change)
     for e in range(ne):
         for g in range(4):
@@ -129,14 +156,14 @@ def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
 
 
 @numba.njit(cache=True, nogil=True)
-def step_rows(lo, hi, active, actions, state, cmd, cfg, work, body, obs, rep):
+def step_rows(lo, hi, active, actions, state, cmd, phase, cfg, work, body, obs, rep):
     """`step_row` for the active rows lo <= i < hi: state (N, 2, n_dof) (d, v), cmd (N, n),
-    actions (N, n), work the rows' scratch (tuple of (N, ...) arrays), body (N, 5),
-    obs (N, 2 n + 6) float32, rep (N, N_REPORT)."""
+    phase (N, 1), actions (N, n or 3), work the rows' scratch (tuple of (N, ...) arrays),
+    body (N, 5), obs (N, 2 n + 6) float32, rep (N, N_REPORT)."""
     for i in range(lo, hi):
         if active[i]:
             sc = (work[0][i], work[1][i], work[2][i], work[3][i], work[4][i], work[5][i],
                   work[6][i], work[7][i], work[8][i], work[9][i], work[10][i],
                   work[11][i], work[12][i])  # fmt: skip
-            step_row(state[i, 0], state[i, 1], cmd[i], actions[i], cfg, sc, body[i], obs[i],
-                     rep[i])  # fmt: skip
+            step_row(state[i, 0], state[i, 1], cmd[i], phase[i], actions[i], cfg, sc, body[i],
+                     obs[i], rep[i])  # fmt: skip

@@ -39,6 +39,7 @@ class EelVectorEnv(BatchedVectorEnv):
         nd, nc = env.model.n_dof, env.n_ctrl
         self._state = np.zeros((n, 2, nd))
         self._cmd = np.zeros((n, nc))
+        self._phase = np.zeros((n, 1))
         one = rows.scratch(env.model)
         self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in one)
         self._body = np.zeros((n, 5))
@@ -52,18 +53,28 @@ class EelVectorEnv(BatchedVectorEnv):
         env = self.template
         self._state[i] = env.state
         self._cmd[i] = env.cmd
+        self._phase[i] = env.phase
         self._steps[i] = 0
 
     def state_nbytes(self) -> int:
         """Bytes of the per-env batch state (physics, scratch, outputs, observations)."""
-        arrays = [self._state, self._cmd, *self._work, self._body, self._fresh, self._rep]
+        arrays = [
+            self._state,
+            self._cmd,
+            self._phase,
+            *self._work,
+            self._body,
+            self._fresh,
+            self._rep,
+        ]
         return int(sum(a.nbytes for a in arrays)) + self._steps.nbytes + self._obs.nbytes
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         env, rep, body, obs = self.template, self._rep, self._body, self._fresh
         rep[~active, rows.REP_OK] = 1.0
         self.blocks.run(
-            rows.step_rows, active, actions, self._state, self._cmd, env.cfg, self._work,
+            rows.step_rows, active, actions, self._state, self._cmd, self._phase, env.cfg,
+            self._work,
             body, obs, rep,
         )  # fmt: skip
         self._steps[active] += 1
