@@ -1,6 +1,6 @@
 """Anguilliform gaits for Eel-v0, driven through the env's action interface.
 
-* `wave` (default): a travelling curvature wave whose amplitude grows linearly from the head to
+* `wave`: a travelling curvature wave whose amplitude grows linearly from the head to
   the tail (anguilliform: Gray 1933; Tytell & Lauder 2004 measured a body wave whose amplitude
   grows along the whole body),
       kappa#(S, t) = a (r + (1 - r) (L - S) / L) sin(2 pi (L - S) / lambda - 2 pi t / T),
@@ -9,9 +9,10 @@
 * `fast`: the wave with (a, lambda / L, T) optimised by scipy (Nelder-Mead, bounded) for the
   centre-of-mass speed on a short horizon (`tune`, the numbers are `FAST`);
 * `efficient`: the same for the Froude efficiency `froude_efficiency` (`EFFICIENT`);
-* `heading`: the fast wave plus a curvature bias -gain x heading error (the mean axis's heading
-  relative to the target direction, observed as sin, cos, low-pass filtered over one period),
-  so the eel turns towards the target.
+* `heading` (default, the strongest: the start heading is random): the fast wave plus a
+  curvature bias -gain x heading error (the mean axis's heading relative to the target
+  direction, observed as sin, cos, low-pass filtered over one period), so the eel turns
+  towards the target.
 
 The open-loop gaits ignore the observation; `heading` reads only its heading slots.
 """
@@ -135,10 +136,11 @@ def tune(env: Any, objective: str = "speed", x0: tuple = WAVE,
     return x, gait_stats(env, x)
 
 
-register(ENV_ID, "wave", TravellingWave, default=True)
+# the default is the strongest (closed loop: the start heading is random)
+register(ENV_ID, "heading", HeadingWave, default=True)
+register(ENV_ID, "wave", TravellingWave)
 register(ENV_ID, "fast", lambda env, **kw: TravellingWave(env, *FAST, **kw))
 register(ENV_ID, "efficient", lambda env, **kw: TravellingWave(env, *EFFICIENT, **kw))
-register(ENV_ID, "heading", HeadingWave)
 
 
 def main(argv: list[str] | None = None) -> None:
