@@ -12,6 +12,7 @@ EXTRAS = {
     "safetensors": "train",
     "rich": "train",
     "elastica": "compare",
+    "mhkit": "compare",
     "pygame": "render",
     "mpmath": "dev",
     "hypothesis": "dev",

@@ -191,7 +191,7 @@ def test_effects_and_invalid_kwargs():
 
 
 def test_baselines_registered_and_pll_design_has_margins():
-    assert baseline_kinds("GOWEC-v0")[0] == "pll"
+    assert baseline_kinds("GOWEC-v0")[0] == "bang_bang"  # the strongest is the default
     assert {"pll", "fixed_rate", "bang_bang"} <= set(baseline_kinds("GOWEC-v0"))
     d = design_pll(2 * math.pi / 6.0)
     assert d.phase_margin > 35 and d.crossover < 2 * math.pi / 6.0

@@ -70,7 +70,7 @@ def test_seed_gaits_advance_head_and_tail(kind, per_cycle):
 
 
 def test_baselines_registered():
-    assert baseline_kinds("Inchworm-v0")[:1] == ["seed_uniform"]
+    assert baseline_kinds("Inchworm-v0")[:1] == ["tuned"]  # the strongest is the default
     assert "seed_linear" in baseline_kinds("Inchworm-v0")
 
 

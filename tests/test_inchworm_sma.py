@@ -306,3 +306,14 @@ def test_dynamic_feet_agree_with_the_quasi_static_step_to_a_few_percent():
     v_full, v_light = dynamic(1.0), dynamic(0.1)
     assert v_full == pytest.approx(v_qs, rel=0.08)
     assert abs(v_light - v_qs) < abs(v_full - v_qs)
+
+
+@pytest.mark.slow
+def test_stored_tuned_gait_is_the_brute_force_optimum():
+    """The default baseline (`tuned`) uses the stored optimum on the default robot; the brute
+    force over heating, cooling and keep-warm duty finds the same point."""
+    from mf_envs.controllers import inchworm as ctrl
+
+    t_heat, t_cool, off, speed = ctrl._tune_wires(ctrl._default_config())
+    assert (t_heat, t_cool, off) == pytest.approx(ctrl.TUNED_SMA, abs=1e-9)
+    assert speed > 0.08  # L/s (docs/inchworm.md: 0.0829 L/s)

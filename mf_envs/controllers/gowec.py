@@ -255,6 +255,7 @@ class SquareWaveController(_GimbalTracker):
         )
 
 
-register(ENV_ID, "pll", PLLController, default=True)
+register(ENV_ID, "pll", PLLController)
 register(ENV_ID, "fixed_rate", FixedRateController)
-register(ENV_ID, "bang_bang", SquareWaveController)
+# the strongest (1.2714 of Eq. 95 against the 4/pi square-wave ceiling): the default (issue 32)
+register(ENV_ID, "bang_bang", SquareWaveController, default=True)

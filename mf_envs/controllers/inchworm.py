@@ -263,6 +263,23 @@ def heat_cool(
     return gait
 
 
+# `_tune_wires` on the default robot (t_heat s, t_cool s, keep-warm duty): the brute force takes
+# minutes, so its result is stored (the default baseline must be cheap to make);
+# tests/test_inchworm_sma.py::test_stored_tuned_gait_is_the_brute_force_optimum re-runs it (slow)
+TUNED_SMA = (2.0, 1.1, 0.0)
+
+
+@lru_cache(maxsize=1)
+def _default_config() -> tuple:
+    import gymnasium as gym
+
+    env = gym.make(ENV_ID)
+    try:
+        return env.unwrapped.drive_config()
+    finally:
+        env.close()
+
+
 @lru_cache(maxsize=8)
 def _tune_wires(config: tuple) -> tuple[float, float, float, float]:
     """(t_heat [s], t_cool [s], duty_off, speed [L/s]) of the fastest `heat_cool_gait` of the
@@ -347,7 +364,8 @@ def tuned(
     a few minutes on the defaults) unless all three are given."""
     base = env.unwrapped
     if base.sma:  # issue 31: the SMA robot's square wave of duties
-        t_heat, t_cool, off, _speed = _tune_wires(base.drive_config())
+        cfg = base.drive_config()
+        t_heat, t_cool, off = TUNED_SMA if cfg == _default_config() else _tune_wires(cfg)[:3]
         return heat_cool(env, t_heat, t_cool, off)
     if period is None or amplitude is None or bias is None:
         t_opt, a_opt, b_opt, _ = _tune(base.drive_config(), max_evals)
@@ -367,7 +385,7 @@ def tuned(
     return gait
 
 
-register(ENV_ID, "seed_uniform", seed_uniform, default=True)
+register(ENV_ID, "seed_uniform", seed_uniform)
 register(ENV_ID, "seed_linear", seed_linear)
-register(ENV_ID, "tuned", tuned)
+register(ENV_ID, "tuned", tuned, default=True)  # the fastest on the default robot (issue 32)
 register(ENV_ID, "heat_cool", heat_cool)

@@ -333,8 +333,9 @@ class SeedExcitation:
         return np.array([max(-1.0, min(1.0, rate / self.max_rate))], dtype=np.float32), None
 
 
-register(ENV_ID, "pid", PIDStabilizer, default=True)
-register(ENV_ID, "lqr", LQRStabilizer)
+register(ENV_ID, "pid", PIDStabilizer)
+# the strongest (default scene and the irregular-sea grid, docs/stabilizer_physics.md §5)
+register(ENV_ID, "lqr", LQRStabilizer, default=True)
 register(ENV_ID, "rate", RollRateLaw)
 register(ENV_ID, "sinusoidal", lambda env, **p: SeedExcitation(env, "sinusoidal", **p))
 register(ENV_ID, "continuous", lambda env, **p: SeedExcitation(env, "continuous", **p))
