@@ -28,6 +28,7 @@ SHORT: dict[str, dict[str, Any]] = {
     "FloatingGOWEC-v0": {"episode_seconds": 0.2},
     "Inchworm-v0": {"max_episode_steps": 5},
     "Serpentine-v0": {"episode_seconds": 0.25},
+    "Eel-v0": {"episode_seconds": 0.1},
 }
 # scenes with the most effects on (irregular seas draw per-env random components at reset)
 FULL: dict[str, dict[str, Any]] = {
@@ -54,6 +55,12 @@ FULL: dict[str, dict[str, Any]] = {
     "FloatingGOWEC-v0": {"significant_wave_height": 2.0, "n_components": 8},
     "Inchworm-v0": {"n_control_points": 5, "n_elements": 8, "reset_noise_scale": 0.5},
     "Serpentine-v0": {"effects": ("viscous_ground",), "n_control_points": 5, "n_elements": 8},
+    "Eel-v0": {
+        "n_control_points": 5,
+        "n_elements": 8,
+        "reset_noise_scale": 0.5,
+        "action_mode": "wave",
+    },
 }
 # kwargs that blow the state up within a step (numerical-failure path)
 BLOWUP: dict[str, dict[str, Any]] = {
@@ -73,6 +80,14 @@ BLOWUP: dict[str, dict[str, Any]] = {
         "max_curvature": 57.0,
         "material_damping": 0.0,
         "effects": ("friction",),
+    },
+    # a stiff eel commanded full curvature at once over a 50 ms step: Newton fails
+    "Eel-v0": {
+        "youngs_modulus": 1e12,
+        "control_dt": 0.05,
+        "physics_dt": 0.05,
+        "max_curvature": 100.0,
+        "max_curvature_rate": 1e9,
     },
 }
 SEEDS = [11, 3, 7]
@@ -427,7 +442,7 @@ def test_threads_do_not_change_results(env_id: str) -> None:
     through autoresets; num_threads is checked and its automatic choice follows the row cost."""
     from mf_envs.envs._vector import MIN_ROWS_PER_THREAD
 
-    heavy = env_id in ("Inchworm-v0", "Serpentine-v0")  # millisecond rows
+    heavy = env_id in ("Inchworm-v0", "Serpentine-v0", "Eel-v0")  # millisecond rows
     n = 5 if heavy else 300
     kw = SHORT[env_id]
     one = make_vec(env_id, n, num_threads=1, **kw)

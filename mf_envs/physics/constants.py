@@ -6,6 +6,8 @@ G: 9.81 m/s^2, the value the source uses throughout (Rios 2017: ch. 2 tennis-rac
    exactly. Pass your own g where a model takes one.
 RHO_SEAWATER: sea-water density 1025 kg/m^3 (ITTC 2011 at 15 C, 35 g/kg salinity: 1025.9; the
 naval-architecture value of Fossen 2011 and Faltinsen 1990).
+RHO_FRESHWATER: fresh-water density 1000 kg/m^3 (999.1 at 15 C; the round value of the swimming
+literature, e.g. Tytell & Lauder 2004's flow tank).
 RPM: rad/s per revolution per minute, 2 pi / 60.
 """
 
@@ -13,4 +15,5 @@ import math
 
 G = 9.81  # m/s^2
 RHO_SEAWATER = 1025.0  # kg/m^3
+RHO_FRESHWATER = 1000.0  # kg/m^3
 RPM = 2.0 * math.pi / 60.0  # (rad/s) / rpm

@@ -1,0 +1,166 @@
+"""Anguilliform gaits for Eel-v0, driven through the env's action interface.
+
+* `wave`: a travelling curvature wave whose amplitude grows linearly from the head to
+  the tail (anguilliform: Gray 1933; Tytell & Lauder 2004 measured a body wave whose amplitude
+  grows along the whole body),
+      kappa#(S, t) = a (r + (1 - r) (L - S) / L) sin(2 pi (L - S) / lambda - 2 pi t / T),
+  the wave running from the head S = L to the tail, head ratio r = HEAD_RATIO; the command of
+  step k is the curve at the step's end, t = (k + 1) dt. Default (a, lambda / L, T) = WAVE;
+* `fast`: the wave with (a, lambda / L, T) optimised by scipy (Nelder-Mead, bounded) for the
+  centre-of-mass speed on a short horizon (`tune`, the numbers are `FAST`);
+* `efficient`: the same for the Froude efficiency `froude_efficiency` (`EFFICIENT`);
+* `heading` (default, the strongest: the start heading is random): the fast wave plus a
+  curvature bias -gain x heading error (the mean axis's heading relative to the target
+  direction, observed as sin, cos, low-pass filtered over one period), so the eel turns
+  towards the target.
+
+The open-loop gaits ignore the observation; `heading` reads only its heading slots.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Any
+
+import numpy as np
+from scipy.optimize import minimize
+
+from mf_envs._validate import check_range
+from mf_envs.controllers import register
+from mf_envs.controllers.serpentine import HeadingSerpenoid, Serpenoid
+from mf_envs.envs.eel.build import HEAD_RATIO  # curvature amplitude at the head / at the tail
+from mf_envs.envs.eel.task import DECLARATION
+
+ENV_ID = DECLARATION.env_id
+WAVE = (40.0, 0.8, 0.4)  # a [1/m], lambda / L, T [s]: a hand-picked anguilliform start
+# `python -m mf_envs.controllers.eel --tune` (default env, 4 s horizon, speed and power over
+# 1.5-4 s, Nelder-Mead from WAVE, 60 evaluations each); the fast gait sits on the period bound
+# and saturates the muscles' rate limit (a 2 pi / T > max_curvature_rate)
+FAST = (44.3981, 0.9791, 0.2)  # 0.834 m/s, slip 0.85, Froude efficiency 0.11
+EFFICIENT = (30.532, 0.7501, 0.465)  # 0.208 m/s, slip 0.65, Froude efficiency 0.26
+BOUNDS = ((5.0, 50.0), (0.4, 2.0), (0.2, 1.5))  # a [1/m], lambda / L, T [s]
+
+
+class TravellingWave(Serpenoid):
+    """kappa#(S_j, t) (module docstring) plus a bias [1/m]: the serpentine's serpenoid
+    (`controllers.serpentine.Serpenoid`, the wave running head to tail) times the envelope."""
+
+    def __init__(self, env: Any, amplitude: float = WAVE[0], wavelength: float = WAVE[1],
+                 period: float = WAVE[2]) -> None:  # fmt: skip
+        super().__init__(env, amplitude, wavelength, period)
+        s = np.linspace(0.0, 1.0, self.base.n_ctrl)  # S / L
+        self.envelope = HEAD_RATIO + (1.0 - HEAD_RATIO) * (1.0 - s)
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        del deterministic
+        self.k += 1
+        t = self.k * self.dt
+        wave = np.sin(self.phase - 2.0 * math.pi * t / self.period)
+        kappa = self.amplitude * self.envelope * wave
+        a = np.clip((kappa + self.bias(obs)) * self.scale, -1.0, 1.0)
+        return a.astype(np.float32), None
+
+
+class HeadingWave(TravellingWave):
+    """The fast wave plus bias = -gain x filtered heading error, |bias| <= max_bias (the
+    serpentine's `HeadingSerpenoid` filter and bias)."""
+
+    bias = HeadingSerpenoid.bias
+
+    def __init__(self, env: Any, gain: float = 10.0, max_bias: float = 10.0,
+                 amplitude: float | None = None, wavelength: float | None = None,
+                 period: float | None = None) -> None:  # fmt: skip
+        self.gain = check_range("gain", gain, 0.0, 1e3)  # 1/m per rad
+        self.max_bias = check_range("max_bias", max_bias, 0.0, 1e3)  # 1/m
+        layout = env.unwrapped.obs_layout
+        self.i_sin, self.i_cos = layout.index("sin_heading"), layout.index("cos_heading")
+        given = (amplitude, wavelength, period)
+        a, lam, per = (x if x is not None else y for x, y in zip(given, FAST))
+        super().__init__(env, a, lam, per)
+
+    def reset(self) -> None:
+        super().reset()
+        self.filt: np.ndarray | None = None  # the filtered (sin, cos) of the heading error
+
+
+def gait_stats(env: Any, params: tuple[float, float, float], seconds: float = 4.0,
+               warmup: float = 1.5, seed: int = 0) -> dict[str, float]:  # fmt: skip
+    """Speed [m/s] (centre-of-mass displacement from `warmup` to `seconds` / time), mean net
+    muscle power [W] over the same window, slip U / c (c = lambda / T the body wave's speed) and
+    the Froude efficiency of the wave (a, lambda / L, T) in `env` (reset with seed, heading 0,
+    straight)."""
+    ctrl = TravellingWave(env, *params)
+    base = ctrl.base
+    obs, info = env.reset(seed=seed, options={"heading": 0.0, "kappa": np.zeros(base.n_ctrl)})
+    n_warm, n = round(warmup / ctrl.dt), round(seconds / ctrl.dt)
+    start, net = None, 0.0
+    for k in range(n):
+        obs, _, term, trunc, info = env.step(ctrl.predict(obs)[0])
+        if term or trunc:
+            return {"speed": 0.0, "power": float("inf"), "slip": 0.0, "froude": 0.0}
+        if k + 1 == n_warm:
+            start = (info["x"], info["y"])
+        elif k + 1 > n_warm:
+            net += info["actuation_net_work"]
+    span = seconds - warmup
+    speed = math.hypot(info["x"] - start[0], info["y"] - start[1]) / span
+    power = net / span
+    wave_speed = params[1] * base.scene.length / params[2]
+    return {
+        "speed": speed,
+        "power": power,
+        "slip": speed / wave_speed,
+        "froude": froude_efficiency(base.scene, speed, power),
+    }
+
+
+def froude_efficiency(scene: Any, speed: float, power: float) -> float:
+    """Useful power / power into the water: D(U) U / P, D(U) = 1/2 rho pi d C_T L U^2 the
+    resistive drag of the straight body towed at the swimming speed U (Taylor's tangential
+    law), P the mean net muscle power [W] (all of it goes to the water at a steady gait)."""
+    if power <= 0.0:
+        return 0.0
+    drag = scene.water.k_tangential * scene.length * speed**2
+    return drag * speed / power
+
+
+def tune(env: Any, objective: str = "speed", x0: tuple = WAVE,
+         max_evals: int = 60) -> tuple[tuple, dict]:  # fmt: skip
+    """(a, lambda / L, T) maximising `gait_stats`' `objective` ("speed" or "froude") within
+    BOUNDS (Nelder-Mead), and its stats."""
+    res = minimize(lambda x: -gait_stats(env, tuple(x))[objective], np.array(x0, float),
+                   method="Nelder-Mead", bounds=BOUNDS,
+                   options={"maxfev": max_evals, "xatol": 1e-2, "fatol": 1e-6})  # fmt: skip
+    x = tuple(float(v) for v in res.x)
+    return x, gait_stats(env, x)
+
+
+# the default is the strongest (closed loop: the start heading is random)
+register(ENV_ID, "heading", HeadingWave, default=True)
+register(ENV_ID, "wave", TravellingWave)
+register(ENV_ID, "fast", lambda env, **kw: TravellingWave(env, *FAST, **kw))
+register(ENV_ID, "efficient", lambda env, **kw: TravellingWave(env, *EFFICIENT, **kw))
+
+
+def main(argv: list[str] | None = None) -> None:
+    """`--tune`: run `tune` for speed and for Froude efficiency on the default env."""
+    import gymnasium as gym
+
+    import mf_envs  # noqa: F401  (registers the envs)
+
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--tune", action="store_true")
+    parser.add_argument("--max-evals", type=int, default=60)
+    args = parser.parse_args(argv)
+    env = gym.make(ENV_ID)
+    for name, x in (("WAVE", WAVE), ("FAST", FAST), ("EFFICIENT", EFFICIENT)):
+        print(name, x, gait_stats(env, x))
+    if args.tune:
+        for objective in ("speed", "froude"):
+            x, stats = tune(env, objective, max_evals=args.max_evals)
+            print(objective, "->", tuple(round(c, 4) for c in x), stats)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,125 @@
+"""Eel-v0's kwargs -> typed physics parameters, never the env (errors name the kwarg).
+
+`build(kw, effects)` returns the `Scene`: the action mode (curvature commands, or the
+parameters of an anguilliform wave: `HEAD_RATIO`, `WAVE_WAVELENGTH`, `WAVE_FREQUENCY`), the rod
+(`physics.serpentine.rod_params`, a solid circular section of the body's diameter), the water
+(`physics.swimmer.Water`: Taylor's resistive law with `resistive`, Lighthill's added mass and
+tail force with `reactive`), the actuation range, its rate limit and control points, the reward
+weight and the start noise.
+The maps between the control points and the beam and the start shape are the serpentine's
+(`envs.serpentine.build.interpolation`, `control_points`, `initial_dofs`).
+
+Defaults: an American eel (Anguilla rostrata) of the size Tytell & Lauder (2004) filmed, L = 0.2
+m, body diameter 0.06 L (a round section standing for the eel's), body density = water density
+1000 kg/m^3 (neutral buoyancy), Young's modulus 1 MPa (soft tissue; docs/eel.md).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+from mf_envs._validate import check_int, check_range
+from mf_envs.envs.eel.spec import CURVATURE_OBS_LIMIT
+from mf_envs.physics.beam.solver import BeamParams
+from mf_envs.physics.serpentine import rod_params
+from mf_envs.physics.swimmer import Water
+
+LENGTH = 0.2  # m
+DIAMETER_RATIO = 0.06  # body diameter / L
+ACTION_MODES = ("curvature", "wave")
+# action_mode "wave": kappa#(S, t) = a (r + (1 - r) (L - S) / L) sin(2 pi (L - S) / lambda - phi),
+# phi' = 2 pi f; the action's three numbers in [-1, 1] map linearly onto these ranges
+HEAD_RATIO = 0.3  # curvature amplitude at the head / at the tail (anguilliform envelope)
+WAVE_WAVELENGTH = (0.4, 2.0)  # lambda / L
+WAVE_FREQUENCY = (0.5, 5.0)  # f [Hz]
+# effort weight x (body mass x (L / 1 s)^2): effort_weight = EFFORT_SCALE / (m L^2 / s^2)
+EFFORT_SCALE = 0.02
+
+
+@dataclasses.dataclass(frozen=True)
+class Scene:
+    """What the env's kwargs become (SI units), validated; the env reads its parameters here."""
+
+    params: BeamParams
+    water: Water
+    max_curvature: float  # 1/m, action scale
+    max_curvature_rate: float  # 1/(m s), muscle rate limit on the command
+    n_ctrl: int
+    effort_weight: float  # 1/J
+    reset_noise_scale: float
+    initial_heading_range: float  # rad
+    stress_theta: float  # the stresses' theta point (physics.swimmer.kernels): > 1/2 damps
+    action_mode: str  # "curvature" (kappa# at the control points) or "wave" (a, lambda, f)
+
+    @property
+    def length(self) -> float:
+        return self.params.length
+
+    @property
+    def body_mass(self) -> float:
+        """m_A L [kg]."""
+        return self.params.mass_per_length * self.params.length
+
+
+def _rod(kw: dict[str, Any]) -> tuple[BeamParams, float]:
+    length = check_range("length", kw["length"], 0.01, 10.0)
+    dia = DIAMETER_RATIO * length if kw["diameter"] is None else kw["diameter"]
+    dia = check_range("diameter", dia, 1e-5, 2.0)
+    if dia > length / 5:
+        raise ValueError(f"diameter: must be <= length / 5 (a slender body), got {dia!r}")
+    e = check_range("youngs_modulus", kw["youngs_modulus"], 1e3, 1e12)
+    g = e / 1.5 if kw["shear_modulus"] is None else kw["shear_modulus"]
+    g = check_range("shear_modulus", g, 1e3, 1e12)
+    rho = check_range("density", kw["density"], 1.0, 1e5)
+    n_el = check_int("n_elements", kw["n_elements"], low=2, high=64)
+    return rod_params(length, dia / 2, e, g, rho, n_el), dia
+
+
+def water(kw: dict[str, Any], effects: frozenset, diameter: float) -> Water:
+    """The fluid laws of the effects (every kwarg validated whatever the effects)."""
+    return Water(
+        density=check_range("water_density", kw["water_density"], 1.0, 1e5),
+        diameter=diameter,
+        c_normal=check_range("drag_normal", kw["drag_normal"], 0.0, 100.0),
+        c_tangential=check_range("drag_tangential", kw["drag_tangential"], 0.0, 100.0),
+        resistive="resistive" in effects,
+        reactive="reactive" in effects,
+    )
+
+
+def action_mode(value: Any) -> str:
+    """The validated `action_mode` (one of ACTION_MODES)."""
+    if not isinstance(value, str) or value not in ACTION_MODES:
+        raise ValueError(f"action_mode: must be one of {ACTION_MODES}, got {value!r}")
+    return value
+
+
+def build(kw: dict[str, Any], effects: frozenset) -> Scene:
+    """The `Scene` of the env's kwargs `kw` under these effects; ValueError names the kwarg."""
+    params, dia = _rod(kw)
+    L = params.length
+    max_curvature = check_range("max_curvature", kw["max_curvature"], 1e-6)
+    if max_curvature * L > CURVATURE_OBS_LIMIT:
+        raise ValueError(
+            f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
+            f"curvature observation bound), got {max_curvature:g} 1/m x {L:g} m"
+        )
+    rate = check_range("max_curvature_rate", kw["max_curvature_rate"], 1e-6, 1e9)
+    mass = params.mass_per_length * L
+    effort = kw["effort_weight"]
+    effort = EFFORT_SCALE / (mass * L**2) if effort is None else effort
+    return Scene(
+        params=params,
+        water=water(kw, effects, dia),
+        max_curvature=max_curvature,
+        max_curvature_rate=rate,
+        n_ctrl=check_int("n_control_points", kw["n_control_points"], low=2, high=64),
+        effort_weight=check_range("effort_weight", effort, 0.0, 1e9),
+        reset_noise_scale=check_range("reset_noise_scale", kw["reset_noise_scale"], 0.0, 1.0),
+        initial_heading_range=check_range(
+            "initial_heading_range", kw["initial_heading_range"], 0.0, 3.141592653589793
+        ),
+        stress_theta=check_range("numerical_damping", kw["numerical_damping"], 0.0, 0.5) + 0.5,
+        action_mode=action_mode(kw["action_mode"]),
+    )

@@ -1,0 +1,231 @@
+"""Eel-v0: an anguilliform swimmer on the active beam in still water (Rios 2017 §4.5 I)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+
+from mf_envs.envs.base import MFEnv
+from mf_envs.envs.eel import build, render, rows, spec
+from mf_envs.envs.serpentine.build import initial_dofs
+from mf_envs.envs.serpentine.env import SerpentineEnv
+from mf_envs.physics.beam.solver import BeamModel
+from mf_envs.physics.swimmer.fluid import C_NORMAL, C_TANGENTIAL, RHO_WATER, point_forces
+
+AVAILABLE_EFFECTS = {
+    "resistive": "Taylor's (1952) quadratic normal and tangential drag of each body element",
+    "reactive": "Lighthill's (1960) added mass on the normal velocity and the tail force",
+}
+DEFAULT_EFFECTS = ("resistive", "reactive")
+
+
+class EelEnv(MFEnv):
+    """
+    ## Description
+    An anguilliform swimmer (Rios 2017 §4.5 I) sized like the American eels of Tytell & Lauder
+    (2004): a planar geometrically exact active C1 beam (`mf_envs.physics.swimmer`), L = 0.2 m,
+    a round section of diameter 0.06 L, E = 1 MPa, neutrally buoyant (density 1000 kg/m^3) in
+    the horizontal plane of still water. Its muscles set the active curvature kappa#(S, t)
+    (M3 = EI (kappa - kappa#)); the water acts through Taylor's (1952) resistive force
+    (quadratic cross-flow drag C_N = 1.1 and skin friction C_T = 0.0055) and Lighthill's
+    (1960) reactive force (added mass rho pi d^2 / 4 on the normal velocity, the tail force),
+    stepped by the implicit energy-momentum scheme with the added mass in the residual and the
+    forces' consistent tangents. Goal: swim along the target direction (+x) with little
+    actuation energy.
+
+    ## Action Space
+    `Box(-1, 1, (n_control_points,), float32)`: target kappa# = max_curvature * a at the
+    control points S_j = j L / (n - 1), tail (S = 0) to head (S = L), linear in S between them.
+    The command moves towards the target by at most max_curvature_rate x control_dt per step
+    (the muscles' finite rate) and linearly in time over the step.
+
+    With `action_mode="wave"` the action is `Box(-1, 1, (3,), float32)`: the tail's curvature
+    amplitude a in [0, max_curvature], the wavelength lambda / L in [0.4, 2] and the frequency f
+    in [0.5, 5] Hz (linear maps) of kappa#(S_j, t) = a (0.3 + 0.7 (L - S_j) / L)
+    sin(2 pi (L - S_j) / lambda - phi), phi advancing by 2 pi f control_dt per step (phi = 0 at
+    reset), the same rate limit and hold.
+
+    ## Observation Space
+    `Box(float32, (2 n + 6,))`, laid out by `mf_envs.envs.eel.spec.observation_layout(n)` (the
+    env's `obs_layout`):
+
+    | Num | Name | Observation | Bound | Unit |
+    |---|---|---|---|---|
+    | 0..n-1 | curvature | measured kappa L at the control points | +-20 | |
+    | n | sin_heading | sin(mean frame angle - target direction) | +-1 | |
+    | n+1 | cos_heading | cos(mean frame angle - target direction) | +-1 | |
+    | n+2..n+3 | velocity | v_com / L along, across the mean axis | +-20 | 1/s |
+    | n+4 | tail_angle | tail frame angle - mean frame angle (wrapped) | +-3.5 | rad |
+    | n+5 | tail_rate | rate of the tail's frame angle | +-200 | rad/s |
+    | n+6..2n+5 | curvature_command | kappa# / max_curvature at the step's end | +-1 | |
+
+    ## Rewards
+    `reward = progress + effort`, the terms in `info["reward_terms"]`: `progress` = centre-of-
+    mass displacement along the target direction in the step / L; `effort` = -effort_weight x
+    actuation energy of the step [J] (the muscles' positive work -int M3 dkappa#/dt dS, no
+    regeneration; default weight 0.02 / (m L^2 / s^2), m the body mass). Info keys:
+    `spec.INFO_KEYS`.
+
+    ## Starting State
+    At rest, curvature kappa0 = max_curvature x U(-reset_noise_scale, reset_noise_scale) at the
+    control points (linear between) and commanded alike (an equilibrium), mean frame angle
+    U(-initial_heading_range, initial_heading_range), centre of mass at the origin.
+    `reset(options={"heading": rad (|.| <= 4 pi), "kappa": (n,) 1/m within +-max_curvature})`
+    overrides; any other key or value raises ValueError naming it (and draws nothing).
+
+    ## Episode End
+    Truncation after `episode_seconds`. Termination on numerical failure (Newton fails even
+    after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
+
+    ## Arguments
+    | Argument | Default | Meaning |
+    |---|---|---|
+    | length, diameter | 0.2, 0.06 L | body length L, diameter d [m] (d <= L / 5) |
+    | youngs_modulus, shear_modulus | 1e6, E / 1.5 | E, G [Pa] in [1e3, 1e12] |
+    | density, water_density | 1000, 1000 | body and water density [kg/m^3] |
+    | drag_normal, drag_tangential | 1.1, 0.0055 | Taylor's C_N, C_T (docs/eel.md) |
+    | n_elements | 6 | C1 elements, 2..64 |
+    | max_curvature | 50 | action scale [1/m], max_curvature L <= 20 |
+    | max_curvature_rate | 750 | muscle rate limit of the command [1/(m s)] (docs/eel.md) |
+    | n_control_points | 7 | actuation control points, 2..64 |
+    | control_dt, physics_dt | 0.02, 0.01 | s per step, implicit physics step |
+    | episode_seconds | 10 | episode length [s] |
+    | effort_weight | None | [1/J] >= 0; None: 0.02 / (m L^2 / s^2) |
+    | reset_noise_scale | 0.05 | start curvature noise / max_curvature, in [0, 1] |
+    | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
+    | numerical_damping | 0.1 | theta_s - 1/2 of the stresses, in [0, 0.5] (0: energy-conserving) |
+    | action_mode | "curvature" | or "wave": (amplitude, wavelength, frequency) of the wave |
+    | effects | resistive, reactive | either or both; () a body in vacuum |
+
+    ## Version History
+    * v0: initial release (issue 34).
+    """
+
+    RESET_OPTIONS = spec.RESET_OPTIONS
+    AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
+    metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 50}
+    target_direction = 0.0  # rad: +x
+
+    def __init__(
+        self,
+        length: float = build.LENGTH,
+        diameter: float | None = None,
+        youngs_modulus: float = 1e6,
+        shear_modulus: float | None = None,
+        density: float = RHO_WATER,
+        water_density: float = RHO_WATER,
+        drag_normal: float = C_NORMAL,
+        drag_tangential: float = C_TANGENTIAL,
+        n_elements: int = 6,
+        max_curvature: float = 50.0,
+        max_curvature_rate: float = 750.0,
+        n_control_points: int = 7,
+        control_dt: float = 0.02,
+        physics_dt: float = 0.01,
+        episode_seconds: float = 10.0,
+        effort_weight: float | None = None,
+        reset_noise_scale: float = 0.05,
+        initial_heading_range: float = math.pi,
+        numerical_damping: float = 0.1,
+        action_mode: str = "curvature",
+        effects: Any = None,
+        render_mode: str | None = None,
+    ) -> None:
+        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
+                         render_mode=render_mode)  # fmt: skip
+        self._set_scene(build.build(kw, self.effects))
+        self.max_steps = self._episode_steps(episode_seconds)
+        self.episode_seconds = self.max_steps * self.control_dt
+        self.model = BeamModel(self.scene.params)
+        self.cfg = rows.pack(self.scene, self.model, self.n_substeps, self.physics_dt,
+                             self.control_dt, self.target_direction)  # fmt: skip
+        n, nd = self.n_ctrl, self.model.n_dof
+        n_act = n if self.scene.action_mode == "curvature" else 3
+        self.action_space = spaces.Box(-1.0, 1.0, (n_act,), np.float32)
+        self.obs_layout = spec.observation_layout(n)
+        hi = self.obs_layout.high()
+        self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
+        self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
+        self.state[0] = self.model.straight()
+        self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
+        self.phase = np.zeros(1)  # the wave's phase [rad] (action_mode "wave")
+        self._sc = rows.scratch(self.model)
+        self._body, self._rep = np.zeros(5), np.zeros(rows.N_REPORT)
+        self._obs = np.zeros(self.obs_layout.size, np.float32)
+        self._steps = 0
+        self._track: list[tuple[float, float]] = []
+
+    # ------------------------------------------------------------------ API
+    _check_reset_options = SerpentineEnv._check_reset_options  # heading, kappa: the same
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
+        heading, kappa = opts["heading"], opts["kappa"]
+        rng, sc = self.np_random, self.scene
+        drawn_heading = rng.uniform(-sc.initial_heading_range, sc.initial_heading_range)
+        noise = rng.uniform(-1.0, 1.0, self.n_ctrl) * sc.reset_noise_scale * self.max_curvature
+        heading = drawn_heading if heading is None else heading
+        kappa = noise if kappa is None else kappa
+        self.state[0] = initial_dofs(sc.params, kappa, heading)
+        self.state[1] = 0.0
+        self.cmd[:] = kappa
+        self.phase[:] = 0.0
+        rows.observe_row(self.state[0], self.state[1], self.cmd, self.cfg, self._body, self._obs)
+        self._track = [(self._body[0], self._body[1])]
+        info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
+        return self._obs.copy(), info
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        a = self._validate_action(action)
+        rep = self._rep
+        d, v = self.state[0], self.state[1]
+        rows.step_row(d, v, self.cmd, self.phase, a, self.cfg, self._sc, self._body, self._obs,
+                      rep)  # fmt: skip
+        self._steps += 1
+        ok = rep[rows.REP_OK] > 0.0 and bool(np.isfinite(self.state).all())
+        dx = self._body[0] - rep[rows.REP_X0], self._body[1] - rep[rows.REP_Y0]
+        c, s = math.cos(self.target_direction), math.sin(self.target_direction)
+        along = c * dx[0] + s * dx[1]
+        energy = float(rep[rows.REP_ENERGY])
+        terms = {"progress": along / self.scene.length, "effort": -self.effort_weight * energy}
+        info = self._info(along / self.control_dt, energy, int(rep[rows.REP_ITER]), terms)
+        info["actuation_net_work"] = float(rep[rows.REP_NET])
+        if ok:
+            self._track.append((self._body[0], self._body[1]))
+        reward = terms["progress"] + terms["effort"]
+        trunc = self._steps >= self.max_steps
+        return self._finish_step(self._obs.copy(), reward, False, trunc, info, ok)
+
+    # ------------------------------------------------------------------ helpers
+    def _info(self, speed: float, energy: float, its: int, terms: dict) -> dict[str, Any]:
+        return spec.step_info(
+            float(self._body[0]), float(self._body[1]), float(self._body[4]), float(speed),
+            self.cmd.copy(), energy, 0.0, self.control_dt, its,
+            self._steps * self.control_dt, terms,
+        )  # fmt: skip
+
+    def centerline(self, per_element: int = 8) -> np.ndarray:
+        """(N, 2) points of the body's centreline [m], tail to head."""
+        return self.model.centerline(self.state[0], per_element)
+
+    def water_forces(self) -> np.ndarray:
+        """(n_el * 4, 4) rows (x, y, f_x, f_y) [m, N/m]: Taylor's resistive line force at the
+        Gauss points in the present state."""
+        out = np.zeros((4 * self.model.n_elements, 4))
+        nzt, npt, law = self.cfg[3]
+        point_forces(self.state[0], self.state[1], self.model.le, nzt, npt, law, out)
+        return out
+
+    def _draw_frame(self) -> np.ndarray:
+        line = self.centerline()
+        if not np.isfinite(line).all():  # after a numerical failure: the last finite track
+            line = np.array([self._track[-1], self._track[-1]]) + [[0.0, 0.0], [1e-9, 0.0]]
+        x, y = self._track[-1] if self._track else (0.0, 0.0)
+        text = f"t = {self._steps * self.control_dt:.2f} s  com ({x:+.3f}, {y:+.3f}) m"
+        forces = self.water_forces()
+        peak = float(np.max(np.hypot(forces[:, 2], forces[:, 3]))) if forces.size else 0.0
+        scale = 0.3 * self.scene.length / peak if peak > 0 and np.isfinite(peak) else 0.0
+        return render.draw(line, self._track[-400:], self.target_direction, text, forces, scale)

@@ -1,0 +1,292 @@
+"""Fluid forces on a slender swimmer in the horizontal plane (Rios 2017 §4.5 I, Eq. 40 with the
+distributed load n_hat(S, t) and m_hat_3 = 0): Taylor's resistive force (1952) and Lighthill's
+reactive, elongated-body force (1960, 1971), as configuration- and velocity-dependent loads of the
+C1 beam with their consistent tangents.
+
+::
+
+    y      water at rest, density rho
+    |   tail S = 0  ~~~~~~~~~~~~~~~~~~~~>  head S = L
+    +---- x        t = (cos psi, sin psi), n = (-sin psi, cos psi)
+                   f(S) = resistive + reactive, plus Lighthill's force at the tail
+
+At a point of the centreline with frame angle psi and velocity v (relative to the water at rest),
+v_t = v . t, v_n = v . n:
+
+* resistive (Taylor 1952, "Analysis of the swimming of long and narrow animals", Proc. R. Soc. A
+  214: each element feels the force of a long straight cylinder at the same speed and
+  inclination): f = -(g_t(v_t) t + g_n(v_n) n) with the quadratic law of a cylinder at high
+  Reynolds number, g_n = 1/2 rho d C_N |v_n| v_n (cross-flow drag), g_t = 1/2 rho (pi d) C_T
+  |v_t| v_t (skin friction on the wetted perimeter), or the linear (Stokes, resistive-force
+  theory) law g_n = c_n v_n, g_t = c_t v_t. Consistent tangent (dt/dpsi = n, dn/dpsi = -t):
+      df/dv = -(g_t' t t^T + g_n' n n^T),
+      df/dpsi = -((g_t' v_n - g_n) t + (g_t - g_n' v_t) n).
+* reactive (Lighthill 1960, J. Fluid Mech. 9; large-amplitude form Lighthill 1971, Proc. R. Soc.
+  B 179): the water carried with a section has momentum P = m_a w n per length, w = v_n,
+  m_a = rho pi d^2 / 4 (the added mass of a circular section); the body feels -dP/dt along the
+  body plus, at the trailing edge (the tail, S = 0), the momentum shed into the wake and the
+  pressure on the plane there:
+      F_tail = m_a (-u w n + w^2 t / 2),  u = v . t, w = v . n at S = 0,
+      dF_tail/dv = m_a (-w n t^T - u n n^T + w t n^T),  dF_tail/dpsi = m_a (u^2 - w^2 / 2) n.
+  Averaged over a period of a small-amplitude wave the force is Lighthill's mean thrust
+  T = m_a / 2 < h_t^2 - U^2 h_x^2 >_tail (`theory.lighthill_thrust`). The -dP/dt term is an
+  added mass on the normal direction that depends on psi; `kernels` puts it in the residual as
+  (P(d_{n+1}, v_{n+1}) - P(d_n, v_n)) / dt, so body plus water momentum is conserved exactly
+  when nothing else acts (`added_momentum` gives the nodal P and its derivatives).
+
+Buoyancy: the body swims in a horizontal plane, gravity is normal to it, and a neutrally
+buoyant body (density = rho) feels no net vertical load; the in-plane model has no buoyancy term.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs.physics.beam.banded import HALF_BW
+from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, shape_functions
+from mf_envs.physics.constants import RHO_FRESHWATER
+
+# LOC: element dof -> offset from 6 e (Eq. 71c); _add_tangent: a point force's tangent
+from mf_envs.physics.serpentine.friction import LOC, _add_tangent
+
+RHO_WATER = RHO_FRESHWATER  # kg/m^3, the eel's water
+# Taylor's quadratic law, frozen at the eel's Reynolds numbers (docs/eel.md): C_N the cross-flow
+# drag coefficient of a circular cylinder at 1e3 < Re_d < 1e5; C_T the skin-friction coefficient
+# on the wetted perimeter (laminar flat plate 1.328 / sqrt(Re_L) at Re_L = U L / nu ~ 6e4)
+C_NORMAL = 1.1
+C_TANGENTIAL = 0.0055
+# packed layout of `Water.packed()`
+W_KN, W_KT, W_LINEAR, W_CN, W_CT, W_RESISTIVE, W_MA, W_TAIL = range(8)
+
+
+@dataclass(frozen=True)
+class Water:
+    """The fluid laws (module docstring): water density rho [kg/m^3], body diameter d [m], Taylor's
+    dimensionless C_N, C_T (quadratic law) or the linear coefficients c_n, c_t [N s/m^2] when
+    `linear`; `resistive`, `reactive` switch the two forces (`tail`: Lighthill's tail term with
+    the reactive force)."""
+
+    density: float = RHO_WATER
+    diameter: float = 0.012
+    c_normal: float = C_NORMAL
+    c_tangential: float = C_TANGENTIAL
+    linear: bool = False
+    linear_normal: float = 0.0
+    linear_tangential: float = 0.0
+    resistive: bool = True
+    reactive: bool = True
+    tail: bool = True
+
+    def __post_init__(self) -> None:
+        check_positive("density", self.density)
+        check_positive("diameter", self.diameter)
+        for name in ("c_normal", "c_tangential", "linear_normal", "linear_tangential"):
+            check_nonnegative(name, getattr(self, name))
+
+    @property
+    def added_mass(self) -> float:
+        """m_a = rho pi d^2 / 4 [kg/m] (0 with the reactive force off)."""
+        return self.density * math.pi * self.diameter**2 / 4.0 if self.reactive else 0.0
+
+    @property
+    def k_normal(self) -> float:
+        """1/2 rho d C_N [kg/m^2]."""
+        return 0.5 * self.density * self.diameter * self.c_normal
+
+    @property
+    def k_tangential(self) -> float:
+        """1/2 rho pi d C_T [kg/m^2]."""
+        return 0.5 * self.density * math.pi * self.diameter * self.c_tangential
+
+    def packed(self) -> np.ndarray:
+        """The compiled layout (k_n, k_t, linear, c_n, c_t, resistive, m_a, tail)."""
+        return np.array(
+            [
+                self.k_normal,
+                self.k_tangential,
+                1.0 if self.linear else 0.0,
+                self.linear_normal,
+                self.linear_tangential,
+                1.0 if self.resistive else 0.0,
+                self.added_mass,
+                1.0 if (self.tail and self.reactive) else 0.0,
+            ]
+        )
+
+
+def shape_tables(le: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The shape functions at the 4 Gauss points of every element: N_z (n_el, 4, 4) and N_psi
+    (n_el, 4, 3) (the `nzt, npt` arguments of the assemblies; Eqs. 69-70)."""
+    nzt = np.array([[shape_functions(x, h)[0] for x in GAUSS_XI] for h in le])
+    npt = np.array([[shape_functions(x, h)[2] for x in GAUSS_XI] for h in le])
+    return nzt, npt
+
+
+@numba.njit(cache=True, nogil=True)
+def _law(vel, k, c, linear):
+    """g(vel) and g'(vel): k |vel| vel (quadratic) or c vel (linear)."""
+    if linear:
+        return c * vel, c
+    return k * abs(vel) * vel, 2.0 * k * abs(vel)
+
+
+@numba.njit(cache=True, nogil=True)
+def resistive_point(v1, v2, psi, law, out):
+    """Taylor's line force at a point: out[0:2] = f [N/m], out[2:6] = df/dv (row-major 2x2)
+    [N s/m^2], out[6:8] = df/dpsi [N/m] (module docstring)."""
+    c, s = math.cos(psi), math.sin(psi)
+    vt = c * v1 + s * v2
+    vn = -s * v1 + c * v2
+    lin = law[W_LINEAR] > 0.0
+    gt, dgt = _law(vt, law[W_KT], law[W_CT], lin)
+    gn, dgn = _law(vn, law[W_KN], law[W_CN], lin)
+    out[0] = -(gt * c - gn * s)
+    out[1] = -(gt * s + gn * c)
+    out[2] = -(dgt * c * c + dgn * s * s)
+    out[3] = -(dgt - dgn) * c * s
+    out[4] = out[3]
+    out[5] = -(dgt * s * s + dgn * c * c)
+    at = dgt * vn - gn  # df/dpsi = -(at t + an n)
+    an = gt - dgn * vt
+    out[6] = -(at * c - an * s)
+    out[7] = -(at * s + an * c)
+
+
+@numba.njit(cache=True, nogil=True)
+def tail_force(v1, v2, psi, m_a, out):
+    """Lighthill's force at the tail (module docstring): out[0:2] = F [N], out[2:6] = dF/dv
+    (row-major) [N s/m], out[6:8] = dF/dpsi [N]."""
+    c, s = math.cos(psi), math.sin(psi)
+    u = c * v1 + s * v2
+    w = -s * v1 + c * v2
+    a = 0.5 * w * w
+    out[0] = m_a * (u * w * s + a * c)
+    out[1] = m_a * (-u * w * c + a * s)
+    # dF/dv = m_a (-w n t^T - u n n^T + w t n^T), t = (c, s), n = (-s, c)
+    out[2] = m_a * (w * s * c - u * s * s - w * c * s)
+    out[3] = m_a * (w * s * s + u * s * c + w * c * c)
+    out[4] = m_a * (-w * c * c + u * c * s - w * s * s)
+    out[5] = m_a * (-w * c * s - u * c * c + w * s * c)
+    g = m_a * (u * u - a)
+    out[6] = -g * s
+    out[7] = g * c
+
+
+@numba.njit(cache=True, nogil=True)
+def _gather(d, v, base, de, ve):
+    """The element dofs (Eq. 71c order) of d and v from global index 6 e = base into de, ve."""
+    for k in range(11):
+        de[k] = d[base + LOC[k]]
+        ve[k] = v[base + LOC[k]]
+
+
+@numba.njit(cache=True, nogil=True)
+def _gauss_point(de, ve, nz, npsi):
+    """Velocity (v1, v2) and frame angle psi at a Gauss point of an element."""
+    v1 = nz[0] * ve[0] + nz[1] * ve[1] + nz[2] * ve[2] + nz[3] * ve[3]
+    v2 = nz[0] * ve[4] + nz[1] * ve[5] + nz[2] * ve[6] + nz[3] * ve[7]
+    psi = npsi[0] * de[8] + npsi[1] * de[9] + npsi[2] * de[10]
+    return v1, v2, psi
+
+
+@numba.njit(cache=True, nogil=True)
+def assemble_water(d, v, le, nzt, npt, law, f, ab, cd, cv):
+    """Add the nodal force of Taylor's resistive law (if on) and Lighthill's tail force (if on)
+    at configuration d and dof velocities v (n_dof,) to f (n_dof,), and cd dF/dd + cv dF/dv to
+    the banded ab (21, n_dof) (cd = cv = 0: no tangent). nzt, npt: `shape_tables(le)`; law:
+    `Water.packed()`. Returns the power [W]."""
+    power = 0.0
+    pf = np.empty(8)
+    if law[W_TAIL] > 0.0:  # node 0: z1 = d[0], z2 = d[2], psi = d[4]
+        tail_force(v[0], v[2], d[4], law[W_MA], pf)
+        f[0] += pf[0]
+        f[2] += pf[1]
+        power += pf[0] * v[0] + pf[1] * v[2]
+        if cd != 0.0 or cv != 0.0:
+            for ci in range(2):
+                for cj in range(2):
+                    ab[HALF_BW + 2 * ci - 2 * cj, 2 * cj] += cv * pf[2 + 2 * ci + cj]
+                ab[HALF_BW + 2 * ci - 4, 4] += cd * pf[6 + ci]
+    if law[W_RESISTIVE] != 0.0:
+        power += _line_load(0, d, v, le, nzt, npt, law, 0.0, f, ab, cd, cv)
+    return power
+
+
+@numba.njit(cache=True, nogil=True)
+def added_point(v1, v2, psi, m_a, out):
+    """The entrained water's momentum at a point: out[0:2] = P = m_a w n [kg/s], out[2:6] =
+    dP/dv = m_a n n^T (row-major) [kg/m], out[6:8] = dP/dpsi = m_a (-v_t n - w t)."""
+    c, s = math.cos(psi), math.sin(psi)
+    vt = c * v1 + s * v2
+    wn = -s * v1 + c * v2
+    out[0], out[1] = -m_a * wn * s, m_a * wn * c
+    out[2], out[3] = m_a * s * s, -m_a * s * c
+    out[4], out[5] = -m_a * s * c, m_a * c * c
+    out[6] = m_a * (vt * s - wn * c)
+    out[7] = m_a * (-vt * c - wn * s)
+
+
+@numba.njit(cache=True, nogil=True)
+def _line_load(kind, d, v, le, nzt, npt, law, m_a, f, ab, cd, cv):
+    """f += int N_z^T q dS and ab += cd dF/dd + cv dF/dv (cd = cv = 0: no tangent) of the point
+    law q at the 4 Gauss points (Eq. 81b): kind 0 Taylor's force (`resistive_point`, law),
+    kind 1 the water's momentum (`added_point`, m_a). Returns int q . v dS."""
+    de = np.empty(11)
+    ve = np.empty(11)
+    pf = np.empty(8)
+    acc = 0.0
+    for e in range(le.shape[0]):
+        base = 6 * e
+        _gather(d, v, base, de, ve)
+        for g in range(N_GAUSS):
+            nz, npsi = nzt[e, g], npt[e, g]
+            w = GAUSS_W[g] * le[e]
+            v1, v2, psi = _gauss_point(de, ve, nz, npsi)
+            if kind == 0:
+                resistive_point(v1, v2, psi, law, pf)
+            else:
+                added_point(v1, v2, psi, m_a, pf)
+            acc += w * (pf[0] * v1 + pf[1] * v2)
+            for i in range(4):
+                f[base + LOC[i]] += w * nz[i] * pf[0]
+                f[base + LOC[4 + i]] += w * nz[i] * pf[1]
+            if cd != 0.0 or cv != 0.0:
+                _add_tangent(ab, base, w, nz, npsi, pf, 0.0, cd, cv)
+    return acc
+
+
+@numba.njit(cache=True, nogil=True)
+def added_momentum(d, v, le, nzt, npt, m_a, p, ab, cd, cv):
+    """Nodal momentum of the entrained water p = int N_z^T m_a w n dS (n_dof,) (set, not added)
+    at (d, v), and cd dp/dd + cv dp/dv added to the banded ab (cd = cv = 0: no tangent).
+    Returns the water's kinetic energy int m_a w^2 / 2 dS [J] (P . v = m_a w^2)."""
+    for i in range(p.shape[0]):
+        p[i] = 0.0
+    if m_a == 0.0:
+        return 0.0
+    return 0.5 * _line_load(1, d, v, le, nzt, npt, p, m_a, p, ab, cd, cv)  # law unused: p
+
+
+@numba.njit(cache=True, nogil=True)
+def point_forces(d, v, le, nzt, npt, law, out):
+    """Resistive line force (ignoring the switches) at the Gauss points for drawing: out
+    (n_el * 4, 4) rows (x, y, f_x, f_y) [m, N/m]."""
+    de = np.empty(11)
+    ve = np.empty(11)
+    pf = np.empty(8)
+    for e in range(le.shape[0]):
+        base = 6 * e
+        _gather(d, v, base, de, ve)
+        for g in range(N_GAUSS):
+            nz, npsi = nzt[e, g], npt[e, g]
+            v1, v2, psi = _gauss_point(de, ve, nz, npsi)
+            resistive_point(v1, v2, psi, law, pf)
+            r = 4 * e + g
+            out[r, 0] = nz[0] * de[0] + nz[1] * de[1] + nz[2] * de[2] + nz[3] * de[3]
+            out[r, 1] = nz[0] * de[4] + nz[1] * de[5] + nz[2] * de[6] + nz[3] * de[7]
+            out[r, 2], out[r, 3] = pf[0], pf[1]

@@ -1,0 +1,177 @@
+"""Compiled time loop of the swimming beam: the energy-momentum step of the serpentine
+(`physics.serpentine.kernels`, Simo & Tarnow 1992) generalised to a body in water, whose entrained
+water adds a configuration-dependent momentum (Lighthill's added mass on the normal direction)
+and whose resistive and tail forces are a velocity-dependent load (`fluid`).
+
+Unknown d = d_{n+1}; v_{n+1} = 2 (d - d_n) / dt - v_n (trapezoidal kinematics). Residual
+
+    R(d) = (M (v_{n+1} - v_n) + p_w(d, v_{n+1}) - p_w(d_n, v_n)) / dt + Pbar(d_n, d)
+           - F_w(d_th, v_th),
+    d_th = d_n + th (d - d_n),  v_th = (1 - th) v_n + th v_{n+1},
+
+with p_w the nodal momentum of the water (`fluid.added_momentum`) and F_w the resistive and tail
+forces (`fluid.assemble_water`); tangent
+
+    dR/dd = (2 / dt^2) M + (dp_w/dd + (2 / dt) dp_w/dv) / dt + dPbar/dd - th dF_w/dd
+            - (2 th / dt) dF_w/dv.
+
+The water's momentum enters as a difference, so body plus entrained water conserve linear
+momentum exactly (to the Newton tolerance) when F_w = 0. th = 1/2 (default) takes the resistive
+force at the midpoint: second order; th = 1 is implicit Euler on it (first order, L-stable).
+The stresses are taken at theta_s of the strains (`beam.algorithmic`): theta_s = 1/2 conserves
+the stored energy exactly, theta_s > 1/2 dissipates the strain increments' energy
+(theta_s - 1/2) int de^T D de dS per step (the generalised energy-momentum method, Kuhl & Ramm
+1999): it damps the stiff axial, shear and high bending modes that a command jump excites and
+the energy-conserving scheme would keep ringing (first order in the internal force then).
+Why this is a generalisation of `serpentine.kernels._newton_step` rather than a call to it: that
+step hard-wires the ground law and has no configuration-dependent mass; the actuation work and
+the step splitting (`advance_linear`) are the serpentine's, on this step. The internal force is
+`internal.algorithmic_into` (the beam's `assemble_algorithmic` without allocations).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from mf_envs.physics.beam.banded import HALF_BW, N_BAND, band_solve_into
+from mf_envs.physics.serpentine.gait import gait_kappa_into
+from mf_envs.physics.serpentine.kernels import bending_work
+from mf_envs.physics.swimmer.fluid import W_MA, added_momentum, assemble_water
+from mf_envs.physics.swimmer.internal import algorithmic_into, make_work
+
+
+@numba.njit(cache=True, nogil=True)
+def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv):
+    """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); quad = (weights,
+    rigidities, dof scales, `internal.quadrature_tables`); water = (nzt, npt, law)
+    (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the
+    constant-velocity predictor; th = (theta of the water force, theta of the stresses).
+    Returns the Newton iterations, or -1 on failure."""
+    nzt, npt, law = water
+    th, th_s = th
+    m_a = law[W_MA]
+    nd = d0.shape[0]
+    for i in range(nd):
+        d[i] = d0[i] + dt * v0[i]
+    qw, stiff, u_scale, tab = quad
+    pbar = np.empty(nd)
+    ab = np.empty((N_BAND, nd))
+    iw = make_work()
+    c_a = 2.0 / (dt * dt)
+    r = np.empty(nd)
+    x = np.empty(nd)
+    dth = np.empty(nd)
+    vth = np.empty(nd)
+    p0 = np.empty(nd)
+    p1 = np.empty(nd)
+    added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
+    for it in range(1, max_iter + 1):
+        algorithmic_into(d0, d, le, k0, k1, qw, stiff, th_s, tab, iw, pbar, ab)
+        for i in range(nd):
+            x[i] = d[i] - d0[i] - dt * v0[i]
+            v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
+            dth[i] = d0[i] + th * (d[i] - d0[i])
+            vth[i] = (1.0 - th) * v0[i] + th * v[i]
+            r[i] = -pbar[i]
+        for j in range(nd):  # r -= c_a M x; ab += c_a M
+            for i in range(max(0, j - HALF_BW), min(nd, j + HALF_BW + 1)):
+                mij = mass[HALF_BW + i - j, j]
+                r[i] -= c_a * mij * x[j]
+                ab[HALF_BW + i - j, j] += c_a * mij
+        if m_a != 0.0:
+            added_momentum(d, v, le, nzt, npt, m_a, p1, ab, 1.0 / dt, 2.0 / (dt * dt))
+            for i in range(nd):
+                r[i] -= (p1[i] - p0[i]) / dt
+        assemble_water(dth, vth, le, nzt, npt, law, r, ab, -th, -2.0 * th / dt)
+        if band_solve_into(ab, r, work, piv, x) != 0:
+            return -1
+        step = 0.0
+        for i in range(nd):
+            if not np.isfinite(x[i]):
+                return -1
+            d[i] += x[i]
+            step = max(step, abs(x[i]) / u_scale[i])
+        if step < tol:
+            for i in range(nd):
+                v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
+            return it
+    return -1
+
+
+@numba.njit(cache=True, nogil=True)
+def advance_linear(
+    d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter, max_halvings, scratch, ei, out
+):
+    """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4),
+    splitting the step into 2, 4, ... sub-steps on Newton failure. Returns the Newton iterations,
+    or -1 (d, v untouched). out[0] += the muscles' positive work [J], out[1] += their signed
+    work (`serpentine.kernels.advance_linear`: -int sigma_3 (k1 - k0) dS per sub-step;
+    ei = EI [N m^2])."""
+    work, piv, k0, k1, d0, v0, d1, v1 = scratch
+    ne, ng = ka.shape
+    for level in range(max_halvings + 1):
+        n_sub = 2**level
+        h = dt / n_sub
+        for i in range(d.shape[0]):
+            d0[i] = d[i]
+            v0[i] = v[i]
+        total, pos, signed = 0, 0.0, 0.0
+        ok = True
+        for k in range(n_sub):
+            s0, s1 = k / n_sub, (k + 1) / n_sub
+            for e in range(ne):
+                for g in range(ng):
+                    k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
+                    k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
+            its = newton_step(
+                d0, v0, k0, k1, h, mass, le, quad, water, th, tol, max_iter, d1, v1, work, piv
+            )
+            if its < 0:
+                ok = False
+                break
+            total += its
+            w = -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
+            pos += max(w, 0.0)
+            signed += w
+            for i in range(d.shape[0]):
+                d0[i] = d1[i]
+                v0[i] = v1[i]
+        if ok:
+            for i in range(d.shape[0]):
+                d[i] = d0[i]
+                v[i] = v0[i]
+            out[0] += pos
+            out[1] += signed
+            return total
+    return -1
+
+
+@numba.njit(cache=True)
+def run(d, v, dt, n_steps, every, mass, le, quad, water, gait, th, tol, max_iter, max_halvings,
+        scratch, ei, d_out, v_out, work_out):  # fmt: skip
+    """n_steps steps of dt from (d, v) at t = 0 in place under the wave gait (a, phi, w, t_ramp)
+    (`serpentine.gait`, kappa# exact at each step's ends, linear between); every `every` steps
+    (and at the start) the state goes to rows of d_out, v_out, the muscles' (positive, signed)
+    work so far to work_out. Returns (Newton iterations, index of the failed step or -1)."""
+    a_gp, phi_gp, w, t_ramp = gait
+    ka = np.empty(a_gp.shape)
+    kb = np.empty(a_gp.shape)
+    acc = np.zeros(2)
+    total, j = 0, 0
+    d_out[0] = d
+    v_out[0] = v
+    for n in range(n_steps):
+        gait_kappa_into(a_gp, phi_gp, w, t_ramp, n * dt, ka)
+        gait_kappa_into(a_gp, phi_gp, w, t_ramp, (n + 1) * dt, kb)
+        its = advance_linear(d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter,
+                             max_halvings, scratch, ei, acc)  # fmt: skip
+        if its < 0:
+            return total, n
+        total += its
+        if (n + 1) % every == 0 and j + 1 < d_out.shape[0]:
+            j += 1
+            d_out[j] = d
+            v_out[j] = v
+            work_out[j] = acc
+    return total, -1

@@ -1,0 +1,118 @@
+"""Eel-v0 beyond the shared contract: the muscles' rate limit, a body in vacuum cannot move its
+centre of mass (momentum), the anguilliform wave swims head first and the heading controller
+turns towards the target, the render's force arrows, and (slow) the tuned gaits' slip ratio."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import mf_envs  # noqa: F401  (registers the envs)
+from mf_envs.controllers import make_baseline
+from mf_envs.controllers.eel import EFFICIENT, FAST, gait_stats
+from mf_envs.envs.eel import render
+
+
+def _run(env, ctrl, steps, options=None, seed=0):
+    obs, info = env.reset(seed=seed, options=options)
+    ctrl.reset()
+    infos = [info]
+    for _ in range(steps):
+        obs, _, term, trunc, info = env.step(ctrl.predict(obs)[0])
+        infos.append(info)
+        assert not term
+    return obs, infos
+
+
+def test_command_moves_at_most_the_muscle_rate_per_step():
+    env = gym.make("Eel-v0", max_curvature_rate=300.0)
+    env.reset(seed=1)
+    base = env.unwrapped
+    limit = 300.0 * base.control_dt
+    prev = base.cmd.copy()
+    for k in range(20):
+        a = np.where(np.arange(base.n_ctrl) % 2 == k % 2, 1.0, -1.0).astype(np.float32)
+        _, _, _, _, info = env.step(a)
+        change = info["kappa_command"] - prev
+        assert np.max(np.abs(change)) <= limit * (1 + 1e-12)
+        assert np.max(np.abs(change)) == pytest.approx(limit)  # the full swing is rate-limited
+        prev = info["kappa_command"]
+
+
+def test_body_in_vacuum_keeps_its_centre_of_mass():
+    """effects=(): no water, so no external force: an actuated body starting at rest keeps its
+    centre of mass where it was (linear momentum 0) whatever the muscles do."""
+    env = gym.make("Eel-v0", effects=(), numerical_damping=0.0, physics_dt=0.005)
+    obs, info = env.reset(seed=2)
+    x0 = np.array([info["x"], info["y"]])
+    rng = np.random.default_rng(0)
+    for _ in range(30):
+        _, _, term, _, info = env.step(rng.uniform(-0.3, 0.3, 7).astype(np.float32))
+        assert not term
+    drift = np.hypot(info["x"] - x0[0], info["y"] - x0[1])
+    assert drift < 1e-9 * env.unwrapped.scene.length
+    assert np.max(np.abs(env.unwrapped.state[1])) > 1e-2  # the body did move
+
+
+def test_anguilliform_wave_swims_head_first():
+    env = gym.make("Eel-v0")
+    ctrl = make_baseline(env, "wave")
+    _, infos = _run(env, ctrl, 150, {"heading": 0.0, "kappa": np.zeros(7)})
+    speed = np.mean([i["speed"] for i in infos[50:]])
+    assert speed > 0.5 * env.unwrapped.scene.length  # > 0.5 L/s along +x (the head's side)
+    terms = infos[-1]["reward_terms"]
+    assert terms["progress"] > 0.0 > terms["effort"]
+
+
+def test_heading_controller_turns_towards_the_target():
+    env = gym.make("Eel-v0")
+    ctrl = make_baseline(env, "heading")
+    _, infos = _run(env, ctrl, 250, {"heading": 2.0, "kappa": np.zeros(7)})
+    err = [abs(np.angle(np.exp(1j * i["heading"]))) for i in infos]
+    assert np.mean(err[-25:]) < 0.5 * err[0]
+
+
+def test_render_draws_the_fluid_force_arrows():
+    env = gym.make("Eel-v0", render_mode="rgb_array")
+    ctrl = make_baseline(env, "wave")
+    _run(env, ctrl, 20, {"heading": 0.0, "kappa": np.zeros(7)})
+    frame = env.render()
+    assert frame.dtype == np.uint8 and frame.ndim == 3
+    red = np.all(np.abs(frame.astype(int) - render.FORCE) < 40, axis=-1)
+    assert red.sum() > 50
+    forces = env.unwrapped.water_forces()
+    assert np.all(np.isfinite(forces)) and np.max(np.abs(forces[:, 2:])) > 0.0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("params", [FAST, EFFICIENT])
+def test_tuned_gaits_slip_below_one(params):
+    """Thrust needs a body wave faster than the body (Lighthill's mean thrust vanishes at U = c):
+    the tuned gaits' slip U / c lies in (0.5, 1); measured 0.85 (fast), 0.65 (efficient)."""
+    stats = gait_stats(gym.make("Eel-v0"), params)
+    assert 0.5 < stats["slip"] < 1.0
+    assert 0.0 < stats["froude"] < 1.0
+
+
+def test_wave_action_mode_swims_as_the_wave_baseline():
+    """action_mode="wave" with the constant action of the `wave` baseline's (a, lambda / L, T)
+    makes the same kappa# as the baseline in the curvature mode (up to the float32 rounding of
+    the actions): the same swimming speed."""
+    from mf_envs.controllers.eel import WAVE
+    from mf_envs.envs.eel.build import WAVE_FREQUENCY, WAVE_WAVELENGTH
+
+    base = gym.make("Eel-v0")
+    _, ref = _run(base, make_baseline(base, "wave"), 150, {"heading": 0.0, "kappa": np.zeros(7)})
+    env = gym.make("Eel-v0", action_mode="wave")
+    assert env.action_space.shape == (3,)
+    a, lam, period = WAVE
+    u = np.array([a / 50.0, (lam - WAVE_WAVELENGTH[0]) / np.ptp(WAVE_WAVELENGTH),
+                  (1.0 / period - WAVE_FREQUENCY[0]) / np.ptp(WAVE_FREQUENCY)])  # fmt: skip
+    action = (2.0 * u - 1.0).astype(np.float32)
+    env.reset(seed=0, options={"heading": 0.0, "kappa": np.zeros(7)})
+    infos = [env.step(action)[-1] for _ in range(150)]
+    got = np.mean([i["speed"] for i in infos[50:]])
+    want = np.mean([i["speed"] for i in ref[51:]])
+    assert want > 0.1
+    assert got == pytest.approx(want, rel=1e-3)

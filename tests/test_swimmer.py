@@ -1,0 +1,255 @@
+"""The swimmer's physics (mf_envs.physics.swimmer) against independent truth: Taylor's drag of a
+towed rigid body (exact), the consistent tangents against central differences, a coasting body
+against the closed-form solution of its own ODE (second order in dt), the momentum of body plus
+entrained water, the small-amplitude travelling wave's speed (slender-body theory of the linear
+law) and Lighthill's mean thrust of a prescribed wave."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mf_envs.physics.beam.banded import band_to_dense
+from mf_envs.physics.beam.solver import BeamModel
+from mf_envs.physics.serpentine import rod_params, serpenoid
+from mf_envs.physics.swimmer import Swimmer, Water
+from mf_envs.physics.swimmer.fluid import added_momentum, assemble_water
+from mf_envs.physics.swimmer.theory import (
+    coasting_speed,
+    lighthill_thrust,
+    taylor_small_amplitude_speed,
+)
+
+L, D = 0.2, 0.012  # m: the eel's length and diameter
+
+
+def _swimmer(water=None, n_el=6, gait=None, e=1e6, density=1000.0):
+    p = rod_params(L, D / 2, e, e / 1.5, density, n_el)
+    return Swimmer(p, water or Water(diameter=D), gait)
+
+
+def _rigid(sw, heading, velocity):
+    """Straight body along `heading` [rad] through the origin, rigid velocity (2,) [m/s]."""
+    m = sw.model
+    d = m.straight()
+    c, s = np.cos(heading), np.sin(heading)
+    d[0::6], d[2::6] = c * m.node_S, s * m.node_S
+    d[1::6], d[3::6], d[4::6] = c, s, heading
+    d[5::6] = heading
+    v = np.zeros(m.n_dof)
+    v[0::6], v[2::6] = velocity
+    return d, v
+
+
+@pytest.mark.parametrize("heading", [0.0, 0.7, -2.4])
+@pytest.mark.parametrize("angle", [0.0, np.pi, np.pi / 2, np.pi / 4, -3 * np.pi / 4, 2.0])
+@pytest.mark.parametrize("linear", [False, True])
+def test_towed_rigid_body_feels_taylors_drag(heading, angle, linear):
+    """Resistive only: the resultant of the nodal forces is -L (g_t(v_t) t + g_n(v_n) n) with
+    Taylor's coefficients, to 1e-10 relative, whatever the heading and direction of tow."""
+    water = Water(diameter=D, linear=linear, linear_normal=3.0, linear_tangential=0.4,
+                  reactive=False)  # fmt: skip
+    sw = _swimmer(water)
+    speed = 0.37
+    t = np.array([np.cos(heading), np.sin(heading)])
+    n = np.array([-t[1], t[0]])
+    u = speed * (np.cos(angle) * t + np.sin(angle) * n)
+    d, v = _rigid(sw, heading, u)
+    f, power = sw.water_force(d, v)
+    vt, vn = u @ t, u @ n
+    if linear:
+        gt, gn = 0.4 * vt, 3.0 * vn
+    else:
+        rho = 1000.0
+        gt = 0.5 * rho * np.pi * D * 0.0055 * abs(vt) * vt
+        gn = 0.5 * rho * D * 1.1 * abs(vn) * vn
+    want = -L * (gt * t + gn * n)
+    got = np.array([f[0::6].sum(), f[2::6].sum()])  # nodal z1, z2 forces (slopes carry none)
+    assert np.linalg.norm(got - want) <= 1e-10 * np.linalg.norm(want)
+    assert power == pytest.approx(want @ u, rel=1e-10)
+
+
+def _random_state(sw, rng):
+    d, v = _rigid(sw, 0.3, (0.2, -0.1))
+    d = d + 0.02 * rng.standard_normal(d.size)
+    v = v + 0.3 * rng.standard_normal(v.size)
+    return d, v
+
+
+@pytest.mark.parametrize("linear", [False, True])
+def test_water_tangent_matches_central_differences(linear):
+    """dF/dd and dF/dv of the resistive + tail forces (`assemble_water`) and dp/dd, dp/dv of
+    the entrained water's momentum (`added_momentum`) against central differences."""
+    sw = _swimmer(Water(diameter=D, linear=linear, linear_normal=3.0, linear_tangential=0.4))
+    rng = np.random.default_rng(3)
+    d, v = _random_state(sw, rng)
+    nzt, npt, law = sw.packed
+    le, nd = sw.model.le, sw.model.n_dof
+    m_a = sw.water.added_mass
+
+    def force(dd, vv):
+        f = np.zeros(nd)
+        assemble_water(dd, vv, le, nzt, npt, law, f, np.zeros((21, nd)), 0.0, 0.0)
+        return f
+
+    def momentum(dd, vv):
+        p = np.zeros(nd)
+        added_momentum(dd, vv, le, nzt, npt, m_a, p, np.zeros((21, nd)), 0.0, 0.0)
+        return p
+
+    for fun, assemble in ((force, "water"), (momentum, "momentum")):
+        for wrt in ("d", "v"):
+            ab = np.zeros((21, nd))
+            cd, cv = (1.0, 0.0) if wrt == "d" else (0.0, 1.0)
+            if assemble == "water":
+                assemble_water(d, v, le, nzt, npt, law, np.zeros(nd), ab, cd, cv)
+            else:
+                added_momentum(d, v, le, nzt, npt, m_a, np.zeros(nd), ab, cd, cv)
+            k = band_to_dense(ab)
+            fd = np.zeros((nd, nd))
+            h = 1e-6
+            for j in range(nd):
+                e = np.zeros(nd)
+                e[j] = h
+                if wrt == "d":
+                    fd[:, j] = (fun(d + e, v) - fun(d - e, v)) / (2 * h)
+                else:
+                    fd[:, j] = (fun(d, v + e) - fun(d, v - e)) / (2 * h)
+            scale = np.max(np.abs(fd))
+            assert scale > 0.0
+            assert np.max(np.abs(k - fd)) < 1e-7 * scale, (assemble, wrt)
+
+
+@pytest.mark.parametrize("direction", ["along", "across"])
+def test_coasting_body_decays_as_its_own_ode_at_second_order(direction):
+    """A straight body launched at V0 along (resistive only) or across (resistive + added mass,
+    no tail force) its axis decays as V0 / (1 + k V0 t / M) (theory.coasting_speed). The
+    midpoint force (theta = 1/2) is second order: the error falls 4x when dt halves."""
+    water = Water(diameter=D, tail=False, reactive=direction == "across")
+    sw = _swimmer(water)
+    v0 = 0.5
+    vel = (v0, 0.0) if direction == "along" else (0.0, v0)
+    d, v = _rigid(sw, 0.0, vel)
+    t_end = 1.0
+    mass = sw.model.params.mass_per_length + water.added_mass
+    k = water.k_tangential if direction == "along" else water.k_normal
+    want = coasting_speed(v0, t_end, k, mass)
+    assert want < 0.7 * v0  # a real decay
+    errors = []
+    for dt in (0.04, 0.02, 0.01):
+        h = sw.simulate(t_end, dt, every=int(round(t_end / dt)), d0=d, v0=v)
+        com_v = h.momentum()[0][-1] / (sw.model.params.mass_per_length * L)
+        got = com_v[0] if direction == "along" else com_v[1]
+        errors.append(abs(got - want) / want)
+    assert errors[-1] < 1e-3, errors
+    ratios = errors[0] / errors[1], errors[1] / errors[2]
+    assert all(3.5 < r < 4.5 for r in ratios), (errors, ratios)
+
+
+def test_body_and_entrained_water_conserve_momentum():
+    """Reactive only (no resistive, no tail): an actuated body's momentum plus its water's
+    momentum stays at its start value to the Newton tolerance."""
+    water = Water(diameter=D, resistive=False, tail=False)
+    model = BeamModel(rod_params(L, D / 2, 1e6, 1e6 / 1.5, 1000.0, 6))
+    gait = serpenoid(model.gauss_S, 20.0, L, 0.4, direction=-1, ramp_time=0.4)
+    sw = _swimmer(water, gait=gait)
+    d, v = _rigid(sw, 0.4, (0.1, 0.05))
+    h = sw.simulate(1.0, 0.01, every=10, d0=d, v0=v)
+    body = h.momentum()[0]
+    total = []
+    for dd, vv in zip(h.d, h.v):
+        p = sw.water_momentum(dd, vv)[0]
+        total.append(body[len(total)] + np.array([p[0::6].sum(), p[2::6].sum()]))
+    total = np.array(total)
+    scale = np.max(np.abs(total))
+    assert np.max(np.abs(total - total[0])) < 1e-8 * scale
+    assert np.max(np.abs(body - body[0])) > 1e-2 * scale  # the body's own momentum changes
+
+
+@pytest.mark.parametrize("wavelength", [L, 2 * L])
+def test_small_amplitude_wave_swims_at_taylors_speed(wavelength):
+    """Resistive only, linear law c_t = 10, c_n = 20 N s/m^2 (inertia negligible at T = 2 s):
+    a stiff body (the shape is kappa#) under kappa# = a sin(k (L - S) - w t), slope amplitude
+    0.05, swims at the slender-body speed (theory.taylor_small_amplitude_speed) within 2 %."""
+    period = 2.0
+    p = rod_params(L, D / 2, 1e12, 1e12 / 1.5, 1000.0, 16)
+    k = 2 * np.pi / wavelength
+    a = 0.05 * k
+    water = Water(diameter=D, linear=True, linear_tangential=10.0, linear_normal=20.0,
+                  reactive=False)  # fmt: skip
+    gait = serpenoid(BeamModel(p).gauss_S, a, wavelength, period, direction=1, ramp_time=period)
+    h = Swimmer(p, water, gait).simulate(3 * period, 0.02)
+    com = h.com()
+    i, j = (int(np.argmin(np.abs(h.t - n * period))) for n in (1, 3))
+    speed = (com[j, 0] - com[i, 0]) / (h.t[j] - h.t[i])
+    want = taylor_small_amplitude_speed(L, k, 2 * np.pi / period, a, 10.0, 20.0)
+    assert want < 0.0  # against the wave
+    assert speed == pytest.approx(want, rel=0.02)
+
+
+def test_tail_force_gives_lighthills_mean_thrust():
+    """Reactive only, a prescribed small-amplitude wave h = b (S / L) sin(k S + w t) (amplitude
+    growing to the tail... here the tail is S = 0, so the envelope grows towards S = 0) on a body
+    moving at U along +x: the period mean of the model's reactive force (the water momentum's
+    -dp/dt by central differences, plus the tail force) along x equals Lighthill's
+    m_a / 2 < h_t^2 - U^2 h_x^2 >_tail within 5 %."""
+    water = Water(diameter=D, resistive=False)
+    sw = _swimmer(water, n_el=12)
+    m = sw.model
+    b, lam, period, speed = 0.01, 0.8 * L, 0.4, 0.15
+    k, w = 2 * np.pi / lam, 2 * np.pi / period
+
+    def state(t):
+        s = m.node_S
+        env = b * (1.0 - 0.6 * s / L)  # larger at the tail S = 0
+        denv = -0.6 * b / L
+        ph = k * s + w * t
+        h, h_x = env * np.sin(ph), env * k * np.cos(ph) + denv * np.sin(ph)
+        h_t = env * w * np.cos(ph)
+        psi = np.arctan(h_x)
+        smid = 0.5 * (s[1:] + s[:-1])
+        pm = k * smid + w * t
+        envm = b * (1.0 - 0.6 * smid / L)
+        psi_mid = np.arctan(envm * k * np.cos(pm) - 0.6 * b / L * np.sin(pm))
+        d, v = m.straight(), np.zeros(m.n_dof)
+        d[0::6], d[1::6], d[2::6], d[3::6], d[4::6] = s + speed * t, 1.0, h, h_x, psi
+        d[5::6] = psi_mid
+        v[0::6], v[2::6] = speed, h_t
+        return d, v, h_t[0], h_x[0]
+
+    n, eps = 64, 1e-5
+    thrust, ht, hx = [], [], []
+    for i in range(n):
+        t = i * period / n
+        d, v, a, bb = state(t)
+        f = sw.water_force(d, v)[0]
+        dp = sw.water_momentum(*state(t + eps)[:2])[0] - sw.water_momentum(*state(t - eps)[:2])[0]
+        thrust.append(f[0::6].sum() - dp[0::6].sum() / (2 * eps))
+        ht.append(a)
+        hx.append(bb)
+    want = lighthill_thrust(water.added_mass, np.array(ht), np.array(hx), speed)
+    assert want > 0.0
+    assert np.mean(thrust) == pytest.approx(want, rel=0.05)
+
+
+def test_allocation_free_internal_force_equals_the_beams():
+    """`internal.algorithmic_into` against `beam.algorithmic.assemble_algorithmic` (shift 0) on
+    random configurations and actuations: the same force and tangent to round-off."""
+    from mf_envs.physics.beam.algorithmic import assemble_algorithmic
+    from mf_envs.physics.swimmer.internal import algorithmic_into, make_work, quadrature_tables
+
+    m = BeamModel(rod_params(L, D / 2, 1e6, 1e6 / 1.5, 1000.0, 5))
+    qxi, qw, stiff = m.quad
+    rng = np.random.default_rng(7)
+    tab, work = quadrature_tables(m.le, qxi), make_work()
+    p, ab = np.empty(m.n_dof), np.empty((21, m.n_dof))
+    for theta in (0.5, 0.6, 1.0):
+        da = m.straight() + 0.03 * rng.standard_normal(m.n_dof)
+        db = da + 0.05 * rng.standard_normal(m.n_dof)
+        ka, kb = (20 * rng.standard_normal((5, 4)) for _ in range(2))
+        shift = np.zeros((5, qxi.size, 3))
+        p0, ab0, _ = assemble_algorithmic(da, db, m.le, ka, kb, qxi, qw, stiff, theta, shift,
+                                          True, 1.0)  # fmt: skip
+        algorithmic_into(da, db, m.le, ka, kb, qw, stiff, theta, tab, work, p, ab)
+        assert np.max(np.abs(p - p0)) <= 1e-13 * np.max(np.abs(p0))
+        assert np.max(np.abs(ab - ab0)) <= 1e-13 * np.max(np.abs(ab0))
