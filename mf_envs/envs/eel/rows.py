@@ -25,10 +25,9 @@ import numpy as np
 
 from mf_envs.envs.serpentine.rows import body_state
 from mf_envs.physics.beam import element as el
-from mf_envs.physics.serpentine.kernels import make_scratch
 from mf_envs.physics.swimmer.fluid import shape_tables
 from mf_envs.physics.swimmer.internal import quadrature_tables
-from mf_envs.physics.swimmer.kernels import advance_linear
+from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
 # the muscles' signed (net) work [J]

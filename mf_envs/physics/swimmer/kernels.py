@@ -99,6 +99,19 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     return -1
 
 
+def make_scratch(n_dof: int, n_elements: int) -> tuple:
+    """The scratch of `advance_linear` / `run` (the step allocates nothing): the band solver's
+    (work, pivots), kappa# at the sub-step ends (n_el, 4) x 2, the states at the sub-step ends
+    (n_dof) x 4, in the order `advance_linear` unpacks them."""
+    n_dof, n_elements = int(n_dof), int(n_elements)
+    return (
+        np.empty((n_dof, 3 * HALF_BW + 1)),
+        np.empty(n_dof, np.int64),
+        *(np.empty((n_elements, 4)) for _ in range(2)),
+        *(np.empty(n_dof) for _ in range(4)),
+    )
+
+
 @numba.njit(cache=True, nogil=True)
 def advance_linear(
     d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter, max_halvings, scratch, ei, out

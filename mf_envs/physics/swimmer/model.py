@@ -21,7 +21,6 @@ from mf_envs._validate import check_int, check_positive, check_range
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.solver import BeamModel, BeamParams, NewtonDivergence
 from mf_envs.physics.serpentine.gait import WaveGait
-from mf_envs.physics.serpentine.kernels import make_scratch
 from mf_envs.physics.serpentine.model import SnakeHistory
 from mf_envs.physics.swimmer import kernels
 from mf_envs.physics.swimmer.fluid import Water, added_momentum, assemble_water, shape_tables
@@ -101,7 +100,7 @@ class Swimmer:
         its, failed = kernels.run(
             d, v, float(dt), n_steps, every, m.mass, m.le, self.quad, self.packed,
             gait, (float(theta), float(stress_theta)), float(tol), int(max_iter), int(max_halvings),
-            make_scratch(m.n_dof, m.n_elements), m.params.EI, d_out, v_out, work_out,
+            kernels.make_scratch(m.n_dof, m.n_elements), m.params.EI, d_out, v_out, work_out,
         )  # fmt: skip
         if failed >= 0:
             raise NewtonDivergence(
