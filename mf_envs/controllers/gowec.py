@@ -10,7 +10,7 @@ the gimbal equation (env docstring); cancelling it leaves J_eff e'' = -Kp e - Kd
 knows its own rotor and gimbal (read from `env.unwrapped.model`) and the nominal sea period;
 the wave phase is never read -- it is estimated from the IMU rate w1 in the observation.
 
-- `pll` (default): SOGI-PLL. A second-order generalized integrator tuned at the estimated
+- `pll`: SOGI-PLL. A second-order generalized integrator tuned at the estimated
   frequency w^ turns w1 into an in-phase/quadrature pair (x1, x2) ~ A (cos th, sin th); the
   phase detector e = (x2 cos th^ - x1 sin th^) / A ~ sin(th - th^) drives a PI loop filter,
   th^' = w^ = w0 + Kp e + Ki int e. phi_ref = sign(H) th^, the locking of Eq. 86.
@@ -24,7 +24,8 @@ the wave phase is never read -- it is estimated from the IMU rate w1 in the obse
   H A of the gimbal; default 17.5 rad/s at dt = 0.02 s, discrete phase margin 37 deg.
 - `fixed_rate`: the seed's phi = 2 pi t / T at the nominal period (Fig. 3-4); the phase is fitted
   once by least squares over the first nominal period, then never corrected.
-- `bang_bang`: the PLL phase with a staircase reference that dwells at phi = +-90 deg and flips
+- `bang_bang` (default, the strongest): the PLL phase with a staircase reference that dwells at
+  phi = +-90 deg and flips
   through 0/180 deg when w1 peaks, so sin(phi) ~ sign(sin th): the 4/pi ceiling of docs/design.md.
   The flip half-width delta (rad of wave phase) is chosen so that the torque stays under
   `torque_fraction` of the limit.

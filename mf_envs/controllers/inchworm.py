@@ -1,10 +1,11 @@
 """Open-loop inchworm gaits for Inchworm-v0, driven through the env's action interface.
 
-* `seed_uniform` (default): uniform kappa#(t) = -kappa0 (1 + cos(2 pi t / T - pi)) / 2 (Rios 2017
+* `seed_uniform`: uniform kappa#(t) = -kappa0 (1 + cos(2 pi t / T - pi)) / 2 (Rios 2017
   Eq. 101, bookkeeping time 2 pi t / T);
 * `seed_linear`: kappa#(S, t) = -kappa0 (c1 + c2 S / L)(1 + cos(2 pi t / T - pi)) / 2, c1 = 0.2,
   c2 = 0.8 (Eq. 103);
-* `tuned`: a bang-bang (square-wave) command between the curl levels -b and -(b + a) with period
+* `tuned` (default, the strongest; on the SMA robot the fastest heat/cool wave): a bang-bang
+  (square-wave) command between the curl levels -b and -(b + a) with period
   T, all three optimised for speed with scipy.optimize (brute grid, then Nelder-Mead, bounded)
   on the env's own physics; the actuator's lag and rate limit shape the realised kappa#. The
   bias b (an arched body) was added after PPO found that a small fast oscillation of an arched
