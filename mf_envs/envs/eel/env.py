@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
+from mf_envs.envs._beam_robot import BeamRobotMixin
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.eel import build, render, rows, spec
 from mf_envs.envs.serpentine.build import initial_dofs
@@ -22,7 +23,7 @@ AVAILABLE_EFFECTS = {
 DEFAULT_EFFECTS = ("resistive", "reactive")
 
 
-class EelEnv(MFEnv):
+class EelEnv(BeamRobotMixin, MFEnv):
     """
     ## Description
     An anguilliform swimmer (Rios 2017 §4.5 I) sized like the American eels of Tytell & Lauder
@@ -178,38 +179,13 @@ class EelEnv(MFEnv):
         info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
         return self._obs.copy(), info
 
-    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        a = self._validate_action(action)
-        rep = self._rep
-        d, v = self.state[0], self.state[1]
-        rows.step_row(d, v, self.cmd, self.phase, a, self.cfg, self._sc, self._body, self._obs,
-                      rep)  # fmt: skip
-        self._steps += 1
-        ok = rep[rows.REP_OK] > 0.0 and bool(np.isfinite(self.state).all())
-        dx = self._body[0] - rep[rows.REP_X0], self._body[1] - rep[rows.REP_Y0]
-        c, s = math.cos(self.target_direction), math.sin(self.target_direction)
-        along = c * dx[0] + s * dx[1]
-        energy = float(rep[rows.REP_ENERGY])
-        terms = {"progress": along / self.scene.length, "effort": -self.effort_weight * energy}
-        info = self._info(along / self.control_dt, energy, int(rep[rows.REP_ITER]), terms)
-        info["actuation_net_work"] = float(rep[rows.REP_NET])
-        if ok:
-            self._track.append((self._body[0], self._body[1]))
-        reward = terms["progress"] + terms["effort"]
-        trunc = self._steps >= self.max_steps
-        return self._finish_step(self._obs.copy(), reward, False, trunc, info, ok)
-
     # ------------------------------------------------------------------ helpers
-    def _info(self, speed: float, energy: float, its: int, terms: dict) -> dict[str, Any]:
-        return spec.step_info(
-            float(self._body[0]), float(self._body[1]), float(self._body[4]), float(speed),
-            self.cmd.copy(), energy, 0.0, self.control_dt, its,
-            self._steps * self.control_dt, terms,
-        )  # fmt: skip
+    def _advance(self, action: np.ndarray, rep: np.ndarray) -> None:
+        rows.step_row(self.state[0], self.state[1], self.cmd, self.phase, action, self.cfg,
+                      self._sc, self._body, self._obs, rep)  # fmt: skip
 
-    def centerline(self, per_element: int = 8) -> np.ndarray:
-        """(N, 2) points of the body's centreline [m], tail to head."""
-        return self.model.centerline(self.state[0], per_element)
+    def _heading(self) -> float:
+        return float(self._body[4])
 
     def water_forces(self) -> np.ndarray:
         """(n_el * 4, 4) rows (x, y, f_x, f_y) [m, N/m]: Taylor's resistive line force at the
@@ -219,12 +195,7 @@ class EelEnv(MFEnv):
         point_forces(self.state[0], self.state[1], self.model.le, nzt, npt, law, out)
         return out
 
-    def _draw_frame(self) -> np.ndarray:
-        line = self.centerline()
-        if not np.isfinite(line).all():  # after a numerical failure: the last finite track
-            line = np.array([self._track[-1], self._track[-1]]) + [[0.0, 0.0], [1e-9, 0.0]]
-        x, y = self._track[-1] if self._track else (0.0, 0.0)
-        text = f"t = {self._steps * self.control_dt:.2f} s  com ({x:+.3f}, {y:+.3f}) m"
+    def _draw(self, line: np.ndarray, text: str) -> np.ndarray:
         forces = self.water_forces()
         peak = float(np.max(np.hypot(forces[:, 2], forces[:, 3]))) if forces.size else 0.0
         scale = 0.3 * self.scene.length / peak if peak > 0 and np.isfinite(peak) else 0.0

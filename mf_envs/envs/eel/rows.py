@@ -23,6 +23,7 @@ import math
 import numba
 import numpy as np
 
+from mf_envs.envs._beam_robot import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
 from mf_envs.envs.serpentine.rows import body_state
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.swimmer.fluid import shape_tables
@@ -31,7 +32,6 @@ from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
 # the muscles' signed (net) work [J]
-REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
 N_REPORT = 6
 # the Newton settings: the step test |dd| / u_scale < 1e-6 leaves ~1e-12 once quadratic
 TOLERANCE, MAX_ITER, MAX_HALVINGS = 1e-6, 12, 6

@@ -9,6 +9,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs._beam_robot import BeamRobotMixin
 from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.serpentine import build, render, rows, spec
@@ -23,7 +24,7 @@ DEFAULT_EFFECTS = ("friction", "actuator_dynamics")
 MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 
-class SerpentineEnv(MFEnv):
+class SerpentineEnv(BeamRobotMixin, MFEnv):
     """
     ## Description
     A soft serpentine robot lying on flat ground (Rios 2017 §4.5 II), modelled as a planar
@@ -187,43 +188,13 @@ class SerpentineEnv(MFEnv):
         info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
         return self._obs.copy(), info
 
-    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        a = self._validate_action(action)
-        rep = self._rep
-        d, v = self.state[0], self.state[1]
-        rows.step_row(d, v, self.cmd, a, self.cfg, self._sc, self._body, self._obs, rep)
-        self._steps += 1
-        ok = rep[rows.REP_OK] > 0.0 and bool(np.isfinite(self.state).all())
-        dx = self._body[0] - rep[rows.REP_X0], self._body[1] - rep[rows.REP_Y0]
-        c, s = math.cos(self.target_direction), math.sin(self.target_direction)
-        along = c * dx[0] + s * dx[1]
-        energy = float(rep[rows.REP_ENERGY])
-        terms = {"progress": along / self.scene.length, "effort": -self.effort_weight * energy}
-        info = self._info(along / self.control_dt, energy, int(rep[rows.REP_ITER]), terms)
-        info["actuation_net_work"] = float(rep[rows.REP_NET])
-        if ok:
-            self._track.append((self._body[0], self._body[1]))
-        reward = terms["progress"] + terms["effort"]
-        trunc = self._steps >= self.max_steps
-        return self._finish_step(self._obs.copy(), reward, False, trunc, info, ok)
-
     # ------------------------------------------------------------------ helpers
-    def _info(self, speed: float, energy: float, its: int, terms: dict) -> dict[str, Any]:
-        d = self.state[0]
-        return spec.step_info(
-            float(self._body[0]), float(self._body[1]), float(d[-1]), float(speed),
-            self.cmd.copy(), energy, 0.0, self.control_dt, its,
-            self._steps * self.control_dt, terms,
-        )  # fmt: skip
+    def _advance(self, action: np.ndarray, rep: np.ndarray) -> None:
+        rows.step_row(self.state[0], self.state[1], self.cmd, action, self.cfg, self._sc,
+                      self._body, self._obs, rep)  # fmt: skip
 
-    def centerline(self, per_element: int = 8) -> np.ndarray:
-        """(N, 2) points of the body's centreline [m], tail to head."""
-        return self.model.centerline(self.state[0], per_element)
+    def _heading(self) -> float:
+        return float(self.state[0][-1])  # the head's frame angle
 
-    def _draw_frame(self) -> np.ndarray:
-        line = self.centerline()
-        if not np.isfinite(line).all():  # after a numerical failure: the last finite track
-            line = np.array([self._track[-1], self._track[-1]]) + [[0.0, 0.0], [1e-9, 0.0]]
-        x, y = self._track[-1] if self._track else (0.0, 0.0)
-        text = f"t = {self._steps * self.control_dt:.2f} s  com ({x:+.3f}, {y:+.3f}) m"
+    def _draw(self, line: np.ndarray, text: str) -> np.ndarray:
         return render.draw(line, self._track[-400:], self.target_direction, text)

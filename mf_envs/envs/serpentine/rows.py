@@ -21,6 +21,7 @@ import math
 import numba
 import numpy as np
 
+from mf_envs.envs._beam_robot import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
 from mf_envs.physics.actuators.kernels import lag_at
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.kernels import _scratch as _kernel_scratch
@@ -28,7 +29,6 @@ from mf_envs.physics.serpentine.kernels import advance_linear
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
 # the muscles' signed (net) work [J]
-REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
 N_REPORT = 6
 TOLERANCE, MAX_ITER, MAX_HALVINGS, THETA = 1e-6, 12, 6, 1.0  # the Newton settings
 
