@@ -8,99 +8,49 @@ per CPU; a row's arithmetic does not depend on it). Every scene (every effect se
 Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `EelEnv`s with
 the same seeds (`tests/test_vector_envs.py`): resets go through a template single env whose
 state is copied into the row (`_load`); steps through `envs.eel.rows.step_rows`, which
-runs the single env's own compiled step (`rows.step_row`) for every row, and the reward, info
-and failure contract repeat `EelEnv.step`'s expressions on (N,) arrays.
+runs the single env's own compiled step (`rows.step_row`) for every row; the reward, info
+and failure contract are `SerpentineVectorEnv`'s (the beam robots' shared step on (N,) arrays).
 See `mf_envs.envs._vector`.
 """
 
 from __future__ import annotations
 
-import math
-from typing import Any
-
 import numpy as np
 
-from mf_envs.envs._vector import BatchedVectorEnv
-from mf_envs.envs.eel import rows, spec
+from mf_envs.envs.eel import rows
 from mf_envs.envs.eel.env import EelEnv
+from mf_envs.envs.serpentine.vector import SerpentineVectorEnv
 
 
-class EelVectorEnv(BatchedVectorEnv):
+class EelVectorEnv(SerpentineVectorEnv):
     """N independent `Eel-v0` envs (same kwargs, own seeds) stepped in one numba call.
 
     Observations (N, 2 n + 6) float32, actions (N, n) in [-1, 1], rewards (N,) float64, infos
-    batched as Gymnasium does with the single env's keys (`spec.INFO_KEYS`)."""
+    batched as Gymnasium does with the single env's keys (`spec.INFO_KEYS`). The batch loop,
+    rewards, infos and failure contract are the serpentine's (`SerpentineVectorEnv`); the rows
+    also carry the wave phase and their own scratch."""
 
     single_env_cls = EelEnv
     row_cost = "heavy"  # a Newton solve per row: one block per CPU from N = 2
 
     def _alloc(self, n: int) -> None:
-        env = self.template
-        nd, nc = env.model.n_dof, env.n_ctrl
-        self._state = np.zeros((n, 2, nd))
-        self._cmd = np.zeros((n, nc))
+        super()._alloc(n)
         self._phase = np.zeros((n, 1))
-        one = rows.scratch(env.model)
+        one = rows.scratch(self.template.model)
         self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in one)
-        self._body = np.zeros((n, 5))
-        self._fresh = np.zeros((n, env.obs_layout.size), np.float32)
-        self._rep = np.zeros((n, rows.N_REPORT))
-        self._steps = np.zeros(n, np.int64)
-        self._lo = self.single_observation_space.low
-        self._hi = self.single_observation_space.high
 
     def _load(self, i: int) -> None:
-        env = self.template
-        self._state[i] = env.state
-        self._cmd[i] = env.cmd
-        self._phase[i] = env.phase
-        self._steps[i] = 0
+        super()._load(i)
+        self._phase[i] = self.template.phase
 
-    def state_nbytes(self) -> int:
-        """Bytes of the per-env batch state (physics, scratch, outputs, observations)."""
-        arrays = [
-            self._state,
-            self._cmd,
-            self._phase,
-            *self._work,
-            self._body,
-            self._fresh,
-            self._rep,
-        ]
-        return int(sum(a.nbytes for a in arrays)) + self._steps.nbytes + self._obs.nbytes
+    def _row_arrays(self) -> list[np.ndarray]:
+        return [self._phase, *self._work]
 
-    def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
-        env, rep, body, obs = self.template, self._rep, self._body, self._fresh
-        rep[~active, rows.REP_OK] = 1.0
+    def _run_rows(self, actions: np.ndarray, active: np.ndarray) -> None:
         self.blocks.run(
-            rows.step_rows, active, actions, self._state, self._cmd, self._phase, env.cfg,
-            self._work,
-            body, obs, rep,
+            rows.step_rows, active, actions, self._state, self._cmd, self._phase,
+            self.template.cfg, self._work, self._body, self._fresh, self._rep,
         )  # fmt: skip
-        self._steps[active] += 1
-        c, s = math.cos(env.target_direction), math.sin(env.target_direction)
-        along = c * (body[:, 0] - rep[:, rows.REP_X0]) + s * (body[:, 1] - rep[:, rows.REP_Y0])
-        energy = rep[:, rows.REP_ENERGY].copy()
-        progress = along / env.scene.length
-        effort = -env.effort_weight * energy
-        reward = progress + effort
-        info = spec.step_info(
-            body[:, 0].copy(), body[:, 1].copy(), body[:, 4].copy(),
-            along / env.control_dt, self._cmd.copy(), energy, rep[:, rows.REP_NET].copy(),
-            env.control_dt,
-            rep[:, rows.REP_ITER].astype(np.int64), self._steps * env.control_dt,
-            {"progress": progress, "effort": effort},
-        )  # fmt: skip
-        finite = (rep[:, rows.REP_OK] > 0.0) & np.isfinite(self._state).all(axis=(1, 2))
-        finite &= np.isfinite(obs).all(axis=1) & np.isfinite(reward)
-        info["numerical_failure"] = ~finite
-        for key in list(info):
-            info[f"_{key}"] = np.ones(self.num_envs, bool)
-        ones = np.ones(self.num_envs, bool)
-        info["reward_terms"].update(_progress=ones, _effort=ones.copy())
-        obs_out = np.clip(obs, self._lo, self._hi)
-        term = ~finite & active
-        obs_out[term] = self._obs[term]  # last finite obs, reward 0, terminated
-        reward[term] = 0.0
-        trunc = self._steps >= env.max_steps
-        return obs_out, reward, term, trunc, info
+
+    def _headings(self) -> np.ndarray:
+        return self._body[:, 4].copy()

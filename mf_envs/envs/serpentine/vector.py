@@ -54,16 +54,28 @@ class SerpentineVectorEnv(BatchedVectorEnv):
 
     def state_nbytes(self) -> int:
         """Bytes of the per-env batch state (physics, scratch, outputs, observations)."""
-        arrays = [self._state, self._cmd, self._body, self._fresh, self._rep]
+        arrays = [self._state, self._cmd, *self._row_arrays(), self._body, self._fresh, self._rep]
         return int(sum(a.nbytes for a in arrays)) + self._steps.nbytes + self._obs.nbytes
+
+    def _row_arrays(self) -> list[np.ndarray]:
+        """Per-row arrays beyond the state and command (Eel-v0: its wave phase and scratch)."""
+        return []
+
+    def _run_rows(self, actions: np.ndarray, active: np.ndarray) -> None:
+        """The compiled batched step of the active rows (`rows.step_rows`)."""
+        self.blocks.run(
+            rows.step_rows, active, actions, self._state, self._cmd, self.template.cfg,
+            self._body, self._fresh, self._rep,
+        )  # fmt: skip
+
+    def _headings(self) -> np.ndarray:
+        """(N,) the heading each row reports: the head's frame angle."""
+        return self._state[:, 0, -1].copy()
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         env, rep, body, obs = self.template, self._rep, self._body, self._fresh
         rep[~active, rows.REP_OK] = 1.0
-        self.blocks.run(
-            rows.step_rows, active, actions, self._state, self._cmd, env.cfg,
-            body, obs, rep,
-        )  # fmt: skip
+        self._run_rows(actions, active)
         self._steps[active] += 1
         c, s = math.cos(env.target_direction), math.sin(env.target_direction)
         along = c * (body[:, 0] - rep[:, rows.REP_X0]) + s * (body[:, 1] - rep[:, rows.REP_Y0])
@@ -72,7 +84,7 @@ class SerpentineVectorEnv(BatchedVectorEnv):
         effort = -env.effort_weight * energy
         reward = progress + effort
         info = spec.step_info(
-            body[:, 0].copy(), body[:, 1].copy(), self._state[:, 0, -1].copy(),
+            body[:, 0].copy(), body[:, 1].copy(), self._headings(),
             along / env.control_dt, self._cmd.copy(), energy, rep[:, rows.REP_NET].copy(),
             env.control_dt,
             rep[:, rows.REP_ITER].astype(np.int64), self._steps * env.control_dt,
