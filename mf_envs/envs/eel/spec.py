@@ -4,27 +4,18 @@ points), reward terms, reset options and info keys, shared by the single and the
 from __future__ import annotations
 
 from mf_envs.envs._spec import Field, ObsLayout
-from mf_envs.envs.serpentine.spec import step_info  # noqa: F401  (the same info of a step)
+
+# the serpentine's reward terms, reset options, info keys and step info: the same beam robot
+from mf_envs.envs.serpentine.spec import (  # noqa: F401
+    INFO_KEYS,
+    RESET_OPTIONS,
+    REWARD_TERMS,
+    step_info,
+)
 
 CURVATURE_OBS_LIMIT = 20.0  # |kappa L| bound of the observation (also caps max_curvature * L)
 VELOCITY_OBS_LIMIT = 20.0  # |v_com| / L bound [1/s] (eels cruise at 0.5-2 L/s)
 TAIL_RATE_OBS_LIMIT = 200.0  # |d psi_tail / dt| bound [rad/s]
-REWARD_TERMS = ("progress", "effort")
-RESET_OPTIONS = ("heading", "kappa")
-INFO_KEYS = (
-    "x",  # m, centre of mass
-    "y",  # m, centre of mass
-    "heading",  # rad, mean frame angle of the body (world, unwrapped)
-    "speed",  # m/s, centre-of-mass displacement along the target direction / control_dt
-    "kappa_command",  # (n,) 1/m, actuation curvature at the control points at the step's end
-    "actuation_energy",  # J, positive work of the muscles in the step (no regeneration)
-    "actuation_power",  # W, actuation_energy / control_dt
-    "actuation_net_work",  # J, the muscles' signed work in the step
-    "newton_iterations",  # of the step (all substeps)
-    "time",  # s, steps x control_dt
-    "reward_terms",  # {"progress", "effort"}, sums to the reward
-    "numerical_failure",  # Newton failed after step halving, or a non-finite state
-)
 
 
 def observation_layout(n: int) -> ObsLayout:
