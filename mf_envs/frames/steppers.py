@@ -100,14 +100,22 @@ def _rk4_template(t, x, dt, args, work):
     Writes the increment dx into work[0] (the caller forms x + dx; the increment itself is
     what energy bookkeeping needs) and returns the inputs at t + dt."""
     h = 0.5 * dt
-    i0, ih, i1 = _inputs(t, args), _inputs(t + h, args), _inputs(t + dt, args)  # noqa: F821
+    i1 = _inputs(t + dt, args)  # noqa: F821
+    _stages(t, x, dt, args, work, _inputs(t, args), _inputs(t + h, args), i1)  # noqa: F821
+    return i1
+
+
+def _rk4_given_template(t, x, dt, args, work, i0, ih, i1):
+    """`_rk4_template`'s step with the stage inputs given by the caller: i0, ih, i1 at t,
+    t + dt/2, t + dt (a model that forms them more cheaply together than one at a time, e.g.
+    wave components advanced by rotation); the increment into work[0]."""
+    h = 0.5 * dt
     k1, k2, k3, k4, xs = work[0], work[1], work[2], work[3], work[4]
     _rhs(t, x, i0, args, k1)  # noqa: F821
     _rhs(t + h, _stage_point(xs, x, h, k1), ih, args, k2)  # noqa: F821
     _rhs(t + h, _stage_point(xs, x, h, k2), ih, args, k3)  # noqa: F821
     _rhs(t + dt, _stage_point(xs, x, dt, k3), i1, args, k4)  # noqa: F821
     _rk4_combine(dt, k1, k2, k3, k4)
-    return i1
 
 
 def _rkmk4_template(t, y, R, dt, args, work, Rwork):
@@ -150,7 +158,9 @@ def rkmk4_rwork() -> np.ndarray:
     return np.empty((2, 3, 3))
 
 
-def _specialise(template: Callable, rhs, inputs, prefix: str, inline: bool = False):
+def _specialise(
+    template: Callable, rhs, inputs, prefix: str, inline: bool = False, **extra: Callable
+):
     """Compile `template` with `_rhs`/`_inputs` bound to the model's jitted functions (module doc);
     inline=True makes it a `mf_envs._jit.kernel` that LLVM inlines into its callers
     (`forceinline`; numba's IR inlining, `inline="always"`, cost minutes of compilation here).
@@ -163,11 +173,13 @@ def _specialise(template: Callable, rhs, inputs, prefix: str, inline: bool = Fal
     code = template.__code__.replace(
         co_filename=py.__code__.co_filename, co_name=name, co_qualname=name
     )
-    glb = dict(template.__globals__, _rhs=rhs, _inputs=inputs)
+    glb = dict(template.__globals__, _rhs=rhs, _inputs=inputs, **extra)
     fn = types.FunctionType(code, glb, name)
     fn.__module__, fn.__doc__ = py.__module__, template.__doc__
     if inline:
         return kernel(fn, forceinline=True)
+    if inline is None:  # a small piece spliced into its one caller (numba IR inlining)
+        return numba.njit(cache=True, inline="always")(fn)
     return numba.njit(cache=True)(fn)
 
 
@@ -179,7 +191,14 @@ def make_rk4(rhs, inputs, inline: bool = False):
     `numba.njit` functions;
     `step` is itself jitted and callable from the model's kernels; inline=True makes it a
     kernel that LLVM inlines into them (`_specialise`)."""
-    return _specialise(_rk4_template, rhs, inputs, "rk4", inline)
+    stages = _specialise(_rk4_given_template, rhs, None, "rk4s", True if inline else None)
+    return _specialise(_rk4_template, rhs, inputs, "rk4", inline, _stages=stages)
+
+
+def make_rk4_given(rhs, inline: bool = False):
+    """The RK4 step `step(t, x, dt, args, work, i0, ih, i1)` with the stage inputs at t,
+    t + dt/2, t + dt given (`_rk4_given_template`); rhs and inline as `make_rk4`."""
+    return _specialise(_rk4_given_template, rhs, None, "rk4g", inline)
 
 
 def make_rkmk4(rhs, inputs, inline: bool = False):

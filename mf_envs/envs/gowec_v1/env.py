@@ -28,6 +28,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ROLL,
 )
 from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
+from mf_envs.physics.gowec.hydro.floating import ramp
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -166,7 +167,7 @@ class GOWECV1Env(MFEnv):
         )
         self.state = self.model.initial_state()
         self._t, self._steps, self._last_power = 0.0, 0, 0.0
-        self._vals, self._work = np.zeros(hb.N_VALS), hb.step_work(self.state.shape[0])
+        self._vals, self._work = np.zeros(hb.N_VALS), hb.step_work(self.state.shape[0], 0)
         self._consts_key: tuple | None = None  # `_consts`' cache key
 
     # ------------------------------------------------------------------ public quantities
@@ -213,8 +214,11 @@ class GOWECV1Env(MFEnv):
         truncated = self._steps >= self.max_steps
         obs = np.empty(self.observation_space.shape[0], np.float32)
         loss, lo, hi, limits = self._consts
+        args = self.model._args()
+        if self._work.shape[0] != hb.step_work_size(self.state.shape[0], args[9].shape[0]):
+            self._work = hb.step_work(self.state.shape[0], args[9].shape[0])  # a new sea's size
         ok, y, finite, over, out = step_one(
-            t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
+            t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, args,
             self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals,
             self._work, lo, hi, obs, limits, self.preview_times,
         )  # fmt: skip
@@ -335,9 +339,10 @@ class GOWECV1Env(MFEnv):
     def _get_obs(self) -> np.ndarray:
         obs = np.empty(self.observation_space.shape[0], np.float32)
         a, w = self.model._args(), self.wave
+        eta = float(hb.elevation(self._t, w.amplitudes, a[9], w.phases) * ramp(self._t, a[13][1]))
         observe_one(self.state, self._t, w.amplitudes, a[9], w.phases, a[13][1],
                     self.preview_times, self.observation_space.low, self.observation_space.high,
-                    obs)  # fmt: skip
+                    obs, eta)  # fmt: skip
         return obs
 
     def _draw_frame(self) -> np.ndarray:

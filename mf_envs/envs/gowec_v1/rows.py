@@ -12,17 +12,23 @@ import numpy as np
 
 from mf_envs._jit import kernel
 from mf_envs.envs.gowec_v1.spec import I_ELEVATION
-from mf_envs.physics.gowec.hydro.batch import elevation, end_state, step_row, step_work
+from mf_envs.physics.gowec.hydro.batch import (
+    V_ELEVATION,
+    elevation,
+    end_state,
+    step_row,
+    step_work,
+)
 from mf_envs.physics.gowec.hydro.floating import ramp
 
 
 @numba.njit(cache=True)
-def observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs):
+def observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs, eta):
     """(sin phi, cos phi, phi', hull body rates (cos rho theta', rho', sin rho theta'), theta,
-    rho) of the state y, the incident wave's elevation at the buoy at t (a wave probe) and,
-    when `preview` (s ahead, (n,)) is not empty, at t + preview[j] (a perfect forecast of the
-    incident sea, ramped as the sea is), as float32 into obs (9 + n,), clipped to [lo, hi];
-    True if all finite."""
+    rho) of the state y, the incident wave's elevation at the buoy at t, eta (m, ramped: a wave
+    probe; `step_row`'s V_ELEVATION) and, when `preview` (s ahead, (n,)) is not empty, at
+    t + preview[j] (a perfect forecast of the incident sea, ramped as the sea is), as float32
+    into obs (9 + n,), clipped to [lo, hi]; True if all finite."""
     v = (math.sin(y[2]), math.cos(y[2]), y[5], math.cos(y[1]) * y[3], y[4],
          math.sin(y[1]) * y[3], y[0], y[1])  # fmt: skip
     finite = True
@@ -31,9 +37,12 @@ def observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs):
         obs[j] = x
         finite = finite and math.isfinite(x)
     for j in range(preview.shape[0] + 1):
-        tj = t if j == 0 else t + preview[j - 1]
         k = I_ELEVATION + j  # the probe, then the preview slots after the layout
-        x = np.float32(elevation(tj, amp, om, eps) * ramp(tj, tramp))
+        if j == 0:
+            x = np.float32(eta)
+        else:
+            tj = t + preview[j - 1]
+            x = np.float32(elevation(tj, amp, om, eps) * ramp(tj, tramp))
         x = min(max(x, lo[k]), hi[k])
         obs[k] = x
         finite = finite and math.isfinite(x)
@@ -50,7 +59,7 @@ def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tai
     translation; the same for every row); o_lo, o_hi the observation
     bounds. Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`)."""
     _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
-          loss, vals, ok, o_lo, o_hi, obs, preview, step_work(Y.shape[1]))  # fmt: skip
+          loss, vals, ok, o_lo, o_hi, obs, preview, step_work(Y.shape[1], om.shape[1]))  # fmt: skip
 
 
 @kernel
@@ -71,7 +80,8 @@ def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, a
             yi = Y[i]
             for j in range(m):
                 yi[j] = w[5 * m + j]
-            observe_one(yi, t1[i], amp[i], om[i], eps[i], tail[0][1], preview, o_lo, o_hi, obs[i])
+            observe_one(yi, t1[i], amp[i], om[i], eps[i], tail[0][1], preview, o_lo, o_hi, obs[i],
+                        vals[i, V_ELEVATION])  # fmt: skip
 
 
 @numba.njit(cache=True)
@@ -85,7 +95,8 @@ def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, 
     y1 = end_state(w, y.shape[0]).copy()  # the env keeps it as its state
     if not ok:
         return False, y1, False, False, False
-    finite = observe_one(y1, t1, amp, args[9], eps, args[13][1], preview, lo, hi, obs)
+    finite = observe_one(y1, t1, amp, args[9], eps, args[13][1], preview, lo, hi, obs,
+                         vals[V_ELEVATION])  # fmt: skip
     over = abs(y1[5]) > limits[0]
     out = max(abs(y1[0]), abs(y1[1])) > limits[1]
     return True, y1, finite, over, out

@@ -43,8 +43,9 @@ from mf_envs.physics.gowec.hydro.batch import (
     INFO_SLOTS,
     N_VALS,
     RATES,
+    V_ELEVATION,
     V_ENERGY,
-    state_values_into,
+    state_values,
 )
 from mf_envs.physics.gowec.hydro.floating import (
     N_LOADS,
@@ -72,9 +73,10 @@ def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, tail, amp, eps, va
         steps[i] = 0
         v = vals[i]
         v[:] = 0.0
-        state_values_into(0.0, y, 0.0, (*shared, om[i], cp[i], cr[i], dk[i], *tail), amp[i],
-                          eps[i], v)  # fmt: skip
-        observe_one(y, 0.0, amp[i], om[i], eps[i], tail[0][1], preview, lo, hi, obs[i])
+        state_values(0.0, y, 0.0, (*shared, om[i], cp[i], cr[i], dk[i], *tail), amp[i], eps[i],
+                     v)  # fmt: skip
+        observe_one(y, 0.0, amp[i], om[i], eps[i], tail[0][1], preview, lo, hi, obs[i],
+                    v[V_ELEVATION])  # fmt: skip
 
 
 class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):

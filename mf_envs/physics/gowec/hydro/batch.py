@@ -50,19 +50,26 @@ def elevation(t, amp, om, eps):
 
 
 @numba.njit(cache=True)
-def step_work(n_state):
-    """`step_row`'s temporaries for a state of n_state: the RK4 stage slopes and stage state
-    (5, n_state) and the end state (n_state,), as one flat buffer (one array: cheap to pass
+def step_work(n_state, n_components):
+    """`step_row`'s temporaries for a state of n_state and a sea of n_components: the RK4 stage
+    slopes and stage state (5, n_state), the end state (n_state,) and the components' phasors
+    (4, n_components) (`floating.rk4_steps_into`), as one flat buffer (one array: cheap to pass
     from Python; `step_row` carves it)."""
-    return np.zeros(6 * n_state)
+    return np.zeros(step_work_size(n_state, n_components))
+
+
+@numba.njit(cache=True, inline="always")
+def step_work_size(n_state, n_components):
+    """The length of `step_work`'s buffer."""
+    return 6 * n_state + 4 * n_components
 
 
 @kernel(forceinline=True)
-def state_values_into(t, y, tau, args, amp, eps, vals):
+def state_values_into(t, y, tau, args, amp, eps, vals, inp):
     """Slots V_PITCH..V_ELEVATION of `step_row`'s values (its docstring) at (t, y) with the PTO
     command tau: the buoy and gimbal state, the excitation moment, the gyro moment
-    (`_gyro_pitch`) and the elevation, for the sea (args, amp, eps)."""
-    inp = sea_inputs(t, args[9], args[10], args[11], args[12], args[13])
+    (`_gyro_pitch`) and the elevation, for the sea (args, amp, eps) whose loads at t are inp
+    (`floating.sea_inputs`)."""
     vals[V_PITCH], vals[V_ROLL], vals[V_PITCH_RATE], vals[V_ROLL_RATE] = y[0], y[1], y[3], y[4]
     vals[V_EXCITATION] = inp[0]
     vals[V_GYRO] = _gyro_pitch(mechanics(t, y, tau, args, inp))
@@ -72,8 +79,10 @@ def state_values_into(t, y, tau, args, amp, eps, vals):
 
 @numba.njit(cache=True)
 def state_values(t, y, tau, args, amp, eps, vals):
-    """`state_values_into`, callable from Python (the single env's reset info)."""
-    state_values_into(t, y, tau, args, amp, eps, vals)
+    """`state_values_into` with the sea's loads at t, callable from Python and from the vector
+    env's resets (the reset info)."""
+    inp = sea_inputs(t, args[9], args[10], args[11], args[12], args[13])
+    state_values_into(t, y, tau, args, amp, eps, vals, inp)
 
 
 @kernel(forceinline=True)
@@ -90,8 +99,8 @@ def _gyro_pitch(mech):
 @kernel
 def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     """One control step from (t0, y) to t1 = t0 + dtc (s) with the PTO command tau (N m) held
-    over n RK4 substeps of dt (w = `step_work`; the new state y1 is written into its last
-    n_state entries, `end_state(w, n_state)`). Returns ok: False if y1 is not finite (then
+    over n RK4 substeps of dt (w = `step_work`; the new state y1 is written into its entries
+    5 n_state..6 n_state, `end_state(w, n_state)`). Returns ok: False if y1 is not finite (then
     `vals` is untouched); else vals (N_VALS,) = (net electrical power W, mechanical power W,
     pitch rad, roll rad, pitch rate rad/s, roll rate rad/s, excitation moment N m, gyro moment
     N m, gimbal angle rad, gimbal rate rad/s, elevation m, net electrical energy J), the
@@ -102,8 +111,11 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     y1 = w[5 * m : 6 * m]
     for i in range(m):  # element-wise: a slice copy may allocate (no runtime here)
         y1[i] = y[i]
+    nc = args[9].shape[0]
+    ph = w[6 * m : 6 * m + 4 * nc].reshape((4, nc))
+    inp = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # the sea at t1 (below)
     try:  # a zero pivot of the 3 x 3 solve raises ZeroDivisionError (numba's float division)
-        rk4_steps_into(t0, y1, tau, dt, n, args, w[: 5 * m].reshape((5, m)))
+        inp = rk4_steps_into(t0, y1, tau, dt, n, args, w[: 5 * m].reshape((5, m)), ph)
     except Exception:  # noqa: BLE001
         y1[0] = np.nan
     for i in range(m):
@@ -111,7 +123,7 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
             return False
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
     vals[V_POWER], vals[V_POWER_MECH] = p_el, (y1[k + 3] - y[k + 3]) / dtc
-    state_values_into(t1, y1, tau, args, amp, eps, vals)
+    state_values_into(t1, y1, tau, args, amp, eps, vals, inp)
     vals[V_ENERGY] = p_el * dtc
     return True
 

@@ -29,6 +29,12 @@ The PTO torque M_g = clip(tau_cmd + c phi' + k phi) (torque and power limits) is
 RK4 stage: a damper held over a control step is unstable once c dt / J > 2 (docs/design.md).
 `engine_model` builds the same system in the general multibody engine; a test checks the two.
 
+The RK4 step evaluates the sea at t, t + dt/2 and t + dt of each substep from the wave
+components' phasors (cos, sin of w_i t), taken once per control step and rotated by w_i dt/2
+between stage times (`rk4_steps_into`): for an irregular sea of M components that is 2 M
+sin/cos pairs per control step instead of 3 M per substep, equal to the direct evaluation to
+round-off (tests/test_gowec_v1_physics.py).
+
 Issue 29 adds, each free when off: quadratic Morison drag relative to the incident wave's
 water (`drag_loads`), a ramp of the incident wave (`ramp`), and surge along the wave and heave
 (`translation_params` in `model`; `mechanics` eliminates s'' so the solve stays 3 x 3).
@@ -50,7 +56,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs._jit import kernel
-from mf_envs.frames.steppers import make_rk4, rk4_work
+from mf_envs.frames.steppers import make_rk4_given, rk4_work
 
 N_MECH = 6
 N_ENERGY = 6
@@ -122,20 +128,32 @@ def ramp(t, tr):
     return 0.5 * (1.0 - math.cos(math.pi * t / tr))
 
 
-@kernel(forceinline=True)
+@numba.njit(cache=True)
 def sea_inputs(t, om, cp, cr, dk, sp):
-    """The sea at time t (s), ramped (`ramp`): (M_x, M_y) (N m), sum Re(c e^{-i w t}) of the
-    excitation coefficients cp (pitch) and cr (roll) (`excitation_coefficients`), then the
-    water's vertical velocity at the N_KEEL keel nodes and its horizontal speed along the wave
+    """The sea at time t (s), ramped (`ramp`): `sea_sum` of the components' phasors at t (for
+    resets and the Python side; the RK4 step forms its stage phasors by rotation instead,
+    `rk4_steps_into`)."""
+    ph = np.empty((2, om.shape[0]))
+    for i in range(om.shape[0]):
+        ph[0, i], ph[1, i] = math.cos(om[i] * t), math.sin(om[i] * t)
+    return sea_sum(ph, ramp(t, sp[1]), cp, cr, dk, sp)
+
+
+@kernel(forceinline=True)
+def sea_sum(ph, r, cp, cr, dk, sp):
+    """The sea from the components' phasors ph (2, M) = (cos w_i t, sin w_i t) at a time t and
+    the ramp factor r there: (M_x, M_y) (N m), sum Re(c e^{-i w t}) of the excitation
+    coefficients cp (pitch) and cr (roll) (`excitation_coefficients`), then the water's
+    vertical velocity at the N_KEEL keel nodes and its horizontal speed along the wave
     direction at the N_SIDE side nodes (m/s), then the surge force along the wave and the heave
     force (N), each sum Re(dk[i, j] e^{-i w_i t}) (zeros, and no work, when neither the drag
-    nor the translation is on)."""
+    nor the translation is on), all times r."""
     mx, my = 0.0, 0.0
     v0, v1, v2, v3, v4, v5, v6, v7 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     fs, fz = 0.0, 0.0
     drag, trans = sp[0] != 0.0, sp[SP_TRANS] != 0.0
-    for i in range(om.shape[0]):
-        c, s = math.cos(om[i] * t), math.sin(om[i] * t)
+    for i in range(ph.shape[1]):
+        c, s = ph[0, i], ph[1, i]
         mx += cp[i].real * c + cp[i].imag * s
         my += cr[i].real * c + cr[i].imag * s
         if drag or trans:
@@ -150,9 +168,19 @@ def sea_inputs(t, om, cp, cr, dk, sp):
             v7 += d[7].real * c + d[7].imag * s
             fs += d[8].real * c + d[8].imag * s
             fz += d[9].real * c + d[9].imag * s
-    r = ramp(t, sp[1])
     return (r * mx, r * my, r * v0, r * v1, r * v2, r * v3, r * v4, r * v5, r * v6, r * v7,
             r * fs, r * fz)  # fmt: skip
+
+
+@kernel(forceinline=True)
+def _advance_phasors(ph):
+    """ph[0:2] (cos w_i t, sin w_i t) -> their values at t + h, by the rotation ph[2:4] =
+    (cos w_i h, sin w_i h): the angle-addition formulas (a few ulp per rotation, against the
+    ~20 ns of a sin/cos pair)."""
+    for i in range(ph.shape[1]):
+        c, s, rc, rs = ph[0, i], ph[1, i], ph[2, i], ph[3, i]
+        ph[0, i] = c * rc - s * rs
+        ph[1, i] = s * rc + c * rs
 
 
 @kernel(forceinline=True)
@@ -432,15 +460,7 @@ def _stage_rhs(t, x, inp, args, out):
     deriv_into(t, x, args[0], args[1], inp, out)
 
 
-@kernel(forceinline=True)
-def _stage_excitation(t, args):
-    """The sea (`sea_inputs`) at t: the template evaluates it once at each of t, t + dt/2
-    and t + dt (the two middle stages share it)."""
-    a = args[1]
-    return sea_inputs(t, a[9], a[10], a[11], a[12], a[13])
-
-
-_rk4 = make_rk4(_stage_rhs, _stage_excitation, inline=True)
+_rk4 = make_rk4_given(_stage_rhs, inline=True)
 
 
 @numba.njit(cache=True)
@@ -450,21 +470,36 @@ def rk4_steps(t, y, tau, dt, n, args):
     `deriv` (`pack`).
     The stage loop is the one of `mf_envs.frames.kernels.make_rk4`."""
     y = y.copy()
-    rk4_steps_into(t, y, tau, dt, n, args, rk4_work(y.shape[0]))
+    rk4_steps_into(t, y, tau, dt, n, args, rk4_work(y.shape[0]), np.empty((4, args[9].shape[0])))
     return y
 
 
 @kernel
-def rk4_steps_into(t, y, tau, dt, n, args, work):
-    """`rk4_steps` in place on y with caller-owned temporaries work = `rk4_work(n_state)` (no
-    allocation: the env's step calls it every control step)."""
+def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
+    """`rk4_steps` in place on y with caller-owned temporaries work = `rk4_work(n_state)` and
+    ph (4, M) (M wave components; no allocation: the env's step calls it every control step).
+    The sea is evaluated at t, t + dt/2, t + dt of every substep (as `make_rk4` does) from the
+    components' phasors: cos/sin of w_i t once, then rotated by w_i dt/2 (`_advance_phasors`).
+    Returns the sea (`sea_sum`) at the end time t + n dt."""
+    om, cp, cr, dk, sp = args[9], args[10], args[11], args[12], args[13]
+    h = 0.5 * dt
+    for i in range(om.shape[0]):
+        ph[0, i], ph[1, i] = math.cos(om[i] * t), math.sin(om[i] * t)
+        ph[2, i], ph[3, i] = math.cos(om[i] * h), math.sin(om[i] * h)
     full = (tau, args)
+    i1 = sea_sum(ph, ramp(t, sp[1]), cp, cr, dk, sp)
     for _ in range(n):
-        _rk4(t, y, dt, full, work)
+        i0 = i1
+        _advance_phasors(ph)
+        ih = sea_sum(ph, ramp(t + h, sp[1]), cp, cr, dk, sp)
+        _advance_phasors(ph)
+        i1 = sea_sum(ph, ramp(t + dt, sp[1]), cp, cr, dk, sp)
+        _rk4(t, y, dt, full, work, i0, ih, i1)
         dy = work[0]
         for i in range(y.shape[0]):
             y[i] += dy[i]
         t += dt
+    return i1
 
 
 def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray,
