@@ -1,7 +1,7 @@
 """Compute the ISWEC-class hull's surge/heave/pitch coefficients with Capytaine (BEM, issue 29).
 
     pip install "mf-envs[hydro]"
-    nice -n 10 python scripts/compute_hydro_3dof.py      # writes the shipped file (~4 min)
+    nice -n 10 python scripts/compute_hydro_3dof.py      # writes the shipped file (~30 min)
     nice -n 10 python scripts/compute_hydro_3dof.py --out h.npz --radius 5 --draft 3 --depth 50
 
 The hull is a vertical circular cylinder standing in for the ISWEC Pantelleria prototype
@@ -24,9 +24,7 @@ import numpy as np
 
 from mf_envs.physics.gowec.hydro import CylinderHull
 from mf_envs.physics.gowec.hydro.bem import three_dof_from_capytaine
-from mf_envs.physics.gowec.hydro.three_dof import ISWEC_HULL_FILE
-
-ISWEC_MESH = (128, 16, 48, 1.1)  # (n_theta, n_side, n_bottom, ratio): docs/gowec_v1.md
+from mf_envs.physics.gowec.hydro.three_dof import ISWEC_HULL_FILE, ISWEC_MESH
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -9,7 +9,7 @@ import pytest
 
 from mf_envs.physics.gowec.hydro import CylinderHull, load_hull
 from mf_envs.physics.gowec.hydro.meshes import cylinder_profile, graded
-from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
+from mf_envs.physics.gowec.hydro.three_dof import ISWEC_MESH, ThreeDofCoefficients
 
 
 def test_graded_stations():
@@ -70,7 +70,7 @@ def test_three_dof_pipeline_reproduces_the_iswec_table():
     h = ThreeDofCoefficients.load()
     idx = [3, 8, 12, 20]  # 0.5, 1.0 (finite-depth Green function), 1.4, 2.2 rad/s (deep)
     hull = CylinderHull(h.radius, h.draft, h.zg, h.gyration)
-    new = three_dof_from_capytaine(hull, h.omega[idx], h.water_depth, (128, 16, 48, 1.1))
+    new = three_dof_from_capytaine(hull, h.omega[idx], h.water_depth, ISWEC_MESH)
     # the finite-depth Green function's Prony fit is not bit-reproducible: 1e-4 of the largest
     # coefficient (the physics tests' tolerances are 2-5 %)
     for M, N in ((new.damping, h.damping[idx]), (new.added_mass, h.added_mass[idx])):

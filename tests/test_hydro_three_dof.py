@@ -25,8 +25,8 @@ def band(hull):
 
 
 def _resolved(hull, band, mode):
-    """Where B_ii is >= 10 % of its peak: above ~2.4 rad/s heave and pitch damping of this
-    flat hull fall exponentially (e^{-2 k d}) and the near-field value is mesh error."""
+    """Where B_ii is >= 10 % of its peak (the cross terms' scale is taken there only: above
+    ~2.4 rad/s heave and pitch damping of this flat hull fall like e^{-2 k d})."""
     B = hull.damping[:, mode, mode]
     return band & (B >= 0.1 * B.max())
 
@@ -43,13 +43,13 @@ def test_the_file_is_the_iswec_class_cylinder(hull):
 @pytest.mark.parametrize("mode", [SURGE, HEAVE, PITCH])
 def test_haskind_each_mode(hull, band, mode):
     # near field (pressure integral) vs far field (excitation), finite depth (c_g of 35 m):
-    # within 5 % wherever B_ii >= 10 % of its peak (surge: all of 0.3-3 rad/s; heave to 2.4,
-    # pitch to 2.3 rad/s), and within 3 % of the peak everywhere in 0.3-3 rad/s
+    # within 5 % at every tabulated frequency in 0.3-3 rad/s (measured: surge 0.4 %, heave
+    # 2.6 %, pitch 3.0 %, the last two at 2.9-3 rad/s, where B33 and B55 are 0.7-1.7 % of their
+    # peaks); the table's two frequencies above 3 rad/s are outside the band (pitch 0.49-0.96)
     Bh = haskind_matrix(hull)[:, mode, mode]
     B = hull.damping[:, mode, mode]
-    ok = _resolved(hull, band, mode)
-    assert np.max(np.abs(Bh[ok] / B[ok] - 1.0)) < 0.05
-    assert np.max(np.abs(Bh[band] - B[band])) < 0.03 * B.max()
+    assert band.sum() == 28
+    assert np.max(np.abs(Bh[band] / B[band] - 1.0)) < 0.05
 
 
 def test_haskind_surge_pitch_coupling(hull, band):
@@ -63,9 +63,9 @@ def test_haskind_surge_pitch_coupling(hull, band):
 def test_reciprocity(hull, band):
     # A_ij = A_ji and B_ij = B_ji (Green's theorem; Newman 1977 ch. 6). The collocation BEM is
     # not exactly symmetric: the gap, relative to sqrt(M_11 M_55) (its weight in u^T M u), is
-    # <= 1.05 % for A and 2.4-4.2 % for B where the pitch damping is resolved
+    # <= 0.28 % for A and <= 0.45 % for B where B55 >= 10 % of its peak
     ok = _resolved(hull, band, PITCH)
-    for M, sel, tol in ((hull.added_mass, slice(None), 0.02), (hull.damping, ok, 0.05)):
+    for M, sel, tol in ((hull.added_mass, slice(None), 0.01), (hull.damping, ok, 0.01)):
         scale = np.sqrt(np.abs(M[sel, SURGE, SURGE] * M[sel, PITCH, PITCH]))
         assert np.max(np.abs(M[sel, SURGE, PITCH] - M[sel, PITCH, SURGE]) / scale) < tol
     # heave decouples from surge and pitch on an axisymmetric hull (odd vs even in x)

@@ -38,6 +38,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 ISWEC_HULL_FILE = Path(__file__).with_name("iswec_cylinder_3dof.npz")
+# the file's mesh, (n_theta, n_side, n_bottom, ratio) of `meshes.cylinder_mesh` (docs/gowec_v1.md,
+# "ISWEC-class hull"): 192 x (24 + 48) panels graded 1.04 towards the keel edge
+ISWEC_MESH = (192, 24, 48, 1.04)
 MODES = (1, 3, 5)
 _MATRICES = ("added_mass", "damping")
 _FIXED = ("added_mass_inf", "hydrostatic_stiffness", "mass_matrix")
