@@ -19,19 +19,9 @@ import numpy as np
 
 from mf_envs.physics.beam.algorithmic import _geo, _sinc_half
 from mf_envs.physics.beam.banded import HALF_BW
-from mf_envs.physics.beam.element import N_GAUSS, shape_functions
+from mf_envs.physics.beam.fused import quadrature_tables  # noqa: F401  (its home was here)
+from mf_envs.physics.beam.element import N_GAUSS
 from mf_envs.physics.serpentine.friction import LOC
-
-
-def quadrature_tables(le: np.ndarray, qxi: np.ndarray) -> np.ndarray:
-    """(n_el, nq, 10): N_z' (4), N_psi (3), N_psi' (3) of every element at the quadrature
-    points qxi (`beam.element.quadrature`; Eqs. 69-70, 73)."""
-    out = np.empty((le.shape[0], qxi.shape[0], 10))
-    for e, h in enumerate(le):
-        for g, x in enumerate(qxi):
-            _, dnz, npsi, dnpsi = shape_functions(x, h)
-            out[e, g] = np.concatenate([dnz, npsi, dnpsi])
-    return out
 
 
 @numba.njit(cache=True, nogil=True)
