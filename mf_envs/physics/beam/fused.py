@@ -15,17 +15,18 @@ The arithmetic is `beam.algorithmic.assemble_algorithmic_into`'s, rearranged:
 * the element's force and matrix (internal + load) reach the band once per element.
 
 Equal to the beam's assembly to round-off (tests/test_serpentine.py, tests/test_swimmer.py).
-`band_lu_solve` is `beam.banded.band_solve_into` without reference counting (the same bits).
+`solve`: the Newton correction by a block tridiagonal LU (`block_solve`).
 """
 
 from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.physics.beam.banded import HALF_BW, N_BAND
+from mf_envs.physics.beam.banded import HALF_BW, N_BAND, band_solve_into
 from mf_envs.physics.beam.element import GAUSS_XI, shape_functions
 
 N_GAUSS = 4
@@ -220,69 +221,118 @@ def add_mass(mass, c_a, x, r, ab):
             ab[HALF_BW + i - j, j] += c_a * mij
 
 
+BS = 6
+
+
+@kernel(forceinline=True)
+def _entry(ab, i, k):
+    o = HALF_BW + i - k
+    if o < 0 or o >= N_BAND:
+        return 0.0
+    return ab[o, k]
+
+
 @kernel
-def band_lu_solve(ab, r, work, piv, x):
-    """`beam.banded.band_solve_into` (LU with partial pivoting within the band, LAPACK
-    dgbtf2/dgbtrs's algorithm; the same operations, the same bits) without reference
-    counting and with the full-width columns' loops at their literal length."""
+def block_solve(ab, r, work, x):
+    """Solve K x = r for the beam's banded K (21, n) (`beam.banded` storage) as the block
+    tridiagonal matrix it is: dofs in blocks of 6 (node j's 5 and the mid node of element j),
+    element j couples blocks j and j + 1 only. Block LU (Thomas): D_J = A_JJ - L_J X_{J-1},
+    X_J = D_J^-1 U_J, by Gaussian elimination with partial pivoting within the block on the
+    rows [D_J | U_J | y_J]; x_J = z_J - X_J x_{J+1}. About half the operations of the band LU
+    (which pivots across blocks and fills 2 HALF_BW superdiagonals). work (n, >= 12) float
+    scratch; x (n,) receives the solution. Returns 0, or k + 1 if block pivot k is zero (then
+    use `solve`'s band LU)."""
     n = r.shape[0]
-    kl = HALF_BW
-    kv = 2 * HALF_BW
-    for j in range(n):
-        for k in range(kl):
-            work[j, k] = 0.0
-        for k in range(N_BAND):
-            work[j, kl + k] = ab[k, j]
-    ju = 0
-    for j in range(n):
-        km = min(kl, n - 1 - j)
-        jp = 0
-        big = abs(work[j, kv])
-        for t in range(1, km + 1):
-            if abs(work[j, kv + t]) > big:
-                big = abs(work[j, kv + t])
-                jp = t
-        piv[j] = j + jp
-        if work[j, kv + jp] == 0.0:
-            return j + 1
-        ju = max(ju, min(j + HALF_BW + jp, n - 1))
-        if jp != 0:
-            for c in range(j, ju + 1):
-                tmp = work[c, kv + j - c]
-                work[c, kv + j - c] = work[c, kv + j + jp - c]
-                work[c, kv + j + jp - c] = tmp
-        inv = 1.0 / work[j, kv]
-        for t in range(1, km + 1):
-            work[j, kv + t] *= inv
-        if km == HALF_BW:
-            for c in range(j + 1, ju + 1):
-                o = kv + j - c
-                ujc = work[c, o]
-                if ujc != 0.0:
-                    for t in range(1, HALF_BW + 1):
-                        work[c, o + t] -= work[j, kv + t] * ujc
-        else:
-            for c in range(j + 1, ju + 1):
-                o = kv + j - c
-                ujc = work[c, o]
-                if ujc != 0.0:
-                    for t in range(1, km + 1):
-                        work[c, o + t] -= work[j, kv + t] * ujc
-    for i in range(n):
-        x[i] = r[i]
-    for j in range(n - 1):
-        km = min(kl, n - 1 - j)
-        jp = piv[j]
-        if jp != j:
-            tmp = x[j]
-            x[j] = x[jp]
-            x[jp] = tmp
-        xj = x[j]
-        for t in range(1, km + 1):
-            x[j + t] -= work[j, kv + t] * xj
-    for j in range(n - 1, -1, -1):
-        x[j] /= work[j, kv]
-        xj = x[j]
-        for i in range(max(0, j - kv), j):
-            x[i] -= work[j, kv + i - j] * xj
+    nb = (n + BS - 1) // BS
+    for jb in range(nb):
+        o = BS * jb
+        bs = min(BS, n - o)
+        on = o + bs
+        bn = min(BS, n - on) if jb + 1 < nb else 0
+        # augmented rows [D | U | y], D = A_JJ - L X_{J-1}, y = r_J - L z_{J-1}
+        for i in range(bs):
+            row = work[o + i]
+            for k in range(bs):
+                row[k] = _entry(ab, o + i, o + k)
+            for k in range(bn):
+                row[BS + k] = _entry(ab, o + i, on + k)
+            yi = r[o + i]
+            if jb > 0:
+                for m in range(BS):
+                    lim = _entry(ab, o + i, o - BS + m)
+                    if lim != 0.0:
+                        prow = work[o - BS + m]
+                        for k in range(bs):
+                            row[k] -= lim * prow[BS + k]
+                        yi -= lim * x[o - BS + m]
+            x[o + i] = yi
+        # Gaussian elimination with partial pivoting within the block, on the augmented rows
+        for k in range(bs):
+            p = k
+            big = abs(work[o + k, k])
+            for i in range(k + 1, bs):
+                a = abs(work[o + i, k])
+                if a > big:
+                    big = a
+                    p = i
+            if not big > 0.0:
+                return o + k + 1
+            if p != k:
+                rk, rp = work[o + k], work[o + p]
+                for c in range(bs):
+                    t = rk[c]
+                    rk[c] = rp[c]
+                    rp[c] = t
+                for c in range(bn):
+                    t = rk[BS + c]
+                    rk[BS + c] = rp[BS + c]
+                    rp[BS + c] = t
+                t = x[o + k]
+                x[o + k] = x[o + p]
+                x[o + p] = t
+            rk = work[o + k]
+            inv = 1.0 / rk[k]
+            for i in range(k + 1, bs):
+                ri = work[o + i]
+                lik = ri[k] * inv
+                if lik != 0.0:
+                    for c in range(k + 1, bs):
+                        ri[c] -= lik * rk[c]
+                    for c in range(bn):
+                        ri[BS + c] -= lik * rk[BS + c]
+                    x[o + i] -= lik * x[o + k]
+        # back substitution: X_J = D^-1 U_J, z_J = D^-1 y_J
+        for k in range(bs - 1, -1, -1):
+            rk = work[o + k]
+            inv = 1.0 / rk[k]
+            for c in range(bn):
+                rk[BS + c] *= inv
+            x[o + k] *= inv
+            for i in range(k):
+                ri = work[o + i]
+                uik = ri[k]
+                if uik != 0.0:
+                    for c in range(bn):
+                        ri[BS + c] -= uik * rk[BS + c]
+                    x[o + i] -= uik * x[o + k]
+    # x_J = z_J - X_J x_{J+1}
+    for jb in range(nb - 2, -1, -1):
+        o = BS * jb
+        on = o + BS
+        bn = min(BS, n - on)
+        for i in range(BS):
+            row = work[o + i]
+            s = x[o + i]
+            for c in range(bn):
+                s -= row[BS + c] * x[on + c]
+            x[o + i] = s
     return 0
+
+
+@numba.njit(cache=True, nogil=True)
+def solve(ab, r, work, piv, x):
+    """x with K x = r by `block_solve`, or `beam.banded.band_solve_into` (pivoting across the
+    blocks) if a block pivot is zero. Returns 0, or k + 1 if K is singular."""
+    if block_solve(ab, r, work, x) == 0:
+        return 0
+    return band_solve_into(ab, r, work, piv, x)

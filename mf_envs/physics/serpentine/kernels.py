@@ -130,7 +130,7 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
     for it in range(1, max_iter + 1):
         _residual(d0, v0, d, dt, th, theta_s, rate, le, mass, k0, k1, quad, ground, pre, buf, v,
                   ab, e11, ke)  # fmt: skip
-        if fused.band_lu_solve(ab, buf[0], work, piv, x) != 0:
+        if fused.solve(ab, buf[0], work, piv, x) != 0:
             return -it
         halved = False
         if it > 1:

@@ -129,7 +129,7 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
         _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf, v, ab,
                   e11, ke)  # fmt: skip
         tail_into(dth, vth, law, r, ab, -th, -2.0 * th / dt)
-        if fused.band_lu_solve(ab, r, work, piv, x) != 0:
+        if fused.solve(ab, r, work, piv, x) != 0:
             return -1
         step = 0.0
         for i in range(nd):
