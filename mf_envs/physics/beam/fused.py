@@ -224,6 +224,15 @@ def add_mass(mass, c_a, x, r, ab):
 BS = 6
 
 
+@kernel
+def scaled_norm2(r, scale):
+    """sum_i (r_i scale_i)^2."""
+    acc = 0.0
+    for i in range(r.shape[0]):
+        acc += (r[i] * scale[i]) ** 2
+    return acc
+
+
 @kernel(forceinline=True)
 def _entry(ab, i, k):
     o = HALF_BW + i - k

@@ -39,7 +39,7 @@ from mf_envs.physics.beam import fused
 from mf_envs.physics.beam.banded import HALF_BW, N_BAND
 from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
 from mf_envs.physics.serpentine.gait import gait_kappa_into
-from mf_envs.physics.serpentine.kernels import bending_work
+from mf_envs.physics.serpentine.kernels import PREDICTOR_RATIO, bending_work
 from mf_envs.physics.swimmer.fluid import (
     W_MA,
     W_RESISTIVE,
@@ -107,28 +107,48 @@ def _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, b
 def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv):
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); quad = (weights,
     rigidities, dof scales, `internal.quadrature_tables`); water = (nzt, npt, law)
-    (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the
-    constant-velocity predictor; th = (theta of the water force, theta of the stresses).
+    (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the predictor of
+    `serpentine.kernels` (the constant-velocity configuration, or the start if its residual is
+    far smaller); th = (theta of the water force, theta of the stresses).
     Returns the Newton iterations, or -1 on failure."""
     nzt, npt, law = water
     th, th_s = th
     m_a = law[W_MA]
     nd = d0.shape[0]
-    for i in range(nd):
-        d[i] = d0[i] + dt * v0[i]
     u_scale, tab = quad[2], quad[3]
-    ab = np.empty((N_BAND, nd))
-    buf = np.empty((5, nd))
+    ab, ab2 = np.empty((N_BAND, nd)), np.empty((N_BAND, nd))
+    buf, buf2 = np.empty((4, nd)), np.empty((4, nd))
     e11 = np.empty((5, 11))
     ke = np.empty((11, 11))
     pre = np.empty((le.shape[0], tab.shape[1], fused.N_START))
-    r, x, dth, vth, p0 = buf[0], buf[1], buf[2], buf[3], buf[4]
+    p0 = np.empty(nd)
     added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
     fused.start_strains(d0, le, k0, tab, pre)
+    # predictor (`serpentine.kernels`): the start d0 if its residual is below PREDICTOR_RATIO
+    # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
+    # iteration's
+    for i in range(nd):
+        d[i] = d0[i]
+    _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
+              ke)  # fmt: skip
+    tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
+    for i in range(nd):
+        d[i] = d0[i] + dt * v0[i]
+    _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf2, v, ab2, e11,
+              ke)  # fmt: skip
+    tail_into(buf2[2], buf2[3], law, buf2[0], ab2, -th, -2.0 * th / dt)
+    n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
+    if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
+        buf, ab = buf2, ab2
+    else:
+        for i in range(nd):
+            d[i] = d0[i]
+    r, x = buf[0], buf[1]
     for it in range(1, max_iter + 1):
-        _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf, v, ab,
-                  e11, ke)  # fmt: skip
-        tail_into(dth, vth, law, r, ab, -th, -2.0 * th / dt)
+        if it > 1:
+            _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf, v, ab,
+                      e11, ke)  # fmt: skip
+            tail_into(buf[2], buf[3], law, r, ab, -th, -2.0 * th / dt)
         if fused.solve(ab, r, work, piv, x) != 0:
             return -1
         step = 0.0
