@@ -26,8 +26,8 @@ import numpy as np
 from mf_envs.envs._beam_robot import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
 from mf_envs.envs.serpentine.rows import body_state
 from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.swimmer.fluid import shape_tables
-from mf_envs.physics.swimmer.internal import quadrature_tables
 from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],

@@ -106,7 +106,7 @@ def _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, b
 @numba.njit(cache=True, nogil=True)
 def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv):
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); quad = (weights,
-    rigidities, dof scales, `internal.quadrature_tables`); water = (nzt, npt, law)
+    rigidities, dof scales, `beam.fused.quadrature_tables`); water = (nzt, npt, law)
     (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the predictor of
     `serpentine.kernels` (the constant-velocity configuration, or the start if its residual is
     far smaller); th = (theta of the water force, theta of the stresses).
