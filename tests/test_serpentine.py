@@ -338,8 +338,8 @@ def test_fused_newton_residual_equals_the_beam_and_ground_assemblies(viscous):
         k_dense += band_to_dense(ab_g)
         fused.start_strains(d0, m.le, k0, quad[4], pre)
         v_out = np.empty(nd)
-        kernels._residual(d0, v0, d, dt, th, 0.5 + rate, rate, m.le, m.mass, k0, k1, quad, ground,
-                          pre, buf, v_out, ab, e11, ke)  # fmt: skip
+        kernels._residual(d0, v0, d, dt, th, 0.5 + rate, rate, m.le, 2.0 / dt**2 * m.mass, k0, k1,
+                          quad, ground, pre, buf, v_out, ab, e11, ke)  # fmt: skip
         assert np.max(np.abs(buf[0] - r0)) <= 1e-12 * np.max(np.abs(r0))
         assert np.max(np.abs(band_to_dense(ab) - k_dense)) <= 1e-13 * np.max(np.abs(k_dense))
         np.testing.assert_allclose(v_out, v, rtol=1e-15, atol=1e-15)

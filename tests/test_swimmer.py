@@ -273,8 +273,8 @@ def test_fused_newton_residual_equals_the_beam_and_water_assemblies(linear):
         buf, ab = np.empty((5, nd)), np.empty((21, nd))
         e11, ke = np.empty((5, 11)), np.empty((11, 11))
         v_out = np.empty(nd)
-        kernels._residual(d0, v0, d, dt, th, th_s, m.le, m.mass, k0, k1, sw.quad, sw.packed, p0,
-                          pre, buf, v_out, ab, e11, ke)  # fmt: skip
+        kernels._residual(d0, v0, d, dt, th, th_s, m.le, 2.0 / dt**2 * m.mass, k0, k1, sw.quad,
+                          sw.packed, p0, pre, buf, v_out, ab, e11, ke)  # fmt: skip
         tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
         assert np.max(np.abs(buf[0] - r0)) <= 1e-12 * np.max(np.abs(r0))
         assert np.max(np.abs(band_to_dense(ab) - k_dense)) <= 1e-13 * np.max(np.abs(k_dense))

@@ -32,6 +32,7 @@ from mf_envs.physics.beam.element import GAUSS_XI, shape_functions
 N_GAUSS = 4
 LOC = np.array([0, 1, 6, 7, 2, 3, 8, 9, 4, 10, 5], np.int64)
 N_START = 8  # start_strains' values per quadrature point
+BS = 6  # block_solve's block: a node's 5 dofs and its element's mid node
 
 
 def quadrature_tables(le: np.ndarray, qxi: np.ndarray) -> np.ndarray:
@@ -210,18 +211,25 @@ def scatter(e, fe, ke, r, ab):
             ab[HALF_BW + gi - gj, gj] += ke[i, j]
 
 
+@kernel
+def scale_band(mass, c, out):
+    """out = c M (banded, the same storage)."""
+    for k in range(mass.shape[0]):
+        for j in range(mass.shape[1]):
+            out[k, j] = c * mass[k, j]
+
+
 @kernel(forceinline=True)
-def add_mass(mass, c_a, x, r, ab):
-    """r -= c_a M x, ab += c_a M (M banded)."""
+def start_band(cm, x, r, ab):
+    """ab = cm (the banded c_a M of `scale_band`), r -= cm x (row by row of the band:
+    contiguous)."""
     nd = x.shape[0]
-    for j in range(nd):
-        for i in range(max(0, j - HALF_BW), min(nd, j + HALF_BW + 1)):
-            mij = mass[HALF_BW + i - j, j]
-            r[i] -= c_a * mij * x[j]
-            ab[HALF_BW + i - j, j] += c_a * mij
-
-
-BS = 6
+    for k in range(N_BAND):
+        o = k - HALF_BW  # ab[k, j] = K[j + o, j]
+        for j in range(nd):
+            ab[k, j] = cm[k, j]
+        for j in range(max(0, -o), min(nd, nd - o)):
+            r[j + o] -= cm[k, j] * x[j]
 
 
 @kernel

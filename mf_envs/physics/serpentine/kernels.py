@@ -75,12 +75,12 @@ MAX_QUAD = 6  # quadrature points per element (`beam.element.quadrature`: 4 seed
 
 
 @kernel
-def _residual(d0, v0, d, dt, th, theta_s, rate, le, mass, k0, k1, quad, ground, pre, buf, v, ab,
+def _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf, v, ab,
               e11, ke):  # fmt: skip
     """buf[0] = -R(d), ab = dR/dd (module docstring) at the iterate d: the algorithmic force
     (`beam.fused.element_internal`, the start's strains in pre) and the ground's at
-    (d_th, v_th) element by element; buf[1] = d - d0 - dt v0, v = v_{n+1}, buf[2:4] = d_th,
-    v_th."""
+    (d_th, v_th) element by element, the inertia from cm = (2 / dt^2) M (`fused.scale_band`);
+    buf[1] = d - d0 - dt v0, v = v_{n+1}, buf[2:4] = d_th, v_th."""
     qw, stiff, tab, nzt, npt = quad[1], quad[2], quad[4], quad[5], quad[6]
     p, m_a, law = ground
     r, x, dth, vth = buf[0], buf[1], buf[2], buf[3]
@@ -92,9 +92,7 @@ def _residual(d0, v0, d, dt, th, theta_s, rate, le, mass, k0, k1, quad, ground, 
         dth[i] = d0[i] + th * (d[i] - d0[i])
         vth[i] = (1.0 - th) * v0[i] + th * v[i]
         r[i] = 0.0
-    for k in range(ab.shape[0]):
-        for i in range(nd):
-            ab[k, i] = 0.0
+    fused.start_band(cm, x, r, ab)  # r = -c_a M x, ab = c_a M
     on = law[9] > 0.0  # a ground force (effects on)
     cd, cv = -th, -2.0 * th / dt
     nu_v, c_w = law[7], law[8]
@@ -124,7 +122,6 @@ def _residual(d0, v0, d, dt, th, theta_s, rate, le, mass, k0, k1, quad, ground, 
                     for j in range(3):
                         ke[8 + i, 8 + j] -= cv * w * c_w * npsi[i] * npsi[j]
         fused.scatter(e, fe, ke, r, ab)
-    fused.add_mass(mass, 2.0 / (dt * dt), x, r, ab)
 
 
 @numba.njit(cache=True)
@@ -134,7 +131,7 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
     here). damping: the Kelvin-Voigt retardation time tau [s] (module docstring). Returns the Newton iterations, or minus the iterations spent on
     failure (no convergence in max_iter, stagnation, a singular or non-finite correction)."""
     work, piv, buf, ab, e11, pre, ke = sc[0], sc[1], sc[8], sc[10], sc[9], sc[11], sc[12]
-    buf2, ab2 = sc[13], sc[14]
+    buf2, ab2, cm = sc[13], sc[14], sc[15]
     u_scale = quad[3]
     nd = d0.shape[0]
     rate = damping / dt
@@ -142,16 +139,17 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
     # curvature rate (strain shift -rate (kappa#_b - kappa#_a) in the bending stress)
     theta_s = 0.5 + rate
     fused.start_strains(d0, le, k0, quad[4], pre)
+    fused.scale_band(mass, 2.0 / (dt * dt), cm)
     # predictor (module docstring): the start d0 if its residual is below PREDICTOR_RATIO
     # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
     # iteration's
     for i in range(nd):
         d[i] = d0[i]
-    _residual(d0, v0, d, dt, th, theta_s, rate, le, mass, k0, k1, quad, ground, pre, buf, v, ab,
+    _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf, v, ab,
               e11, ke)  # fmt: skip
     for i in range(nd):
         d[i] = d0[i] + dt * v0[i]
-    _residual(d0, v0, d, dt, th, theta_s, rate, le, mass, k0, k1, quad, ground, pre, buf2, v,
+    _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf2, v,
               ab2, e11, ke)  # fmt: skip
     n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
     if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
@@ -163,7 +161,7 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
     back2, back1 = np.inf, np.inf
     for it in range(1, max_iter + 1):
         if it > 1:
-            _residual(d0, v0, d, dt, th, theta_s, rate, le, mass, k0, k1, quad, ground, pre, buf,
+            _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf,
                       v, ab, e11, ke)  # fmt: skip
         if fused.solve(ab, buf[0], work, piv, x) != 0:
             return -it
@@ -391,6 +389,7 @@ def _scratch(n_dof, n_elements):
         np.empty((11, 11)),
         np.empty((5, n_dof)),
         np.zeros((N_BAND, n_dof)),
+        np.empty((N_BAND, n_dof)),
     )
 
 
@@ -398,8 +397,8 @@ def make_scratch(n_dof: int, n_elements: int) -> tuple:
     """The scratch arrays of `advance` / `advance_linear` for a beam of n_elements: the band
     solver's (work, pivots), kappa# at the sub-step ends, states at the sub-step ends, the
     Newton vectors, four element vectors (11,), the tangent's band, the start's strains
-    (`beam.fused.start_strains`), an element matrix, and the second predictor's Newton vectors
-    and band (the step allocates nothing)."""
+    (`beam.fused.start_strains`), an element matrix, the second predictor's Newton vectors
+    and band, and the band of (2 / dt^2) M (the step allocates nothing)."""
     return _scratch(int(n_dof), int(n_elements))
 
 

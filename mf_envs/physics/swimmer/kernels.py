@@ -51,7 +51,7 @@ from mf_envs.physics.swimmer.fluid import (
 
 
 @kernel
-def _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
+def _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
               ke):  # fmt: skip
     """buf[0] = -R(d) and ab = dR/dd (module docstring) at the iterate d but for the tail force:
     the algorithmic force (`beam.fused.element_internal`, the start's strains in pre), the
@@ -70,9 +70,7 @@ def _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, b
         dth[i] = d0[i] + th * (d[i] - d0[i])
         vth[i] = (1.0 - th) * v0[i] + th * v[i]
         r[i] = p0[i] / dt
-    for k in range(ab.shape[0]):
-        for i in range(nd):
-            ab[k, i] = 0.0
+    fused.start_band(cm, x, r, ab)  # r -= c_a M x, ab = c_a M
     m_a = law[W_MA]
     resist = law[W_RESISTIVE] != 0.0
     cd, cv = -th, -2.0 * th / dt
@@ -100,7 +98,6 @@ def _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, b
                 f1, f2, d11, d12, d21, d22, p1, p2 = resistive_scalars(v1, v2, psi, law)
                 fused.point_load(fe, ke, w, nz, npsi, f1, f2, d11, d12, d21, d22, p1, p2, cd, cv)
         fused.scatter(e, fe, ke, r, ab)
-    fused.add_mass(mass, 2.0 / (dt * dt), x, r, ab)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -116,7 +113,7 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     m_a = law[W_MA]
     nd = d0.shape[0]
     u_scale, tab = quad[2], quad[3]
-    ab, ab2 = np.empty((N_BAND, nd)), np.empty((N_BAND, nd))
+    ab, ab2, cm = np.empty((N_BAND, nd)), np.empty((N_BAND, nd)), np.empty((N_BAND, nd))
     buf, buf2 = np.empty((4, nd)), np.empty((4, nd))
     e11 = np.empty((5, 11))
     ke = np.empty((11, 11))
@@ -124,17 +121,18 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     p0 = np.empty(nd)
     added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
     fused.start_strains(d0, le, k0, tab, pre)
+    fused.scale_band(mass, 2.0 / (dt * dt), cm)
     # predictor (`serpentine.kernels`): the start d0 if its residual is below PREDICTOR_RATIO
     # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
     # iteration's
     for i in range(nd):
         d[i] = d0[i]
-    _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
+    _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
               ke)  # fmt: skip
     tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
     for i in range(nd):
         d[i] = d0[i] + dt * v0[i]
-    _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf2, v, ab2, e11,
+    _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf2, v, ab2, e11,
               ke)  # fmt: skip
     tail_into(buf2[2], buf2[3], law, buf2[0], ab2, -th, -2.0 * th / dt)
     n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
@@ -146,7 +144,7 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     r, x = buf[0], buf[1]
     for it in range(1, max_iter + 1):
         if it > 1:
-            _residual(d0, v0, d, dt, th, th_s, le, mass, k0, k1, quad, water, p0, pre, buf, v, ab,
+            _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab,
                       e11, ke)  # fmt: skip
             tail_into(buf[2], buf[3], law, r, ab, -th, -2.0 * th / dt)
         if fused.solve(ab, r, work, piv, x) != 0:
