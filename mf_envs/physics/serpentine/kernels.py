@@ -128,8 +128,9 @@ def _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pr
 def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, d, v, sc, damping):
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring). d, v receive the result,
     from the predictor of the module docstring; sc: the `make_scratch` tuple (no allocation
-    here). damping: the Kelvin-Voigt retardation time tau [s] (module docstring). Returns the Newton iterations, or minus the iterations spent on
-    failure (no convergence in max_iter, stagnation, a singular or non-finite correction)."""
+    here). damping: the Kelvin-Voigt retardation time tau [s] (module docstring). Returns the
+    Newton iterations, or minus the iterations spent on failure (no convergence in max_iter,
+    stagnation, a singular or non-finite correction)."""
     work, piv, buf, ab, e11, pre, ke = sc[0], sc[1], sc[8], sc[10], sc[9], sc[11], sc[12]
     buf2, ab2, cm = sc[13], sc[14], sc[15]
     u_scale = quad[3]
