@@ -33,7 +33,8 @@ from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
 # the muscles' signed (net) work [J]
 N_REPORT = 6
-# the Newton settings: the step test |dd| / u_scale < 1e-6 leaves ~1e-12 once quadratic
+# the Newton settings: the step test |dd| / u_scale < 1e-6 (or the next correction predicted
+# below 1e-9 in the quadratic phase) leaves ~1e-9
 TOLERANCE, MAX_ITER, MAX_HALVINGS = 1e-6, 12, 6
 THETA = (0.5, 0.5)  # (water force, stresses) theta points (`physics.swimmer.kernels`)
 

@@ -106,8 +106,9 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
     rigidities, dof scales, `beam.fused.quadrature_tables`); water = (nzt, npt, law)
     (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the predictor of
     `serpentine.kernels` (the constant-velocity configuration, or the start if its residual is
-    far smaller); th = (theta of the water force, theta of the stresses).
-    Returns the Newton iterations, or -1 on failure."""
+    far smaller); th = (theta of the water force, theta of the stresses). Converged as the
+    serpentine's: a correction below tol, or, in the quadratic phase, the next one predicted
+    below tol / 1000 from the last two. Returns the Newton iterations, or -1 on failure."""
     nzt, npt, law = water
     th, th_s = th
     m_a = law[W_MA]
@@ -142,6 +143,7 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
         for i in range(nd):
             d[i] = d0[i]
     r, x = buf[0], buf[1]
+    back1 = np.inf
     for it in range(1, max_iter + 1):
         if it > 1:
             _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab,
@@ -155,10 +157,14 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
                 return -1
             d[i] += x[i]
             step = max(step, abs(x[i]) / u_scale[i])
-        if step < tol:
+        # converged: this correction below tol, or (quadratic phase) the next one predicted
+        # below tol / 1000 from the last two (`serpentine.kernels`' test)
+        quad_next = it > 1 and step < back1 and step * step * step < 1e-3 * tol * back1 * back1
+        if step < tol or quad_next:
             for i in range(nd):
                 v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
             return it
+        back1 = step
     return -1
 
 
