@@ -293,3 +293,57 @@ def test_snake_bench_scene_without_pyelastica_is_skipped(monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "elastica", None)
     assert se.rows(quick=True) == []
     assert 'pip install "mf-envs[compare]"' in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("viscous", [False, True])
+def test_fused_newton_residual_equals_the_beam_and_ground_assemblies(viscous):
+    """`kernels._residual` (`beam.fused`: the algorithmic force, the ground and the inertia
+    element by element, the start's strains tabulated) against `beam.algorithmic`'s assembly
+    (with the Kelvin-Voigt strain shift), `friction.assemble_ground` (drag and couple on) and the
+    banded mass, on random states: the same -R and tangent to round-off; and `fused.solve`'s
+    block tridiagonal LU against a dense solve of that tangent."""
+    from mf_envs.physics.beam import fused
+    from mf_envs.physics.beam.algorithmic import assemble_algorithmic
+    from mf_envs.physics.serpentine import kernels
+
+    law = BellyFriction(*MU, slip_speed=1e-3, viscous=viscous, c_tangential=2.0, c_normal=4.0,
+                        drag_rate=0.3, couple_damping=1e-4)  # fmt: skip
+    s = _snake(n_el=5, ground=law)
+    m = s.model
+    nd, ne = m.n_dof, m.n_elements
+    quad = kernels.quad_tables(m)
+    ground = (s.normal_load, m.params.mass_per_length, law.packed())
+    sc = kernels.make_scratch(nd, ne)
+    work, piv, buf, e11, ab, pre, ke = sc[0], sc[1], sc[8], sc[9], sc[10], sc[11], sc[12]
+    rng = np.random.default_rng(3)
+    for dt, th, tau in ((0.025, 1.0, 0.01), (0.01, 0.5, 0.0), (0.005, 0.75, 0.002)):
+        d0 = m.straight() + 0.03 * rng.standard_normal(nd)
+        v0 = 0.05 * rng.standard_normal(nd)
+        d = d0 + dt * v0 + 1e-3 * rng.standard_normal(nd)
+        k0, k1 = (20 * rng.standard_normal((ne, 4)) for _ in range(2))
+        rate = tau / dt
+        shift = np.zeros((ne, quad[0].size, 3))
+        shift[:, :4, 2] = -rate * (k1 - k0)
+        p_int, ab0, _ = assemble_algorithmic(d0, d, m.le, k0, k1, *m.quad, 0.5 + rate, shift,
+                                             True, 1.0)  # fmt: skip
+        x = d - d0 - dt * v0
+        v = 2.0 * (d - d0) / dt - v0
+        mass = band_to_dense(m.mass)
+        r0 = -p_int - 2.0 / dt**2 * mass @ x
+        k_dense = band_to_dense(ab0) + 2.0 / dt**2 * mass
+        f, ab_g = np.zeros(nd), np.zeros((21, nd))
+        assemble_ground(d0 + th * (d - d0), (1 - th) * v0 + th * v, m.le, *ground, f, ab_g, -th,
+                        -2.0 * th / dt)  # fmt: skip
+        r0 += f
+        k_dense += band_to_dense(ab_g)
+        fused.start_strains(d0, m.le, k0, quad[4], pre)
+        v_out = np.empty(nd)
+        kernels._residual(d0, v0, d, dt, th, 0.5 + rate, rate, m.le, 2.0 / dt**2 * m.mass, k0, k1,
+                          quad, ground, pre, buf, v_out, ab, e11, ke)  # fmt: skip
+        assert np.max(np.abs(buf[0] - r0)) <= 1e-12 * np.max(np.abs(r0))
+        assert np.max(np.abs(band_to_dense(ab) - k_dense)) <= 1e-13 * np.max(np.abs(k_dense))
+        np.testing.assert_allclose(v_out, v, rtol=1e-15, atol=1e-15)
+        sol = np.empty(nd)
+        assert fused.solve(ab, buf[0], work, piv, sol) == 0
+        want = np.linalg.solve(k_dense, r0)
+        assert np.max(np.abs(sol - want)) <= 1e-9 * np.max(np.abs(want))

@@ -232,24 +232,49 @@ def test_tail_force_gives_lighthills_mean_thrust():
     assert np.mean(thrust) == pytest.approx(want, rel=0.05)
 
 
-def test_allocation_free_internal_force_equals_the_beams():
-    """`internal.algorithmic_into` against `beam.algorithmic.assemble_algorithmic` (shift 0) on
-    random configurations and actuations: the same force and tangent to round-off."""
+@pytest.mark.parametrize("linear", [False, True])
+def test_fused_newton_residual_equals_the_beam_and_water_assemblies(linear):
+    """`kernels._residual` + `fluid.tail_into` (`beam.fused`: the algorithmic force, the
+    water's momentum, Taylor's force and the inertia element by element) against
+    `beam.algorithmic.assemble_algorithmic`, `fluid.added_momentum`, `fluid.assemble_water` and
+    the banded mass on random states: the same -R and tangent to round-off."""
+    from mf_envs.physics.beam import fused
     from mf_envs.physics.beam.algorithmic import assemble_algorithmic
-    from mf_envs.physics.swimmer.internal import algorithmic_into, make_work, quadrature_tables
+    from mf_envs.physics.swimmer import kernels
+    from mf_envs.physics.swimmer.fluid import tail_into
 
-    m = BeamModel(rod_params(L, D / 2, 1e6, 1e6 / 1.5, 1000.0, 5))
-    qxi, qw, stiff = m.quad
-    rng = np.random.default_rng(7)
-    tab, work = quadrature_tables(m.le, qxi), make_work()
-    p, ab = np.empty(m.n_dof), np.empty((21, m.n_dof))
-    for theta in (0.5, 0.6, 1.0):
-        da = m.straight() + 0.03 * rng.standard_normal(m.n_dof)
-        db = da + 0.05 * rng.standard_normal(m.n_dof)
-        ka, kb = (20 * rng.standard_normal((5, 4)) for _ in range(2))
-        shift = np.zeros((5, qxi.size, 3))
-        p0, ab0, _ = assemble_algorithmic(da, db, m.le, ka, kb, qxi, qw, stiff, theta, shift,
-                                          True, 1.0)  # fmt: skip
-        algorithmic_into(da, db, m.le, ka, kb, qw, stiff, theta, tab, work, p, ab)
-        assert np.max(np.abs(p - p0)) <= 1e-13 * np.max(np.abs(p0))
-        assert np.max(np.abs(ab - ab0)) <= 1e-13 * np.max(np.abs(ab0))
+    water = Water(diameter=D, linear=linear, linear_normal=3.0, linear_tangential=1.0)
+    sw = _swimmer(water, n_el=5)
+    m = sw.model
+    nd, ne = m.n_dof, m.n_elements
+    nzt, npt, law = sw.packed
+    tab = sw.quad[3]
+    m_a = law[6]
+    rng = np.random.default_rng(5)
+    for dt, th, th_s in ((0.01, 0.5, 0.6), (0.005, 1.0, 0.5)):
+        d0 = m.straight() + 0.03 * rng.standard_normal(nd)
+        v0 = 0.05 * rng.standard_normal(nd)
+        d = d0 + dt * v0 + 1e-3 * rng.standard_normal(nd)
+        k0, k1 = (20 * rng.standard_normal((ne, 4)) for _ in range(2))
+        shift = np.zeros((ne, tab.shape[1], 3))
+        p_int, ab0, _ = assemble_algorithmic(d0, d, m.le, k0, k1, *m.quad, th_s, shift, True, 1.0)
+        x = d - d0 - dt * v0
+        v = 2.0 * (d - d0) / dt - v0
+        mass = band_to_dense(m.mass)
+        p0, p1 = np.zeros(nd), np.zeros(nd)
+        added_momentum(d0, v0, m.le, nzt, npt, m_a, p0, ab0, 0.0, 0.0)
+        added_momentum(d, v, m.le, nzt, npt, m_a, p1, ab0, 1.0 / dt, 2.0 / dt**2)
+        r0 = -p_int - 2.0 / dt**2 * mass @ x - (p1 - p0) / dt
+        assemble_water(d0 + th * (d - d0), (1 - th) * v0 + th * v, m.le, nzt, npt, law, r0, ab0,
+                       -th, -2.0 * th / dt)  # fmt: skip
+        k_dense = band_to_dense(ab0) + 2.0 / dt**2 * mass
+        pre = np.empty((ne, tab.shape[1], fused.N_START))
+        fused.start_strains(d0, m.le, k0, tab, pre)
+        buf, ab = np.empty((5, nd)), np.empty((21, nd))
+        e11, ke = np.empty((5, 11)), np.empty((11, 11))
+        v_out = np.empty(nd)
+        kernels._residual(d0, v0, d, dt, th, th_s, m.le, 2.0 / dt**2 * m.mass, k0, k1, sw.quad,
+                          sw.packed, p0, pre, buf, v_out, ab, e11, ke)  # fmt: skip
+        tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
+        assert np.max(np.abs(buf[0] - r0)) <= 1e-12 * np.max(np.abs(r0))
+        assert np.max(np.abs(band_to_dense(ab) - k_dense)) <= 1e-13 * np.max(np.abs(k_dense))

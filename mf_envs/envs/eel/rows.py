@@ -26,14 +26,15 @@ import numpy as np
 from mf_envs.envs._beam_robot import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
 from mf_envs.envs.serpentine.rows import body_state
 from mf_envs.physics.beam import element as el
+from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.swimmer.fluid import shape_tables
-from mf_envs.physics.swimmer.internal import quadrature_tables
 from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
 # the muscles' signed (net) work [J]
 N_REPORT = 6
-# the Newton settings: the step test |dd| / u_scale < 1e-6 leaves ~1e-12 once quadratic
+# the Newton settings: the step test |dd| / u_scale < 1e-6 (or the next correction predicted
+# below 1e-9 in the quadratic phase) leaves ~1e-9
 TOLERANCE, MAX_ITER, MAX_HALVINGS = 1e-6, 12, 6
 THETA = (0.5, 0.5)  # (water force, stresses) theta points (`physics.swimmer.kernels`)
 

@@ -25,7 +25,7 @@ from mf_envs.envs._beam_robot import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_
 from mf_envs.physics.actuators.kernels import lag_at
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.kernels import _scratch as _kernel_scratch
-from mf_envs.physics.serpentine.kernels import advance_linear
+from mf_envs.physics.serpentine.kernels import advance_linear, quad_tables
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
 # the muscles' signed (net) work [J]
@@ -44,7 +44,7 @@ def pack(scene, model, n_substeps: int, physics_dt: float, target: float) -> tup
     ce, cxi = control_points(p.length, scene.n_ctrl, ne)
     ground = (p.mass_per_length * scene.gravity, p.mass_per_length, scene.ground.packed())
     return (
-        le, model.mass, (*model.quad, model.u_scale), ground, THETA, TOLERANCE, MAX_ITER,
+        le, model.mass, quad_tables(model), ground, THETA, TOLERANCE, MAX_ITER,
         MAX_HALVINGS, interpolation(model.gauss_S, p.length, scene.n_ctrl), nz, npsi, ce, cxi,
         scene.max_curvature, int(n_substeps), p.length, p.EI, float(target), float(physics_dt),
         float(scene.material_damping), float(scene.actuator_time_constant),

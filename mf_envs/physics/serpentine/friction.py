@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs._validate import check_nonnegative, check_positive
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, _shape_into
@@ -90,7 +91,7 @@ class BellyFriction:
         )
 
 
-@numba.njit(cache=True)
+@kernel(forceinline=True)
 def slip_factor(speed, v_eps):
     """g = phi(|v| / v_eps) / |v| and dg/d|v| (module docstring)."""
     if speed >= v_eps:
@@ -98,10 +99,9 @@ def slip_factor(speed, v_eps):
     return (2.0 - speed / v_eps) / v_eps, -1.0 / (v_eps * v_eps)
 
 
-@numba.njit(cache=True)
-def point_force(v1, v2, psi, p, law, out):
-    """Line force of the ground at a point: out[0:2] = f [N/m], out[2:6] = df/dv (row-major
-    2x2) [N s/m^2], out[6:8] = df/dpsi [N/m]; p = normal load per length [N/m]."""
+@kernel(forceinline=True)
+def ground_point(v1, v2, psi, p, law):
+    """`point_force` as scalars: (f1, f2, df/dv row-major (4), df/dpsi (2))."""
     c, s = np.cos(psi), np.sin(psi)
     vt = c * v1 + s * v2
     vn = -s * v1 + c * v2
@@ -120,14 +120,21 @@ def point_force(v1, v2, psi, p, law, out):
     a11 = mt * c * c + mn * s * s
     a12 = (mt - mn) * c * s
     a22 = mt * s * s + mn * c * c
-    out[0] = -gain * av1
-    out[1] = -gain * av2
-    out[2] = -(gain * a11 + dg * av1 * v1)
-    out[3] = -(gain * a12 + dg * av1 * v2)
-    out[4] = -(gain * a12 + dg * av2 * v1)
-    out[5] = -(gain * a22 + dg * av2 * v2)
-    out[6] = -gain * (mt - mn) * (-s * vt + c * vn)
-    out[7] = -gain * (mt - mn) * (c * vt + s * vn)
+    return (
+        -gain * av1, -gain * av2,
+        -(gain * a11 + dg * av1 * v1), -(gain * a12 + dg * av1 * v2),
+        -(gain * a12 + dg * av2 * v1), -(gain * a22 + dg * av2 * v2),
+        -gain * (mt - mn) * (-s * vt + c * vn), -gain * (mt - mn) * (c * vt + s * vn),
+    )  # fmt: skip
+
+
+@numba.njit(cache=True)
+def point_force(v1, v2, psi, p, law, out):
+    """Line force of the ground at a point: out[0:2] = f [N/m], out[2:6] = df/dv (row-major
+    2x2) [N s/m^2], out[6:8] = df/dpsi [N/m]; p = normal load per length [N/m]."""
+    f = ground_point(v1, v2, psi, p, law)
+    for k in range(8):
+        out[k] = f[k]
 
 
 @numba.njit(cache=True)

@@ -191,7 +191,7 @@ class Serpentine:
         n_steps = int(round(t_end / dt))
         rows = n_steps // every + 1
         d_out, v_out, t_out = np.zeros((rows, m.n_dof)), np.zeros((rows, m.n_dof)), np.zeros(rows)
-        quad = (*m.quad, m.u_scale)
+        quad = kernels.quad_tables(m)
         ground = (self.normal_load, m.params.mass_per_length, self.ground.packed())
         g = self.gait
         a_gp, phi_gp = (np.ascontiguousarray(x, float) for x in (g.amplitude, g.phase))

@@ -46,9 +46,11 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
+from mf_envs._jit import kernel
 from mf_envs._validate import check_nonnegative, check_positive
 from mf_envs.physics.beam.banded import HALF_BW
-from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, shape_functions
+from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
+from mf_envs.physics.beam.fused import shape_tables  # noqa: F401  (its home was here)
 from mf_envs.physics.constants import RHO_FRESHWATER
 
 # LOC: element dof -> offset from 6 e (Eq. 71c); _add_tangent: a point force's tangent
@@ -119,15 +121,7 @@ class Water:
         )
 
 
-def shape_tables(le: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The shape functions at the 4 Gauss points of every element: N_z (n_el, 4, 4) and N_psi
-    (n_el, 4, 3) (the `nzt, npt` arguments of the assemblies; Eqs. 69-70)."""
-    nzt = np.array([[shape_functions(x, h)[0] for x in GAUSS_XI] for h in le])
-    npt = np.array([[shape_functions(x, h)[2] for x in GAUSS_XI] for h in le])
-    return nzt, npt
-
-
-@numba.njit(cache=True, nogil=True)
+@kernel(forceinline=True)
 def _law(vel, k, c, linear):
     """g(vel) and g'(vel): k |vel| vel (quadratic) or c vel (linear)."""
     if linear:
@@ -135,26 +129,29 @@ def _law(vel, k, c, linear):
     return k * abs(vel) * vel, 2.0 * k * abs(vel)
 
 
-@numba.njit(cache=True, nogil=True)
-def resistive_point(v1, v2, psi, law, out):
-    """Taylor's line force at a point: out[0:2] = f [N/m], out[2:6] = df/dv (row-major 2x2)
-    [N s/m^2], out[6:8] = df/dpsi [N/m] (module docstring)."""
+@kernel(forceinline=True)
+def resistive_scalars(v1, v2, psi, law):
+    """`resistive_point` as scalars: (f1, f2, df/dv row-major (4), df/dpsi (2))."""
     c, s = math.cos(psi), math.sin(psi)
     vt = c * v1 + s * v2
     vn = -s * v1 + c * v2
     lin = law[W_LINEAR] > 0.0
     gt, dgt = _law(vt, law[W_KT], law[W_CT], lin)
     gn, dgn = _law(vn, law[W_KN], law[W_CN], lin)
-    out[0] = -(gt * c - gn * s)
-    out[1] = -(gt * s + gn * c)
-    out[2] = -(dgt * c * c + dgn * s * s)
-    out[3] = -(dgt - dgn) * c * s
-    out[4] = out[3]
-    out[5] = -(dgt * s * s + dgn * c * c)
+    o3 = -(dgt - dgn) * c * s
     at = dgt * vn - gn  # df/dpsi = -(at t + an n)
     an = gt - dgn * vt
-    out[6] = -(at * c - an * s)
-    out[7] = -(at * s + an * c)
+    return (-(gt * c - gn * s), -(gt * s + gn * c), -(dgt * c * c + dgn * s * s), o3, o3,
+            -(dgt * s * s + dgn * c * c), -(at * c - an * s), -(at * s + an * c))  # fmt: skip
+
+
+@numba.njit(cache=True, nogil=True)
+def resistive_point(v1, v2, psi, law, out):
+    """Taylor's line force at a point: out[0:2] = f [N/m], out[2:6] = df/dv (row-major 2x2)
+    [N s/m^2], out[6:8] = df/dpsi [N/m] (module docstring)."""
+    f = resistive_scalars(v1, v2, psi, law)
+    for k in range(8):
+        out[k] = f[k]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -195,40 +192,52 @@ def _gauss_point(de, ve, nz, npsi):
 
 
 @numba.njit(cache=True, nogil=True)
+def tail_into(d, v, law, f, ab, cd, cv):
+    """Lighthill's tail force (if on) at (d, v) added to f, cd dF/dd + cv dF/dv to the band ab
+    (cd = cv = 0: no tangent). Returns its power [W]."""
+    if law[W_TAIL] <= 0.0:
+        return 0.0
+    pf = np.empty(8)
+    tail_force(v[0], v[2], d[4], law[W_MA], pf)  # node 0: z1 = d[0], z2 = d[2], psi = d[4]
+    f[0] += pf[0]
+    f[2] += pf[1]
+    if cd != 0.0 or cv != 0.0:
+        for ci in range(2):
+            for cj in range(2):
+                ab[HALF_BW + 2 * ci - 2 * cj, 2 * cj] += cv * pf[2 + 2 * ci + cj]
+            ab[HALF_BW + 2 * ci - 4, 4] += cd * pf[6 + ci]
+    return pf[0] * v[0] + pf[1] * v[2]
+
+
+@numba.njit(cache=True, nogil=True)
 def assemble_water(d, v, le, nzt, npt, law, f, ab, cd, cv):
     """Add the nodal force of Taylor's resistive law (if on) and Lighthill's tail force (if on)
     at configuration d and dof velocities v (n_dof,) to f (n_dof,), and cd dF/dd + cv dF/dv to
     the banded ab (21, n_dof) (cd = cv = 0: no tangent). nzt, npt: `shape_tables(le)`; law:
     `Water.packed()`. Returns the power [W]."""
-    power = 0.0
-    pf = np.empty(8)
-    if law[W_TAIL] > 0.0:  # node 0: z1 = d[0], z2 = d[2], psi = d[4]
-        tail_force(v[0], v[2], d[4], law[W_MA], pf)
-        f[0] += pf[0]
-        f[2] += pf[1]
-        power += pf[0] * v[0] + pf[1] * v[2]
-        if cd != 0.0 or cv != 0.0:
-            for ci in range(2):
-                for cj in range(2):
-                    ab[HALF_BW + 2 * ci - 2 * cj, 2 * cj] += cv * pf[2 + 2 * ci + cj]
-                ab[HALF_BW + 2 * ci - 4, 4] += cd * pf[6 + ci]
+    power = tail_into(d, v, law, f, ab, cd, cv)
     if law[W_RESISTIVE] != 0.0:
         power += _line_load(0, d, v, le, nzt, npt, law, 0.0, f, ab, cd, cv)
     return power
+
+
+@kernel(forceinline=True)
+def added_scalars(v1, v2, psi, m_a):
+    """`added_point` as scalars: (P (2), dP/dv row-major (4), dP/dpsi (2))."""
+    c, s = math.cos(psi), math.sin(psi)
+    vt = c * v1 + s * v2
+    wn = -s * v1 + c * v2
+    return (-m_a * wn * s, m_a * wn * c, m_a * s * s, -m_a * s * c, -m_a * s * c, m_a * c * c,
+            m_a * (vt * s - wn * c), m_a * (-vt * c - wn * s))  # fmt: skip
 
 
 @numba.njit(cache=True, nogil=True)
 def added_point(v1, v2, psi, m_a, out):
     """The entrained water's momentum at a point: out[0:2] = P = m_a w n [kg/s], out[2:6] =
     dP/dv = m_a n n^T (row-major) [kg/m], out[6:8] = dP/dpsi = m_a (-v_t n - w t)."""
-    c, s = math.cos(psi), math.sin(psi)
-    vt = c * v1 + s * v2
-    wn = -s * v1 + c * v2
-    out[0], out[1] = -m_a * wn * s, m_a * wn * c
-    out[2], out[3] = m_a * s * s, -m_a * s * c
-    out[4], out[5] = -m_a * s * c, m_a * c * c
-    out[6] = m_a * (vt * s - wn * c)
-    out[7] = m_a * (-vt * c - wn * s)
+    f = added_scalars(v1, v2, psi, m_a)
+    for k in range(8):
+        out[k] = f[k]
 
 
 @numba.njit(cache=True, nogil=True)

@@ -26,7 +26,7 @@ the energy-conserving scheme would keep ringing (first order in the internal for
 Why this is a generalisation of `serpentine.kernels._newton_step` rather than a call to it: that
 step hard-wires the ground law and has no configuration-dependent mass; the actuation work and
 the step splitting (`advance_linear`) are the serpentine's, on this step. The internal force is
-`internal.algorithmic_into` (the beam's `assemble_algorithmic` without allocations).
+`beam.fused` (the beam's `assemble_algorithmic` fused with the water's loads, element by element).
 """
 
 from __future__ import annotations
@@ -34,57 +34,122 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from mf_envs.physics.beam.banded import HALF_BW, N_BAND, band_solve_into
+from mf_envs._jit import kernel
+from mf_envs.physics.beam import fused
+from mf_envs.physics.beam.banded import HALF_BW, N_BAND
+from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
 from mf_envs.physics.serpentine.gait import gait_kappa_into
-from mf_envs.physics.serpentine.kernels import bending_work
-from mf_envs.physics.swimmer.fluid import W_MA, added_momentum, assemble_water
-from mf_envs.physics.swimmer.internal import algorithmic_into, make_work
+from mf_envs.physics.serpentine.kernels import PREDICTOR_RATIO, bending_work
+from mf_envs.physics.swimmer.fluid import (
+    W_MA,
+    W_RESISTIVE,
+    added_momentum,
+    added_scalars,
+    resistive_scalars,
+    tail_into,
+)
+
+
+@kernel
+def _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
+              ke):  # fmt: skip
+    """buf[0] = -R(d) and ab = dR/dd (module docstring) at the iterate d but for the tail force:
+    the algorithmic force (`beam.fused.element_internal`, the start's strains in pre), the
+    water's momentum at (d, v) and Taylor's force at (d_th, v_th) element by element; p0 the
+    water's nodal momentum at the step's start; buf[1] = d - d0 - dt v0, v = v_{n+1},
+    buf[2:4] = d_th, v_th."""
+    qw, stiff, tab = quad[0], quad[1], quad[3]
+    nzt, npt, law = water
+    r, x, dth, vth = buf[0], buf[1], buf[2], buf[3]
+    db, dv, de, ve = e11[0], e11[1], e11[2], e11[3]
+    fe = e11[4]
+    nd = d0.shape[0]
+    for i in range(nd):
+        x[i] = d[i] - d0[i] - dt * v0[i]
+        v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
+        dth[i] = d0[i] + th * (d[i] - d0[i])
+        vth[i] = (1.0 - th) * v0[i] + th * v[i]
+        r[i] = p0[i] / dt
+    fused.start_band(cm, x, r, ab)  # r -= c_a M x, ab = c_a M
+    m_a = law[W_MA]
+    resist = law[W_RESISTIVE] != 0.0
+    cd, cv = -th, -2.0 * th / dt
+    for e in range(le.shape[0]):
+        fused.clear_element(fe, ke)
+        fused.gather(d, e, db)
+        fused.element_internal(e, db, le[e], k0, k1, qw, stiff, th_s, 0.0, tab, pre, fe, ke)
+        fused.gather(v, e, dv)
+        fused.gather(dth, e, de)
+        fused.gather(vth, e, ve)
+        for g in range(N_GAUSS):
+            nz, npsi = nzt[e, g], npt[e, g]
+            w = GAUSS_W[g] * le[e]
+            if m_a != 0.0:  # r -= (p_w(d, v) - p0) / dt, ab += dp_w/dd / dt + 2 dp_w/dv / dt^2
+                v1 = nz[0] * dv[0] + nz[1] * dv[1] + nz[2] * dv[2] + nz[3] * dv[3]
+                v2 = nz[0] * dv[4] + nz[1] * dv[5] + nz[2] * dv[6] + nz[3] * dv[7]
+                psi = npsi[0] * db[8] + npsi[1] * db[9] + npsi[2] * db[10]
+                q1, q2, d11, d12, d21, d22, p1, p2 = added_scalars(v1, v2, psi, m_a)
+                fused.point_load(fe, ke, w, nz, npsi, -q1 / dt, -q2 / dt, d11, d12, d21, d22,
+                                 p1, p2, 1.0 / dt, 2.0 / (dt * dt))  # fmt: skip
+            if resist:  # r += F_w(d_th, v_th), ab += -th dF_w/dd - 2 th / dt dF_w/dv
+                v1 = nz[0] * ve[0] + nz[1] * ve[1] + nz[2] * ve[2] + nz[3] * ve[3]
+                v2 = nz[0] * ve[4] + nz[1] * ve[5] + nz[2] * ve[6] + nz[3] * ve[7]
+                psi = npsi[0] * de[8] + npsi[1] * de[9] + npsi[2] * de[10]
+                f1, f2, d11, d12, d21, d22, p1, p2 = resistive_scalars(v1, v2, psi, law)
+                fused.point_load(fe, ke, w, nz, npsi, f1, f2, d11, d12, d21, d22, p1, p2, cd, cv)
+        fused.scatter(e, fe, ke, r, ab)
 
 
 @numba.njit(cache=True, nogil=True)
 def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv):
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); quad = (weights,
-    rigidities, dof scales, `internal.quadrature_tables`); water = (nzt, npt, law)
-    (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the
-    constant-velocity predictor; th = (theta of the water force, theta of the stresses).
-    Returns the Newton iterations, or -1 on failure."""
+    rigidities, dof scales, `beam.fused.quadrature_tables`); water = (nzt, npt, law)
+    (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the predictor of
+    `serpentine.kernels` (the constant-velocity configuration, or the start if its residual is
+    far smaller); th = (theta of the water force, theta of the stresses). Converged as the
+    serpentine's: a correction below tol, or, in the quadratic phase, the next one predicted
+    below tol / 1000 from the last two. Returns the Newton iterations, or -1 on failure."""
     nzt, npt, law = water
     th, th_s = th
     m_a = law[W_MA]
     nd = d0.shape[0]
+    u_scale, tab = quad[2], quad[3]
+    ab, ab2, cm = np.empty((N_BAND, nd)), np.empty((N_BAND, nd)), np.empty((N_BAND, nd))
+    buf, buf2 = np.empty((4, nd)), np.empty((4, nd))
+    e11 = np.empty((5, 11))
+    ke = np.empty((11, 11))
+    pre = np.empty((le.shape[0], tab.shape[1], fused.N_START))
+    p0 = np.empty(nd)
+    added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
+    fused.start_strains(d0, le, k0, tab, pre)
+    fused.scale_band(mass, 2.0 / (dt * dt), cm)
+    # predictor (`serpentine.kernels`): the start d0 if its residual is below PREDICTOR_RATIO
+    # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
+    # iteration's
+    for i in range(nd):
+        d[i] = d0[i]
+    _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
+              ke)  # fmt: skip
+    tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
     for i in range(nd):
         d[i] = d0[i] + dt * v0[i]
-    qw, stiff, u_scale, tab = quad
-    pbar = np.empty(nd)
-    ab = np.empty((N_BAND, nd))
-    iw = make_work()
-    c_a = 2.0 / (dt * dt)
-    r = np.empty(nd)
-    x = np.empty(nd)
-    dth = np.empty(nd)
-    vth = np.empty(nd)
-    p0 = np.empty(nd)
-    p1 = np.empty(nd)
-    added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
-    for it in range(1, max_iter + 1):
-        algorithmic_into(d0, d, le, k0, k1, qw, stiff, th_s, tab, iw, pbar, ab)
+    _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf2, v, ab2, e11,
+              ke)  # fmt: skip
+    tail_into(buf2[2], buf2[3], law, buf2[0], ab2, -th, -2.0 * th / dt)
+    n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
+    if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
+        buf, ab = buf2, ab2
+    else:
         for i in range(nd):
-            x[i] = d[i] - d0[i] - dt * v0[i]
-            v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
-            dth[i] = d0[i] + th * (d[i] - d0[i])
-            vth[i] = (1.0 - th) * v0[i] + th * v[i]
-            r[i] = -pbar[i]
-        for j in range(nd):  # r -= c_a M x; ab += c_a M
-            for i in range(max(0, j - HALF_BW), min(nd, j + HALF_BW + 1)):
-                mij = mass[HALF_BW + i - j, j]
-                r[i] -= c_a * mij * x[j]
-                ab[HALF_BW + i - j, j] += c_a * mij
-        if m_a != 0.0:
-            added_momentum(d, v, le, nzt, npt, m_a, p1, ab, 1.0 / dt, 2.0 / (dt * dt))
-            for i in range(nd):
-                r[i] -= (p1[i] - p0[i]) / dt
-        assemble_water(dth, vth, le, nzt, npt, law, r, ab, -th, -2.0 * th / dt)
-        if band_solve_into(ab, r, work, piv, x) != 0:
+            d[i] = d0[i]
+    r, x = buf[0], buf[1]
+    back1 = np.inf
+    for it in range(1, max_iter + 1):
+        if it > 1:
+            _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab,
+                      e11, ke)  # fmt: skip
+            tail_into(buf[2], buf[3], law, r, ab, -th, -2.0 * th / dt)
+        if fused.solve(ab, r, work, piv, x) != 0:
             return -1
         step = 0.0
         for i in range(nd):
@@ -92,10 +157,14 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
                 return -1
             d[i] += x[i]
             step = max(step, abs(x[i]) / u_scale[i])
-        if step < tol:
+        # converged: this correction below tol, or (quadratic phase) the next one predicted
+        # below tol / 1000 from the last two (`serpentine.kernels`' test)
+        quad_next = it > 1 and step < back1 and step * step * step < 1e-3 * tol * back1 * back1
+        if step < tol or quad_next:
             for i in range(nd):
                 v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
             return it
+        back1 = step
     return -1
 
 

@@ -19,12 +19,12 @@ import numpy as np
 
 from mf_envs._validate import check_int, check_positive, check_range
 from mf_envs.physics.beam.banded import HALF_BW
+from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.beam.solver import BeamModel, BeamParams, NewtonDivergence
 from mf_envs.physics.serpentine.gait import WaveGait
 from mf_envs.physics.serpentine.model import SnakeHistory
 from mf_envs.physics.swimmer import kernels
 from mf_envs.physics.swimmer.fluid import Water, added_momentum, assemble_water, shape_tables
-from mf_envs.physics.swimmer.internal import quadrature_tables
 
 
 class Swimmer:
