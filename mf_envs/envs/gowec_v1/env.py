@@ -167,7 +167,7 @@ class GOWECV1Env(MFEnv):
         )
         self.state = self.model.initial_state()
         self._t, self._steps, self._last_power = 0.0, 0, 0.0
-        self._vals, self._work = np.zeros(hb.N_VALS), hb.step_work(self.state.shape[0], 0)
+        self._vals, self._work = np.zeros(hb.N_VALS), hb.step_work(self.state.shape[0], 1)
         self._consts_key: tuple | None = None  # `_consts`' cache key
 
     # ------------------------------------------------------------------ public quantities
@@ -214,11 +214,8 @@ class GOWECV1Env(MFEnv):
         truncated = self._steps >= self.max_steps
         obs = np.empty(self.observation_space.shape[0], np.float32)
         loss, lo, hi, limits = self._consts
-        args = self.model._args()
-        if self._work.shape[0] != hb.step_work_size(self.state.shape[0], args[9].shape[0]):
-            self._work = hb.step_work(self.state.shape[0], args[9].shape[0])  # a new sea's size
         ok, y, finite, over, out = step_one(
-            t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, args,
+            t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
             self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals,
             self._work, lo, hi, obs, limits, self.preview_times,
         )  # fmt: skip
@@ -302,6 +299,8 @@ class GOWECV1Env(MFEnv):
                 phase=float(rng.uniform(0.0, 2.0 * math.pi)),
             )
         self.model.set_sea(self.wave)
+        # the step's scratch, sized for this sea's components (`hb.step_work`)
+        self._work = hb.step_work(self.state.shape[0], len(self.wave.amplitudes))
         self.state = self.model.initial_state(
             opts.get("buoy_pitch", 0.0),
             opts.get("buoy_roll", 0.0),

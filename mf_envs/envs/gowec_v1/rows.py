@@ -90,7 +90,10 @@ def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, 
     """The single env's step in one compiled call: `step_row`, then (if the state is finite)
     `observe_one` into obs (preview: its look-ahead times) and the termination tests; limits =
     (max gimbal rate rad/s, max buoy
-    angle rad), w = `step_work`. Returns (ok, y1, finite obs, overspeed, out of range)."""
+    angle rad), w = `step_work` (a new one if w is too small for the sea, which the env sizes at
+    each reset). Returns (ok, y1, finite obs, overspeed, out of range)."""
+    if w.shape[0] < 6 * y.shape[0] + 4 * args[9].shape[0]:
+        w = step_work(y.shape[0], args[9].shape[0])
     ok = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w)
     y1 = end_state(w, y.shape[0]).copy()  # the env keeps it as its state
     if not ok:

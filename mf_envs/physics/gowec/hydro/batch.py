@@ -55,13 +55,7 @@ def step_work(n_state, n_components):
     slopes and stage state (5, n_state), the end state (n_state,) and the components' phasors
     (4, n_components) (`floating.rk4_steps_into`), as one flat buffer (one array: cheap to pass
     from Python; `step_row` carves it)."""
-    return np.zeros(step_work_size(n_state, n_components))
-
-
-@numba.njit(cache=True, inline="always")
-def step_work_size(n_state, n_components):
-    """The length of `step_work`'s buffer."""
-    return 6 * n_state + 4 * n_components
+    return np.zeros(6 * n_state + 4 * n_components)
 
 
 @kernel(forceinline=True)
