@@ -70,8 +70,8 @@ def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dic
             out[name] = float(value)
         elif name not in ("self", "render_mode") and p.kind is p.POSITIONAL_OR_KEYWORD:
             unresolved.append(name)
-    if unresolved:
-        env = gym.make(env_id, **(env_kwargs or {}))
+    if unresolved:  # (no TimeLimit: only attributes are read)
+        env = gym.make(env_id, max_episode_steps=-1, **(env_kwargs or {}))
         for name in unresolved:
             value = getattr(env.unwrapped, name, None)
             if _is_real(value):
@@ -137,6 +137,12 @@ class DomainRandomization(gym.Wrapper):
             raise ValueError("env: must be made with gymnasium.make (it has no spec)")
         self.env_id = env.spec.id
         self.base_kwargs = dict(env.spec.kwargs)
+        # the re-made env gets the TimeLimit gym.make put on `env` (its spec's max_episode_steps:
+        # a given one is passed on; None: no TimeLimit, -1)
+        limit = env.spec.max_episode_steps
+        self._limit = {}
+        if limit != gym.spec(self.env_id).max_episode_steps:
+            self._limit = {"max_episode_steps": -1 if limit is None else limit}
         self.ranges = applicable_ranges(self.env_id, ranges)
         if not self.ranges:
             raise ValueError(
@@ -172,7 +178,7 @@ class DomainRandomization(gym.Wrapper):
             self._rng, _ = seeding.np_random(seed)
         self.current = self.sample()
         old = self.env
-        self.env = gym.make(self.env_id, **{**self.base_kwargs, **self.current})
+        self.env = gym.make(self.env_id, **self._limit, **{**self.base_kwargs, **self.current})
         old.close()
         if self.env.observation_space != old.observation_space:
             raise ValueError(
