@@ -87,6 +87,19 @@ def test_max_episode_steps_given_to_gym_make_is_the_envs_length(env_id):
     assert load(declaration(env_id).entry_point)(max_episode_steps=5).max_steps == 5
 
 
+def test_remaking_from_the_spec_keeps_a_given_length():
+    """`gym.make(env.spec)` (the spec of the TimeLimit, max_episode_steps=800) makes the same
+    800-step env, and so does make_vec from that spec."""
+    env = gym.make("GyroStabilizer-v0", max_episode_steps=800)
+    again = gym.make(env.spec)
+    assert again.spec.max_episode_steps == 800 == again.unwrapped.max_steps
+    venv = gym.make_vec(env.spec, 2, vectorization_mode="vector_entry_point")
+    assert venv.template.max_steps == 800
+    venv.close()
+    with pytest.raises(ValueError, match="max_episode_steps"):  # and agrees or refuses
+        gym.make(env.spec, episode_seconds=60.0)
+
+
 @pytest.mark.parametrize("bad", [0, -2, 2.5, "10", True])
 def test_bad_max_episode_steps_names_it(bad):
     with pytest.raises(ValueError, match="max_episode_steps"):

@@ -61,7 +61,17 @@ def gym_make_limit(env: Any) -> tuple[str, Any] | None:
         return None if given == -1 else ("given", given)
     spec = frame.f_locals.get("env_spec")
     limit = getattr(spec, "max_episode_steps", None)
-    return None if limit is None else ("spec", limit)
+    if limit is None:
+        return None
+    # a spec whose limit is not the registered one (`gym.make(env.spec)` of an env made with
+    # max_episode_steps=N) carries a length someone gave
+    return ("spec" if limit == _registered_limit(spec) else "given", limit)
+
+
+def _registered_limit(spec: Any) -> Any:
+    """The registered spec's max_episode_steps for `spec`'s id (None if not registered)."""
+    registered = registration.registry.get(getattr(spec, "id", None))
+    return None if registered is None else registered.max_episode_steps
 
 
 def make_vec_injected(venv: Any) -> bool:
@@ -74,4 +84,5 @@ def make_vec_injected(venv: Any) -> bool:
     spec = frame.f_locals.get("env_spec")
     registered = registration.registry.get(getattr(spec, "id", None))
     in_spec = registered is not None and "max_episode_steps" in registered.kwargs
-    return "max_episode_steps" not in user and not in_spec
+    own = getattr(spec, "max_episode_steps", None) != _registered_limit(spec)  # a spec's given
+    return "max_episode_steps" not in user and not in_spec and not own
