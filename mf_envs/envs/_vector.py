@@ -21,14 +21,7 @@ rewards, flags and batched infos, bit for bit) for the same seeds:
   m}`), as in `SyncVectorEnv`;
 - infos: Gymnasium's batched layout, {key: (N,) array, "_key": (N,) bool mask}, nested dicts
   (`reward_terms`) batched recursively;
-- domain randomisation in the rows (`randomize_rows(draws)`, what `train.randomize` installs):
-  every reset of row i (seeded, autoreset, masked) draws kwargs from the row's own randomisation
-  generator, builds a single env with them, resets it with a seed drawn from the same generator
-  and loads it into row i (`_load`, the template path): the rows are then bit-identical to
-  `SyncVectorEnv` over `train.randomize.DomainRandomization` wrappers with the same seeds. Only
-  the kwargs of the class's `row_kwargs` (`ROW_KWARGS`) may be drawn: those whose values live
-  in the rows' arrays; what the batch step reads from the template (`_shared`) must not change, else
-  ValueError naming `ranges`.
+- domain randomisation in the rows (`randomize_rows`): `mf_envs.envs._drawn_rows`.
 
 Rendering is not supported (`render_mode` must be None): render a single env instead.
 """
@@ -45,6 +38,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from mf_envs._validate import as_action, check_int
+from mf_envs.envs._drawn_rows import DrawnRows
 from mf_envs.envs._limit import make_vec_injected
 from mf_envs.envs._rows import RowBlocks
 
@@ -86,7 +80,7 @@ def parse_autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
         ) from None
 
 
-class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
+class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
     """Base class (kwargs: num_envs, autoreset_mode, render_mode None, num_threads: blocks of
     rows stepped at once, None = automatic, `resolve_threads`; the rest go to the single env):
     subclasses set `single_env_cls`, allocate their batch arrays in `_alloc(n)`,
@@ -98,8 +92,6 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
     in and drops keys no row has, as SyncVectorEnv does."""
 
     single_env_cls: type[gym.Env]
-    # kwargs whose values the rows hold individually (loaded by `_load`): `randomize_rows`
-    ROW_KWARGS: frozenset[str] = frozenset()
     row_cost = "light"  # microsecond rows; "heavy": millisecond rows (`resolve_threads`)
     metadata: dict[str, Any] = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
@@ -145,8 +137,6 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         self._obs = np.zeros((n, *self.single_observation_space.shape), dtype=np.float32)
         self._all = np.ones(n, dtype=bool)
         self._is_reset = False
-        self._draws_of_rows: Any = None  # `randomize_rows`
-        self._draw_rngs: list[np.random.Generator | None] = [None] * n
         self.blocks = RowBlocks(n, self.num_threads)  # the rows' split over threads
         self._alloc(n)
 
@@ -160,12 +150,6 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         if "max_episode_steps" not in kwargs or not make_vec_injected(self):
             return kwargs, None
         return kwargs, kwargs.pop("max_episode_steps")
-
-    @classmethod
-    def row_kwargs(cls, **env_kwargs: Any) -> frozenset[str]:
-        """The kwargs whose values the rows of this scene hold individually (`ROW_KWARGS`, or
-        fewer in some scenes): what `randomize_rows` may draw."""
-        return cls.ROW_KWARGS
 
     @classmethod
     def supports(cls, **env_kwargs: Any) -> bool:
@@ -185,54 +169,6 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
     @abc.abstractmethod
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         """Advance the active rows: (obs, reward, terminated, truncated, info)."""
-
-    def _shared(self, env: Any) -> tuple[Any, ...]:
-        """What the batch step reads from the template rather than from a row (scalars, arrays,
-        effects): every randomised row's env must have the template's (`randomize_rows`)."""
-        return (tuple(sorted(env.effects)), env.control_dt, env.max_steps)
-
-    def randomize_rows(self, draws: Any) -> None:
-        """Domain randomisation in the rows (module doc): `draws.draw(rng, seed)` returns (the
-        row's generator for its next reset, the kwargs drawn, the single env's reset seed), the
-        contract of `train.randomize.Randomizer`; `draws.names` are the kwargs it draws, all in
-        `row_kwargs` (ValueError naming `ranges` otherwise). None: off. Takes effect from the
-        next reset of each row."""
-        if draws is not None:
-            held = self.row_kwargs(**self.env_kwargs)
-            extra = sorted(set(draws.names) - set(held))
-            if extra:
-                raise ValueError(
-                    f"ranges: {extra} cannot differ between the rows of "
-                    f"{type(self).__name__} (in this scene its rows hold {sorted(held)}); use "
-                    "SyncVectorEnv over DomainRandomization"
-                )
-        self._draws_of_rows = draws
-        self._draw_rngs = [None] * self.num_envs
-
-    def _reset_drawn(self, i: int, seed: int | None, options: dict[str, Any] | None):
-        """Row i's reset under `randomize_rows`: kwargs and seed drawn, a single env of them
-        reset and loaded through the template path (the template itself is left unchanged)."""
-        rng, drawn, env_seed = self._draws_of_rows.draw(self._draw_rngs[i], seed)
-        self._draw_rngs[i] = rng
-        env = self.single_env_cls(**{**self.env_kwargs, **drawn})
-        if env.observation_space != self.single_observation_space or not _same(
-            self._shared(env), self._shared(self.template)
-        ):
-            raise ValueError(
-                f"ranges: the draw {drawn} changes what the rows of {type(self).__name__} share "
-                "(its observation space or the step's parameters, `_shared`); use SyncVectorEnv "
-                "over DomainRandomization"
-            )
-        obs, info = env.reset(seed=env_seed, options=options)
-        info["randomized"] = dict(drawn)
-        template, self.template = self.template, env
-        try:
-            self._load(i)
-        finally:
-            self.template = template
-        self._rngs[i] = env.np_random
-        self._obs[i] = obs
-        return info
 
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
         """Optional fast path: reset rows `idx` (no seed, no options) in one compiled call and
@@ -329,15 +265,6 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
             for i in idx:
                 resets = self._add_info(resets, self._reset_one(int(i), None, None), int(i))
         _overwrite(info, resets, idx)
-
-
-def _same(a: Any, b: Any) -> bool:
-    """Equal, element by element for arrays (tuples compared item by item)."""
-    if isinstance(a, tuple) and isinstance(b, tuple):
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
-    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
-        return np.shape(a) == np.shape(b) and bool(np.array_equal(a, b))
-    return bool(a == b)
 
 
 def _select(info: dict[str, Any], rows: np.ndarray) -> dict[str, Any]:
