@@ -15,6 +15,7 @@ import pytest
 
 import mf_envs  # noqa: F401  (registers the envs)
 from mf_envs.envs import available_env_ids, declaration
+from mf_envs.envs.gyro_stabilizer import GyroStabilizerEnv
 from mf_envs.physics.waves import G
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -121,13 +122,15 @@ def test_bad_parameter_raises_naming_the_public_argument(env_id, kwargs, name):
 
 
 def test_inchworm_episode_length_from_one_argument():
-    """gym.make keeps `max_episode_steps` for its TimeLimit wrapper, so the env's own argument is
-    reachable only by constructing the class: both arguments at once are refused."""
+    """`max_episode_steps` (the env's, or gym.make's for its TimeLimit: tests/test_env_limits.py)
+    and `episode_seconds` together must give the same steps."""
     from mf_envs.envs.inchworm import InchwormEnv
 
-    with pytest.raises(ValueError, match="episode_seconds"):
+    with pytest.raises(ValueError, match="episode_seconds=1.0 is 10 control steps"):
         InchwormEnv(max_episode_steps=5, episode_seconds=1.0)
     assert InchwormEnv(max_episode_steps=5).max_episode_steps == 5
+    assert InchwormEnv(max_episode_steps=10, episode_seconds=1.0).max_episode_steps == 10
+    assert gym.make("Inchworm-v0", max_episode_steps=5).unwrapped.max_episode_steps == 5
 
 
 def test_inchworm_full_noise_resets_and_steps():
@@ -171,8 +174,11 @@ def test_episode_seconds_and_time_is_steps_times_dt(env_id, kwargs, steps):
 
 
 def test_long_stabilizer_episode_length_follows_episode_seconds():
-    """The issue's 1e4 s episode (200 001 steps with accumulated time): 200 000 now."""
-    assert gym.make("GyroStabilizer-v0", episode_seconds=1e4).unwrapped.max_episode_steps == 200_000
+    """The issue's 1e4 s episode (200 001 steps with accumulated time): 200 000 now (gym.make
+    needs the steps for its TimeLimit too: tests/test_env_limits.py)."""
+    env = gym.make("GyroStabilizer-v0", episode_seconds=1e4, max_episode_steps=200_000)
+    assert env.unwrapped.max_episode_steps == 200_000
+    assert GyroStabilizerEnv(episode_seconds=1e4).max_episode_steps == 200_000
     assert gym.make("GOWEC-v0").unwrapped.max_episode_steps == 20 * 300  # n_periods default
 
 

@@ -78,6 +78,7 @@ def test_energy_balance_irregular(device, kind):
         significant_wave_height=1.5,
         peak_period=6.0,
         episode_seconds=300,
+        max_episode_steps=15_000,  # 300 s of 0.02 s (gym.make's TimeLimit)
         device=device,
     )
     _, info = _episode(env, kind, seed=11)
@@ -130,6 +131,7 @@ def test_matched_linear_pto_absorbs_the_optimum():
         wave_amplitude=a,
         wave_period=T,
         episode_seconds=240.0,
+        max_episode_steps=12_000,
         rotor_loss=0.0,
         max_generator_torque=1e6,
         max_generator_power=1e9,
@@ -214,7 +216,7 @@ def test_efficiency_aware_baselines_net_power():
     domain over the last half of 200 s (issue 29)."""
     e = {}
     for kind in ("efficient_pto", "passive_damper"):
-        env = gym.make("FloatingGOWEC-v0", episode_seconds=200.0)
+        env = gym.make("FloatingGOWEC-v0", episode_seconds=200.0, max_episode_steps=10_000)
         _, _, Pe = _episode(env, kind, seed=2000, electrical=True)
         e[kind] = float(np.mean(Pe[len(Pe) // 2 :]))
     assert e["efficient_pto"] >= 0.98 * e["passive_damper"] and e["passive_damper"] > 0

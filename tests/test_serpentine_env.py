@@ -31,7 +31,7 @@ def test_serpenoid_speed_equals_the_physics_models_simulate():
     body's Kelvin-Voigt damping, the muscles without their lag (the model has none)."""
     dt, a, lam, period, ramp = 0.01, 20.0, 0.35, 2.0, 1.0
     env = gym.make(ENV_ID, n_control_points=25, control_dt=dt, physics_dt=dt, max_curvature=25.0,
-                   effects=("friction",))  # fmt: skip
+                   effects=("friction",), max_episode_steps=2000)  # fmt: skip
     u = env.unwrapped
     model = Serpentine(u.scene.params, u.scene.ground, material_damping=u.scene.material_damping)
     model.gait = serpenoid(model.model.gauss_S, a, lam, period, direction=-1, ramp_time=ramp)
@@ -74,7 +74,7 @@ def test_actuation_energy_closes_the_discrete_energy_balance():
     dissipation (tau / dt) int deps^T C deps dS and W_ground the ground force at the step's end
     (theta = 1) times the displacement: the scheme's exact balance (default effects: the muscles
     lag their command)."""
-    env = gym.make(ENV_ID, control_dt=0.01, physics_dt=0.01)
+    env = gym.make(ENV_ID, control_dt=0.01, physics_dt=0.01, max_episode_steps=2000)  # 20 s
     u = env.unwrapped
     m = u.model
     tau = u.scene.material_damping
@@ -141,7 +141,7 @@ def _travel_direction(env, kind, heading, seconds=24.0):
 
 
 def test_heading_controller_turns_the_snake_toward_the_target():
-    env = gym.make(ENV_ID, episode_seconds=30.0)
+    env = gym.make(ENV_ID, episode_seconds=30.0, max_episode_steps=600)
     start = 1.2  # rad off the target direction (+x)
     open_loop = _travel_direction(env, "tuned", start)
     closed = _travel_direction(env, "heading", start)

@@ -61,7 +61,7 @@ def test_encounter_frequency_heading_45_deg_at_5_m_s():
     eff = tuple(e for e in DEFAULT_EFFECTS if e != "gyroscopic")
     T, U, beta = 6.0, 5.0, math.pi / 4
     env = gym.make(ENV_ID, effects=eff, wave_period=T, heading=beta, ship_speed=U,
-                   episode_seconds=200.0)  # fmt: skip
+                   episode_seconds=200.0, max_episode_steps=4000)  # fmt: skip
     env.reset(seed=0)
     t, roll = [], []
     for _ in range(4000):

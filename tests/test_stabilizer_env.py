@@ -168,6 +168,7 @@ def test_hard_case_seed_hull_8050rpm_continuous_gimbal():
         wave_moment_amplitude=1e5,
         wave_period=10.0,
         episode_seconds=60.0,
+        max_episode_steps=1200,
     )
     ctrl = make_baseline(env, "continuous")
     obs, _ = env.reset(seed=0, options={"wave_phase": 0.0, "roll": 0.0, "roll_rate": 0.0})

@@ -200,8 +200,9 @@ SENSED = (*DEFAULT_EFFECTS, "sensor_noise", "sensor_delay")
 def test_sensor_noise_has_the_documented_spread_and_keeps_the_true_reward():
     from mf_envs.envs.gyro_stabilizer.spec import sensor_sigma
 
-    env = gym.make(ENV_ID, effects=(*DEFAULT_EFFECTS, "sensor_noise"), episode_seconds=200.0)
-    clean = gym.make(ENV_ID, episode_seconds=200.0)
+    kw = {"episode_seconds": 200.0, "max_episode_steps": 4000}
+    env = gym.make(ENV_ID, effects=(*DEFAULT_EFFECTS, "sensor_noise"), **kw)
+    clean = gym.make(ENV_ID, **kw)
     sigma = sensor_sigma(0.05)
     # 0.007 deg/s/sqrt(Hz) (BMI270) over the 10 Hz Nyquist band of a 20 Hz control rate
     assert sigma[1] == pytest.approx(math.radians(0.007) * math.sqrt(10.0))

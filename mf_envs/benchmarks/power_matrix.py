@@ -44,7 +44,7 @@ def cell(hs: float, tp: float, seed: int, seconds: float, kind: str, **kw: Any) 
     """One episode: JONSWAP (hs, tp), `kind` controller set at reset; powers over the
     episode after the ramp (W), J (W/m), terminated (pitch limit or overspeed)."""
     env = gym.make(ENV_ID, significant_wave_height=hs, peak_period=tp,
-                   episode_seconds=seconds + 20.0, **kw)  # fmt: skip
+                   episode_seconds=seconds + 20.0, max_episode_steps=-1, **kw)  # fmt: skip
     ctrl = make_baseline(env, kind)
     obs, _ = env.reset(seed=seed)
     ctrl.reset()

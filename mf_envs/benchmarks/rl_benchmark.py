@@ -155,7 +155,8 @@ def _metric(task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Path 
 def episode_scores(task: Task, kind: str, run: Path | None = None) -> np.ndarray:
     """Normalised score of `kind` (a baseline, "random", or the policy in `run`) on each test
     seed: 1 - metric / metric of the same sea in the reference (rotor-off) scene."""
-    kw = {**task.env_kwargs, "episode_seconds": task.eval_seconds}
+    # longer than the spec's episode: gym.make without its TimeLimit (episode_seconds ends it)
+    kw = {**task.env_kwargs, "episode_seconds": task.eval_seconds, "max_episode_steps": -1}
     ref = task.reference_kwargs(kw)
     return np.array([1.0 - _metric(task, kw, kind, s, run) / _metric(task, ref, "zero", s, None)
                      for s in TEST_SEEDS])  # fmt: skip

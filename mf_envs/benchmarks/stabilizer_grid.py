@@ -83,7 +83,7 @@ def _episode(kw: dict[str, Any], kind: str | None, seed: int, seconds: float) ->
         kw["effects"] = tuple(e for e in kw["effects"] if e != "gyroscopic")
     elif kind == "passive":
         kw["gimbal_drive"] = "damper"
-    env = gym.make(ENV_ID, episode_seconds=seconds, **kw)
+    env = gym.make(ENV_ID, episode_seconds=seconds, max_episode_steps=-1, **kw)  # no TimeLimit
     obs, _ = env.reset(seed=seed)
     ctrl = make_baseline(env, kind) if kind in ("pid", "lqr") else POLICIES.get(kind)
     sq, n, mount, energy = 0.0, 0, 0.0, 0.0

@@ -54,7 +54,12 @@ def register_envs() -> None:
     for env_id, decl in declarations().items():
         if decl.installed() and env_id not in gym.registry:
             vec = decl.vector_entry_point if decl.vector_installed() else None
-            gym.register(id=env_id, entry_point=decl.entry_point, vector_entry_point=vec)
+            gym.register(
+                id=env_id,
+                entry_point=decl.entry_point,
+                vector_entry_point=vec,
+                max_episode_steps=decl.max_episode_steps,
+            )
     register_aliases()
 
 

@@ -33,6 +33,8 @@ class PredrawnResets:
         self._snap: list[dict[str, Any] | None] = [None] * n
 
     def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
+        if self._draws_of_rows is not None:  # randomised rows: every reset reseeds (no pre-draw)
+            return super()._reset_one(i, seed, options)  # type: ignore[misc]
         rng, snap = self._rngs[i], self._snap[i]
         if seed is None and rng is not None and snap is not None:  # rewind the pre-draw
             rng.bit_generator.state = snap

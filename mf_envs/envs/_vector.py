@@ -20,7 +20,8 @@ rewards, flags and batched infos, bit for bit) for the same seeds:
   step; `final_obs`/`final_info` in the info) and `DISABLED` (reset with `options={"reset_mask":
   m}`), as in `SyncVectorEnv`;
 - infos: Gymnasium's batched layout, {key: (N,) array, "_key": (N,) bool mask}, nested dicts
-  (`reward_terms`) batched recursively.
+  (`reward_terms`) batched recursively;
+- domain randomisation in the rows (`randomize_rows`): `mf_envs.envs._drawn_rows`.
 
 Rendering is not supported (`render_mode` must be None): render a single env instead.
 """
@@ -37,6 +38,8 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from mf_envs._validate import as_action, check_int
+from mf_envs.envs._drawn_rows import DrawnRows
+from mf_envs.envs._limit import make_vec_injected
 from mf_envs.envs._rows import RowBlocks
 
 # rows per thread below which more threads do not pay (`resolve_threads`' automatic choice)
@@ -77,7 +80,7 @@ def parse_autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
         ) from None
 
 
-class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
+class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
     """Base class (kwargs: num_envs, autoreset_mode, render_mode None, num_threads: blocks of
     rows stepped at once, None = automatic, `resolve_threads`; the rest go to the single env):
     subclasses set `single_env_cls`, allocate their batch arrays in `_alloc(n)`,
@@ -114,7 +117,15 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         self.render_mode = None
         self.autoreset_mode = parse_autoreset_mode(autoreset_mode)
         self.metadata = {**type(self).metadata, "autoreset_mode": self.autoreset_mode}
+        env_kwargs, limit = self._spec_limit(env_kwargs)
         self.template = self.single_env_cls(**env_kwargs)  # validates every kwarg once
+        if limit is not None and self.template.max_steps > limit:
+            raise ValueError(
+                f"max_episode_steps: the episode of these kwargs (episode_seconds, control_dt) "
+                f"is {self.template.max_steps} control steps, more than the spec's "
+                f"max_episode_steps={limit} that gym.make_vec passes: pass "
+                f"max_episode_steps={self.template.max_steps} to gym.make_vec as well"
+            )
         self.env_kwargs = dict(env_kwargs)
         self.single_observation_space = self.template.observation_space
         self.single_action_space = self.template.action_space
@@ -128,6 +139,17 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
         self._is_reset = False
         self.blocks = RowBlocks(n, self.num_threads)  # the rows' split over threads
         self._alloc(n)
+
+    def _spec_limit(self, env_kwargs: dict[str, Any]) -> tuple[dict[str, Any], int | None]:
+        """(the single env's kwargs, the spec's max_episode_steps to check it against or None).
+        `gym.make_vec` adds the spec's `max_episode_steps` when its caller gave none
+        (`mf_envs.envs._limit`): that one checks the env's own episode, as gym.make's TimeLimit
+        does, rather than setting it: the episode must not be longer (a `max_episode_steps`
+        the caller gave sets it)."""
+        kwargs = dict(env_kwargs)
+        if "max_episode_steps" not in kwargs or not make_vec_injected(self):
+            return kwargs, None
+        return kwargs, kwargs.pop("max_episode_steps")
 
     @classmethod
     def supports(cls, **env_kwargs: Any) -> bool:
@@ -157,6 +179,8 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
 
     # ------------------------------------------------------------------ resets
     def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
+        if self._draws_of_rows is not None:
+            return self._reset_drawn(i, seed, options)
         env = self.template
         env._np_random = self._rngs[i]  # None: a fresh unseeded generator, as in a new env
         obs, info = env.reset(seed=seed, options=options)
@@ -185,6 +209,7 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
                 options = None
         idx = np.flatnonzero(mask)
         fresh = options is None and all(seeds[i] is None for i in idx)
+        fresh = fresh and self._draws_of_rows is None
         infos = self._batch_reset(idx) if fresh else None
         if infos is None:
             infos = {}
@@ -234,7 +259,7 @@ class BatchedVectorEnv(VectorEnv, metaclass=abc.ABCMeta):
 
     def _merge_resets(self, info: dict[str, Any], idx: np.ndarray) -> None:
         """Reset the sub-envs `idx` now and put their reset infos in place of the step infos."""
-        resets = self._batch_reset(idx)
+        resets = self._batch_reset(idx) if self._draws_of_rows is None else None
         if resets is None:
             resets = {}
             for i in idx:
@@ -272,6 +297,8 @@ def _overwrite(info: dict[str, Any], resets: dict[str, Any], idx: np.ndarray) ->
             info[f"_{key}"][idx] = resets[f"_{key}"][idx]
         else:
             info[f"_{key}"][idx] = False
+    for key in [k for k in resets if not k.startswith("_") and k not in info]:
+        info[key], info[f"_{key}"] = resets[key], resets[f"_{key}"]  # a reset-only key
 
 
 def _prune(info: dict[str, Any]) -> dict[str, Any]:

@@ -17,8 +17,9 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from mf_envs._validate import as_action, check_range
+from mf_envs._validate import as_action, check_int, check_range
 from mf_envs.effects import resolve_effects
+from mf_envs.envs._limit import gym_make_limit
 from mf_envs.envs._spec import check_options
 
 MIN_DT = 1e-6  # s, smallest control or physics step
@@ -89,6 +90,76 @@ class MFEnv(gym.Env):
             )
         return max(1, math.ceil(ratio - 1e-9))
 
+    def _episode_length(
+        self,
+        max_episode_steps: Any,
+        own: tuple[str, Any, int] | None,
+        default: int,
+        default_note: str = "",
+    ) -> int:
+        """Control steps per episode, agreeing with any TimeLimit Gymnasium puts on the env
+        (`mf_envs.envs._limit` module doc): `max_episode_steps` (the constructor's, or the one
+        given to `gym.make`) sets it; `own` = (argument, value, its steps) is the env's own
+        length argument given (`episode_seconds`, `n_periods`), which must then give the same
+        steps; else `default` (the default episode at these kwargs, `default_note` saying
+        which of them set it, e.g. "30 s at control_dt=0.02 s"). Under `gym.make`
+        without `max_episode_steps`, the result must not exceed the spec's (its TimeLimit would
+        cut the episode short; a shorter one the env ends itself). ValueError naming
+        `max_episode_steps` (and the argument) otherwise."""
+        limit = gym_make_limit(self)
+        steps = None
+        if max_episode_steps is not None:
+            steps = check_int("max_episode_steps", max_episode_steps, 1, MAX_EPISODE_STEPS)
+        if limit is not None and limit[0] == "given":
+            given = check_int("max_episode_steps", limit[1], 1, MAX_EPISODE_STEPS)
+            if steps is not None and steps != given:
+                raise ValueError(
+                    f"max_episode_steps: the env's max_episode_steps={steps} and gym.make's "
+                    f"max_episode_steps={given} differ; give one"
+                )
+            steps = given
+        if own is not None:
+            name, value, n = own
+            if steps is not None and n != steps:
+                raise ValueError(
+                    f"max_episode_steps: {name}={value!r} is {n} control steps but "
+                    f"max_episode_steps={steps}; give one of them, or both agreeing"
+                )
+        else:
+            n = default if steps is None else steps
+        if limit is not None and limit[0] == "spec" and n > limit[1]:
+            what = f"{own[0]}={own[1]!r}" if own is not None else "the default episode"
+            if own is None and default_note:
+                what += f" ({default_note})"
+            raise ValueError(
+                f"max_episode_steps: {what} is {n} control steps at control_dt="
+                f"{self.control_dt:g} s, but gym.make wraps the env in "
+                f"TimeLimit(max_episode_steps={limit[1]}), its spec's, which would end "
+                f"episodes at step {limit[1]}: pass max_episode_steps={n} to gym.make as well "
+                "(or max_episode_steps=-1: no TimeLimit)"
+            )
+        return n
+
+    def _own_seconds(self, episode_seconds: Any) -> tuple[str, Any, int] | None:
+        """`_episode_length`'s `own` for an `episode_seconds` given (None: not given)."""
+        if episode_seconds is None:
+            return None
+        return ("episode_seconds", episode_seconds, self._episode_steps(episode_seconds))
+
+    def _seconds_episode(
+        self, episode_seconds: Any, max_episode_steps: Any, default_seconds: float
+    ) -> tuple[int, float]:
+        """(control steps, seconds) of an episode given in seconds (`episode_seconds`; None:
+        `default_seconds`) or in steps (`max_episode_steps`), by `_episode_length`; the seconds
+        are those given, the default's, or steps x control_dt."""
+        own = self._own_seconds(episode_seconds)
+        default = self._episode_steps(default_seconds)
+        note = f"{default_seconds:g} s at control_dt={self.control_dt:g} s"
+        steps = self._episode_length(max_episode_steps, own, default, note)
+        if own is not None:
+            return steps, float(episode_seconds)
+        return steps, float(default_seconds) if steps == default else steps * self.control_dt
+
     def _set_scene(self, scene: Any) -> None:
         """Keep the env's physical parameters, its `build.Scene` (a frozen dataclass), as
         `self.scene`; its fields read as the env's attributes (`env.wave_period`), set once here
@@ -100,9 +171,10 @@ class MFEnv(gym.Env):
 
     @property
     def max_episode_steps(self) -> int:
-        """Control steps per episode, `max_steps` (from `episode_seconds` by `_episode_steps`:
-        ceil(episode_seconds / control_dt); GOWEC-v0's `n_periods` and Inchworm-v0's
-        `max_episode_steps` are aliases given in steps)."""
+        """Control steps per episode, `max_steps`: the constructor's (or `gym.make`'s)
+        `max_episode_steps`, else ceil(episode_seconds / control_dt) (`_episode_steps`;
+        GOWEC-v0: n_periods x steps_per_period), else the default episode's
+        (`_episode_length`)."""
         return self.max_steps
 
     @property

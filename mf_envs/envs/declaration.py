@@ -60,6 +60,9 @@ class EnvDeclaration:
     """What the upper layers know of one env id (all optional except the id and entry point).
 
     - `entry_point`, `vector_entry_point`: "module:Class" (the vector class has `supports(**kw)`).
+    - `max_episode_steps`: control steps of the env's default episode, registered as the spec's
+      `max_episode_steps` (Gymnasium's TimeLimit; `mf_envs.envs._limit`; the contract tests
+      check it against the env).
     - `baselines`: the module that registers the env's classical controllers on import
       (`controllers.register(env_id, kind, factory)`).
     - `metric`, `episode_metrics`: the primary metric and the function computing it (with any
@@ -80,6 +83,7 @@ class EnvDeclaration:
     env_id: str
     entry_point: str
     vector_entry_point: str | None = None
+    max_episode_steps: int | None = None
     baselines: str | None = None
     metric: Metric = RETURN
     episode_metrics: EpisodeMetrics | None = None
@@ -104,6 +108,9 @@ class EnvDeclaration:
             value = getattr(self, name)
             if value is not None and ":" not in value:
                 raise ValueError(f"{name}: {value!r} is not 'module:Class'")
+        steps = self.max_episode_steps
+        if steps is not None and (type(steps) is not int or steps < 1):
+            raise ValueError(f"max_episode_steps: an integer >= 1 or None, got {steps!r}")
         for name in ("randomize", "choices", "shifts", "rllib", "hyperparams"):
             object.__setattr__(self, name, _frozen(getattr(self, name)))
 

@@ -14,6 +14,13 @@ inchworm's soil and material. An env without a declaration has none.
 
 Use it in training through the YAML `env_wrapper: train.randomize.DomainRandomization`; it must
 be the first wrapper (it is applied to the bare `gym.make` env, below SB3's Monitor).
+
+On a native vector env (`randomized_vector_env`, what training uses when it is the only wrapper
+and the env's vector class holds every drawn kwarg per row, `ROW_KWARGS`) the same draws run
+inside the vector env (`BatchedVectorEnv.randomize_rows`): each row has its own randomisation
+generator, seeded as the wrapper's, so the rows are bit-identical to `SyncVectorEnv` over
+`DomainRandomization` wrappers with the same seeds (tests/test_randomize_vector.py). One
+`Randomizer` makes the draws in both.
 """
 
 from __future__ import annotations
@@ -70,8 +77,8 @@ def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dic
             out[name] = float(value)
         elif name not in ("self", "render_mode") and p.kind is p.POSITIONAL_OR_KEYWORD:
             unresolved.append(name)
-    if unresolved:
-        env = gym.make(env_id, **(env_kwargs or {}))
+    if unresolved:  # (no TimeLimit unless given: only attributes are read)
+        env = gym.make(env_id, **{"max_episode_steps": -1, **(env_kwargs or {})})
         for name in unresolved:
             value = getattr(env.unwrapped, name, None)
             if _is_real(value):
@@ -114,6 +121,97 @@ def shift_scenes(env_id: str) -> dict[str, dict[str, float]]:
     return {name: kw for name, kw in scenes.items() if kw}
 
 
+class Randomizer:
+    """The draws of domain randomisation for `env_id` made with `base_kwargs`: validates
+    `ranges` (kwarg -> (lo, hi) factors of the nominal value; default the declared `randomize`;
+    names the env does not take are dropped, ValueError naming `ranges` if none is left) and
+    `choices` (kwarg -> candidate values; default the declared; unknown names: ValueError naming
+    `choices`). `names`: the kwargs drawn."""
+
+    def __init__(
+        self,
+        env_id: str,
+        base_kwargs: dict[str, Any] | None = None,
+        ranges: Ranges | None = None,
+        choices: Choices | None = None,
+    ) -> None:
+        self.env_id = env_id
+        self.ranges = applicable_ranges(env_id, ranges)
+        if not self.ranges:
+            raise ValueError(
+                f"ranges: none of {list(ranges or default_ranges(env_id))}"
+                f" is a real-valued kwarg of {env_id}"
+            )
+        self.nominal = {
+            k: v for k, v in nominal_kwargs(env_id, base_kwargs).items() if k in self.ranges
+        }
+        self.choices = dict(default_choices(env_id) if choices is None else choices)
+        unknown = sorted(set(self.choices) - set(_constructor_params(env_id)))
+        if unknown:
+            raise ValueError(f"choices: {unknown} are not kwargs of {env_id}")
+        self.names = frozenset(self.ranges) | frozenset(self.choices)
+
+    def sample(self, rng: np.random.Generator) -> dict[str, Any]:
+        """One set of kwargs from `rng`: uniform factors x nominal (in `ranges` order), then
+        the discrete choices."""
+        out: dict[str, Any] = {
+            k: float(rng.uniform(lo, hi)) * self.nominal[k] for k, (lo, hi) in self.ranges.items()
+        }
+        for k, values in self.choices.items():
+            out[k] = values[int(rng.integers(len(values)))]
+        return out
+
+    def draw(
+        self, rng: np.random.Generator | None, seed: int | None
+    ) -> tuple[np.random.Generator, dict[str, Any], int]:
+        """One reset's draws: (the generator, new from `seed` if given or none yet, kept for the
+        next reset; the kwargs, `sample`; the env's reset seed, drawn after them)."""
+        if seed is not None or rng is None:
+            rng, _ = seeding.np_random(seed)
+        kwargs = self.sample(rng)
+        return rng, kwargs, int(rng.integers(2**31 - 1))
+
+
+def native_randomization_supported(env_id: str, names: Any, env_kwargs: dict | None = None) -> bool:
+    """Whether the native vector env of `env_id` runs these kwargs (`env_kwargs`) and holds
+    every drawn kwarg in `names` per row (its class's `row_kwargs`)."""
+    from mf_envs.envs import declaration, native_vector_supported
+    from mf_envs.envs.declaration import load
+
+    decl = declaration(env_id)
+    if decl is None or not decl.vector_installed():
+        return False
+    cls = load(decl.vector_entry_point)
+    if not hasattr(cls, "row_kwargs") or not native_vector_supported(env_id, env_kwargs):
+        return False
+    return set(names) <= set(cls.row_kwargs(**(env_kwargs or {})))
+
+
+def randomized_vector_env(
+    env_id: str,
+    num_envs: int,
+    env_kwargs: dict[str, Any] | None = None,
+    ranges: Ranges | None = None,
+    choices: Choices | None = None,
+    **vector_kwargs: Any,
+) -> gym.vector.VectorEnv:
+    """The native vector env of `env_id` (`gym.make_vec(..., vectorization_mode=
+    "vector_entry_point")` with `env_kwargs` and `vector_kwargs` such as `autoreset_mode`) with
+    domain randomisation in its rows (`Randomizer(env_id, env_kwargs, ranges, choices)`, module
+    doc). ValueError naming `ranges` if its rows cannot hold a drawn kwarg."""
+    kwargs = dict(env_kwargs or {})
+    draws = Randomizer(env_id, kwargs, ranges, choices)
+    venv = gym.make_vec(
+        env_id, num_envs, vectorization_mode="vector_entry_point", **vector_kwargs, **kwargs
+    )
+    try:
+        venv.unwrapped.randomize_rows(draws)
+    except BaseException:
+        venv.close()
+        raise
+    return venv
+
+
 class DomainRandomization(gym.Wrapper):
     """Re-make the env with randomised physical kwargs at every reset.
 
@@ -137,48 +235,34 @@ class DomainRandomization(gym.Wrapper):
             raise ValueError("env: must be made with gymnasium.make (it has no spec)")
         self.env_id = env.spec.id
         self.base_kwargs = dict(env.spec.kwargs)
-        self.ranges = applicable_ranges(self.env_id, ranges)
-        if not self.ranges:
-            raise ValueError(
-                f"ranges: none of {list(ranges or default_ranges(self.env_id))}"
-                f" is a real-valued kwarg of {self.env_id}"
-            )
-        self.nominal = {
-            k: v
-            for k, v in nominal_kwargs(self.env_id, self.base_kwargs).items()
-            if k in self.ranges
-        }
-        self.choices = dict(default_choices(self.env_id) if choices is None else choices)
-        unknown = sorted(set(self.choices) - set(_constructor_params(self.env_id)))
-        if unknown:
-            raise ValueError(f"choices: {unknown} are not kwargs of {self.env_id}")
+        self.randomizer = Randomizer(self.env_id, self.base_kwargs, ranges, choices)
+        self.ranges, self.nominal = self.randomizer.ranges, self.randomizer.nominal
+        self.choices = self.randomizer.choices
+        # the re-made env gets the TimeLimit gym.make put on `env` (its spec's max_episode_steps:
+        # a given one is passed on; None: no TimeLimit, -1)
+        limit = env.spec.max_episode_steps
+        self._limit = {}
+        if limit != gym.spec(self.env_id).max_episode_steps:
+            self._limit = {"max_episode_steps": -1 if limit is None else limit}
         self.current: dict[str, Any] = dict(self.nominal)
         self._rng: np.random.Generator | None = None
 
     def sample(self) -> dict[str, Any]:
         """Draw one set of kwargs (uniform factors x nominal, then the discrete choices) from the
-        wrapper's generator."""
+        wrapper's generator (`Randomizer.sample`)."""
         assert self._rng is not None
-        out: dict[str, Any] = {
-            k: float(self._rng.uniform(lo, hi)) * self.nominal[k]
-            for k, (lo, hi) in self.ranges.items()
-        }
-        for k, values in self.choices.items():
-            out[k] = values[int(self._rng.integers(len(values)))]
-        return out
+        return self.randomizer.sample(self._rng)
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
-        if seed is not None or self._rng is None:
-            self._rng, _ = seeding.np_random(seed)
-        self.current = self.sample()
+        self._rng, self.current, env_seed = self.randomizer.draw(self._rng, seed)
         old = self.env
-        self.env = gym.make(self.env_id, **{**self.base_kwargs, **self.current})
+        self.env = gym.make(self.env_id, **self._limit, **{**self.base_kwargs, **self.current})
         old.close()
         if self.env.observation_space != old.observation_space:
             raise ValueError(
                 f"ranges: {self.current} changed the observation space of {self.env_id}"
             )
-        obs, info = self.env.reset(seed=int(self._rng.integers(2**31 - 1)), options=options)
+        obs, info = self.env.reset(seed=env_seed, options=options)
         info["randomized"] = dict(self.current)
         return obs, info
 

@@ -7,6 +7,11 @@ A native vector env whose autoreset mode is SAME_STEP (or DISABLED, reset throug
 be adapted without corrupting the advantage estimates at episode ends, so it falls back, as does
 an env without a vector entry point, to `stable_baselines3.common.env_util.make_vec_env`
 (a `DummyVecEnv` of `Monitor`-wrapped envs).
+
+Domain randomisation (`train.randomize.DomainRandomization` as the only wrapper) runs inside the
+native vector env when its rows hold every drawn kwarg (`train.randomize.randomized_vector_env`,
+bit-identical to the wrapped single envs); otherwise, or with any other wrapper, the wrappers go
+on the single envs of a `DummyVecEnv`.
 """
 
 from __future__ import annotations
@@ -114,15 +119,33 @@ def split_infos(infos: dict[str, Any], n: int) -> list[dict[str, Any]]:
     return out
 
 
-def native_vector_env(env_id: str, n_envs: int, env_kwargs: dict[str, Any]) -> VecEnv | None:
-    """The env's own vector env adapted to SB3, or None if it has none / it cannot be adapted."""
+def native_vector_env(
+    env_id: str,
+    n_envs: int,
+    env_kwargs: dict[str, Any],
+    randomize: dict[str, Any] | None = None,
+) -> VecEnv | None:
+    """The env's own vector env adapted to SB3, or None if it has none / it cannot be adapted;
+    `randomize` ({"ranges": ..., "choices": ...}, each optional): with domain randomisation in
+    its rows (`train.randomize.randomized_vector_env`), None if its rows cannot hold it."""
     from mf_envs.envs import native_vector_supported
+    from mf_envs.train import randomize as rnd
 
     if gym.spec(env_id).vector_entry_point is None:
         return None
     if not native_vector_supported(env_id, env_kwargs):  # e.g. an inchworm without friction
         print(f"note: the native vector env of {env_id} does not run this scene; DummyVecEnv")
         return None
+    if randomize is not None:
+        names = rnd.Randomizer(env_id, env_kwargs, **randomize).names
+        if not rnd.native_randomization_supported(env_id, names, env_kwargs):
+            print(f"note: the rows of {env_id}'s native vector env cannot hold {sorted(names)}"
+                  " apart; domain randomisation on DummyVecEnv")  # fmt: skip
+            return None
+        venv = rnd.randomized_vector_env(
+            env_id, n_envs, env_kwargs, autoreset_mode=AutoresetMode.SAME_STEP, **randomize
+        )
+        return VecMonitor(GymVectorToSB3(venv))
     try:  # ask for SAME_STEP autoreset (SB3's semantics) if the vector env takes the option
         venv = gym.make_vec(
             env_id,
@@ -157,7 +180,9 @@ def make_train_env(
     Returns the env and a label of the vectorisation used ("native" or "dummy").
     """
     env_kwargs = dict(env_kwargs or {})
-    venv = native_vector_env(env_id, n_envs, env_kwargs) if prefer_native and not wrappers else None
+    venv, randomize = None, randomization_only(wrappers)
+    if prefer_native and (not wrappers or randomize is not None):
+        venv = native_vector_env(env_id, n_envs, env_kwargs, randomize)
     kind = "native"
     if venv is None:
         kind = "dummy"
@@ -171,6 +196,23 @@ def make_train_env(
     if normalize is not None:
         venv = VecNormalize(venv, **normalize)
     return venv, kind
+
+
+def randomization_only(wrappers: Sequence[Wrapper]) -> dict[str, Any] | None:
+    """{"ranges": ..., "choices": ...} (the kwargs given) if `wrappers` is exactly one
+    `DomainRandomization` (the class, or a `functools.partial` of it with keyword arguments
+    only), else None."""
+    from mf_envs.train.randomize import DomainRandomization
+
+    if len(wrappers) != 1:
+        return None
+    (w,) = wrappers
+    if w is DomainRandomization:
+        return {}
+    if isinstance(w, functools.partial) and w.func is DomainRandomization and not w.args:
+        if set(w.keywords) <= {"ranges", "choices"}:
+            return dict(w.keywords)
+    return None
 
 
 def _make_wrapped(env_id: str, wrappers: tuple[Wrapper, ...], **kwargs: Any) -> gym.Env:

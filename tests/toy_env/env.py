@@ -43,11 +43,12 @@ class ToyOscillatorEnv(MFEnv):
     x and x' uniform in +-0.1 (m, m/s); options `position`, `velocity` set them (|.| <= 1).
 
     ## Episode End
-    Truncated after `episode_seconds`; terminated on a numerical failure.
+    Truncated after `episode_seconds` (default 5 s: the spec's max_episode_steps, 100) or
+    `max_episode_steps`; terminated on a numerical failure.
 
     ## Arguments
     mass (kg), stiffness (N/m), damping (N s/m), max_force (N), control_dt (s),
-    episode_seconds (s), effects, render_mode.
+    episode_seconds (s), max_episode_steps, effects, render_mode.
 
     ## Version History
     v0: the example of docs/adding_an_env.md.
@@ -56,7 +57,8 @@ class ToyOscillatorEnv(MFEnv):
     RESET_OPTIONS = ("position", "velocity")
 
     def __init__(self, mass=1.0, stiffness=40.0, damping=2.0, max_force=5.0, control_dt=0.05,
-                 episode_seconds=5.0, effects=None, render_mode=None):  # fmt: skip
+                 episode_seconds=None, max_episode_steps=None, effects=None,
+                 render_mode=None):  # fmt: skip
         super().__init__(effects=effects, available_effects=AVAILABLE_EFFECTS,
                          default_effects=DEFAULT_EFFECTS, control_dt=control_dt,
                          physics_dt=control_dt, render_mode=render_mode)  # fmt: skip
@@ -64,7 +66,10 @@ class ToyOscillatorEnv(MFEnv):
         self.stiffness = positive_scalar("stiffness", stiffness)
         self.damping = check_range("damping", damping, 0.0, None)
         self.max_force = positive_scalar("max_force", max_force)
-        self.max_steps = self._episode_steps(episode_seconds)
+        # the length and gym.make's TimeLimit agree, or ValueError (MFEnv._episode_length)
+        self.max_steps, self.episode_seconds = self._seconds_episode(
+            episode_seconds, max_episode_steps, 5.0
+        )
         c = self.damping if "damping" in self.effects else 0.0
         a = np.array([[0.0, 1.0], [-self.stiffness / self.mass, -c / self.mass]])
         big = np.zeros((3, 3))

@@ -16,6 +16,7 @@ def episode_metrics(env, rewards, infos):
 DECLARATION = EnvDeclaration(
     env_id="ToyOscillator-v0",
     entry_point="toy_oscillator.env:ToyOscillatorEnv",
+    max_episode_steps=100,  # the default episode: 5 s of 0.05 s
     baselines="toy_oscillator.baselines",
     metric=Metric("rms_position", False, "m"),
     episode_metrics=episode_metrics,

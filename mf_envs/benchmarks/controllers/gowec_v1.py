@@ -46,7 +46,7 @@ def _controller(env: gym.Env, kind: str):
 
 def episode(kind: str, seed: int, seconds: float, **kw) -> dict[str, float]:
     """Mean mechanical and net electrical power (W) over the last half, J (W/m), bound (W)."""
-    env = gym.make(ENV_ID, episode_seconds=seconds, **kw)
+    env = gym.make(ENV_ID, episode_seconds=seconds, max_episode_steps=-1, **kw)  # no TimeLimit
     c = _controller(env, kind)
     obs, _ = env.reset(seed=seed)
     c.reset()

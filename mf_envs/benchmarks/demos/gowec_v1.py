@@ -33,6 +33,7 @@ def _episode(kind: str, rotor: bool, seconds: float, frames: int = 0):
     env = gym.make(
         ENV_ID,
         episode_seconds=seconds,
+        max_episode_steps=-1,  # no TimeLimit: episode_seconds ends the episode
         render_mode="rgb_array" if frames else None,
         **kw,
     )

@@ -231,6 +231,7 @@ def env_episode(kind: str | None, frames: bool = False, seed: int = 0, seconds: 
         ENV_ID,
         effects=eff,
         episode_seconds=seconds,
+        max_episode_steps=-1,  # no TimeLimit: episode_seconds ends the episode
         render_mode="rgb_array" if frames else None,
     )
     obs, info = env.reset(seed=seed)

@@ -21,6 +21,7 @@ AVAILABLE_EFFECTS = {
     "reactive": "Lighthill's (1960) added mass on the normal velocity and the tail force",
 }
 DEFAULT_EFFECTS = ("resistive", "reactive")
+EPISODE_SECONDS = 10.0  # s, the default episode (500 steps of the default 0.02 s)
 
 
 class EelEnv(BeamRobotMixin, MFEnv):
@@ -78,7 +79,9 @@ class EelEnv(BeamRobotMixin, MFEnv):
     overrides; any other key or value raises ValueError naming it (and draws nothing).
 
     ## Episode End
-    Truncation after `episode_seconds`. Termination on numerical failure (Newton fails even
+    Truncation after `episode_seconds` or `max_episode_steps` (the spec's: 500 = 10 s at 0.02 s;
+    `gym.make` with another length or `control_dt` needs `max_episode_steps` too, else
+    ValueError: docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
     after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
 
     ## Arguments
@@ -93,7 +96,8 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | max_curvature_rate | 750 | muscle rate limit of the command [1/(m s)] (docs/eel.md) |
     | n_control_points | 7 | actuation control points, 2..64 |
     | control_dt, physics_dt | 0.02, 0.01 | s per step, implicit physics step |
-    | episode_seconds | 10 | episode length [s] |
+    | episode_seconds | None | episode length [s]; None: 10 s |
+    | max_episode_steps | None | or the episode length in control steps |
     | effort_weight | None | [1/J] >= 0; None: 0.02 / (m L^2 / s^2) |
     | reset_noise_scale | 0.05 | start curvature noise / max_curvature, in [0, 1] |
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
@@ -126,21 +130,22 @@ class EelEnv(BeamRobotMixin, MFEnv):
         n_control_points: int = 7,
         control_dt: float = 0.02,
         physics_dt: float = 0.01,
-        episode_seconds: float = 10.0,
+        episode_seconds: float | None = None,
         effort_weight: float | None = None,
         reset_noise_scale: float = 0.05,
         initial_heading_range: float = math.pi,
         numerical_damping: float = 0.1,
         action_mode: str = "curvature",
         effects: Any = None,
+        max_episode_steps: int | None = None,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
         self._set_scene(build.build(kw, self.effects))
-        self.max_steps = self._episode_steps(episode_seconds)
-        self.episode_seconds = self.max_steps * self.control_dt
+        steps, _ = self._seconds_episode(episode_seconds, max_episode_steps, EPISODE_SECONDS)
+        self.max_steps, self.episode_seconds = steps, steps * self.control_dt
         self.model = BeamModel(self.scene.params)
         self.cfg = rows.pack(self.scene, self.model, self.n_substeps, self.physics_dt,
                              self.control_dt, self.target_direction)  # fmt: skip

@@ -14,6 +14,7 @@ DECLARATION = replace(
     env_id="Eel-v0",
     entry_point="mf_envs.envs.eel.env:EelEnv",
     vector_entry_point="mf_envs.envs.eel.vector:EelVectorEnv",
+    max_episode_steps=500,  # the default episode: 10 s of 0.02 s
     baselines="mf_envs.controllers.eel",
     randomize={"drag_normal": (0.7, 1.3), "youngs_modulus": (0.7, 1.3)},
     choices={},

@@ -1,5 +1,5 @@
 """GOWEC-v0's kwargs -> typed physics parameters, never the env: `build(kw)` validates the wave,
-the gyroscope and the generator limits into a `Scene`; `episode_steps` turns `n_periods` or
+the gyroscope and the generator limits into a `Scene`; `own_length` turns `n_periods` or
 `episode_seconds` into control steps."""
 
 from __future__ import annotations
@@ -59,17 +59,23 @@ def build(kw: dict[str, Any]) -> Scene:
     return Scene(amplitude, period, direction, torque, rate, spp, n_components, gamma, params)
 
 
-def episode_steps(n_periods: Any, episode_seconds: Any, spp: int, seconds_to_steps) -> int:
-    """Control steps per episode: `n_periods` wave periods (GOWEC-v0's alias of episode length,
-    default 20) x `spp`, or `seconds_to_steps(episode_seconds)` (`MFEnv._episode_steps`)."""
+def own_length(
+    n_periods: Any, episode_seconds: Any, spp: int, seconds_to_steps
+) -> tuple[str, Any, int] | None:
+    """The episode length given in GOWEC-v0's own terms, as (argument, value, control steps):
+    `n_periods` wave periods x `spp`, or `seconds_to_steps(episode_seconds)`
+    (`MFEnv._episode_steps`); None if neither (the default: DEFAULT_N_PERIODS periods, or
+    `max_episode_steps`: `MFEnv._episode_length`)."""
     if episode_seconds is not None and n_periods is not None:
         raise ValueError("episode_seconds: give either episode_seconds or n_periods, not both")
     if episode_seconds is not None:
-        return seconds_to_steps(episode_seconds)
-    n = check_int("n_periods", DEFAULT_N_PERIODS if n_periods is None else n_periods, 1, 10**6)
+        return ("episode_seconds", episode_seconds, seconds_to_steps(episode_seconds))
+    if n_periods is None:
+        return None
+    n = check_int("n_periods", n_periods, 1, 10**6)
     if n * spp > MAX_EPISODE_STEPS:
         raise ValueError(
             f"n_periods: n_periods * steps_per_period = {n * spp} control steps "
             f"exceeds {MAX_EPISODE_STEPS}"
         )
-    return n * spp
+    return ("n_periods", n_periods, n * spp)

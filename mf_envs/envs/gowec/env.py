@@ -82,10 +82,12 @@ class GOWECEnv(MFEnv):
     value raises ValueError naming it (and draws nothing from the generator).
 
     ## Episode End
-    Truncation after `episode_seconds` (default `n_periods` = 20 wave periods). Termination on
-    a gimbal overspeed trip, |phi'| > `max_gimbal_rate` (`info["overspeed"]`: a real unit
-    brakes its gimbal; nothing else limits a gimbal that the generator motors), or on numerical
-    failure (`info["numerical_failure"]`). The baselines stay below 18 rad/s.
+    Truncation after `episode_seconds` (default `n_periods` = 20 wave periods) or
+    `max_episode_steps` (the spec's: 6000 = 20 periods of 300 steps; `gym.make` with another
+    length needs `max_episode_steps` too, else ValueError: docs/api.md, "Episode length").
+    Termination on a gimbal overspeed trip, |phi'| > `max_gimbal_rate` (`info["overspeed"]`: a
+    real unit brakes its gimbal; nothing else limits a gimbal that the generator motors), or on
+    numerical failure (`info["numerical_failure"]`). The baselines stay below 18 rad/s.
 
     ## Arguments
     | Argument | Default | Meaning |
@@ -99,6 +101,7 @@ class GOWECEnv(MFEnv):
     | max_gimbal_rate | 60 rad/s | overspeed trip (ends the episode) and observation bound |
     | episode_seconds | None | episode length (s); None: n_periods wave periods |
     | n_periods | 20 | episode length in wave periods (when episode_seconds is None) |
+    | max_episode_steps | None | or the episode length in control steps |
     | steps_per_period | 300 | control steps per wave period (control_dt = T / this) |
     | physics_dt | 0.01 s | RK4 substep (rounded to divide the control step; <= 1e4 per step) |
     | gimbal_inertia | (5, 5, 5) kg m^2 | with the `gimbal_inertia` effect |
@@ -138,6 +141,7 @@ class GOWECEnv(MFEnv):
         gamma: float = 3.3,
         buoy_radius: float | None = None,
         episode_seconds: float | None = None,
+        max_episode_steps: int | None = None,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
@@ -148,8 +152,12 @@ class GOWECEnv(MFEnv):
             buoy_radius = BUOY_RADIUS if "irregular_waves" in self.effects else 0.0
         self.buoy_radius = check_range("buoy_radius", buoy_radius, 0.0, 100.0)
         spp = self.steps_per_period
-        self.max_steps = build.episode_steps(n_periods, episode_seconds, spp, self._episode_steps)
-        self.n_periods = self.max_steps // spp if episode_seconds is None else self.max_steps / spp
+        own = build.own_length(n_periods, episode_seconds, spp, self._episode_steps)
+        default = build.DEFAULT_N_PERIODS * spp
+        note = f"n_periods={build.DEFAULT_N_PERIODS} x steps_per_period={spp}"
+        self.max_steps = self._episode_length(max_episode_steps, own, default, note)
+        whole = self.max_steps % spp == 0 and episode_seconds is None
+        self.n_periods = self.max_steps // spp if whole else self.max_steps / spp
         self.episode_seconds = self.max_steps * self.control_dt
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         hi = spec.OBS.high({"max_gimbal_rate": self.max_gimbal_rate})

@@ -28,6 +28,7 @@ DECLARATION = EnvDeclaration(
     env_id="GOWEC-v0",
     entry_point="mf_envs.envs.gowec.env:GOWECEnv",
     vector_entry_point="mf_envs.envs.gowec.vector:GOWECVectorEnv",
+    max_episode_steps=6000,  # the default episode: 20 wave periods of 300 steps
     baselines="mf_envs.controllers.gowec",
     metric=Metric("power_ratio", True, "1"),
     episode_metrics=episode_metrics,

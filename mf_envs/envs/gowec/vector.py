@@ -41,12 +41,22 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GOWECEnv
     DRAWS_PER_RESET = 2  # wave phase and gimbal angle
+    # held per row (the wave's amplitudes and the reward scale, 1 / P_ref): `randomize_rows`
+    ROW_KWARGS = frozenset(("wave_amplitude",))
+
+    def _shared(self, env: Any) -> tuple[Any, ...]:
+        """The step's template scalars (`_step_batch`) and the kernel's shared arrays (`_load`:
+        rotor, gimbal inertia, wave direction) through the parameters that set them."""
+        return (*super()._shared(env), env.max_generator_torque, env.physics_dt,
+                env.n_substeps, env.max_gimbal_rate, env.params, env.wave_period,
+                env.wave_direction, env.n_components, env.gamma)  # fmt: skip
 
     def _alloc(self, n: int) -> None:
         env = self.template
         m = env.n_components if "irregular_waves" in env.effects else 1
         self.b = alloc_batch(n, m)
         self._steps = np.zeros(n, dtype=np.int64)
+        self._scale = np.full(n, env.reward_scale)  # each row's 1 / (J per step)
         self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
         self._ok = np.ones(n, dtype=bool)
         self._overspeed = np.zeros(n, dtype=bool)
@@ -83,6 +93,7 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         for key in ("phi", "phid", "amp", "om", "eps", "k", "w", "eta"):
             b[key][i] = row[key]
         b["t"][i] = 0.0
+        self._scale[i] = self.template.reward_scale
         self._steps[i] = 0
 
     def state_nbytes(self) -> int:
@@ -101,7 +112,7 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         )  # fmt: skip
         self._steps[active] += 1
         energy = b["energy"]
-        reward = energy * env.reward_scale
+        reward = energy * self._scale
         trunc = self._steps >= env.max_steps
         obs, ok, overspeed = self._fresh, self._ok, self._overspeed
         ok[~active], overspeed[~active] = True, False

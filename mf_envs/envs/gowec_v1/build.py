@@ -21,6 +21,7 @@ from mf_envs.physics.gowec.hydro.model import FloatingModel
 
 SPECTRA = {"jonswap": waves.jonswap_spectrum, "pierson_moskowitz": waves.pierson_moskowitz_spectrum}
 # the kwargs a device fills when they are None (`devices.FloatingDevice` fields)
+EPISODE_SECONDS = 120.0  # s, the default episode (6000 steps of the default 0.02 s)
 DEVICE_KWARGS = ("rotor_inertia", "rotor_speed", "gyro_units", "generator_efficiency",
                  "max_generator_torque", "max_generator_power", "rotor_loss",
                  "drag_coefficient", "pitch_limit", "wave_ramp")  # fmt: skip
@@ -43,7 +44,6 @@ class Scene:
     max_generator_power: float  # W, per unit (the drive's limit, set in the model)
     rotor_loss: float  # W
     max_gimbal_rate: float  # rad/s
-    episode_seconds: float  # s
     device: str  # `devices.DEVICES` key
     drag_coefficient: float  # quadratic drag C_d (0 = none)
     pitch_limit: float  # rad: |theta| or |rho| beyond it ends the episode
@@ -84,7 +84,6 @@ def build(kw: dict[str, Any]) -> Scene:
         check_range("max_generator_power", kw["max_generator_power"], 0.0),
         check_range("rotor_loss", kw["rotor_loss"], 0.0, 1e7),
         check_range("max_gimbal_rate", kw["max_gimbal_rate"], 1e-6),
-        check_range("episode_seconds", kw["episode_seconds"], 1e-3, 1e6),
         kw["device"], check_range("drag_coefficient", kw["drag_coefficient"], 0.0, 100.0),
         check_range("pitch_limit", kw["pitch_limit"], 1e-3, 1.0),
         check_range("wave_ramp", kw["wave_ramp"], 0.0, 1e4),

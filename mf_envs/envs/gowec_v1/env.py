@@ -77,10 +77,10 @@ class GOWECV1Env(MFEnv):
     `reset(options=...)`: buoy_pitch, buoy_roll (rad), gimbal_angle (rad), gimbal_rate (rad/s).
 
     ## Episode End
-    Truncation after `episode_seconds`; termination if |phi'| > max_gimbal_rate ("overspeed"),
-    |theta| or |rho| > pitch_limit ("out_of_range"; 20 deg on the ISWEC-class device) or a
-    numerical failure. A termination by overspeed or pitch limit is charged the rotor loss of
-    the steps left (`reward_terms["shutdown_loss"]`): ending early never pays.
+    Truncation after `episode_seconds` or `max_episode_steps` (spec: 6000; docs/api.md,
+    "Episode length"); termination if |phi'| > max_gimbal_rate ("overspeed"), |theta| or |rho|
+    > pitch_limit ("out_of_range"; 20 deg on the ISWEC-class device) or a numerical failure. A
+    termination by overspeed or pitch limit is charged the rotor loss of the steps left.
 
     ## Arguments
     | argument | default | meaning |
@@ -137,10 +137,11 @@ class GOWECV1Env(MFEnv):
         wave_preview: float = 0.0,
         max_gimbal_rate: float = spec.MAX_GIMBAL_RATE,
         hull: Any = None,
-        episode_seconds: float = 120.0,
+        episode_seconds: float | None = None,
         control_dt: float = 0.02,
         physics_dt: float | None = None,
         effects: Any = None,
+        max_episode_steps: int | None = None,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
@@ -156,15 +157,15 @@ class GOWECV1Env(MFEnv):
         self._base_substeps = self.n_substeps
         self.hull, self.model = build.floating_model(self.scene, kw, self.effects)
         self.buoy_radius = self.hull.radius if math.isfinite(self.hull.radius) else 0.0
-        self.max_steps = self._episode_steps(self.episode_seconds)
+        self.max_steps, self.episode_seconds = self._seconds_episode(episode_seconds,
+            max_episode_steps, build.EPISODE_SECONDS)  # fmt: skip
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.preview_times, self.observation_space = build.observation(
             self.max_gimbal_rate, wave_preview
         )
         self.energy_scale = 1.0 / (self.reference_power() * self.control_dt)
-        self.wave: waves.WaveField = waves.regular_wave(
-            self.wave_amplitude, self.wave_period, self.wave_direction
-        )
+        self.wave: waves.WaveField = waves.regular_wave(self.wave_amplitude, self.wave_period,
+                                                        self.wave_direction)  # fmt: skip
         self.state = self.model.initial_state()
         self._t, self._steps, self._last_power = 0.0, 0, 0.0
         self._vals, self._work = np.zeros(hb.N_VALS), hb.step_work(self.state.shape[0], 1)

@@ -31,6 +31,7 @@ DECLARATION = EnvDeclaration(
     env_id="FloatingGOWEC-v0",
     entry_point="mf_envs.envs.gowec_v1.env:GOWECV1Env",
     vector_entry_point="mf_envs.envs.gowec_v1.vector:GOWECV1VectorEnv",
+    max_episode_steps=6000,  # the default episode: 120 s of 0.02 s
     baselines="mf_envs.controllers.gowec_v1",
     metric=Metric("capture_width", True, "m"),
     episode_metrics=episode_metrics,

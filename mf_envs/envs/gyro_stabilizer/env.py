@@ -30,6 +30,7 @@ DEFAULT_EFFECTS = (
     "gimbal_limits",
 )
 OBS_HIGH = spec.OBS.high()
+EPISODE_SECONDS = 30.0  # s, the default episode (600 steps of the default 0.05 s)
 _ROLL = spec.OBS.index("roll")
 
 
@@ -96,8 +97,11 @@ class GyroStabilizerEnv(MFEnv):
     `gimbal_angle` (<= max_gimbal_angle), `wave_phase` (<= 4 pi); others: ValueError.
 
     ## Episode End
-    Truncation after `episode_seconds` (`max_episode_steps` = ceil(episode_seconds / control_dt));
-    termination only on a numerical failure (`info["numerical_failure"]`).
+    Truncation after `episode_seconds` (`max_episode_steps` = ceil(episode_seconds / control_dt))
+    or `max_episode_steps`; termination only on a numerical failure (`info["numerical_failure"]`).
+    The spec's `max_episode_steps` is 600 (30 s at 0.05 s): `gym.make` with a longer
+    `episode_seconds` or another `control_dt` needs `max_episode_steps` too (ValueError
+    otherwise, never a silent cut: docs/api.md, "Episode length").
 
     ## Arguments
     | Argument | default | meaning |
@@ -119,7 +123,8 @@ class GyroStabilizerEnv(MFEnv):
     | roll_damping | 7 481 | linear B44, N m s/rad (quadratic B44q: hull field) |
     | max_precession_rate | 2.0 | rad/s |
     | max_gimbal_angle | None | rad: end stops (seed pi/3) or cushions' start (7000: 50 deg) |
-    | episode_seconds | 30 | s |
+    | episode_seconds | None | s; None: 30 s, or max_episode_steps steps |
+    | max_episode_steps | None | control steps per episode (gym.make's TimeLimit agrees) |
     | effects | see DEFAULT_EFFECTS | tuple of names from `SHIP_EFFECTS` |
     | control_dt | 0.05 | s |
     | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |
@@ -162,7 +167,7 @@ class GyroStabilizerEnv(MFEnv):
         roll_damping: float | None = None,
         max_precession_rate: float = 2.0,
         max_gimbal_angle: float | None = None,
-        episode_seconds: float = 30.0,
+        episode_seconds: float | None = None,
         effects: Iterable[str] | str | None = None,
         control_dt: float = 0.05,
         physics_dt: float | None = None,
@@ -191,6 +196,7 @@ class GyroStabilizerEnv(MFEnv):
         hull_damping: str | None = None,
         sensor_noise_scale: float = 1.0,
         sensor_delay_time: float = 0.1,
+        max_episode_steps: int | None = None,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
@@ -198,10 +204,9 @@ class GyroStabilizerEnv(MFEnv):
         super().__init__(effects=scene.effects, control_dt=control_dt,
                          physics_dt=scene.physics_dt, render_mode=render_mode)  # fmt: skip
         build.check_step(self.physics_dt, scene.dt_max)
-        self.max_steps = self._episode_steps(
-            check_range("episode_seconds", episode_seconds, 0, 1e9)
+        self.max_steps, self.episode_seconds = self._seconds_episode(
+            episode_seconds, max_episode_steps, EPISODE_SECONDS
         )
-        self.episode_seconds = float(episode_seconds)
         self._set_scene(build.timed(scene, self.physics_dt))
         # the rotor speed the preset resolved (rad/s): domain randomisation's nominal value
         self.rotor_speed = self.gyro.rotor_speed

@@ -78,9 +78,10 @@ def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, o
     the GIL is released, so threads can step disjoint blocks of rows at once).
 
     t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.alloc_batch`;
-    u (N,) rad/s; steps (N,) int64; last (N, 6) float32 the last returned observations; writes
-    obs (N, 6) float32, cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False
-    on a numerical failure (the step then scores 0 and keeps the last observation), reward (N,).
+    u (N,) rad/s; dt (N,) s and n_sub (N,) int64 each row's physics step and substeps; steps
+    (N,) int64; last (N, 6) float32 the last returned observations; writes obs (N, 6) float32,
+    cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False on a numerical
+    failure (the step then scores 0 and keeps the last observation), reward (N,).
     This task's scratch is allocated here; the rows are stepped by `_rows`.
     """
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
@@ -100,7 +101,7 @@ def _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, 
             continue
         yi, Ri, oi = y[i], R[i], out[i]
         e0 = yi[K.E_STATE]
-        t[i] = K.advance_with(t[i], yi, Ri, u[i], dt, n_sub, P[i], tab[i], oi, work, Rwork)
+        t[i] = K.advance_with(t[i], yi, Ri, u[i], dt[i], n_sub[i], P[i], tab[i], oi, work, Rwork)
         steps[i] += 1
         roll = K.roll_of(Ri)
         ok = observe(roll, yi, Ri, ob)

@@ -32,6 +32,7 @@ DECLARATION = EnvDeclaration(
     env_id="GyroStabilizer-v0",
     entry_point="mf_envs.envs.gyro_stabilizer.env:GyroStabilizerEnv",
     vector_entry_point="mf_envs.envs.gyro_stabilizer.vector:GyroStabilizerVectorEnv",
+    max_episode_steps=600,  # the default episode: 30 s of 0.05 s
     baselines="mf_envs.controllers.stabilizer",
     metric=Metric("rms_roll", False, "rad"),
     episode_metrics=episode_metrics,

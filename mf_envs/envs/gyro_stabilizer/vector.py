@@ -65,6 +65,29 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GyroStabilizerEnv
     DRAWS_PER_RESET = 3
+    # held per row (packed parameters P, the sea's table, the physics step): `randomize_rows`
+    ROW_KWARGS = frozenset(
+        ("wave_period", "wave_moment_amplitude", "significant_wave_height", "rotor_speed")
+    )
+
+    @classmethod
+    def row_kwargs(cls, **env_kwargs: Any) -> frozenset[str]:
+        """In irregular seas without a given physics_dt, not rotor_speed: the default physics
+        step follows it, and with it the sea table's step and length (`_shared`)."""
+        from mf_envs.effects import resolve_effects
+        from mf_envs.envs.gyro_stabilizer.env import AVAILABLE_EFFECTS, DEFAULT_EFFECTS
+
+        eff = resolve_effects(env_kwargs.get("effects"), AVAILABLE_EFFECTS, DEFAULT_EFFECTS)
+        if "irregular_waves" in eff and env_kwargs.get("physics_dt") is None:
+            return cls.ROW_KWARGS - {"rotor_speed"}
+        return cls.ROW_KWARGS
+
+    def _shared(self, env: Any) -> tuple[Any, ...]:
+        """The step's template scalars (`_step_batch`) and, in irregular seas, the step of the
+        sea table (its length: one batch array holds every row's table)."""
+        table = env.scene.table_dt if "irregular_waves" in env.effects else None
+        return (*super()._shared(env), env.max_precession_rate, env.roll_scale,
+                env.effort_weight, table, env._P.shape)  # fmt: skip
 
     @classmethod
     def supports(cls, **env_kwargs: Any) -> bool:
@@ -89,6 +112,8 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         self._ok = np.ones(n, dtype=bool)
         self._reward = np.zeros(n)
         self._steps = np.zeros(n, dtype=np.int64)
+        self._dt = np.full(n, env.physics_dt)  # each row's physics step and substeps
+        self._nsub = np.full(n, env.n_substeps, dtype=np.int64)
         # the phase is the only reset-dependent parameter of a regular sea (module doc)
         p1, p2 = rows.pack(env.scene, 1.0), rows.pack(env.scene, 2.0)
         same = set(np.flatnonzero(p1 != p2).tolist()) <= {int(Slot.WPHASE)}
@@ -101,6 +126,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
             b["tab"] = np.zeros((self.num_envs, *row["tab"].shape))
         for key in ("t", "y", "R", "P", "tab", "out"):
             b[key][i] = row[key]
+        self._dt[i], self._nsub[i] = self.template.physics_dt, self.template.n_substeps
         self._steps[i] = 0
 
     def state_nbytes(self) -> int:
@@ -134,7 +160,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         # fresh info columns (N_COLS, N), written by the kernel (rows not stepped: reset infos)
         cols = np.empty((N_COLS, self.num_envs))
         args = (
-            active, b["t"], b["y"], b["R"], u, env.physics_dt, env.n_substeps, b["P"], b["tab"],
+            active, b["t"], b["y"], b["R"], u, self._dt, self._nsub, b["P"], b["tab"],
             b["out"], self._steps, self._obs, self._fresh, cols, self._ok, self._reward,
             env.roll_scale, env.effort_weight, env.control_dt,
         )  # fmt: skip

@@ -2,7 +2,7 @@
 
 `build(kw)`: the `Scene` (body, actuation range, reward weight, start noise, control points,
 soil, actuator and feet); `drive_kwargs`: `make_driven`'s arguments once the effects and the
-physics step are known; `episode_steps`: the episode length.
+physics step are known; `DEFAULT_EPISODE_STEPS`: the default episode length.
 
 `beam_params`: the body (length, section, material, mesh). `robot_params` (issue 16): the
 actuator and feet kwargs `actuator_time_constant` [s], `actuator_rate_limit` [1/(m s)],
@@ -55,6 +55,7 @@ ALLOYS = {"HT": FLEXINOL_HT, "LT": FLEXINOL_LT}
 # ~1e4, so the lifting-equivalent weight of the mechanical scenes would drown the progress)
 SMA_EFFORT_SCALE = 1e-4
 __all__ = [
+    "DEFAULT_EPISODE_STEPS",
     "GRIP_TIME_CONSTANT",
     "SMA_RATE_LIMIT",
     "SMA_TIME_CONSTANT",
@@ -62,7 +63,6 @@ __all__ = [
     "beam_params",
     "build",
     "drive_kwargs",
-    "episode_steps",
     "robot_params",
     "step_budget",
 ]
@@ -182,17 +182,6 @@ def wire_groups(
         strain_max=sizing.wire_strain, ambient=ambient, name="Inchworm-v0 body wires",
     )  # fmt: skip
     return SMAWires(group, max_curvature, n_ctrl)
-
-
-def episode_steps(max_episode_steps: Any, episode_seconds: Any, seconds_to_steps) -> int:
-    """Control steps per episode: `seconds_to_steps(episode_seconds)` (`MFEnv._episode_steps`)
-    or `max_episode_steps` (default 400); not both."""
-    if episode_seconds is not None and max_episode_steps is not None:
-        raise ValueError("episode_seconds: give episode_seconds or max_episode_steps, not both")
-    if episode_seconds is not None:
-        return seconds_to_steps(episode_seconds)
-    steps = DEFAULT_EPISODE_STEPS if max_episode_steps is None else max_episode_steps
-    return check_int("max_episode_steps", steps, 1, 10**7)
 
 
 def drive_kwargs(scene: Scene, effects: frozenset) -> dict[str, Any]:

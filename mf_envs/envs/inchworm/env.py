@@ -98,11 +98,11 @@ class InchwormEnv(MFEnv):
     ValueError naming it (and draws nothing).
 
     ## Episode End
-    Truncation after `episode_seconds` (default 40 s = 400 steps of 0.1 s; or give
-    `max_episode_steps`). Termination when Newton-Raphson fails even after step halving
-    (info["numerical_failure"] = True), or when both Coulomb feet would slip at once (no
-    quasi-static equilibrium); render() then draws the last finite state. Translation invariant
-    to round-off at any distance crawled (local coordinates, `mf_envs.physics.inchworm`).
+    Truncation after `max_episode_steps` (default and spec's 400 steps, 40 s of 0.1 s) or
+    `episode_seconds` (docs/api.md, "Episode length"). Termination when Newton-Raphson fails even
+    after step halving (info["numerical_failure"] = True), or when both Coulomb feet would slip
+    at once (no quasi-static equilibrium); render() then draws the last finite state. Translation
+    invariant to round-off at any distance crawled (local coordinates, `mf_envs.physics.inchworm`).
 
     ## Arguments
     | Argument | Default | Meaning |
@@ -116,7 +116,7 @@ class InchwormEnv(MFEnv):
     | n_control_points | 3 | actuation control points (wire groups), 2..64 |
     | control_dt, physics_dt | 0.1, 0.1 | s per step; Newmark step with `inertia` |
     | episode_seconds | None | episode length [s]; None: max_episode_steps steps |
-    | max_episode_steps | 400 | steps per episode (when episode_seconds is None) |
+    | max_episode_steps | None | steps per episode; None: 400 (or from episode_seconds) |
     | effort_weight | None | weight of the effort term [1/J], >= 0; None: see Rewards |
     | actuator_time_constant | 0.3 | tau [s] of the lag (`actuator_dynamics`) |
     | actuator_rate_limit | 13.0 | largest abs(d kappa#/dt) [1/(m s)] (`actuator_dynamics`) |
@@ -191,9 +191,8 @@ class InchwormEnv(MFEnv):
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
         self._set_scene(build.build(kw, self.effects, self.n_substeps))  # kwargs as physics params
-        self.max_steps = build.episode_steps(
-            max_episode_steps, episode_seconds, self._episode_steps
-        )
+        own, default = self._own_seconds(episode_seconds), build.DEFAULT_EPISODE_STEPS
+        self.max_steps = self._episode_length(max_episode_steps, own, default)
         self.episode_seconds = self.max_steps * self.control_dt
         self.actuator = self.actuator_params if "actuator_dynamics" in self.effects else None
         self.sma = "sma_wires" in self.effects

@@ -43,6 +43,7 @@ DECLARATION = EnvDeclaration(
     env_id="Inchworm-v0",
     entry_point="mf_envs.envs.inchworm.env:InchwormEnv",
     vector_entry_point="mf_envs.envs.inchworm.vector:InchwormVectorEnv",
+    max_episode_steps=400,  # the default episode: 40 s of 0.1 s
     baselines="mf_envs.controllers.inchworm",
     metric=Metric("tail_advance_per_step", True, "m"),
     episode_metrics=episode_metrics,

@@ -22,6 +22,7 @@ AVAILABLE_EFFECTS = {
 }
 DEFAULT_EFFECTS = ("friction", "actuator_dynamics")
 MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
+EPISODE_SECONDS = 20.0  # s, the default episode (400 steps of the default 0.05 s)
 
 
 class SerpentineEnv(BeamRobotMixin, MFEnv):
@@ -75,7 +76,9 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     overrides; any other key or value raises ValueError naming it (and draws nothing).
 
     ## Episode End
-    Truncation after `episode_seconds`. Termination on numerical failure (Newton fails even
+    Truncation after `episode_seconds` or `max_episode_steps` (the spec's: 400 = 20 s at 0.05 s;
+    `gym.make` with another length or `control_dt` needs `max_episode_steps` too, else
+    ValueError: docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
     after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
 
     ## Arguments
@@ -88,7 +91,8 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     | max_curvature | 25 | action scale [1/m], max_curvature L <= 20 |
     | n_control_points | 7 | actuation control points, 2..64 |
     | control_dt, physics_dt | 0.05, 0.025 | s per step, implicit physics step (1 % in speed) |
-    | episode_seconds | 20 | episode length [s] (10 periods of the reference gait) |
+    | episode_seconds | None | episode length [s]; None: 20 s (10 periods of the reference gait) |
+    | max_episode_steps | None | or the episode length in control steps |
     | friction_coefficient | 0.892 | forward Coulomb mu = L / (T^2 g Fr), T = 2 s, Fr = 0.1 |
     | backward_ratio, lateral_ratio | 1.5, 2 | backward, lateral coefficient / mu |
     | slip_speed | 1e-3 | regularisation speed of the friction [m/s] |
@@ -123,7 +127,7 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
         n_control_points: int = 7,
         control_dt: float = 0.05,
         physics_dt: float = 0.025,
-        episode_seconds: float = 20.0,
+        episode_seconds: float | None = None,
         friction_coefficient: float = build.MU,
         backward_ratio: float = 1.5,
         lateral_ratio: float = 2.0,
@@ -137,14 +141,15 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
         actuator_time_constant: float = 0.1,
         actuator_rate_limit: float = 1000.0,
         effects: Any = None,
+        max_episode_steps: int | None = None,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
         self._set_scene(build.build(kw, self.effects))
-        self.max_steps = self._episode_steps(episode_seconds)
-        self.episode_seconds = self.max_steps * self.control_dt
+        steps, _ = self._seconds_episode(episode_seconds, max_episode_steps, EPISODE_SECONDS)
+        self.max_steps, self.episode_seconds = steps, steps * self.control_dt
         self.model = BeamModel(self.scene.params)
         self.cfg = rows.pack(
             self.scene, self.model, self.n_substeps, self.physics_dt, self.target_direction

@@ -34,6 +34,7 @@ DECLARATION = EnvDeclaration(
     env_id="Serpentine-v0",
     entry_point="mf_envs.envs.serpentine.env:SerpentineEnv",
     vector_entry_point="mf_envs.envs.serpentine.vector:SerpentineVectorEnv",
+    max_episode_steps=400,  # the default episode: 20 s of 0.05 s
     baselines="mf_envs.controllers.serpentine",
     metric=Metric("speed", True, "m/s"),
     episode_metrics=episode_metrics,

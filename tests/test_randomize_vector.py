@@ -1,0 +1,157 @@
+"""Domain randomisation on the native vector env (issue 32): `train.randomize.randomized_vector_env`
+is bit-identical to `SyncVectorEnv` over `DomainRandomization`-wrapped single envs with the same
+seeds and so the same randomisation draws (observations, rewards, flags, infos with
+`info["randomized"]`), through seeded resets, autoresets of every mode and masked resets;
+kwargs the rows cannot hold apart are refused (ValueError naming `ranges`), and training uses
+the native env with the wrapper when it can."""
+
+from __future__ import annotations
+
+import functools
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.vector import AutoresetMode, SyncVectorEnv
+from test_vector_envs import actions, assert_infos_equal  # (tests/ is on sys.path)
+
+import mf_envs  # noqa: F401  (registers the ids)
+from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
+from mf_envs.train.randomize import (
+    DomainRandomization,
+    Randomizer,
+    native_randomization_supported,
+    randomized_vector_env,
+)
+
+SEEDS = [11, 3, 7]
+IRREGULAR = (*DEFAULT_EFFECTS, "irregular_waves")
+# (env id, env kwargs: short episodes, ranges (None: the declared), choices (None: declared))
+CASES = {
+    # the declared ranges: wave period, moment, Hs and rotor speed (whose x1.1 needs 3 physics
+    # substeps instead of 2: rows of different physics steps)
+    "stabilizer": ("GyroStabilizer-v0", {"episode_seconds": 0.3}, None, None),
+    "stabilizer_irregular": (
+        "GyroStabilizer-v0",
+        {"episode_seconds": 0.3, "effects": IRREGULAR},
+        {"wave_period": (0.8, 1.2), "significant_wave_height": (0.5, 1.5)},
+        None,
+    ),
+    "gowec": (
+        "GOWEC-v0",
+        {"n_periods": 1, "steps_per_period": 8},
+        {"wave_amplitude": (0.5, 1.5)},
+        {},
+    ),
+}
+
+
+def sync_randomized(env_id, kw, ranges, choices, mode) -> SyncVectorEnv:
+    def make() -> gym.Env:
+        return DomainRandomization(gym.make(env_id, **kw), ranges=ranges, choices=choices)
+
+    return SyncVectorEnv([make] * 3, autoreset_mode=mode)
+
+
+@pytest.mark.parametrize("mode", list(AutoresetMode))
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_native_randomization_equals_sync_over_wrappers(case: str, mode: AutoresetMode) -> None:
+    env_id, kw, ranges, choices = CASES[case]
+    sync = sync_randomized(env_id, kw, ranges, choices, mode)
+    vec = randomized_vector_env(env_id, 3, kw, ranges, choices, autoreset_mode=mode)
+    out_s, out_v = sync.reset(seed=SEEDS), vec.reset(seed=SEEDS)
+    np.testing.assert_array_equal(out_s[0], out_v[0])
+    assert_infos_equal(out_s[1], out_v[1])
+    drawn, substeps = [out_v[1]["randomized"]], set()
+    acts = actions(vec, 24, seed=2)
+    done = np.zeros(3, dtype=bool)
+    for t in range(len(acts)):
+        if mode == AutoresetMode.DISABLED and (done.any() or t == 9):
+            mask = done | (t == 9)
+            out_s = sync.reset(options={"reset_mask": mask})
+            out_v = vec.reset(options={"reset_mask": mask.copy()})
+            np.testing.assert_array_equal(out_s[0], out_v[0], err_msg=f"reset at {t}")
+            assert_infos_equal(out_s[1], out_v[1], f"reset at {t}: ")
+            drawn.append(out_v[1]["randomized"])
+        out_s, out_v = sync.step(acts[t]), vec.step(acts[t])
+        for a, b in zip(out_s[:4], out_v[:4]):
+            np.testing.assert_array_equal(a, b, err_msg=f"step {t}")
+        assert_infos_equal(out_s[4], out_v[4], f"step {t}: ")
+        done = out_v[2] | out_v[3]
+        drawn.append(out_v[4].get("randomized"))
+        substeps.update(getattr(vec.unwrapped, "_nsub", np.zeros(1)).tolist())
+    name = next(iter(ranges or {"rotor_speed": 0}))
+    values = {float(v) for d in drawn if d for v in np.asarray(d[name])[d[f"_{name}"]]}
+    assert len(values) >= 4  # new draws at the autoresets, not only at the first reset
+    if case == "stabilizer":
+        assert substeps == {2, 3}  # rows with different physics steps were stepped together
+    sync.close()
+    vec.close()
+
+
+def test_a_kwarg_the_rows_share_is_refused():
+    """GOWEC-v0's declared ranges include wave_period, which sets the control step that its
+    rows share: the native env refuses them, naming ranges; training falls back."""
+    names = Randomizer("GOWEC-v0").names
+    assert "wave_period" in names
+    assert not native_randomization_supported("GOWEC-v0", names)
+    assert native_randomization_supported(
+        "GyroStabilizer-v0", Randomizer("GyroStabilizer-v0").names
+    )
+    with pytest.raises(ValueError, match=r"ranges: \['rotor_speed', 'wave_period'\]"):
+        randomized_vector_env("GOWEC-v0", 2)
+    # irregular seas: the rotor speed sets the physics step and so the sea table's length
+    kw = {"effects": IRREGULAR}
+    assert not native_randomization_supported("GyroStabilizer-v0", {"rotor_speed"}, kw)
+    assert native_randomization_supported(
+        "GyroStabilizer-v0", {"rotor_speed"}, kw | {"physics_dt": 0.01}
+    )
+    with pytest.raises(ValueError, match=r"ranges: \['rotor_speed'\]"):
+        randomized_vector_env("GyroStabilizer-v0", 2, kw)
+
+
+def test_a_draw_that_changes_the_shared_step_is_refused():
+    """The guard behind ROW_KWARGS: a draw that changes what the batch step reads from the
+    template (here the reward's effort weight) raises ValueError naming ranges."""
+
+    class Draws:
+        names = frozenset({"rotor_speed"})
+
+        def draw(self, rng: Any, seed: Any) -> tuple[Any, dict[str, Any], int]:
+            return np.random.default_rng(0), {"effort_weight": 0.5}, 1
+
+    vec = gym.make_vec("GyroStabilizer-v0", 2, vectorization_mode="vector_entry_point")
+    vec.unwrapped.randomize_rows(Draws())
+    with pytest.raises(ValueError, match="ranges: the draw"):
+        vec.reset(seed=0)
+    vec.unwrapped.randomize_rows(None)  # off again: the plain rows
+    vec.reset(seed=0)
+    vec.close()
+
+
+def test_training_uses_the_native_env_with_domain_randomization():
+    pytest.importorskip("stable_baselines3")
+    from mf_envs.train.vec import make_train_env, randomization_only
+
+    assert randomization_only([DomainRandomization]) == {}
+    part = functools.partial(DomainRandomization, ranges={"wave_amplitude": (0.5, 1.5)})
+    assert randomization_only([part]) == {"ranges": {"wave_amplitude": (0.5, 1.5)}}
+    assert randomization_only([DomainRandomization, gym.wrappers.ClipAction]) is None
+    kw = {"episode_seconds": 0.3}
+    venv, kind = make_train_env("GyroStabilizer-v0", 2, 0, kw, wrappers=[DomainRandomization])
+    assert kind == "native"
+    venv.reset()
+    ends = 0
+    for _ in range(8):  # through an episode end (SAME_STEP: SB3's terminal_observation)
+        *_, infos = venv.step(np.zeros((2, 1), np.float32))
+        ends += sum("terminal_observation" in i for i in infos)
+    assert ends == 2  # both rows ended their 6-step episode once
+    venv.close()
+    short = {"n_periods": 1, "steps_per_period": 8}
+    venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[DomainRandomization])
+    assert kind == "dummy"  # its declared wave_period cannot differ between native rows
+    venv.close()
+    venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[part])
+    assert kind == "native"
+    venv.close()
