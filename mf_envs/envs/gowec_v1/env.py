@@ -12,7 +12,7 @@ from gymnasium import spaces
 from mf_envs._validate import check_range
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import build, spec
-from mf_envs.envs.gowec_v1.rows import observe_one, step_one
+from mf_envs.envs.gowec_v1.rows import observe_at, step_one
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
 from mf_envs.physics.gowec.hydro import batch as hb
@@ -28,7 +28,6 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ROLL,
 )
 from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
-from mf_envs.physics.gowec.hydro.floating import ramp
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -168,7 +167,8 @@ class GOWECV1Env(MFEnv):
                                                         self.wave_direction)  # fmt: skip
         self.state = self.model.initial_state()
         self._t, self._steps, self._last_power = 0.0, 0, 0.0
-        self._vals, self._work = np.zeros(hb.N_VALS), hb.step_work(self.state.shape[0], 1)
+        self._vals = np.zeros(hb.N_VALS)
+        self._work = hb.step_work(len(self.state), self.n_components)  # any sea of this env
         self._consts_key: tuple | None = None  # `_consts`' cache key
 
     # ------------------------------------------------------------------ public quantities
@@ -209,8 +209,7 @@ class GOWECV1Env(MFEnv):
     # ------------------------------------------------------------------ gym API
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         tau = self._scalar_action(action) * self.max_generator_torque
-        t0 = self._t
-        self._steps += 1
+        t0, self._steps = self._t, self._steps + 1
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
         obs = np.empty(self.observation_space.shape[0], np.float32)
@@ -300,8 +299,6 @@ class GOWECV1Env(MFEnv):
                 phase=float(rng.uniform(0.0, 2.0 * math.pi)),
             )
         self.model.set_sea(self.wave)
-        # the step's scratch, sized for this sea's components (`hb.step_work`)
-        self._work = hb.step_work(self.state.shape[0], len(self.wave.amplitudes))
         self.state = self.model.initial_state(
             opts.get("buoy_pitch", 0.0),
             opts.get("buoy_roll", 0.0),
@@ -339,10 +336,9 @@ class GOWECV1Env(MFEnv):
     def _get_obs(self) -> np.ndarray:
         obs = np.empty(self.observation_space.shape[0], np.float32)
         a, w = self.model._args(), self.wave
-        eta = float(hb.elevation(self._t, w.amplitudes, a[9], w.phases) * ramp(self._t, a[13][1]))
-        observe_one(self.state, self._t, w.amplitudes, a[9], w.phases, a[13][1],
-                    self.preview_times, self.observation_space.low, self.observation_space.high,
-                    obs, eta)  # fmt: skip
+        observe_at(self.state, self._t, w.amplitudes, a[9], w.phases, a[13][1],
+                   self.preview_times, self.observation_space.low, self.observation_space.high,
+                   obs)  # fmt: skip
         return obs
 
     def _draw_frame(self) -> np.ndarray:

@@ -49,6 +49,14 @@ def observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs, eta):
     return finite
 
 
+@numba.njit(cache=True)
+def observe_at(y, t, amp, om, eps, tramp, preview, lo, hi, obs):
+    """`observe_one` with the probe's elevation computed at t (resets and the single env's
+    observation outside a step, where no step has formed it)."""
+    eta = elevation(t, amp, om, eps) * ramp(t, tramp)
+    return observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs, eta)
+
+
 @numba.njit(cache=True, nogil=True)
 def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
               loss, vals, ok, o_lo, o_hi, obs, preview):  # fmt: skip
@@ -90,8 +98,8 @@ def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, 
     """The single env's step in one compiled call: `step_row`, then (if the state is finite)
     `observe_one` into obs (preview: its look-ahead times) and the termination tests; limits =
     (max gimbal rate rad/s, max buoy
-    angle rad), w = `step_work` (a new one if w is too small for the sea, which the env sizes at
-    each reset). Returns (ok, y1, finite obs, overspeed, out of range)."""
+    angle rad), w = `step_work` (the env's holds n_components; a new one here if w is too small
+    for the sea). Returns (ok, y1, finite obs, overspeed, out of range)."""
     if w.shape[0] < 6 * y.shape[0] + 4 * args[9].shape[0]:
         w = step_work(y.shape[0], args[9].shape[0])
     ok = step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w)
