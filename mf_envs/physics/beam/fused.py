@@ -220,6 +220,18 @@ def scale_band(mass, c, out):
 
 
 @kernel(forceinline=True)
+def trapezoid_points(d, d0, v0, dt, th, x, v, dth, vth):
+    """The Newton iterate d's companions in the trapezoidal (theta) step from (d0, v0): x = d -
+    d0 - dt v0 (the inertia's argument), v = 2 (d - d0) / dt - v0 (v_{n+1}), and the load point
+    d_th = d0 + th (d - d0), v_th = (1 - th) v0 + th v, all written in place."""
+    for i in range(d0.shape[0]):
+        x[i] = d[i] - d0[i] - dt * v0[i]
+        v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
+        dth[i] = d0[i] + th * (d[i] - d0[i])
+        vth[i] = (1.0 - th) * v0[i] + th * v[i]
+
+
+@kernel(forceinline=True)
 def start_band(cm, x, r, ab):
     """ab = cm (the banded c_a M of `scale_band`), r -= cm x (row by row of the band:
     contiguous)."""

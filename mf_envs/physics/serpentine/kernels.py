@@ -85,12 +85,8 @@ def _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pr
     p, m_a, law = ground
     r, x, dth, vth = buf[0], buf[1], buf[2], buf[3]
     db, de, ve, fe = e11[0], e11[1], e11[2], e11[3]
-    nd = d0.shape[0]
-    for i in range(nd):
-        x[i] = d[i] - d0[i] - dt * v0[i]
-        v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
-        dth[i] = d0[i] + th * (d[i] - d0[i])
-        vth[i] = (1.0 - th) * v0[i] + th * v[i]
+    fused.trapezoid_points(d, d0, v0, dt, th, x, v, dth, vth)
+    for i in range(d0.shape[0]):
         r[i] = 0.0
     fused.start_band(cm, x, r, ab)  # r = -c_a M x, ab = c_a M
     on = law[9] > 0.0  # a ground force (effects on)

@@ -63,12 +63,8 @@ def _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf
     r, x, dth, vth = buf[0], buf[1], buf[2], buf[3]
     db, dv, de, ve = e11[0], e11[1], e11[2], e11[3]
     fe = e11[4]
-    nd = d0.shape[0]
-    for i in range(nd):
-        x[i] = d[i] - d0[i] - dt * v0[i]
-        v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
-        dth[i] = d0[i] + th * (d[i] - d0[i])
-        vth[i] = (1.0 - th) * v0[i] + th * v[i]
+    fused.trapezoid_points(d, d0, v0, dt, th, x, v, dth, vth)
+    for i in range(d0.shape[0]):
         r[i] = p0[i] / dt
     fused.start_band(cm, x, r, ab)  # r -= c_a M x, ab = c_a M
     m_a = law[W_MA]
