@@ -147,3 +147,15 @@ def test_heading_controller_turns_the_snake_toward_the_target():
     closed = _travel_direction(env, "heading", start)
     assert abs(open_loop) > 0.6  # the open-loop gait keeps roughly its start direction
     assert abs(closed) < 0.3  # the heading controller crawls along the target
+
+
+def test_a_beam_robot_without_its_row_step_cannot_be_made():
+    # the shared control step (envs._beam_robot) needs each robot's row step, heading, drawing
+    from mf_envs.envs._beam_robot import BeamRobotMixin
+    from mf_envs.envs.serpentine.env import SerpentineEnv
+
+    class NoHeading(SerpentineEnv):
+        _heading = BeamRobotMixin._heading
+
+    with pytest.raises(TypeError, match="_heading"):
+        NoHeading()

@@ -6,6 +6,7 @@ report into `rep` by the slots below (`envs.serpentine.rows`, `envs.eel.rows`)."
 from __future__ import annotations
 
 import math
+from abc import ABCMeta, abstractmethod
 from typing import Any
 
 import numpy as np
@@ -15,17 +16,22 @@ from mf_envs.envs.serpentine import spec
 REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
 
 
-class BeamRobotMixin:
-    """`step`, `_info`, `centerline` and `_draw_frame` of a beam robot (put before `MFEnv`)."""
+class BeamRobotMixin(metaclass=ABCMeta):
+    """`step`, `_info`, `centerline` and `_draw_frame` of a beam robot (put before `MFEnv`); an
+    env that lacks one of the three hooks below cannot be instantiated (TypeError)."""
 
+    @abstractmethod
     def _advance(self, action: np.ndarray, rep: np.ndarray) -> None:
-        raise NotImplementedError
+        """One control step of the robot's compiled row with the validated action, reporting
+        into rep by the REP_* slots."""
 
+    @abstractmethod
     def _heading(self) -> float:
-        raise NotImplementedError
+        """The body's heading (rad)."""
 
+    @abstractmethod
     def _draw(self, line: np.ndarray, text: str) -> np.ndarray:
-        raise NotImplementedError
+        """The rgb frame of the centreline `line` (N, 2) with the caption `text`."""
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         a = self._validate_action(action)
