@@ -160,6 +160,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
         self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
         self.phase = np.zeros(1)  # the wave's phase [rad] (action_mode "wave")
         self._sc = rows.scratch(self.model)
+        self._newton = rows.newton_scratch(nd, self.model.n_elements)  # the Newton step's
         self._body, self._rep = np.zeros(5), np.zeros(rows.N_REPORT)
         self._obs = np.zeros(self.obs_layout.size, np.float32)
         self._steps = 0
@@ -187,7 +188,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     # ------------------------------------------------------------------ helpers
     def _advance(self, action: np.ndarray, rep: np.ndarray) -> None:
         rows.step_row(self.state[0], self.state[1], self.cmd, self.phase, action, self.cfg,
-                      self._sc, self._body, self._obs, rep)  # fmt: skip
+                      self._sc, self._body, self._obs, rep, self._newton)  # fmt: skip
 
     def _heading(self) -> float:
         return float(self._body[4])

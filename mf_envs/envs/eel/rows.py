@@ -28,7 +28,7 @@ from mf_envs.envs.serpentine.rows import body_state
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.swimmer.fluid import shape_tables
-from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch
+from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch, newton_scratch
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
 # the muscles' signed (net) work [J]
@@ -112,11 +112,12 @@ def target_row(cmd, phase, action, cfg, out):
 
 
 @numba.njit(cache=True, nogil=True)
-def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
+def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep, newton):
     """One control step of one eel in place (module docstring): d, v (n_dof,), cmd (n,) [1/m]
     the previous command, phase (1,) the wave's phase [rad] (action_mode "wave"), action in
-    [-1, 1] ((n,) or (3,)); obs (2 n + 6) float32, body (5,), rep (N_REPORT,) the report. A
-    failed substep stops the step (rep[REP_OK] = 0)."""
+    [-1, 1] ((n,) or (3,)); obs (2 n + 6) float32, body (5,), rep (N_REPORT,) the report; sc
+    the row's `scratch`, newton the Newton step's (`swimmer.kernels.newton_scratch`, no state).
+    A failed substep stops the step (rep[REP_OK] = 0)."""
     le, mass, quad, water, th, tol, max_iter, max_halvings, interp = cfg[:9]
     n_sub, ei, h, max_change = cfg[14], cfg[16], cfg[18], cfg[19]
     k_old, k_new, ka, kb = sc[8], sc[9], sc[10], sc[11]
@@ -144,7 +145,7 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
                 ka[e, g] = k_old[e, g] + s / n_sub * (k_new[e, g] - k_old[e, g])
                 kb[e, g] = k_old[e, g] + (s + 1) / n_sub * (k_new[e, g] - k_old[e, g])
         its = advance_linear(d, v, ka, kb, h, mass, le, quad, water, th, tol, max_iter,
-                             max_halvings, sc[:8], ei, acc)  # fmt: skip
+                             max_halvings, sc[:8], ei, acc, newton)  # fmt: skip
         if its < 0:
             ok = 0.0
             break
@@ -160,10 +161,11 @@ def step_rows(lo, hi, active, actions, state, cmd, phase, cfg, work, body, obs, 
     """`step_row` for the active rows lo <= i < hi: state (N, 2, n_dof) (d, v), cmd (N, n),
     phase (N, 1), actions (N, n or 3), work the rows' scratch (tuple of (N, ...) arrays),
     body (N, 5), obs (N, 2 n + 6) float32, rep (N, N_REPORT)."""
+    newton = newton_scratch(state.shape[2], cfg[0].shape[0])  # one set for the block's rows
     for i in range(lo, hi):
         if active[i]:
             sc = (work[0][i], work[1][i], work[2][i], work[3][i], work[4][i], work[5][i],
                   work[6][i], work[7][i], work[8][i], work[9][i], work[10][i],
                   work[11][i], work[12][i])  # fmt: skip
             step_row(state[i, 0], state[i, 1], cmd[i], phase[i], actions[i], cfg, sc, body[i],
-                     obs[i], rep[i])  # fmt: skip
+                     obs[i], rep[i], newton)  # fmt: skip

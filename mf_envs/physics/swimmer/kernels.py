@@ -39,7 +39,7 @@ from mf_envs.physics.beam import fused
 from mf_envs.physics.beam.banded import HALF_BW, N_BAND
 from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
 from mf_envs.physics.serpentine.gait import gait_kappa_into
-from mf_envs.physics.serpentine.kernels import PREDICTOR_RATIO, bending_work
+from mf_envs.physics.serpentine.kernels import MAX_QUAD, PREDICTOR_RATIO, bending_work
 from mf_envs.physics.swimmer.fluid import (
     W_MA,
     W_RESISTIVE,
@@ -97,25 +97,23 @@ def _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf
 
 
 @numba.njit(cache=True, nogil=True)
-def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv):
+def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv,
+                sc):  # fmt: skip
     """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); quad = (weights,
     rigidities, dof scales, `beam.fused.quadrature_tables`); water = (nzt, npt, law)
     (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the predictor of
     `serpentine.kernels` (the constant-velocity configuration, or the start if its residual is
     far smaller); th = (theta of the water force, theta of the stresses). Converged as the
     serpentine's: a correction below tol, or, in the quadratic phase, the next one predicted
-    below tol / 1000 from the last two. Returns the Newton iterations, or -1 on failure."""
+    below tol / 1000 from the last two. work, piv: the band solver's scratch; sc: the Newton
+    arrays of `make_scratch` (no allocation here). Returns the Newton iterations, or -1 on
+    failure."""
     nzt, npt, law = water
     th, th_s = th
     m_a = law[W_MA]
     nd = d0.shape[0]
     u_scale, tab = quad[2], quad[3]
-    ab, ab2, cm = np.empty((N_BAND, nd)), np.empty((N_BAND, nd)), np.empty((N_BAND, nd))
-    buf, buf2 = np.empty((4, nd)), np.empty((4, nd))
-    e11 = np.empty((5, 11))
-    ke = np.empty((11, 11))
-    pre = np.empty((le.shape[0], tab.shape[1], fused.N_START))
-    p0 = np.empty(nd)
+    ab, ab2, cm, buf, buf2, e11, ke, pre, p0 = sc
     added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
     fused.start_strains(d0, le, k0, tab, pre)
     fused.scale_band(mass, 2.0 / (dt * dt), cm)
@@ -165,9 +163,9 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
 
 
 def make_scratch(n_dof: int, n_elements: int) -> tuple:
-    """The scratch of `advance_linear` / `run` (the step allocates nothing): the band solver's
-    (work, pivots), kappa# at the sub-step ends (n_el, 4) x 2, the states at the sub-step ends
-    (n_dof) x 4, in the order `advance_linear` unpacks them."""
+    """The scratch of `advance_linear` / `run` (with `newton_scratch`, the step allocates
+    nothing): the band solver's (work, pivots), kappa# at the sub-step ends (n_el, 4) x 2, the
+    states at the sub-step ends (n_dof) x 4, in the order `advance_linear` unpacks them."""
     n_dof, n_elements = int(n_dof), int(n_elements)
     return (
         np.empty((n_dof, 3 * HALF_BW + 1)),
@@ -177,15 +175,34 @@ def make_scratch(n_dof: int, n_elements: int) -> tuple:
     )
 
 
+@numba.njit(cache=True)
+def newton_scratch(n_dof, n_elements):
+    """`newton_step`'s arrays (no state: one set serves every row and step): two tangent bands
+    and the inertia's, two sets of Newton vectors, the element vectors and matrix, the start's
+    strains, the water's start momentum."""
+    return (
+        np.zeros((N_BAND, n_dof)),
+        np.zeros((N_BAND, n_dof)),
+        np.zeros((N_BAND, n_dof)),
+        np.empty((4, n_dof)),
+        np.empty((4, n_dof)),
+        np.empty((5, 11)),
+        np.empty((11, 11)),
+        np.empty((n_elements, MAX_QUAD, fused.N_START)),
+        np.empty(n_dof),
+    )
+
+
 @numba.njit(cache=True, nogil=True)
 def advance_linear(
-    d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter, max_halvings, scratch, ei, out
-):
+    d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter, max_halvings, scratch, ei, out,
+    newton,
+):  # fmt: skip
     """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4),
     splitting the step into 2, 4, ... sub-steps on Newton failure. Returns the Newton iterations,
     or -1 (d, v untouched). out[0] += the muscles' positive work [J], out[1] += their signed
     work (`serpentine.kernels.advance_linear`: -int sigma_3 (k1 - k0) dS per sub-step;
-    ei = EI [N m^2])."""
+    ei = EI [N m^2]); newton: `newton_scratch`."""
     work, piv, k0, k1, d0, v0, d1, v1 = scratch
     ne, ng = ka.shape
     for level in range(max_halvings + 1):
@@ -203,7 +220,23 @@ def advance_linear(
                     k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
                     k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
             its = newton_step(
-                d0, v0, k0, k1, h, mass, le, quad, water, th, tol, max_iter, d1, v1, work, piv
+                d0,
+                v0,
+                k0,
+                k1,
+                h,
+                mass,
+                le,
+                quad,
+                water,
+                th,
+                tol,
+                max_iter,
+                d1,
+                v1,
+                work,
+                piv,
+                newton,
             )
             if its < 0:
                 ok = False
@@ -236,6 +269,7 @@ def run(d, v, dt, n_steps, every, mass, le, quad, water, gait, th, tol, max_iter
     ka = np.empty(a_gp.shape)
     kb = np.empty(a_gp.shape)
     acc = np.zeros(2)
+    newton = newton_scratch(d.shape[0], le.shape[0])
     total, j = 0, 0
     d_out[0] = d
     v_out[0] = v
@@ -243,7 +277,7 @@ def run(d, v, dt, n_steps, every, mass, le, quad, water, gait, th, tol, max_iter
         gait_kappa_into(a_gp, phi_gp, w, t_ramp, n * dt, ka)
         gait_kappa_into(a_gp, phi_gp, w, t_ramp, (n + 1) * dt, kb)
         its = advance_linear(d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter,
-                             max_halvings, scratch, ei, acc)  # fmt: skip
+                             max_halvings, scratch, ei, acc, newton)  # fmt: skip
         if its < 0:
             return total, n
         total += its
