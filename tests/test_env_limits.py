@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import mf_envs  # noqa: F401  (registers the ids)
-from mf_envs.envs import VECTOR_SPECS, declaration, declarations
+from mf_envs.envs import VECTOR_SPECS, declaration, declarations, task_ids
 from mf_envs.envs.declaration import EnvDeclaration, load
 from mf_envs.envs.gyro_stabilizer.env import GyroStabilizerEnv
 
@@ -40,14 +40,17 @@ def _quiet_alias():
 def test_every_id_is_covered():
     assert set(LONGER) == set(IDS)
     assert set(OURS) >= set(IDS) and "GOWEC-v1" in OURS
+    assert set(OURS) >= set(task_ids()) > set(IDS)  # the task variants are registered too
 
 
 @pytest.mark.parametrize("env_id", OURS)
 def test_spec_max_episode_steps_is_the_default_episode(env_id):
     limit = gym.spec(env_id).max_episode_steps
     assert isinstance(limit, int) and limit >= 1
-    cls = load(declaration(env_id).entry_point)
-    assert cls().max_steps == limit  # built directly: no TimeLimit, its own default
+    decl = declaration(env_id)
+    cls = load(decl.entry_point)
+    # built directly (a task variant: with its scene's kwargs): no TimeLimit, its own default
+    assert cls(**decl.kwargs).max_steps == limit
     env = gym.make(env_id)
     assert env.spec.max_episode_steps == limit == env.unwrapped.max_episode_steps
     env.close()

@@ -5,7 +5,8 @@ baseline, which is its strongest (`controllers.register(..., default=True)`).
 The degenerate strategies: every action at -1, at 0 or at +1 for the whole episode (a constant
 full command trips GOWEC-v0's overspeed and FloatingGOWEC-v0's pitch limit, drives a gimbal onto
 its stops, saturates a wire or a muscle), and a chatter between -1 and +1 every step. Each is
-scored by its undiscounted episode return from `reset(seed=1000)`, the default scene.
+scored by its undiscounted episode return from `reset(seed=1000)`, the id's scene (every
+registered id, the task variants included).
 """
 
 from __future__ import annotations
@@ -16,10 +17,14 @@ import pytest
 
 import mf_envs  # noqa: F401
 from mf_envs.controllers import baseline_kinds, make_baseline
-from mf_envs.envs import declarations
+from mf_envs.envs import declarations, task_declarations
 
 SHIPPED = [
     d for d in declarations().values() if d.entry_point.startswith("mf_envs.") and d.baselines
+]
+# and the task variants (the headline JONSWAP ids): their scenes, the env's baselines
+TASKS = [
+    d for d in task_declarations().values() if d.entry_point.startswith("mf_envs.") and d.baselines
 ]
 SEED = 1000
 
@@ -63,7 +68,7 @@ def _baseline(env):
 
 @pytest.mark.parametrize(
     "decl",
-    [pytest.param(d, id=d.env_id, marks=[pytest.mark.slow] if d.slow else []) for d in SHIPPED],
+    [pytest.param(d, id=d.env_id, marks=[pytest.mark.slow] if d.slow else []) for d in TASKS],
 )
 def test_degenerate_strategies_never_beat_the_default_baseline(decl):
     env_id = decl.env_id

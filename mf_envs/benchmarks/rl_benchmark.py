@@ -45,7 +45,12 @@ ALGOS = ("sac", "td3", "ppo")
 
 @dataclass(frozen=True)
 class Task:
-    """A headline task: the env, its scene, budgets, baselines and the normalised score."""
+    """A benchmark task on a registered id (its scene: the id's spec kwargs plus `env_kwargs`):
+    budgets, baselines, and the normalised score with its ceiling.
+
+    Score per test episode: with `reference_kwargs`, 1 - metric / metric of the same seed in
+    the reference scene (the stabilizer: rotor off); without, metric / the id's ceiling for the
+    episode's scene (`EnvDeclaration.ceiling`, e.g. a sea's power bound)."""
 
     name: str
     env_id: str
@@ -56,7 +61,8 @@ class Task:
     ceiling: float
     ceiling_note: str
     score_name: str
-    reference_kwargs: Callable[[dict[str, Any]], dict[str, Any]] = field(repr=False)
+    reference_kwargs: Callable[[dict[str, Any]], dict[str, Any]] | None = field(repr=False)
+    metric: str | None = None  # the episode metric scored (None: the env's primary metric)
 
 
 def _rotor_off(kwargs: dict[str, Any]) -> dict[str, Any]:
@@ -64,20 +70,33 @@ def _rotor_off(kwargs: dict[str, Any]) -> dict[str, Any]:
     return {**kwargs, "effects": tuple(e for e in kwargs["effects"] if e != "gyroscopic")}
 
 
+def _scene(env_id: str) -> dict[str, Any]:
+    """The registered id's scene kwargs (a variant's spec kwargs; {} for an env's own id)."""
+    from mf_envs.envs import declaration
+
+    return dict(declaration(env_id).kwargs)
+
+
+def _base_id(env_id: str) -> str:
+    from mf_envs.envs import declaration
+
+    return declaration(env_id).base_id
+
+
 def _stabilizer_irregular() -> Task:
-    from mf_envs.benchmarks.stabilizer_grid import cells
+    from mf_envs.envs import declaration
 
-    cell = next(c for c in cells() if c["name"] == "Hs0.8_Tp5.92_beam_U0")
-    kw = {k: v for k, v in cell.items() if k != "name"}
-
+    env_id = "GyroStabilizer-JONSWAP-v0"
+    kw = {k: v for k, v in _scene(env_id).items() if k != "episode_seconds"}
+    ceiling = declaration(env_id).ceiling
     return Task(
         name="stabilizer_irregular",
-        env_id="GyroStabilizer-v0",
+        env_id=env_id,
         env_kwargs=kw,
         eval_seconds=120.0,
         budgets={"ppo": 50_000, "sac": 20_000, "td3": 20_000},
         baselines=("random", "pid", "lqr"),
-        ceiling=1.0,
+        ceiling=float(ceiling.value),
         ceiling_note="RMS roll reduction 1 (no roll left); no causal bound computed",
         score_name="rms_roll_reduction",
         reference_kwargs=_rotor_off,
@@ -105,9 +124,44 @@ def _stabilizer_resonance() -> Task:
     )
 
 
+def _gowec_irregular() -> Task:
+    """FloatingGOWEC-JONSWAP-v0: mean net electrical power over the episode's second half as a
+    fraction of the id's ceiling for that episode's sea (`gowec_v1.task.net_power_ceiling`)."""
+    return Task(
+        name="gowec_irregular",
+        env_id="FloatingGOWEC-JONSWAP-v0",
+        env_kwargs={},
+        eval_seconds=120.0,
+        budgets={"ppo": 300_000, "sac": 60_000, "td3": 60_000},
+        baselines=(
+            "zero",
+            "random",
+            "bang_bang",
+            "linear_pto",
+            "passive_damper",
+            "efficient_pto",
+        ),  # fmt: skip
+        ceiling=1.0,
+        ceiling_note="net power / the sea's `net_power_ceiling` (loss-inclusive, loose)",
+        score_name="net_power_of_ceiling",
+        reference_kwargs=None,
+        metric="net_power",
+    )
+
+
+def _gowec_regular() -> Task:
+    """FloatingGOWEC-v0's default regular sea (a = 1 m, T = 6 s): the GOWEC's easy task, scored
+    as `gowec_irregular` (a test seed sets only the wave's phase)."""
+    from dataclasses import replace
+
+    return replace(_gowec_irregular(), name="gowec_regular", env_id="FloatingGOWEC-v0")
+
+
 TASKS: dict[str, Callable[[], Task]] = {
     "stabilizer_irregular": _stabilizer_irregular,
     "stabilizer_resonance": _stabilizer_resonance,
+    "gowec_irregular": _gowec_irregular,
+    "gowec_regular": _gowec_regular,
 }
 
 
@@ -130,12 +184,16 @@ class _Zero(_Random):
         return np.zeros(self.space.shape, self.space.dtype), None
 
 
-def _metric(task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Path | None) -> float:
-    """The env's primary metric (the stabilizer: RMS roll after its settling time) of one test
-    episode of `kind` (a baseline, "random", "zero", or the policy in `run`)."""
+def _metric(
+    task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Path | None
+) -> tuple[float, float]:
+    """The scored metric of one test episode of `kind` (a baseline, "random", "zero", or the
+    policy in `run`; the env's primary metric unless `task.metric`) and the id's ceiling for
+    that episode's scene (nan without one)."""
     import gymnasium as gym
 
     from mf_envs.controllers import make_baseline
+    from mf_envs.envs import declaration
     from mf_envs.train.evaluate import primary_metric, run_episode
     from mf_envs.train.policy import load_policy
 
@@ -147,19 +205,28 @@ def _metric(task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Path 
             ctrl = (_Random if kind == "random" else _Zero)(env.action_space, seed)
         else:
             ctrl = make_baseline(env, kind)
-        return float(run_episode(task.env_id, env, ctrl, seed)[primary_metric(task.env_id).name])
+        name = task.metric or primary_metric(task.env_id).name
+        value = float(run_episode(task.env_id, env, ctrl, seed)[name])
+        ceiling = declaration(task.env_id).ceiling
+        return value, (math.nan if ceiling is None else ceiling.of(env))
     finally:
         env.close()
 
 
 def episode_scores(task: Task, kind: str, run: Path | None = None) -> np.ndarray:
     """Normalised score of `kind` (a baseline, "random", or the policy in `run`) on each test
-    seed: 1 - metric / metric of the same sea in the reference (rotor-off) scene."""
+    seed (`Task`): 1 - metric / metric of the same seed in the reference scene, or metric / the
+    episode's ceiling."""
     # longer than the spec's episode: gym.make without its TimeLimit (episode_seconds ends it)
     kw = {**task.env_kwargs, "episode_seconds": task.eval_seconds, "max_episode_steps": -1}
-    ref = task.reference_kwargs(kw)
-    return np.array([1.0 - _metric(task, kw, kind, s, run) / _metric(task, ref, "zero", s, None)
-                     for s in TEST_SEEDS])  # fmt: skip
+    out = []
+    for s in TEST_SEEDS:
+        value, ceiling = _metric(task, kw, kind, s, run)
+        if task.reference_kwargs is None:
+            out.append(value / ceiling)
+        else:
+            out.append(1.0 - value / _metric(task, task.reference_kwargs(kw), "zero", s, None)[0])
+    return np.array(out)
 
 
 def interval(scores: np.ndarray, reps: int = 2000, seed: int = 0) -> dict[str, float]:
@@ -188,9 +255,11 @@ def write_config(task: Task, algo: str, folder: Path) -> Path:
     written as `folder/<algo>.yml` (the file `mf-envs train --config` reads)."""
     import yaml
 
-    from mf_envs.train.config import default_config, read_config
+    from mf_envs.train.config import default_config, load_hyperparams, read_config
 
-    entry = dict(read_config(default_config(algo))[task.env_id])
+    load_hyperparams(task.env_id, default_config(algo))  # ValueError if there is no entry
+    shipped = read_config(default_config(algo))
+    entry = dict(shipped.get(task.env_id) or shipped[_base_id(task.env_id)])
     entry["n_timesteps"] = int(task.budgets[algo])
     entry["env_kwargs"] = {k: list(v) if isinstance(v, tuple) else v
                            for k, v in task.env_kwargs.items()}  # fmt: skip

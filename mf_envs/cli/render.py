@@ -22,14 +22,15 @@ def _check_env_id(env_id: str) -> None:
     import gymnasium as gym
 
     import mf_envs  # noqa: F401  (registers the available ids)
-    from mf_envs.envs import ENV_SPECS, available_env_ids
+    from mf_envs.envs import ENV_SPECS, declaration, task_ids
 
-    if env_id not in ENV_SPECS:
-        raise ValueError(f"env_id: unknown {env_id!r}; known: {', '.join(ENV_SPECS)}")
-    if env_id not in available_env_ids() or env_id not in gym.registry:
+    if declaration(env_id) is None:
+        known = task_ids() + [i for i in ENV_SPECS if i not in task_ids()]
+        raise ValueError(f"env_id: unknown {env_id!r}; known: {', '.join(known)}")
+    if env_id not in task_ids() or env_id not in gym.registry:
         raise ValueError(
             f"env_id: {env_id!r} is not available in this install; available: "
-            f"{', '.join(available_env_ids()) or 'none'}"
+            f"{', '.join(task_ids()) or 'none'}"
         )
 
 

@@ -44,13 +44,15 @@ def _env_id(env: Any) -> str:
 
 def baseline_kinds(env_id: str) -> list[str]:
     """The controller kinds available for `env_id`, default first."""
-    from mf_envs.envs import canonical_env_id, declarations
+    from mf_envs.envs import canonical_env_id, declaration, declarations
 
     env_id = canonical_env_id(env_id)  # a deprecated id (GOWEC-v1): its new id, with a warning
-    modules = {i: d.baselines for i, d in declarations().items() if d.baselines}
-    if env_id not in modules:
-        raise ValueError(f"env_id: no baselines for {env_id!r}; known: {sorted(modules)}")
-    importlib.import_module(modules[env_id])
+    decl = declaration(env_id)
+    if decl is None or not decl.baselines:
+        known = sorted(i for i, d in declarations().items() if d.baselines)
+        raise ValueError(f"env_id: no baselines for {env_id!r}; known: {known}")
+    env_id = decl.base_id  # a task variant's baselines are its env's
+    importlib.import_module(decl.baselines)
     kinds = list(_REGISTRY.get(env_id, {}))
     default = _DEFAULT.get(env_id)
     return sorted(kinds, key=lambda k: (k != default, k))
@@ -63,7 +65,9 @@ def make_baseline(env: Any, kind: str | None = None, **params: Any) -> Any:
     kind = kinds[0] if kind is None else kind
     if kind not in kinds:
         raise ValueError(f"kind: {kind!r} is not a baseline for {env_id}; available: {kinds}")
-    factory = _REGISTRY[env_id][kind]
+    from mf_envs.envs import declaration
+
+    factory = _REGISTRY[declaration(env_id).base_id][kind]
     sig = inspect.signature(factory)
     if not any(p.kind is p.VAR_KEYWORD for p in sig.parameters.values()):
         names = [n for n in list(sig.parameters)[1:] if n != "self"]

@@ -13,7 +13,14 @@ from __future__ import annotations
 import gymnasium as gym
 
 from mf_envs.envs._alias import ALIASES, DeprecatedIdWarning, canonical_env_id, register_aliases
-from mf_envs.envs.declaration import EnvDeclaration, declaration, declarations, load, refresh
+from mf_envs.envs.declaration import (
+    EnvDeclaration,
+    declaration,
+    declarations,
+    load,
+    refresh,
+    task_declarations,
+)
 
 __all__ = [
     "ALIASES",
@@ -27,6 +34,7 @@ __all__ = [
     "declarations",
     "native_vector_supported",
     "register_envs",
+    "task_ids",
 ]
 
 # id -> "module:Class" of the single env; id -> native batched vector env
@@ -48,10 +56,18 @@ def available_env_ids() -> list[str]:
     return [env_id for env_id, d in declarations().items() if d.installed()]
 
 
+def task_ids(role: str | None = None) -> list[str]:
+    """Every registered id of an installed env, its task variants included (`Variant`), or
+    those of one role ("easy", "headline"; docs/benchmark.md)."""
+    return [i for i, d in task_declarations().items()
+            if d.installed() and (role is None or d.role == role)]  # fmt: skip
+
+
 def register_envs() -> None:
-    """Collect the declarations (again) and register their ids with Gymnasium (idempotent)."""
+    """Collect the declarations (again) and register their ids, the task variants' included,
+    with Gymnasium (idempotent)."""
     _views()
-    for env_id, decl in declarations().items():
+    for env_id, decl in task_declarations().items():
         if decl.installed() and env_id not in gym.registry:
             vec = decl.vector_entry_point if decl.vector_installed() else None
             gym.register(
@@ -59,6 +75,7 @@ def register_envs() -> None:
                 entry_point=decl.entry_point,
                 vector_entry_point=vec,
                 max_episode_steps=decl.max_episode_steps,
+                kwargs=dict(decl.kwargs),
             )
     register_aliases()
 
@@ -74,7 +91,8 @@ def native_vector_supported(env_id: str, env_kwargs: dict | None = None) -> bool
         return False
     cls = load(decl.vector_entry_point)
     supports = getattr(cls, "supports", None)
-    return True if supports is None else bool(supports(**(env_kwargs or {})))
+    kwargs = {**decl.kwargs, **(env_kwargs or {})}  # a variant's scene, then the caller's
+    return True if supports is None else bool(supports(**kwargs))
 
 
 _views()

@@ -20,18 +20,21 @@ import importlib.metadata
 import importlib.util
 import pkgutil
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
 __all__ = [
+    "Ceiling",
     "EnvDeclaration",
     "Metric",
+    "Variant",
     "RETURN",
     "base_metrics",
     "declaration",
     "declarations",
     "refresh",
+    "task_declarations",
 ]
 
 ENTRY_POINT_GROUP = "mf_envs.envs"
@@ -47,6 +50,59 @@ class Metric:
 
 
 RETURN = Metric("return", True, "1")
+
+
+@dataclass(frozen=True)
+class Ceiling:
+    """What no controller of a task can beat, for one of its scores (issue 32).
+
+    `value` (in `unit`) is a constant, or None when it depends on the episode's scene: then
+    `fn`, "module:function", computes it from the env after its reset (e.g. a sea's power
+    bound). `note` says what the bound is and why it holds (losses included, causal or not);
+    `tight` is False for a valid bound known to lie far above what the device can reach."""
+
+    metric: str
+    unit: str
+    note: str
+    value: float | None = None
+    fn: str | None = None
+    tight: bool = True
+
+    def __post_init__(self) -> None:
+        if (self.value is None) == (self.fn is None):
+            raise ValueError(f"ceiling: give exactly one of value and fn ({self.metric!r})")
+        if self.fn is not None and ":" not in self.fn:
+            raise ValueError(f"fn: {self.fn!r} is not 'module:function'")
+
+    def of(self, env: Any) -> float:
+        """The ceiling for `env`'s current scene (`value`, or `fn(env)`)."""
+        if self.value is not None:
+            return float(self.value)
+        return float(load(str(self.fn))(env))
+
+
+@dataclass(frozen=True)
+class Variant:
+    """A registered task id built on an env's declaration: the same classes with `kwargs` as
+    the spec's kwargs (`gymnasium.register(kwargs=...)`; a user's kwargs override them), its own
+    episode length, role ("easy" or "headline"), ceiling and a line saying what it is. Its
+    declaration (`declaration(variant_id)`) is its env's with these fields replaced and
+    `variant_of` naming the env: baselines, metrics, randomisation and configs are the env's."""
+
+    env_id: str
+    kwargs: Mapping[str, Any]
+    max_episode_steps: int
+    summary: str
+    role: str = "headline"
+    ceiling: Ceiling | None = None
+    headroom: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kwargs", _frozen(self.kwargs))
+
+
+ROLES = ("easy", "headline")
+
 # (env, rewards, infos) -> extra per-episode metrics; infos[0] is the reset info
 EpisodeMetrics = Callable[[Any, Sequence[float], Sequence[Mapping[str, Any]]], dict[str, float]]
 
@@ -78,6 +134,12 @@ class EnvDeclaration:
     - `bench`, `demo`: modules of the controllers benchmark and the demo (optional).
     - `slow`: steps take about a millisecond (benchmarks time it longer; its native vector env
       may support only some scenes: the vector class's `supports`).
+    - `role`, `ceiling`, `headroom`, `summary`: the id as a benchmark task (issue 32, docs/
+      benchmark.md): "easy" (the regular-sea or seed scene) or "headline" (irregular seas, the
+      real device), the score's ceiling (`Ceiling`) and, in `headroom`, the best baseline's
+      measured gap to it or why none is stated.
+    - `variants`: more registered ids on the same classes (`Variant`); `kwargs`, `variant_of`:
+      set on a variant's own declaration (`declaration(variant_id)`), empty / None on an env's.
     """
 
     env_id: str
@@ -100,6 +162,13 @@ class EnvDeclaration:
     bench: str | None = None
     demo: str | None = None
     slow: bool = False
+    role: str = "easy"
+    summary: str = ""
+    ceiling: Ceiling | None = None
+    headroom: str = ""
+    variants: tuple[Variant, ...] = ()
+    kwargs: Mapping[str, Any] = field(default_factory=dict)
+    variant_of: str | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.env_id, str) or "-v" not in self.env_id:
@@ -111,8 +180,29 @@ class EnvDeclaration:
         steps = self.max_episode_steps
         if steps is not None and (type(steps) is not int or steps < 1):
             raise ValueError(f"max_episode_steps: an integer >= 1 or None, got {steps!r}")
-        for name in ("randomize", "choices", "shifts", "rllib", "hyperparams"):
+        if self.role not in ROLES:
+            raise ValueError(f"role: one of {ROLES}, got {self.role!r}")
+        for v in self.variants:
+            if not isinstance(v, Variant) or v.role not in ROLES or "-v" not in v.env_id:
+                raise ValueError(f"variants: {v!r} is not a Variant with a role in {ROLES}")
+        for name in ("randomize", "choices", "shifts", "rllib", "hyperparams", "kwargs"):
             object.__setattr__(self, name, _frozen(getattr(self, name)))
+
+    @property
+    def base_id(self) -> str:
+        """The env's id: `variant_of` for a variant, else `env_id` (baselines are keyed by it)."""
+        return self.variant_of or self.env_id
+
+    def variant(self, variant_id: str) -> EnvDeclaration:
+        """The declaration of one of `variants` (class docstring of `Variant`)."""
+        v = next((v for v in self.variants if v.env_id == variant_id), None)
+        if v is None:
+            raise ValueError(f"env_id: {variant_id!r} is not a variant of {self.env_id}")
+        return replace(
+            self, env_id=v.env_id, max_episode_steps=v.max_episode_steps, role=v.role,
+            summary=v.summary, ceiling=v.ceiling, headroom=v.headroom, variants=(),
+            kwargs=v.kwargs, variant_of=self.env_id, vector_target=None, single_target=None,
+        )  # fmt: skip
 
     def metrics(self, env: Any, rewards: Sequence[float], infos: Sequence[Mapping[str, Any]]):
         """The episode's metrics: `base_metrics` and the env's own."""
@@ -196,11 +286,31 @@ def declarations() -> dict[str, EnvDeclaration]:
     return dict(_CACHE)
 
 
+def task_declarations() -> dict[str, EnvDeclaration]:
+    """Every registered task id -> its declaration: each env's own, then its variants'."""
+    out: dict[str, EnvDeclaration] = {}
+    for env_id, decl in declarations().items():
+        out[env_id] = decl
+        for v in decl.variants:
+            if v.env_id in out or v.env_id in declarations():
+                raise ValueError(f"env_id: {v.env_id!r} is declared twice")
+            out[v.env_id] = decl.variant(v.env_id)
+    return out
+
+
 def declaration(env_id: str) -> EnvDeclaration | None:
-    """The declaration of `env_id` (a deprecated alias resolves to its env), or None."""
+    """The declaration of `env_id` (a deprecated alias resolves to its env; a variant id gives
+    the variant's declaration, `EnvDeclaration.variant`), or None."""
     from mf_envs.envs._alias import canonical_env_id
 
-    return declarations().get(canonical_env_id(env_id, notice_alias=False))
+    env_id = canonical_env_id(env_id, notice_alias=False)
+    found = declarations().get(env_id)
+    if found is not None:
+        return found
+    for decl in declarations().values():
+        if any(v.env_id == env_id for v in decl.variants):
+            return decl.variant(env_id)
+    return None
 
 
 def load(entry: str) -> Any:

@@ -94,9 +94,15 @@ def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
 def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
     """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`; the
     other algorithms' files: `default_config(algo)`). An env the shipped file has no entry for
-    takes its declaration's `hyperparams[algo]` (an env added as a plugin brings its own)."""
+    takes its declaration's `hyperparams[algo]` (an env added as a plugin brings its own); a
+    task variant without its own entry takes its env's (`EnvDeclaration.variant_of`)."""
+    from mf_envs.envs import declaration
+
     data = read_config(path)
     raw = data.get(env_id)
+    decl = declaration(env_id)
+    if raw is None and decl is not None and decl.variant_of is not None:
+        raw = data.get(decl.variant_of)
     if raw is None:
         raw = _declared(env_id, Path(path) if path is not None else DEFAULT_CONFIG)
     if raw is None:

@@ -63,12 +63,12 @@ class TrainResult:
 def check_env_id(env_id: str) -> None:
     """ValueError (listing the known mf_envs ids) unless `env_id` is a registered Gymnasium id."""
     import mf_envs  # noqa: F401  (registers the available ids)
-    from mf_envs.envs import ENV_SPECS, available_env_ids
+    from mf_envs.envs import ENV_SPECS, task_ids
 
     if env_id in gym.registry:
         return
     extra = " (its module is not installed yet)" if env_id in ENV_SPECS else ""
-    raise ValueError(f"env_id: unknown {env_id!r}{extra}; available: {available_env_ids()}")
+    raise ValueError(f"env_id: unknown {env_id!r}{extra}; available: {task_ids()}")
 
 
 def train(

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs.envs.declaration import EnvDeclaration, Metric
+from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric
 
 
 def episode_metrics(
@@ -45,4 +45,17 @@ DECLARATION = EnvDeclaration(
     vector_target=(1024, 1.0e6),
     bench="mf_envs.benchmarks.controllers.gowec",
     demo="mf_envs.benchmarks.demos.gowec",
+    role="easy",
+    summary="the dissertation's GOWEC (Sec. 3.2): prescribed buoy rocking, regular wave",
+    ceiling=Ceiling(
+        "power_ratio",
+        "1",
+        "4/pi x Eq. 95: the mean power of any gimbal motion with |sin phi| <= 1 under the "
+        "prescribed rocking, reached by a square wave of sin phi (docs/derivations.md)",
+        value=4.0 / np.pi,
+    ),  # fmt: skip
+    headroom=(
+        "saturated by design (the easy task): bang-bang reaches 1.2714 of Eq. 95, 99.86 % of the "
+        "ceiling; the GOWEC's headline task is FloatingGOWEC-JONSWAP-v0"
+    ),
 )

@@ -3,12 +3,13 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
-from mf_envs.envs.declaration import EnvDeclaration, Metric
+from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant
 
 
 def episode_metrics(
@@ -26,6 +27,64 @@ def episode_metrics(
         "net_power": float(np.mean([i["power"] for i in steps[half:]])),
     }
 
+
+def absorbed_power_bound(env: Any) -> float:
+    """Mean power (W) the hull can absorb from the episode's sea in linear potential flow, by any
+    motion of its modes: sum over the sea's components of J_i 3 / k_i, the capture-width limit
+    of an axisymmetric body in heave (1 / k = lambda / 2 pi) and surge with pitch (2 / k: both
+    radiate the same dipole, so together they absorb no more than either; Newman 1976, Falnes
+    2002 ch. 6), at the hull table's water depth h: w^2 = g k tanh(k h), J_i = rho g a_i^2 c_g / 2,
+    c_g = w / (2 k) (1 + 2 k h / sinh 2 k h). A device without surge and heave (no 3-DOF
+    table): the pitch-only `model.radiation_bound`. Every watt the gyros deliver comes out of
+    this, after radiation and drag."""
+    u = env.unwrapped
+    three = getattr(u.model, "three", None)
+    if three is None:
+        return float(u.power_bound())
+    rho, g, h = float(three.rho), float(three.g), float(three.water_depth)
+    a, w = np.asarray(u.wave.amplitudes, float), np.asarray(u.wave.omegas, float)
+    k = w * w / g  # deep water, then Newton on w^2 = g k tanh(k h) (h = inf: deep water)
+    if math.isfinite(h):
+        for _ in range(50):
+            t = np.tanh(k * h)
+            k = k - (g * k * t - w * w) / (g * t + g * k * h * (1.0 - t * t))
+        group = w / (2.0 * k) * (1.0 + 2.0 * k * h / np.sinh(2.0 * k * h))
+    else:
+        group = g / (2.0 * w)
+    return float(np.sum(0.5 * rho * g * a * a * group * 3.0 / k))
+
+
+def net_power_ceiling(env: Any) -> float:
+    """Upper bound of the episode's mean net electrical power (W; the `net_power` metric):
+    eta_g x min(absorbed_power_bound, n x max_generator_power) - the rotor loss. Loss-inclusive
+    (generator efficiency, rotor loss), non-causal (it assumes the sea known), loose: it ignores
+    the gyros' coupling, which limits how much of the hull's motion reaches the generator."""
+    u = env.unwrapped
+    rated = float(u.model.units) * float(u.max_generator_power)
+    return u.eta_g * min(absorbed_power_bound(env), rated) - float(u.rotor_loss_power())
+
+
+CEILING_NOTE = (
+    "eta_g min(P_abs, n P_rated) - rotor loss (`net_power_ceiling`): P_abs the capture-width "
+    "limit of heave, surge and pitch (3 lambda / 2 pi) in the episode's sea. Loss-inclusive, "
+    "non-causal, loose: the gyros' coupling limits how much of it reaches the generator. It "
+    "holds while the Morison drag dissipates over the episode (drag relative to the water "
+    "could do work; the energy balance's dissipated term was positive in every test episode)"
+)
+NET_POWER_CEILING = Ceiling(
+    "net_power", "W", CEILING_NOTE, fn="mf_envs.envs.gowec_v1.task:net_power_ceiling", tight=False
+)
+# measured with `python -m mf_envs.benchmarks.rl_benchmark --task gowec_irregular|gowec_regular
+# --algos` (baselines only; 20 frozen test seeds 20000-20019, 120 s, the second half scored)
+HEADROOM_JONSWAP = (
+    "the best baselines (`efficient_pto`, `passive_damper`) net 2.2 % of the ceiling (IQM "
+    "0.022 [0.015, 0.029]; 2.9 kW mean, -1.0 to 6.9 kW by sea, against 125-138 kW): far below "
+    "90 %, but the ceiling is loose (`tight=False`), so the gap overstates what is left to learn"
+)
+HEADROOM_REGULAR = (
+    "`efficient_pto` nets 12.0 % of the ceiling (27.7 kW against 231 kW, where the generators' "
+    "rating binds); loose like the JONSWAP id's"
+)
 
 DECLARATION = EnvDeclaration(
     env_id="FloatingGOWEC-v0",
@@ -63,6 +122,20 @@ DECLARATION = EnvDeclaration(
     rllib={"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
     vector_target=(1024, 5.0e5),
     single_target=("ratio", 1.0),
+    role="easy",
+    summary="ISWEC-class buoy, regular 1 m wave of 6 s",
+    ceiling=NET_POWER_CEILING,
+    headroom=HEADROOM_REGULAR,
+    variants=(
+        Variant(
+            "FloatingGOWEC-JONSWAP-v0",
+            {"significant_wave_height": 1.5, "peak_period": 6.0},
+            6000,
+            "ISWEC-class buoy in a JONSWAP sea (Hs 1.5 m, Tp 6 s, gamma 3.3): a new sea per seed",
+            ceiling=NET_POWER_CEILING,
+            headroom=HEADROOM_JONSWAP,
+        ),
+    ),
     bench="mf_envs.benchmarks.controllers.gowec_v1",
     demo="mf_envs.benchmarks.demos.gowec_v1",
 )

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs.envs.declaration import EnvDeclaration, Metric
+from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant
 
 SETTLE = 10.0  # s: metrics (RMS roll) skip the start-up transient, benches and evaluate alike
 
@@ -27,6 +27,35 @@ def episode_metrics(
         "max_abs_roll": float(np.max(np.abs(roll))),
     }
 
+
+# the headline sea: the stabilizer grid's cell Hs0.8_Tp5.92_beam_U0 (benchmarks/stabilizer_grid):
+# JONSWAP Hs 0.8 m, Tp = 1.6 x the yacht's natural roll period (3.6970 s), beam, zero speed,
+# where the largest waves exceed the unit's capacity (demand 1.43)
+JONSWAP_KWARGS = {
+    "effects": ("gyroscopic", "gimbal_inertia", "added_inertia", "hydrostatic_restoring",
+                "roll_damping", "quadratic_roll_damping", "gimbal_limits", "irregular_waves"),
+    "significant_wave_height": 0.8,
+    "wave_period": 5.915175067009688,
+    "heading": 0.5 * np.pi,
+    "ship_speed": 0.0,
+    "episode_seconds": 120.0,
+}  # fmt: skip
+RR_CEILING = Ceiling(
+    "rms_roll_reduction", "1",
+    "1 - RMS roll / RMS roll of the same sea with the rotor off <= 1 (no roll left): valid for "
+    "any controller, loose (a capacity-limited causal bound is not computed)",
+    value=1.0, tight=False,
+)  # fmt: skip
+# measured with `python -m mf_envs.benchmarks.rl_benchmark --task stabilizer_irregular|
+# stabilizer_resonance` (20 frozen test seeds 20000-20019, 120 s, RMS roll after 10 s)
+HEADROOM_JONSWAP = (
+    "LQR, the best baseline, reaches 86 % of the ceiling (RR IQM 0.860 [0.849, 0.867]); PID 78 %, "
+    "random actions 49 %; SAC 0.808, TD3 0.734, PPO 0.363 over 3 training seeds each"
+)
+HEADROOM_RESONANCE = (
+    "saturated (the easy task): LQR 94 % of the ceiling (RR 0.943), PID 92 %; a test seed "
+    "sets only the wave's phase"
+)
 
 DECLARATION = EnvDeclaration(
     env_id="GyroStabilizer-v0",
@@ -61,6 +90,20 @@ DECLARATION = EnvDeclaration(
     # 600-step episodes (30 s at 0.05 s); SB3 tuning: gamma 0.98, lr 1e-3 (train/configs/ppo.yml)
     rllib={"gamma": 0.98, "lr": 1e-3, "minibatch_size": 128},
     vector_target=(1024, 1.5e6),
+    role="easy",
+    summary="Seakeeper 7000 on an 18 t yacht, regular beam wave at the roll resonance",
+    ceiling=RR_CEILING,
+    headroom=HEADROOM_RESONANCE,
+    variants=(
+        Variant(
+            "GyroStabilizer-JONSWAP-v0",
+            JONSWAP_KWARGS,
+            2400,  # 120 s of 0.05 s
+            "Seakeeper 7000 on an 18 t yacht, JONSWAP beam sea Hs 0.8 m, Tp 5.92 s, 120 s",
+            ceiling=RR_CEILING,
+            headroom=HEADROOM_JONSWAP,
+        ),
+    ),
     bench="mf_envs.benchmarks.controllers.stabilizer",
     demo="mf_envs.benchmarks.demos.stabilizer",
 )

@@ -67,4 +67,12 @@ DECLARATION = EnvDeclaration(
     bench="mf_envs.benchmarks.controllers.inchworm",
     demo="mf_envs.benchmarks.demos.inchworm",
     slow=True,
+    role="headline",
+    summary="the SMA inchworm of Wang et al. 2014 (PDMS body, SMA wires, gripping feet)",
+    headroom=(
+        "no ceiling stated: a speed bound over every command sequence (partial strokes, the "
+        "wires' heating and cooling, the feet's grip) is not derived. Evidence of headroom: "
+        "the tuned gait (4.97 mm/s, 0.083 L/s) comes from a 96-point grid and Nelder-Mead over "
+        "a two-level square wave only; PPO (60k-225k steps) found no gait (docs/inchworm.md)"
+    ),
 )

@@ -77,4 +77,15 @@ DECLARATION = EnvDeclaration(
     single_target=("steps_per_s", 1000.0),
     vector_n_max=256,
     slow=True,
+    role="headline",
+    summary=(
+        "a soft serpentine robot on anisotropic Coulomb friction: crawl along +x from a random "
+        "heading"
+    ),
+    headroom=(
+        "no ceiling stated: no speed bound of a curvature-actuated body on Coulomb friction is "
+        "derived here (the serpenoid's wave speed bounds travelling waves only). Measured "
+        "headroom: the shipped PPO (100k steps) swims 0.076 m/s against the best baseline's "
+        "(`heading`) 0.058 m/s on seeds 1000-1004, +31 % (docs/serpentine.md)"
+    ),
 )

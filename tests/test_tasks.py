@@ -1,0 +1,162 @@
+"""Registered task ids (issue 32): the easy and headline ids, their scenes, ceilings and
+headroom (`EnvDeclaration.role`, `ceiling`, `headroom`, `variants`; docs/benchmark.md)."""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import mf_envs  # noqa: F401  (registers the ids)
+from mf_envs.controllers import baseline_kinds, make_baseline
+from mf_envs.envs import available_env_ids, declaration, task_ids
+from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Variant
+from mf_envs.physics.gowec.hydro.model import radiation_bound
+
+HEADLINE = task_ids("headline")
+VARIANTS = [i for i in task_ids() if declaration(i).variant_of is not None]
+
+
+def test_every_system_has_a_headline_id_and_every_id_a_role():
+    assert set(task_ids()) == set(task_ids("easy")) | set(HEADLINE)
+    assert {"GyroStabilizer-JONSWAP-v0", "FloatingGOWEC-JONSWAP-v0"} <= set(HEADLINE)
+    assert {"Inchworm-v0", "Serpentine-v0", "Eel-v0"} <= set(HEADLINE)
+    assert set(available_env_ids()) < set(task_ids())
+
+
+@pytest.mark.parametrize("env_id", HEADLINE)
+def test_a_headline_id_states_its_ceiling_and_headroom_or_why_not(env_id):
+    """Issue 32's first acceptance line: a ceiling with the best baseline's measured gap, or the
+    reason there is none, in the id's declaration (and docs/benchmark.md)."""
+    d = declaration(env_id)
+    assert d.summary and len(d.headroom) > 40
+    if d.ceiling is None:
+        assert d.headroom.startswith("no ceiling stated:")
+    else:
+        assert "%" in d.headroom and len(d.ceiling.note) > 40
+
+
+@pytest.mark.parametrize("env_id", VARIANTS)
+def test_a_variant_is_its_env_with_the_scene_in_the_spec(env_id):
+    d = declaration(env_id)
+    base = declaration(d.variant_of)
+    spec = gym.spec(env_id)
+    assert spec.kwargs == dict(d.kwargs) and spec.max_episode_steps == d.max_episode_steps
+    assert spec.entry_point == base.entry_point and d.baselines == base.baselines
+    assert baseline_kinds(env_id) == baseline_kinds(d.variant_of)
+    env = gym.make(env_id)
+    for key, value in d.kwargs.items():  # the scene reached the env
+        got = getattr(env.unwrapped, key, None)
+        if got is not None and key != "effects":
+            assert got == pytest.approx(value)
+    if "effects" in d.kwargs:
+        assert set(env.unwrapped.effects) == set(d.kwargs["effects"])
+    # the env's default baseline drives it (baselines are the env's)
+    ctrl = make_baseline(env)
+    obs, _ = env.reset(seed=3)
+    ctrl.reset()
+    for _ in range(5):
+        obs, *_ = env.step(ctrl.predict(obs)[0])
+    env.close()
+
+
+@pytest.mark.parametrize("env_id", VARIANTS)
+def test_a_variants_native_vector_env_runs_its_scene(env_id):
+    """make_vec passes the spec's kwargs to the native vector env: its rows equal the single
+    env of the variant (same seed, same actions), not the base env's default scene."""
+    n, steps = 2, 6
+    venv = gym.make_vec(env_id, n, vectorization_mode="vector_entry_point")
+    envs = [gym.make(env_id) for _ in range(n)]
+    obs, _ = venv.reset(seed=11)
+    singles = [e.reset(seed=11 + i)[0] for i, e in enumerate(envs)]
+    np.testing.assert_array_equal(obs, np.stack(singles))
+    rng = np.random.default_rng(0)
+    for _ in range(steps):
+        a = rng.uniform(-1, 1, (n, *venv.single_action_space.shape)).astype(np.float32)
+        obs, rew, *_ = venv.step(a)
+        for i, e in enumerate(envs):
+            o, r, *_ = e.step(a[i])
+            np.testing.assert_array_equal(obs[i], o)
+            assert rew[i] == r
+    assert venv.template.max_steps == declaration(env_id).max_episode_steps
+    venv.close()
+
+
+def test_declaring_a_variant_checks_its_fields():
+    with pytest.raises(ValueError, match="role"):
+        EnvDeclaration("X-v0", "m:C", role="hard")
+    with pytest.raises(ValueError, match="variants"):
+        EnvDeclaration("X-v0", "m:C", variants=(Variant("Y-v0", {}, 10, "y", role="hard"),))
+    with pytest.raises(ValueError, match="ceiling"):
+        Ceiling("m", "1", "note", value=1.0, fn="a:b")
+    with pytest.raises(ValueError, match="fn"):
+        Ceiling("m", "1", "note", fn="nocolon")
+    decl = EnvDeclaration("X-v0", "m:C", variants=(Variant("X-Hard-v0", {"a": 1}, 10, "x"),))
+    with pytest.raises(ValueError, match="env_id"):
+        decl.variant("X-Other-v0")
+    v = decl.variant("X-Hard-v0")
+    assert (v.variant_of, v.base_id, dict(v.kwargs), v.role) == ("X-v0", "X-v0", {"a": 1},
+                                                                  "headline")  # fmt: skip
+
+
+# ------------------------------------------------------------------ the GOWEC's ceiling
+@pytest.mark.parametrize("period", [5.0, 6.0, 7.0, 9.0])
+def test_several_mode_bound_agrees_with_the_hull_table(period):
+    """`absorbed_power_bound` of a regular wave (J 3 lambda / 2 pi, closed form) against a second
+    formulation from the Capytaine table itself: the heave-only optimum a^2 |X3|^2 / (8 B33)
+    plus the pitch-only one a^2 |X5|^2 / (8 B55) (surge adds nothing to pitch: the same
+    dipole), equal by Haskind's relation to the table's accuracy (within 5 %)."""
+    from mf_envs.envs.gowec_v1.task import absorbed_power_bound
+
+    env = gym.make("FloatingGOWEC-v0", wave_period=period, wave_amplitude=0.8)
+    env.reset(seed=0)
+    u = env.unwrapped
+    three, w, a = u.model.three, float(u.wave.omegas[0]), float(u.wave.amplitudes[0])
+
+    def one_mode(i):
+        b = np.interp(w, three.omega, three.damping[:, i, i])
+        x = abs(np.interp(w, three.omega, three.excitation[:, i].real)
+                + 1j * np.interp(w, three.omega, three.excitation[:, i].imag))  # fmt: skip
+        return a * a * x * x / (8.0 * b)
+
+    bound = absorbed_power_bound(env)
+    assert bound == pytest.approx(one_mode(1) + one_mode(2), rel=0.05)
+    assert one_mode(2) == pytest.approx(radiation_bound(u.hull, u.wave), rel=1e-6)
+    assert bound == pytest.approx(1.5 * u.power_bound(), rel=0.05)  # 3 lambda/2pi vs lambda/pi
+    env.close()
+
+
+def test_net_power_ceiling_charges_the_losses():
+    from mf_envs.envs.gowec_v1.task import absorbed_power_bound, net_power_ceiling
+
+    env = gym.make("FloatingGOWEC-JONSWAP-v0")
+    env.reset(seed=20_000)
+    u = env.unwrapped
+    rated = u.model.units * u.max_generator_power
+    expect = u.eta_g * min(absorbed_power_bound(env), rated) - u.rotor_loss
+    assert net_power_ceiling(env) == pytest.approx(expect, rel=1e-12)
+    assert declaration("FloatingGOWEC-JONSWAP-v0").ceiling.of(env) == net_power_ceiling(env)
+    # another seed draws another sea: another ceiling
+    env.reset(seed=20_001)
+    assert net_power_ceiling(env) != pytest.approx(expect, rel=1e-6)
+    env.close()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("task_name", "best"), [("stabilizer_irregular", "lqr"), ("gowec_irregular", "efficient_pto")]
+)
+def test_the_best_baseline_is_below_90_percent_of_the_headline_ceiling(task_name, best):
+    """Issue 32's first acceptance line, measured as docs/benchmark.md does: the best
+    baseline's IQM over the 20 frozen test seeds is below 0.9 of the ceiling, and no episode of
+    it reaches the ceiling."""
+    pytest.importorskip("rliable")
+    from mf_envs.benchmarks import rl_benchmark as rb
+
+    task = rb.TASKS[task_name]()
+    scores = rb.episode_scores(task, best)
+    assert len(scores) == 20 and np.all(np.isfinite(scores))
+    assert rb.interval(scores)["iqm"] < 0.9 * task.ceiling
+    assert scores.max() < task.ceiling and not math.isnan(scores.max())
