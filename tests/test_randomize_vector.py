@@ -44,6 +44,8 @@ CASES = {
         {"wave_amplitude": (0.5, 1.5)},
         {},
     ),
+    # the declared seas: regular (one component, padded) and JONSWAP (64) rows stepped together
+    "floating": ("FloatingGOWEC-v0", {"episode_seconds": 0.2}, None, None),
 }
 
 
@@ -63,7 +65,8 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
     out_s, out_v = sync.reset(seed=SEEDS), vec.reset(seed=SEEDS)
     np.testing.assert_array_equal(out_s[0], out_v[0])
     assert_infos_equal(out_s[1], out_v[1])
-    drawn, substeps = [out_v[1]["randomized"]], set()
+    drawn, substeps, padded = [out_v[1]["randomized"]], set(), False
+    hs = np.full(3, None, dtype=object)  # each row's current significant_wave_height draw
     acts = actions(vec, 24, seed=2)
     done = np.zeros(3, dtype=bool)
     for t in range(len(acts)):
@@ -81,11 +84,19 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
         done = out_v[2] | out_v[3]
         drawn.append(out_v[4].get("randomized"))
         substeps.update(getattr(vec.unwrapped, "_nsub", np.zeros(1)).tolist())
-    name = next(iter(ranges or {"rotor_speed": 0}))
+        for d in drawn[-2:]:
+            if d and "significant_wave_height" in d:
+                m = d["_significant_wave_height"]
+                hs[m] = d["significant_wave_height"][m]
+        sea = getattr(vec.unwrapped, "sea", None)
+        padded |= sea is not None and sea["om"].shape[1] > 1 and any(h is None for h in hs)
+    name = next(iter(Randomizer(env_id, kw, ranges, choices).ranges))
     values = {float(v) for d in drawn if d for v in np.asarray(d[name])[d[f"_{name}"]]}
     assert len(values) >= 4  # new draws at the autoresets, not only at the first reset
     if case == "stabilizer":
         assert substeps == {2, 3}  # rows with different physics steps were stepped together
+    if case == "floating":
+        assert padded  # a regular row, padded, stepped with JONSWAP rows
     sync.close()
     vec.close()
 

@@ -55,6 +55,8 @@ class DrawnRows:
                 )
         self._draws_of_rows = draws
         self._draw_rngs = [None] * self.num_envs
+        if hasattr(self, "_snap"):  # compiled resets (`_predraw`): none from before the switch
+            self._snap = [None] * self.num_envs
 
     def _reset_drawn(self, i: int, seed: int | None, options: dict[str, Any] | None):
         """Row i's reset under `randomize_rows`: kwargs and seed drawn, a single env of them
