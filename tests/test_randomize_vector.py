@@ -38,11 +38,15 @@ CASES = {
         {"wave_period": (0.8, 1.2), "significant_wave_height": (0.5, 1.5)},
         None,
     ),
-    "gowec": (
+    # the declared ranges: wave period (each row's control and physics steps), amplitude and
+    # rotor speed
+    "gowec": ("GOWEC-v0", {"n_periods": 1, "steps_per_period": 8}, None, None),
+    # an episode in seconds: the rows' episodes of 2 or 3 control steps of their own period
+    "gowec_seconds": (
         "GOWEC-v0",
-        {"n_periods": 1, "steps_per_period": 8},
-        {"wave_amplitude": (0.5, 1.5)},
-        {},
+        {"episode_seconds": 1.5, "steps_per_period": 8},
+        {"wave_period": (0.8, 1.2)},
+        None,
     ),
     # the declared seas: regular (one component, padded) and JONSWAP (64) rows stepped together
     "floating": ("FloatingGOWEC-v0", {"episode_seconds": 0.2}, None, None),
@@ -65,7 +69,7 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
     out_s, out_v = sync.reset(seed=SEEDS), vec.reset(seed=SEEDS)
     np.testing.assert_array_equal(out_s[0], out_v[0])
     assert_infos_equal(out_s[1], out_v[1])
-    drawn, substeps, padded = [out_v[1]["randomized"]], set(), False
+    drawn, substeps, padded, lengths = [out_v[1]["randomized"]], set(), False, set()
     hs = np.full(3, None, dtype=object)  # each row's current significant_wave_height draw
     acts = actions(vec, 24, seed=2)
     done = np.zeros(3, dtype=bool)
@@ -88,6 +92,7 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
             if d and "significant_wave_height" in d:
                 m = d["_significant_wave_height"]
                 hs[m] = d["significant_wave_height"][m]
+        lengths.update(getattr(vec.unwrapped, "_max_steps", np.zeros(1)).tolist())
         sea = getattr(vec.unwrapped, "sea", None)
         padded |= sea is not None and sea["om"].shape[1] > 1 and any(h is None for h in hs)
     name = next(iter(Randomizer(env_id, kw, ranges, choices).ranges))
@@ -95,6 +100,10 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
     assert len(values) >= 4  # new draws at the autoresets, not only at the first reset
     if case == "stabilizer":
         assert substeps == {2, 3}  # rows with different physics steps were stepped together
+    if case == "gowec":
+        assert len(substeps) >= 2  # rows of different physics steps (their own periods)
+    if case == "gowec_seconds":
+        assert lengths == {2, 3}  # rows of different episode lengths were stepped together
     if case == "floating":
         assert padded  # a regular row, padded, stepped with JONSWAP rows
     sync.close()
@@ -102,16 +111,13 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
 
 
 def test_a_kwarg_the_rows_share_is_refused():
-    """GOWEC-v0's declared ranges include wave_period, which sets the control step that its
-    rows share: the native env refuses them, naming ranges; training falls back."""
-    names = Randomizer("GOWEC-v0").names
-    assert "wave_period" in names
+    """GOWEC-v0's rows share the generator's torque limit (a template scalar of the step): the
+    native env refuses to draw it, naming ranges; training falls back."""
+    shared = {"max_generator_torque": (0.5, 1.5)}
+    names = Randomizer("GOWEC-v0", ranges=shared).names
     assert not native_randomization_supported("GOWEC-v0", names)
-    assert native_randomization_supported(
-        "GyroStabilizer-v0", Randomizer("GyroStabilizer-v0").names
-    )
-    with pytest.raises(ValueError, match=r"ranges: \['rotor_speed', 'wave_period'\]"):
-        randomized_vector_env("GOWEC-v0", 2)
+    with pytest.raises(ValueError, match=r"ranges: \['max_generator_torque'\]"):
+        randomized_vector_env("GOWEC-v0", 2, ranges=shared)
     # irregular seas: the rotor speed sets the physics step and so the sea table's length
     kw = {"effects": IRREGULAR}
     assert not native_randomization_supported("GyroStabilizer-v0", {"rotor_speed"}, kw)
@@ -161,8 +167,9 @@ def test_training_uses_the_native_env_with_domain_randomization():
     venv.close()
     short = {"n_periods": 1, "steps_per_period": 8}
     venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[DomainRandomization])
-    assert kind == "dummy"  # its declared wave_period cannot differ between native rows
+    assert kind == "native"  # its declared ranges, the wave period's control step included
     venv.close()
-    venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[part])
-    assert kind == "native"
+    shared = functools.partial(DomainRandomization, ranges={"max_generator_torque": (0.5, 1.5)})
+    venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[shared])
+    assert kind == "dummy"  # the rows share the torque limit
     venv.close()
