@@ -50,6 +50,9 @@ CASES = {
     ),
     # the declared seas: regular (one component, padded) and JONSWAP (64) rows stepped together
     "floating": ("FloatingGOWEC-v0", {"episode_seconds": 0.2}, None, None),
+    # the beam robots' declared material, ground and water (each row its compiled config)
+    "serpentine": ("Serpentine-v0", {"episode_seconds": 0.3}, None, None),
+    "eel": ("Eel-v0", {"episode_seconds": 0.3}, None, None),
 }
 
 
