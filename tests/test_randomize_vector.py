@@ -18,15 +18,19 @@ from test_vector_envs import actions, assert_infos_equal  # (tests/ is on sys.pa
 
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
+from mf_envs.envs.inchworm import ISSUE16_SCENE
 from mf_envs.train.randomize import (
     DomainRandomization,
     Randomizer,
+    default_choices,
+    default_ranges,
     native_randomization_supported,
     randomized_vector_env,
 )
 
 SEEDS = [11, 3, 7]
 IRREGULAR = (*DEFAULT_EFFECTS, "irregular_waves")
+GOWEC_IRREGULAR = ("gyroscopic", "buoy_rocking", "irregular_waves")
 # (env id, env kwargs: short episodes, ranges (None: the declared), choices (None: declared))
 CASES = {
     # the declared ranges: wave period, moment, Hs and rotor speed (whose x1.1 needs 3 physics
@@ -41,6 +45,12 @@ CASES = {
     # the declared ranges: wave period (each row's control and physics steps), amplitude and
     # rotor speed
     "gowec": ("GOWEC-v0", {"n_periods": 1, "steps_per_period": 8}, None, None),
+    "gowec_irregular": (
+        "GOWEC-v0",
+        {"n_periods": 1, "steps_per_period": 8, "effects": GOWEC_IRREGULAR},
+        None,
+        None,
+    ),
     # an episode in seconds: the rows' episodes of 2 or 3 control steps of their own period
     "gowec_seconds": (
         "GOWEC-v0",
@@ -53,6 +63,15 @@ CASES = {
     # the beam robots' declared material, ground and water (each row its compiled config)
     "serpentine": ("Serpentine-v0", {"episode_seconds": 0.3}, None, None),
     "eel": ("Eel-v0", {"episode_seconds": 0.3}, None, None),
+    # the inchworm's declared body (its soil kwargs are not kwargs of Inchworm-v0): the default
+    # robot (SMA wires, gripping feet) and issue 16's (Coulomb friction feet)
+    "inchworm": ("Inchworm-v0", {"episode_seconds": 0.5}, None, None),
+    "inchworm_friction": (
+        "Inchworm-v0",
+        {"episode_seconds": 0.5, **ISSUE16_SCENE},
+        None,
+        None,
+    ),
 }
 
 
@@ -111,6 +130,32 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
         assert padded  # a regular row, padded, stepped with JONSWAP rows
     sync.close()
     vec.close()
+
+
+@pytest.mark.parametrize(
+    ("env_id", "kw"),
+    [
+        ("GyroStabilizer-v0", {}),
+        ("GyroStabilizer-v0", {"effects": IRREGULAR, "physics_dt": 0.01}),
+        ("GOWEC-v0", {}),
+        ("GOWEC-v0", {"effects": GOWEC_IRREGULAR}),
+        ("FloatingGOWEC-v0", {}),
+        ("FloatingGOWEC-v0", {"significant_wave_height": 2.0}),
+        ("Inchworm-v0", {}),
+        ("Inchworm-v0", ISSUE16_SCENE),
+        ("Serpentine-v0", {}),
+        ("Serpentine-v0", {"effects": ("viscous_ground",)}),
+        ("Eel-v0", {}),
+    ],
+)
+def test_every_declared_randomisation_runs_natively(env_id: str, kw: dict) -> None:
+    """Every env's declared ranges and choices (all of them: `Randomizer.names`) are held per
+    row by its native vector env, in these scenes too; the one scene left on the fallback is
+    GyroStabilizer-v0's irregular sea with the default physics_dt (rotor_speed, below)."""
+    draws = Randomizer(env_id, kw)
+    assert set(draws.choices) == set(default_choices(env_id))
+    assert set(draws.ranges) <= set(default_ranges(env_id)) and draws.ranges
+    assert native_randomization_supported(env_id, draws.names, kw)
 
 
 def test_a_kwarg_the_rows_share_is_refused():
