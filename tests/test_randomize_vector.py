@@ -18,15 +18,19 @@ from test_vector_envs import actions, assert_infos_equal  # (tests/ is on sys.pa
 
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
+from mf_envs.envs.inchworm import ISSUE16_SCENE
 from mf_envs.train.randomize import (
     DomainRandomization,
     Randomizer,
+    default_choices,
+    default_ranges,
     native_randomization_supported,
     randomized_vector_env,
 )
 
 SEEDS = [11, 3, 7]
 IRREGULAR = (*DEFAULT_EFFECTS, "irregular_waves")
+GOWEC_IRREGULAR = ("gyroscopic", "buoy_rocking", "irregular_waves")
 # (env id, env kwargs: short episodes, ranges (None: the declared), choices (None: declared))
 CASES = {
     # the declared ranges: wave period, moment, Hs and rotor speed (whose x1.1 needs 3 physics
@@ -38,11 +42,35 @@ CASES = {
         {"wave_period": (0.8, 1.2), "significant_wave_height": (0.5, 1.5)},
         None,
     ),
-    "gowec": (
+    # the declared ranges: wave period (each row's control and physics steps), amplitude and
+    # rotor speed
+    "gowec": ("GOWEC-v0", {"n_periods": 1, "steps_per_period": 8}, None, None),
+    "gowec_irregular": (
         "GOWEC-v0",
-        {"n_periods": 1, "steps_per_period": 8},
-        {"wave_amplitude": (0.5, 1.5)},
-        {},
+        {"n_periods": 1, "steps_per_period": 8, "effects": GOWEC_IRREGULAR},
+        None,
+        None,
+    ),
+    # an episode in seconds: the rows' episodes of 2 or 3 control steps of their own period
+    "gowec_seconds": (
+        "GOWEC-v0",
+        {"episode_seconds": 1.5, "steps_per_period": 8},
+        {"wave_period": (0.8, 1.2)},
+        None,
+    ),
+    # the declared seas: regular (one component, padded) and JONSWAP (64) rows stepped together
+    "floating": ("FloatingGOWEC-v0", {"episode_seconds": 0.2}, None, None),
+    # the beam robots' declared material, ground and water (each row its compiled config)
+    "serpentine": ("Serpentine-v0", {"episode_seconds": 0.3}, None, None),
+    "eel": ("Eel-v0", {"episode_seconds": 0.3}, None, None),
+    # the inchworm's declared body (its soil kwargs are not kwargs of Inchworm-v0): the default
+    # robot (SMA wires, gripping feet) and issue 16's (Coulomb friction feet)
+    "inchworm": ("Inchworm-v0", {"episode_seconds": 0.5}, None, None),
+    "inchworm_friction": (
+        "Inchworm-v0",
+        {"episode_seconds": 0.5, **ISSUE16_SCENE},
+        None,
+        None,
     ),
 }
 
@@ -63,7 +91,8 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
     out_s, out_v = sync.reset(seed=SEEDS), vec.reset(seed=SEEDS)
     np.testing.assert_array_equal(out_s[0], out_v[0])
     assert_infos_equal(out_s[1], out_v[1])
-    drawn, substeps = [out_v[1]["randomized"]], set()
+    drawn, substeps, padded, lengths = [out_v[1]["randomized"]], set(), False, set()
+    hs = np.full(3, None, dtype=object)  # each row's current significant_wave_height draw
     acts = actions(vec, 24, seed=2)
     done = np.zeros(3, dtype=bool)
     for t in range(len(acts)):
@@ -81,26 +110,62 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
         done = out_v[2] | out_v[3]
         drawn.append(out_v[4].get("randomized"))
         substeps.update(getattr(vec.unwrapped, "_nsub", np.zeros(1)).tolist())
-    name = next(iter(ranges or {"rotor_speed": 0}))
+        for d in drawn[-2:]:
+            if d and "significant_wave_height" in d:
+                m = d["_significant_wave_height"]
+                hs[m] = d["significant_wave_height"][m]
+        lengths.update(getattr(vec.unwrapped, "_max_steps", np.zeros(1)).tolist())
+        sea = getattr(vec.unwrapped, "sea", None)
+        padded |= sea is not None and sea["om"].shape[1] > 1 and any(h is None for h in hs)
+    name = next(iter(Randomizer(env_id, kw, ranges, choices).ranges))
     values = {float(v) for d in drawn if d for v in np.asarray(d[name])[d[f"_{name}"]]}
     assert len(values) >= 4  # new draws at the autoresets, not only at the first reset
     if case == "stabilizer":
         assert substeps == {2, 3}  # rows with different physics steps were stepped together
+    if case == "gowec":
+        assert len(substeps) >= 2  # rows of different physics steps (their own periods)
+    if case == "gowec_seconds":
+        assert lengths == {2, 3}  # rows of different episode lengths were stepped together
+    if case == "floating":
+        assert padded  # a regular row, padded, stepped with JONSWAP rows
     sync.close()
     vec.close()
 
 
+@pytest.mark.parametrize(
+    ("env_id", "kw"),
+    [
+        ("GyroStabilizer-v0", {}),
+        ("GyroStabilizer-v0", {"effects": IRREGULAR, "physics_dt": 0.01}),
+        ("GOWEC-v0", {}),
+        ("GOWEC-v0", {"effects": GOWEC_IRREGULAR}),
+        ("FloatingGOWEC-v0", {}),
+        ("FloatingGOWEC-v0", {"significant_wave_height": 2.0}),
+        ("Inchworm-v0", {}),
+        ("Inchworm-v0", ISSUE16_SCENE),
+        ("Serpentine-v0", {}),
+        ("Serpentine-v0", {"effects": ("viscous_ground",)}),
+        ("Eel-v0", {}),
+    ],
+)
+def test_every_declared_randomisation_runs_natively(env_id: str, kw: dict) -> None:
+    """Every env's declared ranges and choices (all of them: `Randomizer.names`) are held per
+    row by its native vector env, in these scenes too; the one scene left on the fallback is
+    GyroStabilizer-v0's irregular sea with the default physics_dt (rotor_speed, below)."""
+    draws = Randomizer(env_id, kw)
+    assert set(draws.choices) == set(default_choices(env_id))
+    assert set(draws.ranges) <= set(default_ranges(env_id)) and draws.ranges
+    assert native_randomization_supported(env_id, draws.names, kw)
+
+
 def test_a_kwarg_the_rows_share_is_refused():
-    """GOWEC-v0's declared ranges include wave_period, which sets the control step that its
-    rows share: the native env refuses them, naming ranges; training falls back."""
-    names = Randomizer("GOWEC-v0").names
-    assert "wave_period" in names
+    """GOWEC-v0's rows share the generator's torque limit (a template scalar of the step): the
+    native env refuses to draw it, naming ranges; training falls back."""
+    shared = {"max_generator_torque": (0.5, 1.5)}
+    names = Randomizer("GOWEC-v0", ranges=shared).names
     assert not native_randomization_supported("GOWEC-v0", names)
-    assert native_randomization_supported(
-        "GyroStabilizer-v0", Randomizer("GyroStabilizer-v0").names
-    )
-    with pytest.raises(ValueError, match=r"ranges: \['rotor_speed', 'wave_period'\]"):
-        randomized_vector_env("GOWEC-v0", 2)
+    with pytest.raises(ValueError, match=r"ranges: \['max_generator_torque'\]"):
+        randomized_vector_env("GOWEC-v0", 2, ranges=shared)
     # irregular seas: the rotor speed sets the physics step and so the sea table's length
     kw = {"effects": IRREGULAR}
     assert not native_randomization_supported("GyroStabilizer-v0", {"rotor_speed"}, kw)
@@ -150,8 +215,9 @@ def test_training_uses_the_native_env_with_domain_randomization():
     venv.close()
     short = {"n_periods": 1, "steps_per_period": 8}
     venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[DomainRandomization])
-    assert kind == "dummy"  # its declared wave_period cannot differ between native rows
+    assert kind == "native"  # its declared ranges, the wave period's control step included
     venv.close()
-    venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[part])
-    assert kind == "native"
+    shared = functools.partial(DomainRandomization, ranges={"max_generator_torque": (0.5, 1.5)})
+    venv, kind = make_train_env("GOWEC-v0", 2, 0, short, wrappers=[shared])
+    assert kind == "dummy"  # the rows share the torque limit
     venv.close()

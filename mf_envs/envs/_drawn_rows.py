@@ -9,6 +9,12 @@ over `train.randomize.DomainRandomization` wrappers with the same seeds (the com
 off meanwhile). Only the kwargs of the class's `row_kwargs` (`ROW_KWARGS`) may be drawn: those
 whose values live in the rows' arrays; what the batch step reads from the template (`_shared`)
 must not change, else ValueError naming `ranges`.
+
+Rows may also hold an object each (`_row_held(env)`, e.g. the beam robots' compiled
+configuration: stiffness, mass, ground or water laws): once `randomize_rows` is on, `_held[i]`
+is row i's (set at its every reset) and `_run_rows_of` steps the rows one by one, each with its
+own, in the same blocks on threads (a millisecond row costs its call's dispatch, microseconds,
+more); before (`_held` None) the rows are stepped in one call with the template's, as always.
 """
 
 from __future__ import annotations
@@ -26,6 +32,7 @@ class DrawnRows:
     ROW_KWARGS: frozenset[str] = frozenset()
     _draws_of_rows: Any = None  # `randomize_rows`'s draws (None: off)
     _draw_rngs: list[np.random.Generator | None]
+    _held: list[Any] | None = None  # each row's `_row_held` once randomised (module doc)
 
     @classmethod
     def row_kwargs(cls, **env_kwargs: Any) -> frozenset[str]:
@@ -37,6 +44,25 @@ class DrawnRows:
         """What the batch step reads from the template rather than from a row (scalars, arrays,
         effects): every randomised row's env must have the template's (`randomize_rows`)."""
         return (tuple(sorted(env.effects)), env.control_dt, env.max_steps)
+
+    def _row_held(self, env: Any) -> Any:
+        """The object the rows hold each beyond their arrays, of the single env `env` they are
+        loaded from (module doc); None: none (the rows are arrays only)."""
+        return None
+
+    def _hold(self, i: int) -> None:
+        """Row i keeps the template's `_row_held` (after its `_load`), once randomised."""
+        if self._held is not None:
+            self._held[i] = self._row_held(self.template)
+
+    def _run_rows_of(self, kernel: Any, at: int, *args: Any) -> None:
+        """`kernel(lo, hi, *args)` over the rows in blocks (`blocks.run`, args[0] the active
+        mask), args[at] the template's `_row_held`; with held rows (module doc) row by row,
+        args[at] each row's own."""
+        if self._held is None:
+            self.blocks.run(kernel, *args)
+        else:
+            self.blocks.run(_each_row, kernel, self._held, at, *args)
 
     def randomize_rows(self, draws: Any) -> None:
         """Domain randomisation in the rows (module doc): `draws.draw(rng, seed)` returns (the
@@ -55,6 +81,11 @@ class DrawnRows:
                 )
         self._draws_of_rows = draws
         self._draw_rngs = [None] * self.num_envs
+        held = self._row_held(self.template)
+        if draws is not None and held is not None and self._held is None:
+            self._held = [held] * self.num_envs  # the rows loaded so far hold the template's
+        if hasattr(self, "_snap"):  # compiled resets (`_predraw`): none from before the switch
+            self._snap = [None] * self.num_envs
 
     def _reset_drawn(self, i: int, seed: int | None, options: dict[str, Any] | None):
         """Row i's reset under `randomize_rows`: kwargs and seed drawn, a single env of them
@@ -75,11 +106,22 @@ class DrawnRows:
         template, self.template = self.template, env
         try:
             self._load(i)
+            self._hold(i)
         finally:
             self.template = template
         self._rngs[i] = env.np_random
         self._obs[i] = obs
         return info
+
+
+def _each_row(lo: int, hi: int, kernel: Any, held: list[Any], at: int, *args: Any) -> None:
+    """`kernel(i, i + 1, *args)` for the active rows lo <= i < hi (args[0] the mask), args[at]
+    replaced by held[i] (`DrawnRows._run_rows_of`; a Python block: the kernel releases the GIL
+    for the row's work)."""
+    active = args[0]
+    for i in range(lo, hi):
+        if active[i]:
+            kernel(i, i + 1, *args[:at], held[i], *args[at + 1 :])
 
 
 def _same(a: Any, b: Any) -> bool:

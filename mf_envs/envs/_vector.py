@@ -186,6 +186,7 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
         obs, info = env.reset(seed=seed, options=options)
         self._rngs[i] = env.np_random
         self._load(i)
+        self._hold(i)
         self._obs[i] = obs
         return info
 

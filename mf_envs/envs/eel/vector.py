@@ -10,7 +10,8 @@ the same seeds (`tests/test_vector_envs.py`): resets go through a template singl
 state is copied into the row (`_load`); steps through `envs.eel.rows.step_rows`, which
 runs the single env's own compiled step (`rows.step_row`) for every row; the reward, info
 and failure contract are `SerpentineVectorEnv`'s (the beam robots' shared step on (N,) arrays).
-See `mf_envs.envs._vector`.
+See `mf_envs.envs._vector`. Domain randomisation: the serpentine's (each row holds its
+compiled configuration, here with the water's drag laws).
 """
 
 from __future__ import annotations
@@ -32,6 +33,8 @@ class EelVectorEnv(SerpentineVectorEnv):
 
     single_env_cls = EelEnv
     row_cost = "heavy"  # a Newton solve per row: one block per CPU from N = 2
+    # held per row in its compiled configuration `cfg` (`_row_held`): `randomize_rows`
+    ROW_KWARGS = frozenset(("youngs_modulus", "shear_modulus", "drag_normal", "drag_tangential"))
 
     def _alloc(self, n: int) -> None:
         super()._alloc(n)
@@ -47,8 +50,8 @@ class EelVectorEnv(SerpentineVectorEnv):
         return [self._phase, *self._work]
 
     def _run_rows(self, actions: np.ndarray, active: np.ndarray) -> None:
-        self.blocks.run(
-            rows.step_rows, active, actions, self._state, self._cmd, self._phase,
+        self._run_rows_of(
+            rows.step_rows, 5, active, actions, self._state, self._cmd, self._phase,
             self.template.cfg, self._work, self._body, self._fresh, self._rep,
         )  # fmt: skip
 

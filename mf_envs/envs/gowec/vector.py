@@ -16,6 +16,12 @@ so each row pre-draws future resets' doubles (`mf_envs.envs._predraw.PredrawnRes
 stream, same order as the single env's calls, the generator rewound before any template reset)
 and the kernel consumes them, so any mix of resets stays bit-identical to `SyncVectorEnv`.
 Irregular seas (many draws per reset) keep the template path.
+
+Domain randomisation (`randomize_rows`, `mf_envs.envs._drawn_rows`): besides its wave, every
+row holds its control step (wave_period / steps_per_period), physics substep and count, rotor
+speed, reward scale and episode length, so the declared wave_period, wave_amplitude and
+rotor_speed differ between rows (the kernel reads the row's; without randomisation they are
+the template's in every row).
 """
 
 from __future__ import annotations
@@ -41,15 +47,18 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GOWECEnv
     DRAWS_PER_RESET = 2  # wave phase and gimbal angle
-    # held per row (the wave's amplitudes and the reward scale, 1 / P_ref): `randomize_rows`
-    ROW_KWARGS = frozenset(("wave_amplitude",))
+    # held per row (the wave, the reward scale 1 / (P_ref control_dt), control and physics
+    # steps, rotor speed, episode length): `randomize_rows`
+    ROW_KWARGS = frozenset(("wave_amplitude", "wave_period", "rotor_speed"))
 
     def _shared(self, env: Any) -> tuple[Any, ...]:
         """The step's template scalars (`_step_batch`) and the kernel's shared arrays (`_load`:
-        rotor, gimbal inertia, wave direction) through the parameters that set them."""
-        return (*super()._shared(env), env.max_generator_torque, env.physics_dt,
-                env.n_substeps, env.max_gimbal_rate, env.params, env.wave_period,
-                env.wave_direction, env.n_components, env.gamma)  # fmt: skip
+        rotor and gimbal inertia, wave direction) through the parameters that set them (not
+        the base's control_dt and max_steps: the rows hold them)."""
+        p = env.params
+        return (tuple(sorted(env.effects)), env.max_generator_torque, env.max_gimbal_rate,
+                p.rotor_inertia, p.transverse, p.gimbal_inertia, env.wave_direction,
+                env.n_components, env.gamma, env.buoy_radius)  # fmt: skip
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -57,6 +66,11 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         self.b = alloc_batch(n, m)
         self._steps = np.zeros(n, dtype=np.int64)
         self._scale = np.full(n, env.reward_scale)  # each row's 1 / (J per step)
+        # each row's control step, physics substep and count, rotor speed, episode steps
+        self._cdt, self._dt = np.full(n, env.control_dt), np.full(n, env.physics_dt)
+        self._nsub = np.full(n, env.n_substeps, dtype=np.int64)
+        self._psid = np.full(n, env.model.psid)
+        self._max_steps = np.full(n, env.max_steps, dtype=np.int64)
         self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
         self._ok = np.ones(n, dtype=bool)
         self._overspeed = np.zeros(n, dtype=bool)
@@ -89,11 +103,14 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     def _load(self, i: int) -> None:
         row, b = self.template.batch_row(), self.b
-        self._kernel = {key: row[key] for key in ("inert", "psid", "cth", "sth", "two_d")}
+        self._kernel = {key: row[key] for key in ("inert", "cth", "sth", "two_d")}
         for key in ("phi", "phid", "amp", "om", "eps", "k", "w", "eta"):
             b[key][i] = row[key]
         b["t"][i] = 0.0
-        self._scale[i] = self.template.reward_scale
+        env = self.template
+        self._scale[i], self._cdt[i], self._dt[i] = env.reward_scale, env.control_dt, env.physics_dt
+        self._nsub[i], self._psid[i] = env.n_substeps, row["psid"]
+        self._max_steps[i] = env.max_steps
         self._steps[i] = 0
 
     def state_nbytes(self) -> int:
@@ -104,28 +121,28 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         b, env, kn = self.b, self.template, self._kernel
         Mg = actions[:, 0] * env.max_generator_torque
-        b["t"][:] = self._steps * env.control_dt
+        b["t"][:] = self._steps * self._cdt
         self.blocks.run(
-            batch_fast_step, active, b["t"], b["phi"], b["phid"], Mg, env.physics_dt,
-            env.n_substeps, kn["inert"], kn["psid"], b["amp"], b["om"], b["eps"], b["k"],
+            batch_fast_step, active, b["t"], b["phi"], b["phid"], Mg, self._dt, self._nsub,
+            kn["inert"], self._psid, b["amp"], b["om"], b["eps"], b["k"],
             kn["cth"], kn["sth"], kn["two_d"], b["energy"], b["w"], b["eta"],
         )  # fmt: skip
         self._steps[active] += 1
         energy = b["energy"]
         reward = energy * self._scale
-        trunc = self._steps >= env.max_steps
+        trunc = self._steps >= self._max_steps
         obs, ok, overspeed = self._fresh, self._ok, self._overspeed
         ok[~active], overspeed[~active] = True, False
         rows.observe_rows(
             active, b["phi"], b["phid"], energy, b["w"], env.max_gimbal_rate, obs, ok, overspeed
         )
         info = spec.step_info(
-            energy / env.control_dt,
+            energy / self._cdt,
             b["phi"].copy(),
             b["phid"].copy(),
             b["w"][:, 0].copy(),
             b["eta"].copy(),
-            self._steps * env.control_dt,
+            self._steps * self._cdt,
             reward.copy(),
         )
         info["numerical_failure"] = ~ok

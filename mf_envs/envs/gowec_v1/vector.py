@@ -19,6 +19,16 @@ skip the template env: the doubles are pre-drawn from each row's generator
 writes the state, the reset infos' values and the observations. Irregular seas (a new sea of
 many draws per reset) keep the template path.
 
+Domain randomisation (`randomize_rows`, `mf_envs.envs._drawn_rows`): the rows hold their sea
+(components, excitation and drag coefficients) and their reward scale (1 / (P_ref control_dt),
+P_ref from the row's wave), so the declared wave_period, peak_period, wave_amplitude and the
+choice of significant_wave_height (None: a regular wave of one component; else a JONSWAP sea of
+n_components) differ between rows. Rows of fewer components are padded with zero-amplitude
+ones (amplitude, frequency, phase and coefficients 0) after their own: every sum over the
+components then adds exact zeros after the row's own terms (a sum started at +0.0 is never
+-0.0, so x + 0.0 == x bit for bit) and the rows stay bit-identical to the single env
+(tests/test_randomize_vector.py).
+
 Measured (N = 1024, random actions every step, autoresets, 2-core machine, medians of five 3 s
 runs): 0.41M env-steps/s on one thread, 0.68M on two (issue 17; runs 0.57-0.74M on this shared
 machine). The kernel is `step_row` (a `mf_envs._jit.kernel`, as the row loop) at ~2.2 us per
@@ -88,15 +98,33 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GOWECV1Env
     DRAWS_PER_RESET = 2  # wave phase, gimbal angle
+    # held per row (the sea's arrays, padded; the reward scale): `randomize_rows`
+    ROW_KWARGS = frozenset(
+        ("wave_amplitude", "wave_period", "peak_period", "significant_wave_height")
+    )
+
+    def _shared(self, env: Any) -> tuple[Any, ...]:
+        """The step's template scalars and the model's arrays other than the sea
+        (`_step_batch`: `model._args()` but its sea entries 9..12, and the drag geometry
+        sp = a[13] through what sets it at `set_sea`)."""
+        a, m = env.model._args(), env.model
+        return (*super()._shared(env), a[:9], a[14:], m.drag_coefficient, m.sp[1],
+                env.wave_direction, env.physics_dt, env.n_substeps, env.max_generator_torque,
+                env.rotor_loss_power(), env.preview_times, env.max_gimbal_rate,
+                env.pitch_limit)  # fmt: skip
 
     def _alloc(self, n: int) -> None:
         env = self.template
+        # the template's sea now, as a reset sets it: the step reads its drag geometry (sp),
+        # and under `randomize_rows` the template itself is never reset
+        env.model.set_sea(env.wave)
         m = env.n_components if env.irregular else 1
         self.Y = np.zeros((n, env.state.shape[0]))
         self.sea = {key: np.zeros((n, m)) for key in ("om", "amp", "eps")}
         self.sea.update(cp=np.zeros((n, m), complex), cr=np.zeros((n, m), complex))
         self.sea["dk"] = np.zeros((n, m, N_LOADS), complex)  # drag nodes' water, surge, heave
         self._steps = np.zeros(n, dtype=np.int64)
+        self._escale = np.full(n, env.energy_scale)  # each row's 1 / (P_ref control_dt)
         self._vals = np.zeros((n, N_VALS))
         self._fresh = np.zeros((n, env.observation_space.shape[0]), dtype=np.float32)
         self._ok = np.ones(n, dtype=bool)
@@ -111,16 +139,22 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         self.Y[i] = env.state
         m = env.model
         row = (m._om, env.wave.amplitudes, env.wave.phases, m._cp, m._cr, m._dk)
+        k = m._om.shape[0]
+        if k > sea["om"].shape[1]:  # a randomised row's larger sea: every row padded to it
+            for key in sea:
+                wide = np.zeros((self.num_envs, k, *sea[key].shape[2:]), sea[key].dtype)
+                wide[:, : sea[key].shape[1]] = sea[key]
+                sea[key] = wide
         for key, value in zip(("om", "amp", "eps", "cp", "cr", "dk"), row):
-            if value.shape != sea[key].shape[1:]:
-                raise RuntimeError(f"FloatingGOWEC-v0 vector env: sea of {value.shape} components")
-            sea[key][i] = value
+            sea[key][i] = 0.0  # zero-amplitude components after the row's own (module doc)
+            sea[key][i, :k] = value
+        self._escale[i] = env.energy_scale
         self._steps[i] = 0
 
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
-        if not self._predrawn(idx):
-            return None
         env, sea, draws, ptr = self.template, self.sea, self._draws, self._ptr
+        if sea["om"].shape[1] != env.wave.omegas.shape[0] or not self._predrawn(idx):
+            return None  # (padded seas, after randomised rows: the template path)
         gimbal = np.empty(idx.shape[0])
         for j, i in enumerate(idx.tolist()):
             p = int(ptr[i])
@@ -189,14 +223,14 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
             env.rotor_loss_power(), self._vals, ok, self._lo, self._hi, obs, env.preview_times,
         )  # fmt: skip
         v, Y = self._vals, self.Y
-        reward = v[:, V_ENERGY] * env.energy_scale
+        reward = v[:, V_ENERGY] * self._escale
         vt = v.T.copy()  # one copy; the info columns are its rows (fresh every step)
         info: dict[str, Any] = {key: vt[j] for key, j in _SCALAR_SLOTS.items()}
         info["buoy_rate"] = v[:, RATES].copy()
         info["time"] = t1.copy()
         over = np.abs(Y[:, 5]) > env.max_gimbal_rate
         out = np.maximum(np.abs(Y[:, 0]), np.abs(Y[:, 1])) > env.pitch_limit
-        shut = np.where(over | out, -env.shutdown_energy(self._steps) * env.energy_scale, 0.0)
+        shut = np.where(over | out, -env.shutdown_energy(self._steps) * self._escale, 0.0)
         info["reward_terms"] = {"net_electrical_energy": reward.copy(), "shutdown_loss": shut}
         reward = reward + shut
         info["overspeed"], info["out_of_range"] = over, out

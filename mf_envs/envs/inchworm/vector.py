@@ -12,10 +12,17 @@ the same seeds (`tests/test_vector_envs.py`): resets go through a template singl
 state is copied into the row; steps through `envs.inchworm.rows.step_rows`, which runs the
 single env's own compiled step (`quasistatic.drive_step`) and observation for every row.
 See `mf_envs.envs._vector`.
+
+Domain randomisation (`randomize_rows`, `mf_envs.envs._drawn_rows`): each row holds its
+compiled configuration (`_cfg_of`: stiffness, weight loads, actuation; `_row_held`), its effort
+weight and its mass per length (the quasi-static error's), so youngs_modulus, shear_modulus
+and mass_per_length differ between rows; the randomised rows are stepped one by one with their
+own (`DrawnRows._run_rows_of`).
 """
 
 from __future__ import annotations
 
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -39,6 +46,38 @@ class InchwormVectorEnv(BatchedVectorEnv):
 
     single_env_cls = InchwormEnv
     row_cost = "heavy"  # ~1 ms per row: one block per CPU from N = 2
+    # held per row (its `_cfg_of`, effort weight, mass per length): `randomize_rows`
+    ROW_KWARGS = frozenset(("youngs_modulus", "shear_modulus", "mass_per_length"))
+
+    def _row_held(self, env: Any) -> Any:
+        return self._cfg_of(env)
+
+    def _shared(self, env: Any) -> tuple[Any, ...]:
+        """The step's template values (`_step_batch`, `_step_grip`, `_finish_info`)."""
+        d = env.driven
+        feet = d.feet.params.coefficients if d.feet is not None else None
+        law = d.grip_feet.law.kernel_args() if d.grip_feet is not None else None
+        return (*super()._shared(env), env.n_ctrl, env.sma, env.switching, env.params.length,
+                d.meter.efficiency, feet, law, env.scene.ambient, env.sim.model.n_dof)  # fmt: skip
+
+    def _cfg_of(self, env: Any) -> tuple:
+        """The compiled configuration of `rows.step_rows` (`step_rows_grip` on gripping feet)
+        for the single env `env`."""
+        xis = np.linspace(0.0, 1.0, CENTERLINE_PER_ELEMENT + 1)[:-1]
+        if not self._grip:
+            scales = (env.params.length, env.max_curvature, env.scene.weight)
+            return (env.switching, env.max_curvature, env.control_dt, 1,
+                    *env.driven.kernel_args(), env.obs_geometry, scales, xis)  # fmt: skip
+        sma = env.sma
+        scales = (env.params.length, 1.0 if sma else env.max_curvature, env.scene.weight)
+        tobs = (0.0, 1.0, 1.0)
+        if sma:
+            w = env.scene.wires.params
+            tobs = (w.ambient, w.alloy.austenite_finish - w.ambient,
+                    spec.WIRE_TEMPERATURE_OBS_LIMIT)  # fmt: skip
+        return (env.switching, env.max_curvature, env.control_dt, 1,
+                *env.driven.grip_kernel_args(), env.obs_geometry, scales, xis, sma,
+                tobs)  # fmt: skip
 
     @classmethod
     def supports(cls, **env_kwargs: Any) -> bool:
@@ -60,6 +99,10 @@ class InchwormVectorEnv(BatchedVectorEnv):
             )
         self._foot_dx = np.zeros((n, 2))
         self._duty = np.zeros((n, env.n_ctrl))  # the friction scene's (the kernel has none)
+        self._effort = np.full(n, env.effort_weight)  # each row's effort weight
+        # each row's mass per length (N, 1), for `spec.quasi_static_error`
+        self._qs = SimpleNamespace(mass_per_length=np.full((n, 1), env.params.mass_per_length),
+                                   length=env.params.length)  # fmt: skip
         if self._grip:
             self._alloc_grip(n)
             return
@@ -71,12 +114,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         )  # fmt: skip
         sc = driven.feet.scratch
         self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in sc)
-        xis = np.linspace(0.0, 1.0, CENTERLINE_PER_ELEMENT + 1)[:-1]
-        scales = (env.params.length, env.max_curvature, env.scene.weight)
-        self._cfg = (
-            env.switching, env.max_curvature, env.control_dt, 1, *driven.kernel_args(),
-            env.obs_geometry, scales, xis,
-        )  # fmt: skip
+        self._cfg = self._cfg_of(env)
         n_pts = CENTERLINE_PER_ELEMENT * ne + 1
         self._out = (
             np.zeros(n, np.int64), np.zeros((n, ss.N_REPORT)), np.zeros((n, 2)),
@@ -98,22 +136,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         )  # fmt: skip
         sc = driven.grip_scratch
         self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in sc)
-        xis = np.linspace(0.0, 1.0, CENTERLINE_PER_ELEMENT + 1)[:-1]
-        sma = env.sma
-        scales = (env.params.length, 1.0 if sma else env.max_curvature, env.scene.weight)
-        if sma:
-            w = env.scene.wires.params
-            tobs = (
-                w.ambient,
-                w.alloy.austenite_finish - w.ambient,
-                spec.WIRE_TEMPERATURE_OBS_LIMIT,
-            )
-        else:
-            tobs = (0.0, 1.0, 1.0)
-        self._cfg = (
-            env.switching, env.max_curvature, env.control_dt, 1, *driven.grip_kernel_args(),
-            env.obs_geometry, scales, xis, sma, tobs,
-        )  # fmt: skip
+        self._cfg = self._cfg_of(env)
         n_pts = CENTERLINE_PER_ELEMENT * ne + 1
         self._out = (
             np.zeros(n, np.int64), np.zeros((n, qs.N_GRIP_REPORT)), np.zeros((n, 3)),
@@ -128,6 +151,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         env = self.template
         sim, driven = env.sim, env.driven
         self._foot_dx[i] = 0.0
+        self._effort[i], self._qs.mass_per_length[i] = env.effort_weight, env.params.mass_per_length
         if self._grip:
             d, xo, lag, kc, ft, sma, cmd, head, duty = self._state
             d[i], xo[i] = sim.state.d, sim.x_origin
@@ -160,7 +184,8 @@ class InchwormVectorEnv(BatchedVectorEnv):
         d, xo, _, kc, g, _, cmd, head = self._state
         nd = d.shape[1]
         feet_old = np.stack([xo + d[:, 0], xo + d[:, nd - 5]], axis=1)
-        self.blocks.run(step_rows, active, actions, self._state, self._work, self._cfg, self._out)
+        self._run_rows_of(step_rows, 4, active, actions, self._state, self._work, self._cfg,
+                          self._out)  # fmt: skip
         self._steps[active] += 1
         ok = status == ss.OK
         upd = ok & active
@@ -169,7 +194,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         energy = np.where(ok, rep[:, ss.REP_POS] / eff, 0.0)
         advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
         progress = advance / env.params.length
-        effort = -env.effort_weight * energy
+        effort = -self._effort * energy
         reward = progress + effort
         nd = d.shape[1]
         info: dict[str, Any] = {
@@ -209,7 +234,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         info["duty"] = self._duty_now(cmd)
         feet_new = np.stack([info["x_tail"], info["x_head"]], axis=1)
         dx = np.where(ok[:, None], feet_new - feet_old, 0.0)
-        qse = spec.quasi_static_error(dx, self._foot_dx, env.control_dt, env.params, limit)
+        qse = spec.quasi_static_error(dx, self._foot_dx, env.control_dt, self._qs, limit)
         info["quasi_static_error"] = np.where(ok, qse, 0.0)
         self._foot_dx = np.where(active[:, None], dx, self._foot_dx)
         info["reward_terms"] = {"progress": progress, "effort": effort}
@@ -241,8 +266,8 @@ class InchwormVectorEnv(BatchedVectorEnv):
         d, xo, _, kc, ft, sma, cmd, head, duty = self._state
         nd = d.shape[1]
         feet_old = np.stack([xo + d[:, 0], xo + d[:, nd - 5]], axis=1)
-        self.blocks.run(
-            step_rows_grip, active, actions, self._state, self._work, self._cfg, self._out
+        self._run_rows_of(
+            step_rows_grip, 4, active, actions, self._state, self._work, self._cfg, self._out
         )
         self._steps[active] += 1
         ok = status == gf.OK
@@ -252,7 +277,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
             energy = np.where(ok, rep[:, qs.REP_A2POS] / env.driven.meter.efficiency, 0.0)
         advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
         progress = advance / env.params.length
-        effort = -env.effort_weight * energy
+        effort = -self._effort * energy
         reward = progress + effort
         info: dict[str, Any] = {
             "x_head": xo + d[:, nd - 5],

@@ -11,6 +11,11 @@ state is copied into the row (`_load`); steps through `envs.serpentine.rows.step
 runs the single env's own compiled step (`rows.step_row`) for every row, and the reward, info
 and failure contract repeat `SerpentineEnv.step`'s expressions on (N,) arrays.
 See `mf_envs.envs._vector`.
+
+Domain randomisation (`randomize_rows`, `mf_envs.envs._drawn_rows`): each row holds its
+compiled configuration (`rows.pack`: stiffness, ground law, ...; `_row_held`), so the body's
+material and the ground's coefficients differ between rows (`ROW_KWARGS`); the randomised
+rows are stepped one by one with their own (`DrawnRows._run_rows_of`).
 """
 
 from __future__ import annotations
@@ -33,6 +38,19 @@ class SerpentineVectorEnv(BatchedVectorEnv):
 
     single_env_cls = SerpentineEnv
     row_cost = "heavy"  # ~1 ms per row: one block per CPU from N = 2
+    # held per row in its compiled configuration `cfg` (`_row_held`): `randomize_rows`
+    ROW_KWARGS = frozenset(
+        ("youngs_modulus", "shear_modulus", "friction_coefficient", "backward_ratio",
+         "lateral_ratio", "viscous_tangential", "viscous_normal", "material_damping")
+    )  # fmt: skip
+
+    def _row_held(self, env: Any) -> Any:
+        return env.cfg
+
+    def _shared(self, env: Any) -> tuple[Any, ...]:
+        """The step's template values (`_step_batch`) and the rows' array shapes."""
+        return (*super()._shared(env), env.scene.length, env.effort_weight,
+                env.target_direction, env.model.n_dof, env.n_ctrl)  # fmt: skip
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -63,8 +81,8 @@ class SerpentineVectorEnv(BatchedVectorEnv):
 
     def _run_rows(self, actions: np.ndarray, active: np.ndarray) -> None:
         """The compiled batched step of the active rows (`rows.step_rows`)."""
-        self.blocks.run(
-            rows.step_rows, active, actions, self._state, self._cmd, self.template.cfg,
+        self._run_rows_of(
+            rows.step_rows, 4, active, actions, self._state, self._cmd, self.template.cfg,
             self._body, self._fresh, self._rep,
         )  # fmt: skip
 

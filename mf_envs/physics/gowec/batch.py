@@ -23,8 +23,9 @@ def batch_fast_step(
     untouched. Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`).
 
     Shapes: active (N,) bool; t (N,) s, time at the start of the step; phi (N,) rad, phid (N,)
-    rad/s, updated in place; Mg (N,) N m, generator torque held over the step; dt (s) substep,
-    n substeps; inert (5,) = (Ja, Jt, Jg1, Jg2, Jg3) kg m^2; psid rad/s; amp, om, eps, k (N, M)
+    rad/s, updated in place; Mg (N,) N m, generator torque held over the step; dt (N,) s
+    substep, n (N,) substeps and psid (N,) rad/s of each row (its wave period and rotor speed);
+    inert (5,) = (Ja, Jt, Jg1, Jg2, Jg3) kg m^2; amp, om, eps, k (N, M)
     wave components (m, rad/s, rad, rad/m) of each row, k being the slope wavenumbers k F(k r)
     (`WaveField.slope_wavenumbers`); cth, sth direction projections (0 for a still buoy);
     two_d: both slope angles. Outputs: energy (N,) J harvested in the step, w (N, 3) buoy body
@@ -35,7 +36,7 @@ def batch_fast_step(
         if not active[i]:
             continue
         p, v, e, w1, w2, w3, z = fast_step_into(
-            t[i], phi[i], phid[i], Mg[i], dt, n, inert, psid,
+            t[i], phi[i], phid[i], Mg[i], dt[i], n[i], inert, psid[i],
             amp[i], om[i], eps[i], k[i], cth, sth, two_d, work,
         )  # fmt: skip
         phi[i], phid[i], energy[i] = p, v, e
