@@ -78,7 +78,7 @@ NET_POWER_CEILING = Ceiling(
 # --algos` (baselines only; 20 frozen test seeds 20000-20019, 120 s, the second half scored)
 HEADROOM_JONSWAP = (
     "the best baselines (`efficient_pto`, `passive_damper`) net 2.2 % of the ceiling (IQM "
-    "0.022 [0.015, 0.029]; 2.9 kW mean, -1.0 to 6.9 kW by sea, against 125-138 kW): far below "
+    "0.022 [0.015, 0.029]; 2.9 kW mean, -1.0 to 6.9 kW by sea, against 127-139 kW): far below "
     "90 %, but the ceiling is loose (`tight=False`), so the gap overstates what is left to learn"
 )
 HEADROOM_REGULAR = (
