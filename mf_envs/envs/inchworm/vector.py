@@ -71,7 +71,8 @@ class InchwormVectorEnv(BatchedVectorEnv):
         return env.driven.feet.params.coefficients
 
     def _law_rows(self) -> SimpleNamespace:
-        """The rows' grip laws as columns (N, 1) (`spec.grip_capacity`, `GripLaw.kernel_args`)."""
+        """The rows' grip laws as column views (N, 1) of `_mu` (`spec.grip_capacity`; the
+        layout of `GripLaw.kernel_args`)."""
         m = self._mu
         names = ("threshold", "width", "mu_slide", "grip_forward", "grip_backward")
         return SimpleNamespace(**{k: m[:, j : j + 1] for j, k in enumerate(names)})
@@ -116,7 +117,8 @@ class InchwormVectorEnv(BatchedVectorEnv):
         self._foot_dx = np.zeros((n, 2))
         self._duty = np.zeros((n, env.n_ctrl))  # the friction scene's (the kernel has none)
         self._effort = np.full(n, env.effort_weight)  # each row's effort weight
-        self._mu = np.tile(self._mu_of(env), (n, 1))  # each row's feet (`_mu_of`)
+        self._mu = np.tile(self._mu_of(env), (n, 1))  # each row's feet (`_mu_of`, `_load`)
+        self._law = self._law_rows() if self._grip else None  # views: `_load` updates them
         # each row's mass per length (N, 1), for `spec.quasi_static_error`
         self._qs = SimpleNamespace(mass_per_length=np.full((n, 1), env.params.mass_per_length),
                                    length=env.params.length)  # fmt: skip
@@ -314,7 +316,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
             "time": self._steps * env.control_dt,
         }
         normal = rep[:, gf.REP_N : gf.REP_N + 2]
-        limit = spec.grip_capacity(self._law_rows(), ft[:, :2], normal)
+        limit = spec.grip_capacity(self._law, ft[:, :2], normal)
         temperature = sma[:, 0, :].copy() if env.sma else None
         electrical = energy if env.sma else np.zeros(self.num_envs)
         mechanical = np.where(ok, rep[:, qs.REP_WIRE], 0.0)
