@@ -19,6 +19,7 @@ from test_vector_envs import actions, assert_infos_equal  # (tests/ is on sys.pa
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
 from mf_envs.envs.inchworm import ISSUE16_SCENE
+from mf_envs.envs.inchworm.build import FRICTION_KEYS
 from mf_envs.train.randomize import (
     DomainRandomization,
     Randomizer,
@@ -26,10 +27,12 @@ from mf_envs.train.randomize import (
     default_ranges,
     native_randomization_supported,
     randomized_vector_env,
+    shift_scenes,
 )
 
 SEEDS = [11, 3, 7]
 IRREGULAR = (*DEFAULT_EFFECTS, "irregular_waves")
+FRICTION = {"friction_coefficients": (0.5, 1.5)}  # Inchworm-v0's feet, every coefficient
 GOWEC_IRREGULAR = ("gyroscopic", "buoy_rocking", "irregular_waves")
 # (env id, env kwargs: short episodes, ranges (None: the declared), choices (None: declared))
 CASES = {
@@ -63,8 +66,10 @@ CASES = {
     # the beam robots' declared material, ground and water (each row its compiled config)
     "serpentine": ("Serpentine-v0", {"episode_seconds": 0.3}, None, None),
     "eel": ("Eel-v0", {"episode_seconds": 0.3}, None, None),
-    # the inchworm's declared body (its soil kwargs are not kwargs of Inchworm-v0): the default
-    # robot (SMA wires, gripping feet) and issue 16's (Coulomb friction feet)
+    # the inchworm's declared body and feet's friction (one factor on every coefficient of
+    # `friction_coefficients`): the default robot (SMA wires, gripping feet: the grip law) and
+    # issue 16's (Coulomb friction feet); then the friction alone (a row stepped with the
+    # template's feet would leave Sync's trajectory)
     "inchworm": ("Inchworm-v0", {"episode_seconds": 0.5}, None, None),
     "inchworm_friction": (
         "Inchworm-v0",
@@ -72,7 +77,23 @@ CASES = {
         None,
         None,
     ),
+    "inchworm_feet_only": ("Inchworm-v0", {"episode_seconds": 0.5}, FRICTION, None),
+    "inchworm_friction_feet_only": (
+        "Inchworm-v0",
+        {"episode_seconds": 0.5, **ISSUE16_SCENE},
+        FRICTION,
+        None,
+    ),
 }
+
+
+def drawn_values(d: dict, name: str) -> set[float]:
+    """The values of kwarg `name` in a batched `info["randomized"]` at the rows that drew it (a
+    dict-valued kwarg: its first number)."""
+    values = d[name]
+    if isinstance(values, dict):
+        values = values[next(k for k in values if not k.startswith("_"))]
+    return {float(v) for v in np.asarray(values)[d[f"_{name}"]]}
 
 
 def sync_randomized(env_id, kw, ranges, choices, mode) -> SyncVectorEnv:
@@ -117,9 +138,9 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
         lengths.update(getattr(vec.unwrapped, "_max_steps", np.zeros(1)).tolist())
         sea = getattr(vec.unwrapped, "sea", None)
         padded |= sea is not None and sea["om"].shape[1] > 1 and any(h is None for h in hs)
-    name = next(iter(Randomizer(env_id, kw, ranges, choices).ranges))
-    values = {float(v) for d in drawn if d for v in np.asarray(d[name])[d[f"_{name}"]]}
-    assert len(values) >= 4  # new draws at the autoresets, not only at the first reset
+    for name in Randomizer(env_id, kw, ranges, choices).ranges:
+        values = set().union(*(drawn_values(d, name) for d in drawn if d))
+        assert len(values) >= 4, name  # new draws at the autoresets, not only the first reset
     if case == "stabilizer":
         assert substeps == {2, 3}  # rows with different physics steps were stepped together
     if case == "gowec":
@@ -156,6 +177,94 @@ def test_every_declared_randomisation_runs_natively(env_id: str, kw: dict) -> No
     assert set(draws.choices) == set(default_choices(env_id))
     assert set(draws.ranges) <= set(default_ranges(env_id)) and draws.ranges
     assert native_randomization_supported(env_id, draws.names, kw)
+
+
+NOMINAL_FEET = dict(zip(FRICTION_KEYS, (0.6, 1.0, 0.1, 0.15)))  # `FrictionParams`' defaults
+
+
+def test_inchworm_draws_its_feet_friction():
+    """Inchworm-v0's declared friction range is drawn (not dropped): one factor in [0.5, 1.5] on
+    every coefficient of its resolved `friction_coefficients`, natively held per row in both
+    feet's scenes; a given friction (4 numbers or a partial dict) is the nominal; bad input is
+    refused naming the parameter."""
+    for kw in ({}, ISSUE16_SCENE):
+        draws = Randomizer("Inchworm-v0", kw)
+        assert set(draws.ranges) == set(default_ranges("Inchworm-v0"))
+        assert draws.ranges["friction_coefficients"] == (0.5, 1.5)
+        assert draws.nominal["friction_coefficients"] == NOMINAL_FEET
+        assert native_randomization_supported("Inchworm-v0", draws.names, kw)
+    factors = []
+    for seed in range(6):
+        _, drawn, _ = draws.draw(None, seed)
+        mu = drawn["friction_coefficients"]
+        f = [mu[k] / NOMINAL_FEET[k] for k in FRICTION_KEYS]
+        assert max(f) - min(f) < 1e-12 and 0.5 <= f[0] <= 1.5
+        factors.append(f[0])
+    assert len(set(factors)) == 6
+    four = (0.8, 1.2, 0.2, 0.3)
+    given = Randomizer("Inchworm-v0", {"friction_coefficients": list(four)}, FRICTION)
+    assert given.nominal == {"friction_coefficients": dict(zip(FRICTION_KEYS, four))}
+    partial = Randomizer("Inchworm-v0", {"friction_coefficients": {"grip_forward": 0.8}}, FRICTION)
+    assert partial.nominal["friction_coefficients"] == {**NOMINAL_FEET, "grip_forward": 0.8}
+    half = {k: 0.5 * v for k, v in NOMINAL_FEET.items()}
+    assert shift_scenes("Inchworm-v0")["friction x0.5"] == {"friction_coefficients": half}
+    with pytest.raises(ValueError, match="friction_coefficients"):
+        Randomizer("Inchworm-v0", {"friction_coefficients": [1.0, 2.0]}, FRICTION)
+    with pytest.raises(ValueError, match="ranges"):
+        Randomizer("Inchworm-v0", ranges={"friction_coefficients": (0.0, 1.0)})
+
+
+class FeetByRow:
+    """`randomize_rows`'s draws contract: the row reset with seed s gets the feet's friction x
+    factors[s] (and reset seed s)."""
+
+    names = frozenset({"friction_coefficients"})
+
+    def __init__(self, factors: tuple[float, ...]) -> None:
+        self.factors = factors
+
+    def draw(self, rng: Any, seed: Any) -> tuple[Any, dict[str, Any], int]:
+        mu = {k: self.factors[seed] * v for k, v in NOMINAL_FEET.items()}
+        return np.random.default_rng(seed), {"friction_coefficients": mu}, seed
+
+
+@pytest.mark.parametrize("scene", ["gripping", "friction"])
+def test_a_drawn_friction_changes_the_inchworm(scene: str) -> None:
+    """Two rows drawn with the feet's friction x0.5 and x1.5 run the same gait (the wires heated
+    2.9 s with the head gripping, cooled 1.2 s with the tail gripping; on issue 16's robot the
+    same square wave of kappa#): each row is, bit for bit, a single env made with its friction,
+    and the rows differ: the feet's holding margin (info["quasi_static_error"] ~ 1 / factor)
+    and, on the gripping feet, the crawl. (Quasi-static: the feet's forces balance each other,
+    so one factor on every coefficient moves the crawl only through the body's axial load.)"""
+    kw = {"episode_seconds": 6.0, **(ISSUE16_SCENE if scene == "friction" else {})}
+    vec = gym.make_vec("Inchworm-v0", 2, vectorization_mode="vector_entry_point", **kw)
+    vec.unwrapped.randomize_rows(FeetByRow((0.5, 1.5)))
+    _, info = vec.reset(seed=[0, 1])
+    singles = []
+    for seed, f in ((0, 0.5), (1, 1.5)):
+        mu = {k: f * v for k, v in NOMINAL_FEET.items()}
+        env = gym.make("Inchworm-v0", **kw, friction_coefficients=mu)
+        env.reset(seed=seed)
+        singles.append(env)
+    x0 = info["x_tail"].copy()
+    qse = np.zeros(2)
+    for t in range(60):
+        a = np.full(4, 1.0 if t % 41 < 29 else -1.0, np.float32)
+        *_, info = vec.step(np.stack([a, a]))
+        for i, env in enumerate(singles):
+            *_, single = env.step(a)
+            assert single["x_tail"] == info["x_tail"][i], (t, i)
+            assert single["quasi_static_error"] == info["quasi_static_error"][i], (t, i)
+        qse = np.maximum(qse, info["quasi_static_error"])
+    advance = info["x_tail"] - x0
+    assert advance.min() > 0.01  # both crawl forward (> 1 cm in 6 s)
+    assert advance[0] != advance[1]
+    if scene == "gripping":
+        assert abs(advance[0] - advance[1]) > 1e-5  # tens of micrometres
+    assert 2.5 < qse[0] / qse[1] < 3.5  # the holding margin scales with the friction
+    vec.close()
+    for env in singles:
+        env.close()
 
 
 def test_a_kwarg_the_rows_share_is_refused():

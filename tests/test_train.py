@@ -654,6 +654,13 @@ def test_domain_randomization_on_mf_envs(env_id):
                 assert v in env.choices[k]
                 continue
             lo, hi = ranges[k]
+            if isinstance(nominal[k], dict):  # one factor on every number of the dict
+                factors = [v[c] / nominal[k][c] for c in nominal[k]]
+                assert set(v) == set(nominal[k])
+                assert max(factors) - min(factors) < 1e-12 * max(factors)
+                assert lo * (1 - 1e-12) <= factors[0] <= hi * (1 + 1e-12)
+                assert getattr(env.unwrapped, k) == pytest.approx(v)  # the env's resolved dict
+                continue
             assert lo * nominal[k] <= v <= hi * nominal[k]
             if not env.choices and isinstance(getattr(env.unwrapped, k, None), float):
                 assert getattr(env.unwrapped, k) == pytest.approx(v)  # really simulated

@@ -2,15 +2,17 @@
 
 `DomainRandomization(env)` re-makes the wrapped env with `gym.make(env_id, **kwargs)` at every
 reset, each randomised kwarg drawn uniformly in [lo, hi] x its nominal value (the value the env was
-made with, else the constructor default). Only kwargs the env's constructor really takes are
-randomised; the draws come from the wrapper's own seeded generator, so `reset(seed=s)` is
-deterministic. The env's own validation still applies to every draw.
+made with, else the constructor default). A kwarg whose value is a dict of numbers (Inchworm-v0's
+`friction_coefficients`) is randomised by one factor drawn in [lo, hi] multiplying every number
+of its nominal dict. Only kwargs the env's constructor really takes are randomised; the draws
+come from the wrapper's own seeded generator, so `reset(seed=s)` is deterministic. The env's own
+validation still applies to every draw.
 
 Default ranges (factors of the nominal value), discrete choices (one value drawn uniformly per
 reset, after the ranges) and robustness scenes are each env's declaration's
 (`randomize`, `choices`, `shifts` in `envs/<env>/task.py`; docs/<env> pages list them), e.g.
 GOWEC-v0's wave period +-20 %, FloatingGOWEC-v0's regular or JONSWAP seas of Hs 1-3 m, the
-inchworm's soil and material. An env without a declaration has none.
+inchworm's feet's friction and body. An env without a declaration has none.
 
 Use it in training through the YAML `env_wrapper: train.randomize.DomainRandomization`; it must
 be the first wrapper (it is applied to the bare `gym.make` env, below SB3's Monitor).
@@ -35,6 +37,7 @@ from gymnasium.utils import seeding
 
 Ranges = dict[str, tuple[float, float]]
 Choices = dict[str, tuple[Any, ...]]
+Nominal = float | dict[str, float]  # a real kwarg's value, or a dict-valued kwarg's numbers
 
 
 def _declared(env_id: str, what: str) -> dict[str, Any]:
@@ -59,17 +62,19 @@ def shifts(env_id: str) -> dict[str, dict[str, float]]:
     return {k: dict(v) for k, v in _declared(env_id, "shifts").items()}
 
 
-def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dict[str, float]:
-    """Real-number constructor kwargs of `env_id` -> nominal value.
+def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dict[str, Nominal]:
+    """Real-number constructor kwargs of `env_id` -> nominal value, and dict-valued ones (every
+    value a real number) -> their nominal dict.
 
-    Given kwargs win over constructor defaults; a kwarg whose default is not a number (e.g.
-    `wave_period=None`, "resonance") takes the value the env resolved it to, read from the
-    attribute of the same name on a freshly made env, if it has one.
+    Given kwargs win over constructor defaults; a kwarg whose value is not a number (e.g.
+    `wave_period=None`, "resonance"; Inchworm-v0's `friction_coefficients`, None, a partial dict
+    or 4 numbers) takes the value the env resolved it to, read from the attribute of the same
+    name on a freshly made env, if it has one (a given dict of numbers otherwise).
     """
     spec = gym.spec(env_id)
     params = _constructor_params(env_id)
     given = {**spec.kwargs, **(env_kwargs or {})}
-    out: dict[str, float] = {}
+    out: dict[str, Nominal] = {}
     unresolved = []
     for name, p in params.items():
         value = given.get(name, p.default)
@@ -77,14 +82,33 @@ def nominal_kwargs(env_id: str, env_kwargs: dict[str, Any] | None = None) -> dic
             out[name] = float(value)
         elif name not in ("self", "render_mode") and p.kind is p.POSITIONAL_OR_KEYWORD:
             unresolved.append(name)
+            if _nominal(value) is not None:
+                out[name] = _nominal(value)  # unless the env resolved it (below)
     if unresolved:  # (no TimeLimit unless given: only attributes are read)
         env = gym.make(env_id, **{"max_episode_steps": -1, **(env_kwargs or {})})
         for name in unresolved:
-            value = getattr(env.unwrapped, name, None)
-            if _is_real(value):
-                out[name] = float(value)
+            value = _nominal(getattr(env.unwrapped, name, None))
+            if value is not None:
+                out[name] = value
         env.close()
     return out
+
+
+def _nominal(value: Any) -> Nominal | None:
+    """A real number as float, a non-empty dict of real numbers as a new dict of floats; else
+    None (not randomisable)."""
+    if _is_real(value):
+        return float(value)
+    if isinstance(value, dict) and value and all(_is_real(v) for v in value.values()):
+        return {k: float(v) for k, v in value.items()}
+    return None
+
+
+def scaled(factor: float, nominal: Nominal) -> Nominal:
+    """factor x a nominal value: a number, or every number of a dict-valued kwarg's dict."""
+    if isinstance(nominal, dict):
+        return {k: factor * v for k, v in nominal.items()}
+    return factor * nominal
 
 
 def _constructor_params(env_id: str) -> dict[str, inspect.Parameter]:
@@ -99,8 +123,8 @@ def _is_real(value: Any) -> bool:
 
 
 def applicable_ranges(env_id: str, ranges: Ranges | None = None) -> Ranges:
-    """The subset of `ranges` (default the env's declared `randomize`) that are real kwargs of
-    the env."""
+    """The subset of `ranges` (default the env's declared `randomize`) that are real (or
+    dict-of-reals) kwargs of the env (`nominal_kwargs`)."""
     ranges = default_ranges(env_id) if ranges is None else ranges
     nominal = nominal_kwargs(env_id)
     for name, (lo, hi) in ranges.items():
@@ -109,13 +133,14 @@ def applicable_ranges(env_id: str, ranges: Ranges | None = None) -> Ranges:
     return {k: tuple(map(float, v)) for k, v in ranges.items() if k in nominal}
 
 
-def shifted_kwargs(env_id: str, factors: dict[str, float]) -> dict[str, float]:
-    """Absolute kwargs for factors x nominal value, for the kwargs `env_id` really has."""
+def shifted_kwargs(env_id: str, factors: dict[str, float]) -> dict[str, Nominal]:
+    """Absolute kwargs for factors x nominal value (`scaled`: a dict-valued kwarg's every
+    number), for the kwargs `env_id` really has."""
     nominal = nominal_kwargs(env_id)
-    return {k: f * nominal[k] for k, f in factors.items() if k in nominal}
+    return {k: scaled(f, nominal[k]) for k, f in factors.items() if k in nominal}
 
 
-def shift_scenes(env_id: str) -> dict[str, dict[str, float]]:
+def shift_scenes(env_id: str) -> dict[str, dict[str, Nominal]]:
     """Robustness scenes of `env_id`: name -> absolute gym.make kwargs (empty ones dropped)."""
     scenes = {name: shifted_kwargs(env_id, f) for name, f in shifts(env_id).items()}
     return {name: kw for name, kw in scenes.items() if kw}
@@ -123,8 +148,9 @@ def shift_scenes(env_id: str) -> dict[str, dict[str, float]]:
 
 class Randomizer:
     """The draws of domain randomisation for `env_id` made with `base_kwargs`: validates
-    `ranges` (kwarg -> (lo, hi) factors of the nominal value; default the declared `randomize`;
-    names the env does not take are dropped, ValueError naming `ranges` if none is left) and
+    `ranges` (kwarg -> (lo, hi) factors of the nominal value, a dict-valued kwarg's every number
+    by the same factor; default the declared `randomize`; names the env does not take are
+    dropped, ValueError naming `ranges` if none is left) and
     `choices` (kwarg -> candidate values; default the declared; unknown names: ValueError naming
     `choices`). `names`: the kwargs drawn."""
 
@@ -140,7 +166,7 @@ class Randomizer:
         if not self.ranges:
             raise ValueError(
                 f"ranges: none of {list(ranges or default_ranges(env_id))}"
-                f" is a real-valued kwarg of {env_id}"
+                f" is a real-valued (or dict-of-reals) kwarg of {env_id}"
             )
         self.nominal = {
             k: v for k, v in nominal_kwargs(env_id, base_kwargs).items() if k in self.ranges
@@ -152,10 +178,11 @@ class Randomizer:
         self.names = frozenset(self.ranges) | frozenset(self.choices)
 
     def sample(self, rng: np.random.Generator) -> dict[str, Any]:
-        """One set of kwargs from `rng`: uniform factors x nominal (in `ranges` order), then
-        the discrete choices."""
+        """One set of kwargs from `rng`: uniform factors x nominal (in `ranges` order, one
+        factor per kwarg, `scaled`), then the discrete choices."""
         out: dict[str, Any] = {
-            k: float(rng.uniform(lo, hi)) * self.nominal[k] for k, (lo, hi) in self.ranges.items()
+            k: scaled(float(rng.uniform(lo, hi)), self.nominal[k])
+            for k, (lo, hi) in self.ranges.items()
         }
         for k, values in self.choices.items():
             out[k] = values[int(rng.integers(len(values)))]
@@ -217,8 +244,8 @@ class DomainRandomization(gym.Wrapper):
 
     Args:
         env: an env made with `gym.make(env_id, **kwargs)` (its spec names the id and kwargs).
-        ranges: kwarg -> (lo, hi) factors of the nominal value; default the env's declared
-            `randomize`.
+        ranges: kwarg -> (lo, hi) factors of the nominal value (a dict-valued kwarg: one factor
+            for every number of its dict); default the env's declared `randomize`.
             Names the env does not take are ignored; ValueError if none is left.
         choices: kwarg -> candidate values, one drawn uniformly at every reset (None allowed,
             e.g. regular vs irregular sea); default the declared `choices`; names the
@@ -244,7 +271,7 @@ class DomainRandomization(gym.Wrapper):
         self._limit = {}
         if limit != gym.spec(self.env_id).max_episode_steps:
             self._limit = {"max_episode_steps": -1 if limit is None else limit}
-        self.current: dict[str, Any] = dict(self.nominal)
+        self.current: dict[str, Any] = {k: scaled(1.0, v) for k, v in self.nominal.items()}
         self._rng: np.random.Generator | None = None
 
     def sample(self) -> dict[str, Any]:

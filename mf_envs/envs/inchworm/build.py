@@ -82,6 +82,9 @@ class Scene:
     actuator_rate_limit: float  # 1/(m s), with `actuator_dynamics`
     actuator_params: ActuatorParams
     feet: FrictionParams
+    # the feet's coefficients resolved, FRICTION_KEYS -> mu (the env's `friction_coefficients`:
+    # the nominal that `train.randomize` scales)
+    friction_coefficients: dict[str, float] = dataclasses.field(hash=False)
     grip_feet: GripFeetParams  # the feet with `gripping_feet`
     wires: SMAWires | None  # the wire groups with `sma_wires` (sized to the body)
     ambient: float  # degC, still air around the wires (`ambient_temperature`)
@@ -126,8 +129,10 @@ def build(kw: dict[str, Any], effects: frozenset, n_substeps: int) -> Scene:
     grip = grip_feet_params(feet, kw["grip_threshold"])
     wires = wire_groups(kw, params, max_curvature, head["n_ctrl"], "sma_wires" in effects)
     ambient = check_range("ambient_temperature", kw["ambient_temperature"], -40.0, 60.0)
+    mu = dict(zip(FRICTION_KEYS, map(float, feet.coefficients)))
     return Scene(**head, actuator_rate_limit=act.rate_limit, actuator_params=act, feet=feet,
-                 grip_feet=grip, wires=wires, ambient=ambient)  # fmt: skip
+                 friction_coefficients=mu, grip_feet=grip, wires=wires,
+                 ambient=ambient)  # fmt: skip
 
 
 def grip_feet_params(feet: FrictionParams, threshold: Any) -> GripFeetParams:

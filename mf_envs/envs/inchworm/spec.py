@@ -124,7 +124,7 @@ def grip_capacity(law: Any, grip: np.ndarray, normal: np.ndarray) -> np.ndarray:
     """The largest friction force [N] each gripping foot (`grip.GripLaw`) can exert,
     N (mu_s + phi(g) (min(mu_grip) - mu_s)) (the smaller gripping coefficient: conservative);
     grip, normal (..., 2) -> (..., 2)."""
-    mu_g = min(law.grip_forward, law.grip_backward)
+    mu_g = np.minimum(law.grip_forward, law.grip_backward)  # (law's fields: numbers or columns)
     x = np.clip((np.asarray(grip, float) - law.threshold) / law.width, 0.0, 1.0)
     phi = x * x * (3.0 - 2.0 * x)
     return np.maximum(np.asarray(normal, float), 0.0) * (law.mu_slide + phi * (mu_g - law.mu_slide))

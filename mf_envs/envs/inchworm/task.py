@@ -8,19 +8,6 @@ from typing import Any
 
 from mf_envs.envs.declaration import EnvDeclaration, Metric
 
-# soil kwargs randomised if the env has them (`train.randomize` keeps only real kwargs)
-SOIL_KWARGS = (
-    "friction_coefficient",
-    "static_friction",
-    "kinetic_friction",
-    "friction_forward",
-    "friction_backward",
-    "mu_forward",
-    "mu_backward",
-    "ground_stiffness",
-    "ground_damping",
-)
-
 
 def episode_metrics(
     env: Any, rewards: Sequence[float], infos: Sequence[Mapping[str, Any]]
@@ -49,13 +36,15 @@ DECLARATION = EnvDeclaration(
     episode_metrics=episode_metrics,
     info_keys=("x_head", "x_tail", "centerline"),
     bad_reset_options=(("x_tail", 1e17), ("kappa", [1.0, 2.0]), ("kappa", [0.0, 0.0, -51.0])),
+    # the body, then the feet's friction: every coefficient of `friction_coefficients` times one
+    # factor (`train.randomize`: a dict-valued kwarg), in both feet's scenes
     randomize={
-        **{k: (0.5, 1.5) for k in SOIL_KWARGS},
         "youngs_modulus": (0.8, 1.2),
         "mass_per_length": (0.8, 1.2),
+        "friction_coefficients": (0.5, 1.5),
     },
     shifts={
-        "soil x0.5": {k: 0.5 for k in SOIL_KWARGS},
+        "friction x0.5": {"friction_coefficients": 0.5},
         "youngs_modulus x0.8": {"youngs_modulus": 0.8},
         "mass_per_length x1.2": {"mass_per_length": 1.2},
     },

@@ -14,10 +14,11 @@ single env's own compiled step (`quasistatic.drive_step`) and observation for ev
 See `mf_envs.envs._vector`.
 
 Domain randomisation (`randomize_rows`, `mf_envs.envs._drawn_rows`): each row holds its
-compiled configuration (`_cfg_of`: stiffness, weight loads, actuation; `_row_held`), its effort
-weight and its mass per length (the quasi-static error's), so youngs_modulus, shear_modulus
-and mass_per_length differ between rows; the randomised rows are stepped one by one with their
-own (`DrawnRows._run_rows_of`).
+compiled configuration (`_cfg_of`: stiffness, weight loads, actuation, the feet's friction
+coefficients or the grip law; `_row_held`), its effort weight, its mass per length and its
+feet's coefficients (the quasi-static error's), so youngs_modulus, shear_modulus,
+mass_per_length and friction_coefficients differ between rows; the randomised rows are stepped
+one by one with their own (`DrawnRows._run_rows_of`).
 """
 
 from __future__ import annotations
@@ -46,19 +47,35 @@ class InchwormVectorEnv(BatchedVectorEnv):
 
     single_env_cls = InchwormEnv
     row_cost = "heavy"  # ~1 ms per row: one block per CPU from N = 2
-    # held per row (its `_cfg_of`, effort weight, mass per length): `randomize_rows`
-    ROW_KWARGS = frozenset(("youngs_modulus", "shear_modulus", "mass_per_length"))
+    # held per row (its `_cfg_of`, effort weight, mass per length, `_mu_of`): `randomize_rows`
+    ROW_KWARGS = frozenset(
+        ("youngs_modulus", "shear_modulus", "mass_per_length", "friction_coefficients")
+    )
 
     def _row_held(self, env: Any) -> Any:
         return self._cfg_of(env)
 
     def _shared(self, env: Any) -> tuple[Any, ...]:
-        """The step's template values (`_step_batch`, `_step_grip`, `_finish_info`)."""
+        """The step's template values (`_step_batch`, `_step_grip`, `_finish_info`; the feet's
+        friction is each row's: `_cfg_of`, `_mu_of`)."""
         d = env.driven
-        feet = d.feet.params.coefficients if d.feet is not None else None
-        law = d.grip_feet.law.kernel_args() if d.grip_feet is not None else None
         return (*super()._shared(env), env.n_ctrl, env.sma, env.switching, env.params.length,
-                d.meter.efficiency, feet, law, env.scene.ambient, env.sim.model.n_dof)  # fmt: skip
+                d.meter.efficiency, env.scene.ambient, env.sim.model.n_dof)  # fmt: skip
+
+    def _mu_of(self, env: Any) -> np.ndarray:
+        """What the quasi-static error reads of the single env `env`'s feet: the Coulomb feet's
+        coefficients (4,) (`spec.holding_capacity`), on gripping feet the grip law's
+        `kernel_args` (7,) (`spec.grip_capacity`)."""
+        if self._grip:
+            return env.driven.grip_feet.law.kernel_args()
+        return env.driven.feet.params.coefficients
+
+    def _law_rows(self) -> SimpleNamespace:
+        """The rows' grip laws as column views (N, 1) of `_mu` (`spec.grip_capacity`; the
+        layout of `GripLaw.kernel_args`)."""
+        m = self._mu
+        names = ("threshold", "width", "mu_slide", "grip_forward", "grip_backward")
+        return SimpleNamespace(**{k: m[:, j : j + 1] for j, k in enumerate(names)})
 
     def _cfg_of(self, env: Any) -> tuple:
         """The compiled configuration of `rows.step_rows` (`step_rows_grip` on gripping feet)
@@ -100,6 +117,8 @@ class InchwormVectorEnv(BatchedVectorEnv):
         self._foot_dx = np.zeros((n, 2))
         self._duty = np.zeros((n, env.n_ctrl))  # the friction scene's (the kernel has none)
         self._effort = np.full(n, env.effort_weight)  # each row's effort weight
+        self._mu = np.tile(self._mu_of(env), (n, 1))  # each row's feet (`_mu_of`, `_load`)
+        self._law = self._law_rows() if self._grip else None  # views: `_load` updates them
         # each row's mass per length (N, 1), for `spec.quasi_static_error`
         self._qs = SimpleNamespace(mass_per_length=np.full((n, 1), env.params.mass_per_length),
                                    length=env.params.length)  # fmt: skip
@@ -152,6 +171,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         sim, driven = env.sim, env.driven
         self._foot_dx[i] = 0.0
         self._effort[i], self._qs.mass_per_length[i] = env.effort_weight, env.params.mass_per_length
+        self._mu[i] = self._mu_of(env)
         if self._grip:
             d, xo, lag, kc, ft, sma, cmd, head, duty = self._state
             d[i], xo[i] = sim.state.d, sim.x_origin
@@ -213,7 +233,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
             "increments": np.where(ok, rep[:, ss.REP_INC], 0).astype(np.int64),
             "time": self._steps * env.control_dt,
         }
-        mu4 = env.driven.feet.params.coefficients
+        mu4 = self._mu.T[:, :, None]  # (4, N, 1): each row's coefficients
         normal = rep[:, ss.REP_N : ss.REP_N + 2]
         limit = spec.holding_capacity(mu4, g, rep[:, ss.REP_GX : ss.REP_GX + 2], normal)
         mech = np.where(ok, rep[:, ss.REP_POS], 0.0)
@@ -296,7 +316,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
             "time": self._steps * env.control_dt,
         }
         normal = rep[:, gf.REP_N : gf.REP_N + 2]
-        limit = spec.grip_capacity(env.scene.grip_feet.law, ft[:, :2], normal)
+        limit = spec.grip_capacity(self._law, ft[:, :2], normal)
         temperature = sma[:, 0, :].copy() if env.sma else None
         electrical = energy if env.sma else np.zeros(self.num_envs)
         mechanical = np.where(ok, rep[:, qs.REP_WIRE], 0.0)
