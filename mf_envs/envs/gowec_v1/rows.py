@@ -22,7 +22,9 @@ from mf_envs.physics.gowec.hydro.batch import (
 from mf_envs.physics.gowec.hydro.floating import ramp
 
 
-@numba.njit(cache=True)
+# a kernel (`mf_envs._jit`): as a plain njit function, called for every row, its array
+# arguments cost 7 atomic increments and 7 decrements per call (4 % of the vector env's step)
+@kernel
 def observe_one(y, t, amp, om, eps, tramp, preview, lo, hi, obs, eta):
     """(sin phi, cos phi, phi', hull body rates (cos rho theta', rho', sin rho theta'), theta,
     rho) of the state y, the incident wave's elevation at the buoy at t, eta (m, ramped: a wave
