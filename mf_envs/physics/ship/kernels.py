@@ -235,7 +235,7 @@ def stage_rhs(t, y, R, inp, args, dy):
     return y[0], y[1], y[2]
 
 
-_rkmk4 = make_rkmk4(stage_rhs, stage_inputs, inline=True)
+_rkmk4 = make_rkmk4(stage_rhs, stage_inputs, inline=True, third_row=True)  # reads R[2] only
 
 
 @kernel
