@@ -16,7 +16,8 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ELEVATION,
     elevation,
     end_state,
-    step_row,
+    step_row_into,
+    step_views,
     step_work,
 )
 from mf_envs.physics.gowec.hydro.floating import ramp
@@ -79,17 +80,18 @@ def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, a
     rows' views of the shared arrays cost no reference counts)."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
     m = Y.shape[1]
+    work, ph, y1 = step_views(w, m, om.shape[1])  # carved once (`step_row` carves per call)
     for i in range(lo, hi):
         if not active[i]:
             continue
         args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i], dk[i], *tail)
-        good = step_row(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc, loss,
-                        vals[i], w)  # fmt: skip
+        good = step_row_into(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc, loss,
+                             vals[i], work, ph, y1)  # fmt: skip
         ok[i] = good
         if good:
             yi = Y[i]
             for j in range(m):
-                yi[j] = w[5 * m + j]
+                yi[j] = y1[j]
             observe_one(yi, t1[i], amp[i], om[i], eps[i], tail[0][1], preview, o_lo, o_hi, obs[i],
                         vals[i, V_ELEVATION])  # fmt: skip
 

@@ -340,15 +340,10 @@ def mechanics(t, y, tau, args, inp, near=None):
         return ud, m, mu_t, mu_r, Mg, dx, dy, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     Cs = args[17]
     m1, a15 = tp[TP_M1], tp[TP_A15]
-    mu_s, mu_n, mu_z = 0.0, 0.0, 0.0
-    for i in range(int(tp[TP_O15]) - int(tp[TP_O11])):
-        mu_s += Cs[int(tp[TP_O11]) + i] * y[b + 4 + int(tp[TP_O11]) + i]
-    for i in range(int(tp[TP_O51]) - int(tp[TP_O15])):
-        mu_s += Cs[int(tp[TP_O15]) + i] * y[b + 4 + int(tp[TP_O15]) + i]
-    for i in range(int(tp[TP_O33]) - int(tp[TP_O51])):
-        mu_n += Cs[int(tp[TP_O51]) + i] * y[b + 4 + int(tp[TP_O51]) + i]
-    for i in range(int(tp[TP_NT]) - int(tp[TP_O33])):
-        mu_z += Cs[int(tp[TP_O33]) + i] * y[b + 4 + int(tp[TP_O33]) + i]
+    o11, o51, o33 = int(tp[TP_O11]), int(tp[TP_O51]), int(tp[TP_O33])
+    mu_s = _dot_block(Cs, y, b + 4, o11, o51)  # the 11 and 15 blocks (adjacent)
+    mu_n = _dot_block(Cs, y, b + 4, o51, o33)
+    mu_z = _dot_block(Cs, y, b + 4, o33, int(tp[TP_NT]))
     # surge along the wave couples with alpha = -(g . u), g = (sin, -cos) of the direction
     gt, gr = sp[SP_DIR + 1], -sp[SP_DIR]
     fs, fz = inp[2 + N_KEEL + N_SIDE], inp[3 + N_KEEL + N_SIDE]
@@ -421,12 +416,25 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
 
 @kernel(forceinline=True)
 def _block_rates(y, dy, o, As, Bs, lo, hi, v):
-    """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi."""
-    for i in range(lo, hi):
-        acc = Bs[i] * v
-        for j in range(lo, hi):
-            acc += As[i, j] * y[o + j]
-        dy[o + i] = acc
+    """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi
+    (on views from 0: indices the compiler sees are >= 0, so no negative-index wraparound per
+    element, which the offsets lo, o cost on every access)."""
+    A, B, ys, ds = As[lo:hi, lo:hi], Bs[lo:hi], y[o + lo : o + hi], dy[o + lo : o + hi]
+    for i in range(B.shape[0]):
+        acc = B[i] * v
+        for j in range(B.shape[0]):
+            acc += A[i, j] * ys[j]
+        ds[i] = acc
+
+
+@kernel(forceinline=True)
+def _dot_block(c, y, o, lo, hi):
+    """sum_i c[i] y[o + i] over lo <= i < hi, in order from 0.0 (views, as `_block_rates`)."""
+    cs, ys = c[lo:hi], y[o + lo : o + hi]
+    acc = 0.0
+    for i in range(cs.shape[0]):
+        acc += cs[i] * ys[i]
+    return acc
 
 
 @kernel(forceinline=True)
@@ -475,18 +483,21 @@ def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
     ph (4, M) (M wave components; no allocation: the env's step calls it every control step).
     The sea is evaluated at t, t + dt/2, t + dt of every substep (as `make_rk4` does) from the
     components' phasors: cos/sin of w_i t once, then rotated by w_i dt/2 (`_advance_phasors`).
-    Returns the sea (`sea_sum`) at the end time t + n dt."""
+    Returns the sea (`sea_sum`) at the end time t + n dt and the last substep's start angles
+    `near` of `_mass_terms` (NaNs if n = 0: libm), from which the end state's are near."""
     om, cp, cr, dk, sp = args[9], args[10], args[11], args[12], args[13]
     h = 0.5 * dt
     for i in range(om.shape[0]):
         ph[0, i], ph[1, i] = math.cos(om[i] * t), math.sin(om[i] * t)
         ph[2, i], ph[3, i] = math.cos(om[i] * h), math.sin(om[i] * h)
     i1 = sea_sum(ph, ramp(t, sp[1]), cp, cr, dk, sp)
+    near = (math.nan, math.nan, math.nan, math.nan, math.nan, math.nan)
     for _ in range(n):
         i0 = i1
         # rho and phi at the substep's start: the stages' sin/cos from these (`_mass_terms`)
         ro, phi = y[1], y[2]
-        full = (tau, args, (ro, math.cos(ro), math.sin(ro), phi, math.cos(phi), math.sin(phi)))
+        near = (ro, math.cos(ro), math.sin(ro), phi, math.cos(phi), math.sin(phi))
+        full = (tau, args, near)
         _advance_phasors(ph)
         ih = sea_sum(ph, ramp(t + h, sp[1]), cp, cr, dk, sp)
         _advance_phasors(ph)
@@ -496,7 +507,7 @@ def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
         for i in range(y.shape[0]):
             y[i] += dy[i]
         t += dt
-    return i1
+    return i1, near
 
 
 def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray,
