@@ -16,6 +16,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ELEVATION,
     elevation,
     end_state,
+    step_row,
     step_row_into,
     step_views,
     step_work,
