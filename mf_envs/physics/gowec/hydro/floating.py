@@ -378,7 +378,9 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
         dy[i] = y[3 + i]
         dy[3 + i] = ud[i]
     th_d, ro_d, ph_d = y[3], y[4], y[5]
-    for i in range(nr):  # radiation states: x' = A x + B u (loops: no BLAS call per row)
+    if nr == 4:  # the fit's order: `_radiation4`, the same sums unrolled
+        _radiation4(y, dy, Ar, Br, th_d, ro_d)
+    for i in range(nr if nr != 4 else 0):  # radiation states: x' = A x + B u (no BLAS call)
         at, ar = 0.0, 0.0
         for j in range(nr):
             at += Ar[i, j] * y[6 + j]
@@ -415,11 +417,28 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
 
 
 @kernel(forceinline=True)
+def _radiation4(y, dy, Ar, Br, th_d, ro_d):
+    """`deriv_into`'s radiation states of a 4th-order fit (pitch at y[6:10], roll at y[10:14]),
+    its loop's sums in its order, unrolled: 0.0 + sum_j A[i, j] x_j, then + B[i] u."""
+    t0, t1, t2, t3 = y[6], y[7], y[8], y[9]
+    r0, r1, r2, r3 = y[10], y[11], y[12], y[13]
+    for i in range(4):
+        a0, a1, a2, a3 = Ar[i, 0], Ar[i, 1], Ar[i, 2], Ar[i, 3]
+        dy[6 + i] = (0.0 + a0 * t0 + a1 * t1 + a2 * t2 + a3 * t3) + Br[i] * th_d
+        dy[10 + i] = (0.0 + a0 * r0 + a1 * r1 + a2 * r2 + a3 * r3) + Br[i] * ro_d
+
+
+@kernel(forceinline=True)
 def _block_rates(y, dy, o, As, Bs, lo, hi, v):
     """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi
     (on views from 0: indices the compiler sees are >= 0, so no negative-index wraparound per
     element, which the offsets lo, o cost on every access)."""
     A, B, ys, ds = As[lo:hi, lo:hi], Bs[lo:hi], y[o + lo : o + hi], dy[o + lo : o + hi]
+    if B.shape[0] == 4:  # the fits' order: the same sums, unrolled (no loop per 4 terms)
+        y0, y1, y2, y3 = ys[0], ys[1], ys[2], ys[3]
+        for i in range(4):
+            ds[i] = B[i] * v + A[i, 0] * y0 + A[i, 1] * y1 + A[i, 2] * y2 + A[i, 3] * y3
+        return
     for i in range(B.shape[0]):
         acc = B[i] * v
         for j in range(B.shape[0]):
