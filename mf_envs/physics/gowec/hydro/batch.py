@@ -17,6 +17,7 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
+from mf_envs.frames.kernels import sincos_near
 from mf_envs.physics.gowec.hydro.floating import (
     energy_index,
     mechanics,
@@ -102,7 +103,7 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     A `mf_envs._jit.kernel` (no reference counting; it returns no array)."""
     m, nc = y.shape[0], args[9].shape[0]
     work, ph, y1 = step_views(w, m, nc)
-    return step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, y1)
+    return step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, y1)[0]
 
 
 @numba.njit(cache=True, inline="always")  # returns views: not a kernel (`mf_envs._jit`)
@@ -116,7 +117,9 @@ def step_views(w, m, nc):
 
 @kernel
 def step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, y1):
-    """`step_row` on the carved buffer (`step_views`), the new state into y1."""
+    """`step_row` on the carved buffer (`step_views`), the new state into y1; returns (ok, the
+    end state's (rho, cos rho, sin rho, phi, cos phi, sin phi)), the angles' sin/cos near the
+    last substep's start (`floating._mass_terms`' near; NaNs if not ok), for the observation."""
     m = y.shape[0]
     k = energy_index(args)
     for i in range(m):  # element-wise: a slice copy may allocate (no runtime here)
@@ -127,14 +130,18 @@ def step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, 
         inp, near = rk4_steps_into(t0, y1, tau, dt, n, args, work, ph)
     except Exception:  # noqa: BLE001
         y1[0] = np.nan
+    nan = math.nan
     for i in range(m):
         if not math.isfinite(y1[i]):
-            return False
+            return False, (nan, nan, nan, nan, nan, nan)
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
     vals[V_POWER], vals[V_POWER_MECH] = p_el, (y1[k + 3] - y[k + 3]) / dtc
-    state_values_into(t1, y1, tau, args, amp, eps, vals, inp, near)  # its sin/cos near those
+    cr, sr = sincos_near(y1[1], near[0], near[1], near[2])
+    cp, sp = sincos_near(y1[2], near[3], near[4], near[5])
+    end = (y1[1], cr, sr, y1[2], cp, sp)
+    state_values_into(t1, y1, tau, args, amp, eps, vals, inp, end)
     vals[V_ENERGY] = p_el * dtc
-    return True
+    return True, end
 
 
 @numba.njit(cache=True, inline="always")
