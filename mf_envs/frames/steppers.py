@@ -22,7 +22,7 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.frames.kernels import _rodrigues_entries, dexpinv_right3
+from mf_envs.frames.kernels import _rodrigues_entries, dexpinv_right3, rodrigues_coeffs
 
 # stamps the steppers' caches (see `_specialise`): this file and the SO(3) kernels they call
 _SOURCE_CRC = zlib.crc32(Path(__file__).read_bytes())
@@ -72,14 +72,19 @@ def times_exp_into(out: np.ndarray, R: np.ndarray, theta) -> None:
 
 @numba.njit(cache=True, inline="always")
 def times_exp_row2_into(out: np.ndarray, R: np.ndarray, theta) -> None:
-    """Row 2 of `times_exp_into` only (out's rows 0 and 1 untouched), the same arithmetic: the
-    RKMK4 stage attitude of a right-hand side that reads only R's third row (`make_rkmk4`)."""
-    E = _rodrigues_entries(theta[0], theta[1], theta[2])
-    (e00, e01, e02), (e10, e11, e12), (e20, e21, e22) = E
+    """Row 2 of R exp(hat(theta)) only (out's rows 0 and 1 untouched): the RKMK4 stage attitude
+    of a right-hand side that reads only R's third row r (`make_rkmk4`). By Rodrigues on the
+    row, r exp(hat(theta)) = r - a theta x r + b theta x (theta x r) (exp(hat(theta))^T =
+    exp(-hat(theta))): the cross products need no a, b, so they run beside their series
+    (`times_exp_into` forms the 9 entries first; this is its row to round-off)."""
+    x, y, z = theta[0], theta[1], theta[2]
+    a, b = rodrigues_coeffs(x * x + y * y + z * z)
     r0, r1, r2 = R[2, 0], R[2, 1], R[2, 2]
-    out[2, 0] = r0 * e00 + r1 * e10 + r2 * e20
-    out[2, 1] = r0 * e01 + r1 * e11 + r2 * e21
-    out[2, 2] = r0 * e02 + r1 * e12 + r2 * e22
+    c0, c1, c2 = y * r2 - z * r1, z * r0 - x * r2, x * r1 - y * r0
+    d0, d1, d2 = y * c2 - z * c1, z * c0 - x * c2, x * c1 - y * c0
+    out[2, 0] = r0 - a * c0 + b * d0
+    out[2, 1] = r1 - a * c1 + b * d1
+    out[2, 2] = r2 - a * c2 + b * d2
 
 
 @numba.njit(cache=True)

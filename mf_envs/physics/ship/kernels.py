@@ -136,9 +136,11 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
         C = P[CPL0 : CPL0 + N_COUPLING]
         dv, a1, a3 = solve_sway_roll_yaw(jxx, jzz, jxz, r1, r3, P[S.SPEED], v, w1, w3, roll, C)
     else:
-        det = jxx * jzz - jxz * jxz
-        a1 = (jzz * r1 - jxz * r3) / det
-        a3 = (jxx * r3 - jxz * r1) / det
+        # 1/det from the gimbal angle alone, ready before the moments: a multiply, not a
+        # division, on the roll chain (attitude -> moment -> w1')
+        inv = 1.0 / (jxx * jzz - jxz * jxz)
+        a1 = (jzz * r1 - jxz * r3) * inv
+        a3 = (jxx * r3 - jxz * r1) * inv
     if free_gimbal:
         if n == 1:
             wg1 = c * w1 - s * w3
