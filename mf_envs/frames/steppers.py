@@ -22,7 +22,7 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.frames.kernels import _rodrigues_entries, dexpinv_right3
+from mf_envs.frames.kernels import _rodrigues_entries, dexpinv_right3, rodrigues_coeffs
 
 # stamps the steppers' caches (see `_specialise`): this file and the SO(3) kernels they call
 _SOURCE_CRC = zlib.crc32(Path(__file__).read_bytes())
@@ -68,6 +68,23 @@ def times_exp_into(out: np.ndarray, R: np.ndarray, theta) -> None:
         out[i, 0] = r0 * e00 + r1 * e10 + r2 * e20
         out[i, 1] = r0 * e01 + r1 * e11 + r2 * e21
         out[i, 2] = r0 * e02 + r1 * e12 + r2 * e22
+
+
+@numba.njit(cache=True, inline="always")
+def times_exp_row2_into(out: np.ndarray, R: np.ndarray, theta) -> None:
+    """Row 2 of R exp(hat(theta)) only (out's rows 0 and 1 untouched): the RKMK4 stage attitude
+    of a right-hand side that reads only R's third row r (`make_rkmk4`). By Rodrigues on the
+    row, r exp(hat(theta)) = r - a theta x r + b theta x (theta x r) (exp(hat(theta))^T =
+    exp(-hat(theta))): the cross products need no a, b, so they run beside their series
+    (`times_exp_into` forms the 9 entries first; this is its row to round-off)."""
+    x, y, z = theta[0], theta[1], theta[2]
+    a, b = rodrigues_coeffs(x * x + y * y + z * z)
+    r0, r1, r2 = R[2, 0], R[2, 1], R[2, 2]
+    c0, c1, c2 = y * r2 - z * r1, z * r0 - x * r2, x * r1 - y * r0
+    d0, d1, d2 = y * c2 - z * c1, z * c0 - x * c2, x * c1 - y * c0
+    out[2, 0] = r0 - a * c0 + b * d0
+    out[2, 1] = r1 - a * c1 + b * d1
+    out[2, 2] = r2 - a * c2 + b * d2
 
 
 @numba.njit(cache=True)
@@ -133,13 +150,13 @@ def _rkmk4_template(t, y, R, dt, args, work, Rwork):
     Rs, R1 = Rwork[0], Rwork[1]
     q1 = _rhs(t, y, R, i0, args, k1)  # noqa: F821
     th = _scale3(h, q1)
-    times_exp_into(Rs, R, th)
+    _stage_exp(Rs, R, th)  # noqa: F821
     q2 = dexpinv_right3(th, _rhs(t + h, _stage_point(ys, y, h, k1), Rs, ih, args, k2))  # noqa: F821
     th = _scale3(h, q2)
-    times_exp_into(Rs, R, th)
+    _stage_exp(Rs, R, th)  # noqa: F821
     q3 = dexpinv_right3(th, _rhs(t + h, _stage_point(ys, y, h, k2), Rs, ih, args, k3))  # noqa: F821
     th = _scale3(dt, q3)
-    times_exp_into(Rs, R, th)
+    _stage_exp(Rs, R, th)  # noqa: F821
     q4 = dexpinv_right3(th, _rhs(t + dt, _stage_point(ys, y, dt, k3), Rs, i1, args, k4))  # noqa: F821
     times_exp_into(R1, R, _rk4_combine3(dt, q1, q2, q3, q4))
     _rk4_combine(dt, k1, k2, k3, k4)
@@ -201,8 +218,12 @@ def make_rk4_given(rhs, inline: bool = False):
     return _specialise(_rk4_given_template, rhs, None, "rk4g", inline)
 
 
-def make_rkmk4(rhs, inputs, inline: bool = False):
+def make_rkmk4(rhs, inputs, inline: bool = False, third_row: bool = False):
     """The RKMK4 step `step(t, y, R, dt, args, work, Rwork) -> inputs(t + dt)`, the increment dy
     left in work[0] and the new attitude in Rwork[1]; rhs(t, y, R, inp, args, out) -> omega and
-    inputs(t, args) jitted (see `_rkmk4_template`); inline as `make_rk4`."""
-    return _specialise(_rkmk4_template, rhs, inputs, "rkmk4", inline)
+    inputs(t, args) jitted (see `_rkmk4_template`); inline as `make_rk4`. third_row: the rhs
+    reads only R[2] (the ship's gravity direction), so the stage attitudes form only that row
+    (`times_exp_row2_into`; the new attitude is formed whole)."""
+    stage_exp = times_exp_row2_into if third_row else times_exp_into
+    prefix = "rkmk4r" if third_row else "rkmk4"
+    return _specialise(_rkmk4_template, rhs, inputs, prefix, inline, _stage_exp=stage_exp)

@@ -28,6 +28,7 @@ from mf_envs.physics.ship.seas import (
 
 OBS = spec.OBS
 _HIGH = tuple(float(v) for v in OBS.high())
+_TWO_PI = 2.0 * math.pi
 
 
 @kernel
@@ -42,7 +43,8 @@ def observe(roll, y, R, out):
         for j in range(3):
             if not math.isfinite(R[i, j]):
                 return False
-    phi = (y[3] + math.pi) % (2.0 * math.pi) - math.pi
+    v = y[3] + math.pi  # wrapped: v % 2 pi - pi, whose fmod is v itself on [0, 2 pi)
+    phi = (v if 0.0 <= v < _TWO_PI else v % _TWO_PI) - math.pi
     vals = (roll, y[0], y[1], y[2], phi, y[4])
     for i in range(6):
         out[i] = min(max(vals[i], -_HIGH[i]), _HIGH[i])

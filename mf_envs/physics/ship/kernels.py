@@ -136,9 +136,11 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
         C = P[CPL0 : CPL0 + N_COUPLING]
         dv, a1, a3 = solve_sway_roll_yaw(jxx, jzz, jxz, r1, r3, P[S.SPEED], v, w1, w3, roll, C)
     else:
-        det = jxx * jzz - jxz * jxz
-        a1 = (jzz * r1 - jxz * r3) / det
-        a3 = (jxx * r3 - jxz * r1) / det
+        # 1/det from the gimbal angle alone, ready before the moments: a multiply, not a
+        # division, on the roll chain (attitude -> moment -> w1')
+        inv = 1.0 / (jxx * jzz - jxz * jxz)
+        a1 = (jzz * r1 - jxz * r3) * inv
+        a3 = (jxx * r3 - jxz * r1) * inv
     if free_gimbal:
         if n == 1:
             wg1 = c * w1 - s * w3
@@ -235,7 +237,7 @@ def stage_rhs(t, y, R, inp, args, dy):
     return y[0], y[1], y[2]
 
 
-_rkmk4 = make_rkmk4(stage_rhs, stage_inputs, inline=True)
+_rkmk4 = make_rkmk4(stage_rhs, stage_inputs, inline=True, third_row=True)  # reads R[2] only
 
 
 @kernel
@@ -246,7 +248,14 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     `gimbal_limits` then meets its inelastic end stops (`_stop_gimbal`). work (5, n),
     Rwork (2, 3, 3): the stepper's scratch (`frames.kernels.rk4_work`, `rkmk4_rwork`).
     Returns the wave moment (N m) at t + dt."""
-    inp = _rkmk4(t, y, R, dt, (u, P, tab, _near(t, y[3], P)), work, Rwork)
+    return rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, _near(t, y[3], P))
+
+
+@kernel
+def rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, near):
+    """`rk4_step` with the step's start values `near` (`_near`: libm, or `_near_from` an
+    earlier start) given."""
+    inp = _rkmk4(t, y, R, dt, (u, P, tab, near), work, Rwork)
     dy, R1 = work[0], Rwork[1]
     for i in range(y.shape[0]):
         y[i] += dy[i]
@@ -275,6 +284,21 @@ def _near(t, phi, P):
     if int(P[S.WMODE]) == WAVE_REGULAR:
         a = P[S.WOMEGA] * t + P[S.WPHASE]
         cw, sw = math.cos(a), math.sin(a)
+    return phi, c, s, t, cw, sw
+
+
+@kernel(forceinline=True)
+def _near_from(near0, t, phi, P):
+    """`_near` at (t, phi) from the values near0 of an earlier start (`sincos_near`: the
+    addition formulas while within 0.1 rad of it, libm beyond; no libm sin/cos for a control
+    step's later substeps, whose angles move by ~0.05 rad each)."""
+    c, s, cw, sw = near0[1], near0[2], near0[4], near0[5]
+    mode = int(P[S.GMODE])
+    if mode == GIMBAL_SERVO or mode == GIMBAL_TORQUE:
+        c, s = sincos_near(phi, near0[0], c, s)
+    if int(P[S.WMODE]) == WAVE_REGULAR:
+        om, ph = P[S.WOMEGA], P[S.WPHASE]
+        cw, sw = sincos_near(om * t + ph, om * near0[3] + ph, cw, sw)
     return phi, c, s, t, cw, sw
 
 
@@ -315,9 +339,12 @@ def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyr
 
 
 @kernel
-def gyro_moment(y, P):
-    """Gyro roll moment (N m, Eq. 123) of state y: `gyro_roll_moment` with the packed P."""
-    return gyro_roll_moment(y[3], y[4], P[S.JR3] * P[S.PSID], P[S.NGYRO])
+def gyro_moment(y, P, c=math.nan):
+    """Gyro roll moment (N m, Eq. 123) of state y: `gyro_roll_moment` with the packed P;
+    c = cos(phi) if the caller has it (NaN: libm)."""
+    if c != c:
+        return gyro_roll_moment(y[3], y[4], P[S.JR3] * P[S.PSID], P[S.NGYRO])
+    return -P[S.NGYRO] * (P[S.JR3] * P[S.PSID]) * y[4] * c
 
 
 @numba.njit(cache=True)
@@ -334,12 +361,20 @@ def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
     """`advance` with the caller's stepper scratch work (5, N_STATE), Rwork (2, 3, 3) (the batch
     reuses one pair for every row)."""
     mw = wave_loads(t, P, tab)[0] if n_sub == 0 else 0.0
-    for _ in range(n_sub):
-        mw = rk4_step(t, y, R, u, dt, P, tab, work, Rwork)
+    near0 = _near(t, y[3], P)  # libm once; the later substeps and the outputs start from it
+    near = near0
+    for k in range(n_sub):
+        if k > 0:
+            near = _near_from(near0, t, y[3], P)
+        mw = rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, near)
         t += dt
-    out[0] = gyro_moment(y, P)
+    c, s = math.nan, math.nan  # cos, sin of the final gimbal angle (NaN: libm in the callees)
+    mode = int(P[S.GMODE])
+    if mode == GIMBAL_SERVO or mode == GIMBAL_TORQUE:
+        c, s = sincos_near(y[3], near0[0], near0[1], near0[2])
+    out[0] = gyro_moment(y, P, c)
     out[1] = mw
-    out[2], out[3] = drive_output(t, y, R, u, P)
+    out[2], out[3] = drive_output(t, y, R, u, P, c, s)
     out[4] = mount_moment(y, out[2], P)
     out[5] = P[S.PROTOR]
     return t
@@ -358,19 +393,20 @@ def mount_moment(y, tau, P):
 
 
 @kernel
-def drive_output(t, y, R, u, P):
+def drive_output(t, y, R, u, P, c=math.nan, s=math.nan):
     """(torque on gyro 1's gimbal in N m, power n tau phi' in W) of the drive at state y.
 
     Torque drives: the machine's torque (`gimbal_drive`). The kinematic servo (and prescribed
     gimbals) report the torque they impose, J_g phi'' - H w_g1 (the gimbal's own equation with
-    the hull's pitch acceleration neglected), without any limit.
+    the hull's pitch acceleration neglected), without any limit. c, s: cos, sin of the gimbal
+    angle if the caller has them (NaN: libm).
     """
     phi, phid = y[3], y[4]
     if int(P[S.GMODE]) == GIMBAL_TORQUE:
-        tau = gimbal_drive(y[0], y[2], phi, phid, y[Z_STATE], u, R[2, 0], R[2, 2], P)[0]
+        tau = gimbal_drive(y[0], y[2], phi, phid, y[Z_STATE], u, R[2, 0], R[2, 2], P, c, s)[0]
     else:
         phidd = gimbal_motion(t, phi, phid, u, P)[2]
-        tau = P[S.D2] * phidd - gyro_gimbal_torque(y[0], y[2], phi, P)
+        tau = P[S.D2] * phidd - gyro_gimbal_torque(y[0], y[2], phi, P, c, s)
     return tau, P[S.NGYRO] * tau * phid
 
 

@@ -17,6 +17,7 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
+from mf_envs.frames.kernels import sincos_near
 from mf_envs.physics.gowec.hydro.floating import (
     energy_index,
     mechanics,
@@ -59,14 +60,14 @@ def step_work(n_state, n_components):
 
 
 @kernel(forceinline=True)
-def state_values_into(t, y, tau, args, amp, eps, vals, inp):
+def state_values_into(t, y, tau, args, amp, eps, vals, inp, near=None):
     """Slots V_PITCH..V_ELEVATION of `step_row`'s values (its docstring) at (t, y) with the PTO
     command tau: the buoy and gimbal state, the excitation moment, the gyro moment
     (`_gyro_pitch`) and the elevation, for the sea (args, amp, eps) whose loads at t are inp
-    (`floating.sea_inputs`)."""
+    (`floating.sea_inputs`); near: the angles of `floating._mass_terms` (None: libm)."""
     vals[V_PITCH], vals[V_ROLL], vals[V_PITCH_RATE], vals[V_ROLL_RATE] = y[0], y[1], y[3], y[4]
     vals[V_EXCITATION] = inp[0]
-    vals[V_GYRO] = _gyro_pitch(mechanics(t, y, tau, args, inp))
+    vals[V_GYRO] = _gyro_pitch(mechanics(t, y, tau, args, inp, near))
     vals[V_GIMBAL], vals[V_GIMBAL_RATE] = y[2], y[5]
     vals[V_ELEVATION] = elevation(t, amp, args[9], eps) * ramp(t, args[13][1])
 
@@ -100,26 +101,47 @@ def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
     N m, gimbal angle rad, gimbal rate rad/s, elevation m, net electrical energy J), the
     powers from the integrated PTO energies over dtc, `loss` (W) the rotor loss subtracted.
     A `mf_envs._jit.kernel` (no reference counting; it returns no array)."""
+    m, nc = y.shape[0], args[9].shape[0]
+    work, ph, y1 = step_views(w, m, nc)
+    return step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, y1)[0]
+
+
+@numba.njit(cache=True, inline="always")  # returns views: not a kernel (`mf_envs._jit`)
+def step_views(w, m, nc):
+    """`step_work` w carved for `step_row_into`: the RK4 scratch (5, m), the phasors (4, nc)
+    and the end state (m,) (a row loop carves once: each reshape is a call into numba's C
+    helper)."""
+    work = w[: 5 * m].reshape((5, m))
+    return work, w[6 * m : 6 * m + 4 * nc].reshape((4, nc)), w[5 * m : 6 * m]
+
+
+@kernel
+def step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, y1):
+    """`step_row` on the carved buffer (`step_views`), the new state into y1; returns (ok, the
+    end state's (rho, cos rho, sin rho, phi, cos phi, sin phi)), the angles' sin/cos near the
+    last substep's start (`floating._mass_terms`' near; NaNs if not ok), for the observation."""
     m = y.shape[0]
     k = energy_index(args)
-    y1 = w[5 * m : 6 * m]
     for i in range(m):  # element-wise: a slice copy may allocate (no runtime here)
         y1[i] = y[i]
-    nc = args[9].shape[0]
-    ph = w[6 * m : 6 * m + 4 * nc].reshape((4, nc))
     inp = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # the sea at t1 (below)
+    near = (math.nan, math.nan, math.nan, math.nan, math.nan, math.nan)  # the last substep's
     try:  # a zero pivot of the 3 x 3 solve raises ZeroDivisionError (numba's float division)
-        inp = rk4_steps_into(t0, y1, tau, dt, n, args, w[: 5 * m].reshape((5, m)), ph)
+        inp, near = rk4_steps_into(t0, y1, tau, dt, n, args, work, ph)
     except Exception:  # noqa: BLE001
         y1[0] = np.nan
+    nan = math.nan
     for i in range(m):
         if not math.isfinite(y1[i]):
-            return False
+            return False, (nan, nan, nan, nan, nan, nan)
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
     vals[V_POWER], vals[V_POWER_MECH] = p_el, (y1[k + 3] - y[k + 3]) / dtc
-    state_values_into(t1, y1, tau, args, amp, eps, vals, inp)
+    cr, sr = sincos_near(y1[1], near[0], near[1], near[2])
+    cp, sp = sincos_near(y1[2], near[3], near[4], near[5])
+    end = (y1[1], cr, sr, y1[2], cp, sp)
+    state_values_into(t1, y1, tau, args, amp, eps, vals, inp, end)
     vals[V_ENERGY] = p_el * dtc
-    return True
+    return True, end
 
 
 @numba.njit(cache=True, inline="always")

@@ -56,6 +56,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs._jit import kernel
+from mf_envs.frames.kernels import sincos_near
 from mf_envs.frames.steppers import make_rk4_given, rk4_work
 
 N_MECH = 6
@@ -237,12 +238,21 @@ def mass_and_rhs(q, u, inertia, gyro, psid):
 
 
 @kernel(forceinline=True)
-def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid):
+def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid, near=None):
     """`mass_and_rhs` on scalars (the RK4 stages call it 4 times per substep; no arrays, so no
     reference counting): returns (M00, M11, M12 = M21, M22 (M01 = M02 = 0: w_1 of every body
     depends on theta' only), v (3), gy (3), S, the hull's M00 alone, and (cos b, sin b) of
-    units 1 and 2 (zeros for a missing unit))."""
-    cr_, sr_ = math.cos(ro), math.sin(ro)
+    units 1 and 2 (zeros for a missing unit)).
+
+    cos and sin of rho and phi: libm, or with near = (rho0, cos rho0, sin rho0, phi0, cos phi0,
+    sin phi0) at a Runge-Kutta step's start from those (`frames.kernels.sincos_near`: its
+    stages sit close to it); b = rho +- phi by the angle-addition formulas (round-off)."""
+    if near is None:
+        cr_, sr_ = math.cos(ro), math.sin(ro)
+        cp_, sp_ = math.cos(ph), math.sin(ph)
+    else:
+        cr_, sr_ = sincos_near(ro, near[0], near[1], near[2])
+        cp_, sp_ = sincos_near(ph, near[3], near[4], near[5])
     Ih, Iz = inertia[0], inertia[1]
     Ja, Jt, Jg1, Jg2, Jg3 = gyro[0], gyro[1], gyro[2], gyro[3], gyro[4]
     # gimbal + rotor (principal in the gimbal frame): J1, J2, J3 (rotor spin added in h3)
@@ -260,8 +270,7 @@ def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid):
     for k in range(int(gyro[5])):
         sg = 1.0 - 2.0 * k
         # w = (cb th', ro' + s ph', sb th'), b = ro + s phi, B'u = (-sb bd th', 0, cb bd th')
-        b = ro + sg * ph
-        cb, sb = math.cos(b), math.sin(b)
+        cb, sb = cr_ * cp_ - sg * (sr_ * sp_), sr_ * cp_ + sg * (cr_ * sp_)  # b = ro + sg phi
         if k == 0:
             c1, s1 = cb, sb
         else:
@@ -285,43 +294,29 @@ def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid):
 
 
 @kernel(forceinline=True)
-def _solve3(a, b):
-    """x with A x = b for A = a (9-tuple, row-major) and b (3-tuple): Gaussian elimination with
-    partial pivoting on scalars (LAPACK's call overhead dominates a 3 x 3 solve in the RK4
-    loop); a singular or non-finite A gives a non-finite x (the env's failure path)."""
-    a00, a01, a02, a10, a11, a12, a20, a21, a22 = a
-    b0, b1, b2 = b
-    p, big = 0, abs(a00)  # column 0: the first row of largest |a_i0| is swapped with row 0
-    if abs(a10) > big:
-        p, big = 1, abs(a10)
-    if abs(a20) > big:
-        p = 2
-    if p == 1:
-        a00, a01, a02, a10, a11, a12, b0, b1 = a10, a11, a12, a00, a01, a02, b1, b0
-    elif p == 2:
-        a00, a01, a02, a20, a21, a22, b0, b2 = a20, a21, a22, a00, a01, a02, b2, b0
-    f = a10 / a00
-    a11, a12, b1 = a11 - f * a01, a12 - f * a02, b1 - f * b0
-    f = a20 / a00
-    a21, a22, b2 = a21 - f * a01, a22 - f * a02, b2 - f * b0
-    if abs(a21) > abs(a11):  # column 1
-        a11, a12, a21, a22, b1, b2 = a21, a22, a11, a12, b2, b1
-    f = a21 / a11
-    a22, b2 = a22 - f * a12, b2 - f * b1
-    x2 = b2 / a22
-    x1 = (b1 - a12 * x2) / a11
-    x0 = (b0 - a01 * x1 - a02 * x2) / a00
-    return x0, x1, x2
+def _solve_tridiag3(a00, a01, a11, a12, a22, b0, b1, b2):
+    """x with A x = b for the symmetric tridiagonal A = [[a00, a01, 0], [a01, a11, a12],
+    [0, a12, a22]] (the mass matrix of `mechanics`, positive definite): its cofactors over the
+    determinant: one division, where Gaussian elimination chains six (~14 cycles each, on every
+    RK4 stage's critical path). A singular A raises ZeroDivisionError (numba's float division;
+    `batch.step_row` catches it), a non-finite one gives a non-finite x: the env's failure
+    path."""
+    c00, c01, c02 = a11 * a22 - a12 * a12, -(a01 * a22), a01 * a12
+    c11, c12, c22 = a00 * a22, -(a00 * a12), a00 * a11 - a01 * a01
+    inv = 1.0 / (a00 * c00 + a01 * c01)
+    return ((c00 * b0 + c01 * b1 + c02 * b2) * inv, (c01 * b0 + c11 * b1 + c12 * b2) * inv,
+            (c02 * b0 + c12 * b1 + c22 * b2) * inv)  # fmt: skip
 
 
 @kernel(forceinline=True)
-def mechanics(t, y, tau, args, inp):
+def mechanics(t, y, tau, args, inp, near=None):
     """The mechanical part of `deriv` at (t, y) with the sea `sea_inputs` inp at t:
     (u' (3), the mass terms of `_mass_terms`, radiation moments mu_t, mu_r (N m), M_g (N m),
     drag moments (dx, dy) (N m), translation tr = (s'', z'' (m/s^2), surge and heave
     excitation (N), surge radiation force mu_11 + mu_15 (N), the moment mu_51 about the axis
     across the wave (N m), heave radiation force mu_33 (N), surge and heave drag (N)); tr is
-    zeros when surge and heave are held (`translation` module doc below)."""
+    zeros when surge and heave are held (`translation` module doc below). near: as
+    `_mass_terms`."""
     p_in, p_gy, psid, C, bv, Ar, _, Cr, pto = args[:9]
     sp, tp = args[13], args[14]
     mx, my = inp[0], inp[1]
@@ -330,7 +325,7 @@ def mechanics(t, y, tau, args, inp):
     b = N_MECH + 2 * nr  # translation block: s, z, s', z', stacked radiation states
     s_d, z_d = (y[b + 2], y[b + 3]) if trans else (0.0, 0.0)
     dx, dy, dfs, dfz = drag_loads(y[3], y[4], s_d, z_d, inp, sp)
-    m = _mass_terms(y[1], y[2], y[3], y[4], y[5], p_in, p_gy, psid)
+    m = _mass_terms(y[1], y[2], y[3], y[4], y[5], p_in, p_gy, psid, near)
     mu_t, mu_r = 0.0, 0.0
     for i in range(nr):
         mu_t += Cr[i] * y[6 + i]
@@ -341,19 +336,14 @@ def mechanics(t, y, tau, args, inp):
     q2 = -p_gy[5] * Mg - m[6]
     a00, a01, a11 = m[0], 0.0, m[1]
     if not trans:
-        ud = _solve3((a00, a01, 0.0, a01, a11, m[2], 0.0, m[2], m[3]), (q0, q1, q2))
+        ud = _solve_tridiag3(a00, a01, a11, m[2], m[3], q0, q1, q2)
         return ud, m, mu_t, mu_r, Mg, dx, dy, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     Cs = args[17]
     m1, a15 = tp[TP_M1], tp[TP_A15]
-    mu_s, mu_n, mu_z = 0.0, 0.0, 0.0
-    for i in range(int(tp[TP_O15]) - int(tp[TP_O11])):
-        mu_s += Cs[int(tp[TP_O11]) + i] * y[b + 4 + int(tp[TP_O11]) + i]
-    for i in range(int(tp[TP_O51]) - int(tp[TP_O15])):
-        mu_s += Cs[int(tp[TP_O15]) + i] * y[b + 4 + int(tp[TP_O15]) + i]
-    for i in range(int(tp[TP_O33]) - int(tp[TP_O51])):
-        mu_n += Cs[int(tp[TP_O51]) + i] * y[b + 4 + int(tp[TP_O51]) + i]
-    for i in range(int(tp[TP_NT]) - int(tp[TP_O33])):
-        mu_z += Cs[int(tp[TP_O33]) + i] * y[b + 4 + int(tp[TP_O33]) + i]
+    o11, o51, o33 = int(tp[TP_O11]), int(tp[TP_O51]), int(tp[TP_O33])
+    mu_s = _dot_block(Cs, y, b + 4, o11, o51)  # the 11 and 15 blocks (adjacent)
+    mu_n = _dot_block(Cs, y, b + 4, o51, o33)
+    mu_z = _dot_block(Cs, y, b + 4, o33, int(tp[TP_NT]))
     # surge along the wave couples with alpha = -(g . u), g = (sin, -cos) of the direction
     gt, gr = sp[SP_DIR + 1], -sp[SP_DIR]
     fs, fz = inp[2 + N_KEEL + N_SIDE], inp[3 + N_KEEL + N_SIDE]
@@ -361,7 +351,7 @@ def mechanics(t, y, tau, args, inp):
     kk = a15 * a15 / m1
     h = mu_n + a15 * r_s / m1
     a00, a01, a11 = a00 - kk * gt * gt, a01 - kk * gt * gr, a11 - kk * gr * gr
-    ud = _solve3((a00, a01, 0.0, a01, a11, m[2], 0.0, m[2], m[3]), (q0 + gt * h, q1 + gr * h, q2))
+    ud = _solve_tridiag3(a00, a01, a11, m[2], m[3], q0 + gt * h, q1 + gr * h, q2)
     sdd = (r_s + a15 * (gt * ud[0] + gr * ud[1])) / m1
     zdd = (fz + dfz - mu_z - tp[TP_C33] * y[b + 1]) / tp[TP_M3]
     return ud, m, mu_t, mu_r, Mg, dx, dy, (sdd, zdd, fs, fz, mu_s, mu_n, mu_z, dfs, dfz)
@@ -376,19 +366,21 @@ def deriv(t, y, tau, args):
 
 
 @kernel(forceinline=True)
-def deriv_into(t, y, tau, args, inp, dy):
+def deriv_into(t, y, tau, args, inp, dy, near=None):
     """`deriv` into dy (n_state,) with the sea `sea_inputs` inp at t given (the RK4 step
     evaluates it once per stage time); no allocation, no temporaries."""
     p_gy, psid, Ar, Br, pto = args[1], args[2], args[5], args[6], args[8]
     bv = args[4]
     nr = Ar.shape[0]
-    ud, m, mu_t, mu_r, Mg, drx, dry, tr = mechanics(t, y, tau, args, inp)
+    ud, m, mu_t, mu_r, Mg, drx, dry, tr = mechanics(t, y, tau, args, inp, near)
     mx, my = inp[0], inp[1]
     for i in range(3):
         dy[i] = y[3 + i]
         dy[3 + i] = ud[i]
     th_d, ro_d, ph_d = y[3], y[4], y[5]
-    for i in range(nr):  # radiation states: x' = A x + B u (loops: no BLAS call per row)
+    if nr == 4:  # the fit's order: `_radiation4`, the same sums unrolled
+        _radiation4(y, dy, Ar, Br, th_d, ro_d)
+    for i in range(nr if nr != 4 else 0):  # radiation states: x' = A x + B u (no BLAS call)
         at, ar = 0.0, 0.0
         for j in range(nr):
             at += Ar[i, j] * y[6 + j]
@@ -425,13 +417,43 @@ def deriv_into(t, y, tau, args, inp, dy):
 
 
 @kernel(forceinline=True)
+def _radiation4(y, dy, Ar, Br, th_d, ro_d):
+    """`deriv_into`'s radiation states of a 4th-order fit (pitch at y[6:10], roll at y[10:14]),
+    its loop's sums in its order, unrolled: 0.0 + sum_j A[i, j] x_j, then + B[i] u."""
+    t0, t1, t2, t3 = y[6], y[7], y[8], y[9]
+    r0, r1, r2, r3 = y[10], y[11], y[12], y[13]
+    for i in range(4):
+        a0, a1, a2, a3 = Ar[i, 0], Ar[i, 1], Ar[i, 2], Ar[i, 3]
+        dy[6 + i] = (0.0 + a0 * t0 + a1 * t1 + a2 * t2 + a3 * t3) + Br[i] * th_d
+        dy[10 + i] = (0.0 + a0 * r0 + a1 * r1 + a2 * r2 + a3 * r3) + Br[i] * ro_d
+
+
+@kernel(forceinline=True)
 def _block_rates(y, dy, o, As, Bs, lo, hi, v):
-    """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi."""
-    for i in range(lo, hi):
-        acc = Bs[i] * v
-        for j in range(lo, hi):
-            acc += As[i, j] * y[o + j]
-        dy[o + i] = acc
+    """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi
+    (on views from 0: indices the compiler sees are >= 0, so no negative-index wraparound per
+    element, which the offsets lo, o cost on every access)."""
+    A, B, ys, ds = As[lo:hi, lo:hi], Bs[lo:hi], y[o + lo : o + hi], dy[o + lo : o + hi]
+    if B.shape[0] == 4:  # the fits' order: the same sums, unrolled (no loop per 4 terms)
+        y0, y1, y2, y3 = ys[0], ys[1], ys[2], ys[3]
+        for i in range(4):
+            ds[i] = B[i] * v + A[i, 0] * y0 + A[i, 1] * y1 + A[i, 2] * y2 + A[i, 3] * y3
+        return
+    for i in range(B.shape[0]):
+        acc = B[i] * v
+        for j in range(B.shape[0]):
+            acc += A[i, j] * ys[j]
+        ds[i] = acc
+
+
+@kernel(forceinline=True)
+def _dot_block(c, y, o, lo, hi):
+    """sum_i c[i] y[o + i] over lo <= i < hi, in order from 0.0 (views, as `_block_rates`)."""
+    cs, ys = c[lo:hi], y[o + lo : o + hi]
+    acc = 0.0
+    for i in range(cs.shape[0]):
+        acc += cs[i] * ys[i]
+    return acc
 
 
 @kernel(forceinline=True)
@@ -456,8 +478,8 @@ def _translation_rates(y, dy, k, ud, tr, args):
 @kernel(forceinline=True)
 def _stage_rhs(t, x, inp, args, out):
     """`deriv_into` in the RK4 template's form; inp = `sea_inputs` at t, args =
-    (tau, deriv args)."""
-    deriv_into(t, x, args[0], args[1], inp, out)
+    (tau, deriv args, the step's start angles `near` of `_mass_terms`)."""
+    deriv_into(t, x, args[0], args[1], inp, out, args[2])
 
 
 _rk4 = make_rk4_given(_stage_rhs, inline=True)
@@ -480,16 +502,21 @@ def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
     ph (4, M) (M wave components; no allocation: the env's step calls it every control step).
     The sea is evaluated at t, t + dt/2, t + dt of every substep (as `make_rk4` does) from the
     components' phasors: cos/sin of w_i t once, then rotated by w_i dt/2 (`_advance_phasors`).
-    Returns the sea (`sea_sum`) at the end time t + n dt."""
+    Returns the sea (`sea_sum`) at the end time t + n dt and the last substep's start angles
+    `near` of `_mass_terms` (NaNs if n = 0: libm), from which the end state's are near."""
     om, cp, cr, dk, sp = args[9], args[10], args[11], args[12], args[13]
     h = 0.5 * dt
     for i in range(om.shape[0]):
         ph[0, i], ph[1, i] = math.cos(om[i] * t), math.sin(om[i] * t)
         ph[2, i], ph[3, i] = math.cos(om[i] * h), math.sin(om[i] * h)
-    full = (tau, args)
     i1 = sea_sum(ph, ramp(t, sp[1]), cp, cr, dk, sp)
+    near = (math.nan, math.nan, math.nan, math.nan, math.nan, math.nan)
     for _ in range(n):
         i0 = i1
+        # rho and phi at the substep's start: the stages' sin/cos from these (`_mass_terms`)
+        ro, phi = y[1], y[2]
+        near = (ro, math.cos(ro), math.sin(ro), phi, math.cos(phi), math.sin(phi))
+        full = (tau, args, near)
         _advance_phasors(ph)
         ih = sea_sum(ph, ramp(t + h, sp[1]), cp, cr, dk, sp)
         _advance_phasors(ph)
@@ -499,7 +526,7 @@ def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
         for i in range(y.shape[0]):
             y[i] += dy[i]
         t += dt
-    return i1
+    return i1, near
 
 
 def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray,
