@@ -481,6 +481,14 @@ def test_row_blocks_share_rows_so_that_blocks_end_together() -> None:
     assert rb.bounds() == [0, 1, 1000]
     rb3 = RowBlocks(2, 3)  # fewer rows than blocks: one row each
     assert rb3.k == 2 and rb3.bounds() == [0, 1, 2]
+    # a worker 1.5x slower per row (a shared core), starting with the caller: T = 0.6 s when
+    # rows split 600 / 400 (600 x 1 ms = 400 x 1.5 ms)
+    rb = RowBlocks(1000, 2)
+    for _ in range(80):
+        b = rb.bounds()
+        n0, n1 = b[1] - b[0], b[2] - b[1]
+        rb._rebalance([(0.0, n0 * 1e-3), (0.0, n1 * 1.5e-3)])
+    assert rb.bounds() == [0, 600, 1000]
 
 
 def test_stabilizer_threaded_env_survives_fork() -> None:

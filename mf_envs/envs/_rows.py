@@ -119,13 +119,17 @@ class RowBlocks:
         self._rebalance(spans)
 
     def _rebalance(self, spans: list[tuple[float, float]]) -> None:
-        """New shares from the last run's block (start, end) times (class doc)."""
-        busy = sum(e - s for s, e in spans)
-        if busy <= 0.0:
+        """New shares from the last run's block (start, end) times (class doc). Each block's
+        row cost is its own (busy time / its rows): a thread on a slower or shared core (the
+        VM's second vCPU ran its block up to 1.4x slower per row, measured) gets fewer rows."""
+        rows = [hi - lo for lo, hi in zip(self._edges[:-1], self._edges[1:])]
+        costs = [(e - s) / r for (s, e), r in zip(spans, rows)]  # seconds per row, per block
+        if min(costs) <= 0.0:
             return
-        cost = busy / self.n_rows  # seconds per row
-        end = (busy + sum(s for s, _ in spans)) / self.k  # all blocks end together
-        target = [max((end - s) / cost, 1.0) for s, _ in spans]
+        # all blocks end together at T: sum_j (T - start_j) / cost_j = n_rows
+        rate = sum(1.0 / c for c in costs)
+        end = (self.n_rows + sum(s / c for (s, _), c in zip(spans, costs))) / rate
+        target = [max((end - s) / c, 1.0) for (s, _), c in zip(spans, costs)]
         norm = self.n_rows / sum(target)
         w = self.SMOOTH
         self.shares = [(1.0 - w) * x + w * norm * y for x, y in zip(self.shares, target)]
