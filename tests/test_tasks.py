@@ -200,3 +200,16 @@ def test_slots_zero_in_a_tasks_scene_carry_the_motion_of_another(env_id, zero, s
                                     "Inchworm-v0", "Serpentine-v0", "Eel-v0"])  # fmt: skip
 def test_every_slot_moves_in_the_other_ids_scenes(env_id):
     assert np.all(_obs_range(env_id) > 1e-5)
+
+
+@pytest.mark.parametrize("env_id", available_env_ids())
+def test_every_declared_range_and_shift_is_a_kwarg_of_its_env(env_id):
+    """A declared randomisation range or shift whose name is not a kwarg is dropped silently by
+    `train.randomize` (the inchworm's soil names were, issue 32): none is left."""
+    from mf_envs.train.randomize import applicable_ranges, nominal_kwargs, shifts
+
+    d = declaration(env_id)
+    assert set(applicable_ranges(env_id)) == set(d.randomize)
+    names = set(nominal_kwargs(env_id))
+    for scene, factors in shifts(env_id).items():
+        assert set(factors) <= names, f"{env_id}: shift {scene!r}"
