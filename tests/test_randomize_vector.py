@@ -70,20 +70,11 @@ CASES = {
     # `friction_coefficients`): the default robot (SMA wires, gripping feet: the grip law) and
     # issue 16's (Coulomb friction feet); then the friction alone (a row stepped with the
     # template's feet would leave Sync's trajectory)
-    "inchworm": ("Inchworm-v0", {"episode_seconds": 0.5}, None, None),
-    "inchworm_friction": (
-        "Inchworm-v0",
-        {"episode_seconds": 0.5, **ISSUE16_SCENE},
-        None,
-        None,
-    ),
-    "inchworm_feet_only": ("Inchworm-v0", {"episode_seconds": 0.5}, FRICTION, None),
-    "inchworm_friction_feet_only": (
-        "Inchworm-v0",
-        {"episode_seconds": 0.5, **ISSUE16_SCENE},
-        FRICTION,
-        None,
-    ),
+    **{
+        f"inchworm{scene}{only}": ("Inchworm-v0", {"episode_seconds": 0.5, **kw}, ranges, None)
+        for scene, kw in (("", {}), ("_friction", ISSUE16_SCENE))
+        for only, ranges in (("", None), ("_feet_only", FRICTION))
+    },
 }
 
 

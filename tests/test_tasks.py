@@ -36,6 +36,8 @@ def test_a_headline_id_states_its_ceiling_and_headroom_or_why_not(env_id):
         assert d.headroom.startswith("no ceiling stated:")
     else:
         assert "%" in d.headroom and len(d.ceiling.note) > 40
+        # a bound known to be loose says so where its gap is read
+        assert d.ceiling.tight or "loose" in d.headroom + d.ceiling.note
 
 
 @pytest.mark.parametrize("env_id", VARIANTS)

@@ -70,25 +70,14 @@ def _rotor_off(kwargs: dict[str, Any]) -> dict[str, Any]:
     return {**kwargs, "effects": tuple(e for e in kwargs["effects"] if e != "gyroscopic")}
 
 
-def _scene(env_id: str) -> dict[str, Any]:
-    """The registered id's scene kwargs (a variant's spec kwargs; {} for an env's own id)."""
-    from mf_envs.envs import declaration
-
-    return dict(declaration(env_id).kwargs)
-
-
-def _base_id(env_id: str) -> str:
-    from mf_envs.envs import declaration
-
-    return declaration(env_id).base_id
-
-
 def _stabilizer_irregular() -> Task:
+    """GyroStabilizer-JONSWAP-v0: its scene's kwargs (the grid cell's; the episode length is
+    the protocol's, `eval_seconds`) and its ceiling."""
     from mf_envs.envs import declaration
 
     env_id = "GyroStabilizer-JONSWAP-v0"
-    kw = {k: v for k, v in _scene(env_id).items() if k != "episode_seconds"}
-    ceiling = declaration(env_id).ceiling
+    decl = declaration(env_id)
+    kw = {k: v for k, v in decl.kwargs.items() if k != "episode_seconds"}
     return Task(
         name="stabilizer_irregular",
         env_id=env_id,
@@ -96,7 +85,7 @@ def _stabilizer_irregular() -> Task:
         eval_seconds=120.0,
         budgets={"ppo": 50_000, "sac": 20_000, "td3": 20_000},
         baselines=("random", "pid", "lqr"),
-        ceiling=float(ceiling.value),
+        ceiling=float(decl.ceiling.value),
         ceiling_note="RMS roll reduction 1 (no roll left); no causal bound computed",
         score_name="rms_roll_reduction",
         reference_kwargs=_rotor_off,
@@ -255,11 +244,9 @@ def write_config(task: Task, algo: str, folder: Path) -> Path:
     written as `folder/<algo>.yml` (the file `mf-envs train --config` reads)."""
     import yaml
 
-    from mf_envs.train.config import default_config, load_hyperparams, read_config
+    from mf_envs.train.config import config_entry, default_config
 
-    load_hyperparams(task.env_id, default_config(algo))  # ValueError if there is no entry
-    shipped = read_config(default_config(algo))
-    entry = dict(shipped.get(task.env_id) or shipped[_base_id(task.env_id)])
+    entry = config_entry(task.env_id, default_config(algo))  # a variant's: its env's
     entry["n_timesteps"] = int(task.budgets[algo])
     entry["env_kwargs"] = {k: list(v) if isinstance(v, tuple) else v
                            for k, v in task.env_kwargs.items()}  # fmt: skip

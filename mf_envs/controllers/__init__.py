@@ -42,8 +42,9 @@ def _env_id(env: Any) -> str:
     return spec.id
 
 
-def baseline_kinds(env_id: str) -> list[str]:
-    """The controller kinds available for `env_id`, default first."""
+def _registered(env_id: str) -> tuple[str, list[str]]:
+    """(the id the baselines are registered under, its kinds, default first) for `env_id`: its
+    baselines module imported; a task variant's are its env's (`EnvDeclaration.base_id`)."""
     from mf_envs.envs import canonical_env_id, declaration, declarations
 
     env_id = canonical_env_id(env_id)  # a deprecated id (GOWEC-v1): its new id, with a warning
@@ -51,23 +52,25 @@ def baseline_kinds(env_id: str) -> list[str]:
     if decl is None or not decl.baselines:
         known = sorted(i for i, d in declarations().items() if d.baselines)
         raise ValueError(f"env_id: no baselines for {env_id!r}; known: {known}")
-    env_id = decl.base_id  # a task variant's baselines are its env's
     importlib.import_module(decl.baselines)
-    kinds = list(_REGISTRY.get(env_id, {}))
-    default = _DEFAULT.get(env_id)
-    return sorted(kinds, key=lambda k: (k != default, k))
+    base = decl.base_id
+    default = _DEFAULT.get(base)
+    return base, sorted(_REGISTRY.get(base, {}), key=lambda k: (k != default, k))
+
+
+def baseline_kinds(env_id: str) -> list[str]:
+    """The controller kinds available for `env_id`, default first."""
+    return _registered(env_id)[1]
 
 
 def make_baseline(env: Any, kind: str | None = None, **params: Any) -> Any:
     """A baseline controller for `env` (a gymnasium env made with `gym.make`)."""
     env_id = _env_id(env)
-    kinds = baseline_kinds(env_id)
+    base, kinds = _registered(env_id)
     kind = kinds[0] if kind is None else kind
     if kind not in kinds:
         raise ValueError(f"kind: {kind!r} is not a baseline for {env_id}; available: {kinds}")
-    from mf_envs.envs import declaration
-
-    factory = _REGISTRY[declaration(env_id).base_id][kind]
+    factory = _REGISTRY[base][kind]
     sig = inspect.signature(factory)
     if not any(p.kind is p.VAR_KEYWORD for p in sig.parameters.values()):
         names = [n for n in list(sig.parameters)[1:] if n != "self"]

@@ -96,18 +96,7 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
     other algorithms' files: `default_config(algo)`). An env the shipped file has no entry for
     takes its declaration's `hyperparams[algo]` (an env added as a plugin brings its own); a
     task variant without its own entry takes its env's (`EnvDeclaration.variant_of`)."""
-    from mf_envs.envs import declaration
-
-    data = read_config(path)
-    raw = data.get(env_id)
-    decl = declaration(env_id)
-    if raw is None and decl is not None and decl.variant_of is not None:
-        raw = data.get(decl.variant_of)
-    if raw is None:
-        raw = _declared(env_id, Path(path) if path is not None else DEFAULT_CONFIG)
-    if raw is None:
-        raise ValueError(f"config: no entry for {env_id!r} in {path or DEFAULT_CONFIG}")
-    raw = dict(raw)
+    raw = config_entry(env_id, path)
     bad = [k for k in _UNSUPPORTED if k in raw]
     if bad:
         raise ValueError(f"config: rl-zoo3 keys {bad} are not supported by mf-envs train")
@@ -134,6 +123,23 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
         action_noise=_parse_noise(env_id, raw.get("noise_type"), raw.get("noise_std")),
         ppo_kwargs=ppo,
     )
+
+
+def config_entry(env_id: str, path: str | Path | None = None) -> dict[str, Any]:
+    """The raw rl-zoo3 entry `load_hyperparams` reads for `env_id` from `path` (its docstring:
+    the id's own, a variant's env's, or the declaration's), as a new dict; ValueError if none."""
+    from mf_envs.envs import declaration
+
+    data = read_config(path)
+    raw = data.get(env_id)
+    decl = declaration(env_id)
+    if raw is None and decl is not None and decl.variant_of is not None:
+        raw = data.get(decl.variant_of)
+    if raw is None:
+        raw = _declared(env_id, Path(path) if path is not None else DEFAULT_CONFIG)
+    if raw is None:
+        raise ValueError(f"config: no entry for {env_id!r} in {path or DEFAULT_CONFIG}")
+    return dict(raw)
 
 
 def _declared(env_id: str, path: Path) -> dict[str, Any] | None:
