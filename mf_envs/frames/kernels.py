@@ -30,6 +30,7 @@ import numpy as np
 # < 3e-18, as accurate as libm sin/cos/tan and free of the cancellation of the closed forms.
 _SERIES_X2 = 0.01
 _R9, _R10 = 1.0 / 362880.0, 1.0 / 3628800.0  # 1/9!, 1/10! (multiplied: see rodrigues_coeffs)
+SINCOS_NEAR = 0.1  # |x - x0| below which `sincos_near` uses its series (truncation < 3e-17)
 
 
 @numba.njit(cache=True)
@@ -86,16 +87,23 @@ def matmul3(A: np.ndarray, B: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True, inline="always")
+def rodrigues_series(x2: float) -> tuple[float, float]:
+    """`rodrigues_coeffs` by their Taylor series to x^8 / x^10, for x2 < _SERIES_X2 (no libm:
+    the form the ship's SIMD lanes call, `physics.ship.lanes`)."""
+    # constant reciprocals, not x2 / 362880.0: a division by a constant stays a division
+    # (~14 cycles on the stage's critical path) unless the constant is a power of two;
+    # Estrin's scheme (x^4 beside the low terms), not Horner's: half the dependent chain
+    x4 = x2 * x2
+    a = (1.0 - x2 * (1.0 / 6.0)) + x4 * ((1.0 / 120.0 - x2 * (1.0 / 5040.0)) + x4 * _R9)
+    b = (0.5 - x2 * (1.0 / 24.0)) + x4 * ((1.0 / 720.0 - x2 * (1.0 / 40320.0)) + x4 * _R10)
+    return a, b
+
+
+@numba.njit(cache=True, inline="always")
 def rodrigues_coeffs(x2: float) -> tuple[float, float]:
     """a = sin(x)/x, b = (1 - cos x)/x^2 of the angle x = sqrt(x2) (ch. 2 Eq. 29)."""
     if x2 < _SERIES_X2:
-        # constant reciprocals, not x2 / 362880.0: a division by a constant stays a division
-        # (~14 cycles on the stage's critical path) unless the constant is a power of two;
-        # Estrin's scheme (x^4 beside the low terms), not Horner's: half the dependent chain
-        x4 = x2 * x2
-        a = (1.0 - x2 * (1.0 / 6.0)) + x4 * ((1.0 / 120.0 - x2 * (1.0 / 5040.0)) + x4 * _R9)
-        b = (0.5 - x2 * (1.0 / 24.0)) + x4 * ((1.0 / 720.0 - x2 * (1.0 / 40320.0)) + x4 * _R10)
-        return a, b
+        return rodrigues_series(x2)
     x = math.sqrt(x2)
     s = math.sin(0.5 * x)
     return math.sin(x) / x, 2.0 * s * s / x2
@@ -177,25 +185,38 @@ def sincos_near(x: float, x0: float, c0: float, s0: float) -> tuple[float, float
     d = x - x0
     if d == 0.0:
         return c0, s0
-    if abs(d) < 0.1:
-        d2 = d * d
-        d4 = d2 * d2  # Estrin's scheme, as `rodrigues_coeffs`
-        cd = (1.0 - 0.5 * d2) + d4 * ((1.0 / 24.0 - d2 * (1.0 / 720.0)) + d4 * (1.0 / 40320.0))
-        sd = d * ((1.0 - d2 * (1.0 / 6.0)) + d4 * ((1.0 / 120.0 - d2 * (1.0 / 5040.0)) + d4 * _R9))
-        return c0 * cd - s0 * sd, s0 * cd + c0 * sd
+    if abs(d) < SINCOS_NEAR:
+        return sincos_series(d, c0, s0)
     return math.cos(x), math.sin(x)
+
+
+@numba.njit(cache=True, inline="always")
+def sincos_series(d: float, c0: float, s0: float) -> tuple[float, float]:
+    """`sincos_near` for 0 < |d| < SINCOS_NEAR, d = x - x0: the addition formulas with the
+    Taylor series of cos d, sin d (no libm: the form the ship's SIMD lanes call)."""
+    d2 = d * d
+    d4 = d2 * d2  # Estrin's scheme, as `rodrigues_coeffs`
+    cd = (1.0 - 0.5 * d2) + d4 * ((1.0 / 24.0 - d2 * (1.0 / 720.0)) + d4 * (1.0 / 40320.0))
+    sd = d * ((1.0 - d2 * (1.0 / 6.0)) + d4 * ((1.0 / 120.0 - d2 * (1.0 / 5040.0)) + d4 * _R9))
+    return c0 * cd - s0 * sd, s0 * cd + c0 * sd
 
 
 @numba.njit(cache=True, inline="always")
 def _dexpinv_c(x2: float) -> float:
     """c(x) = (1 - (x/2) cot(x/2)) / x^2 of dexp^-1 (module doc), series to x^8 for x < 0.1."""
     if x2 < _SERIES_X2:
-        x4 = x2 * x2  # Estrin's scheme, as `rodrigues_coeffs`
-        return (1.0 / 12.0 + x2 * (1.0 / 720.0)) + x4 * (
-            (1.0 / 30240.0 + x2 * (1.0 / 1209600.0)) + x4 * (1.0 / 47900160.0)
-        )
+        return dexpinv_series(x2)
     x = math.sqrt(x2)
     return (1.0 - 0.5 * x / math.tan(0.5 * x)) / x2
+
+
+@numba.njit(cache=True, inline="always")
+def dexpinv_series(x2: float) -> float:
+    """`_dexpinv_c` by its series, for x2 < _SERIES_X2 (no libm: the SIMD lanes' form)."""
+    x4 = x2 * x2  # Estrin's scheme, as `rodrigues_coeffs`
+    return (1.0 / 12.0 + x2 * (1.0 / 720.0)) + x4 * (
+        (1.0 / 30240.0 + x2 * (1.0 / 1209600.0)) + x4 * (1.0 / 47900160.0)
+    )
 
 
 @numba.njit(cache=True, inline="always")

@@ -79,12 +79,16 @@ def times_exp_row2_into(out: np.ndarray, R: np.ndarray, theta) -> None:
     (`times_exp_into` forms the 9 entries first; this is its row to round-off)."""
     x, y, z = theta[0], theta[1], theta[2]
     a, b = rodrigues_coeffs(x * x + y * y + z * z)
-    r0, r1, r2 = R[2, 0], R[2, 1], R[2, 2]
+    out[2, 0], out[2, 1], out[2, 2] = row_times_exp(R[2, 0], R[2, 1], R[2, 2], x, y, z, a, b)
+
+
+@numba.njit(cache=True, inline="always")
+def row_times_exp(r0, r1, r2, x, y, z, a, b):
+    """The row (r0, r1, r2) times exp(hat((x, y, z))) given its Rodrigues coefficients a, b
+    (`times_exp_row2_into`; the ship's SIMD lanes call it with their series)."""
     c0, c1, c2 = y * r2 - z * r1, z * r0 - x * r2, x * r1 - y * r0
     d0, d1, d2 = y * c2 - z * c1, z * c0 - x * c2, x * c1 - y * c0
-    out[2, 0] = r0 - a * c0 + b * d0
-    out[2, 1] = r1 - a * c1 + b * d1
-    out[2, 2] = r2 - a * c2 + b * d2
+    return r0 - a * c0 + b * d0, r1 - a * c1 + b * d1, r2 - a * c2 + b * d2
 
 
 @numba.njit(cache=True)

@@ -15,6 +15,7 @@ from mf_envs.envs.gyro_stabilizer import spec
 from mf_envs.envs.gyro_stabilizer.build import Scene
 from mf_envs.frames.steppers import rk4_work, rkmk4_rwork
 from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship import lanes as L
 from mf_envs.physics.ship.layout import Slot
 from mf_envs.physics.ship.model import WaveLoad, pack_params
 from mf_envs.physics.ship.seas import (
@@ -75,7 +76,7 @@ def _info_row(c, roll, y, out, energy):
 
 @numba.njit(cache=True, nogil=True)
 def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
-              ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
+              ok_out, reward, roll_scale, effort_weight, control_dt, P0):  # fmt: skip
     """One control step of the active rows lo <= i < hi (GyroStabilizerEnv.step without Python;
     the GIL is released, so threads can step disjoint blocks of rows at once).
 
@@ -84,48 +85,93 @@ def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, o
     (N,) int64; last (N, 6) float32 the last returned observations; writes obs (N, 6) float32,
     cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False on a numerical
     failure (the step then scores 0 and keeps the last observation), reward (N,).
+    P0 (N_PARAMS,): the parameters every row shares but for the wave phase, for the SIMD lanes
+    (`physics.ship.lanes.uniform`), or empty: every row on the scalar step.
     This task's scratch is allocated here; the rows are stepped by `_rows`.
     """
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
     ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
+    lane = (np.empty(L.N_X * L.LANES), np.empty(L.N_K * L.LANES), np.empty(6 * L.LANES),
+            np.empty(L.LANES), np.empty(L.LANES, dtype=np.int64), np.empty(L.LANES))  # fmt: skip
     _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c, P0,
+          lane)  # fmt: skip
 
 
 @kernel
 def _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c):  # fmt: skip
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c, P0,
+          lane):  # fmt: skip
     """The row loop of `step_rows` on the batch arrays in place (a `mf_envs._jit.kernel`: its
     row views cost no reference counts, so threads share the arrays freely); work, Rwork: the
-    stepper's scratch, ob (6,) float32 and c (N_COLS,) one row's observation and info columns."""
+    stepper's scratch, ob (6,) float32 and c (N_COLS,) one row's observation and info columns;
+    lane: the SIMD lanes' scratch (X, K, start values, wave moments, rows, drive energies).
+
+    With P0 given, active rows with the first one's number of substeps are gathered LANES at a
+    time and stepped in the lanes (`physics.ship.lanes.advance_block`: each row's bits are
+    `advance_with`'s); the others, and the last < LANES, take `advance_with`."""
+    X, KL, near0s, mws, idx, e0s = lane
+    a = 0  # rows gathered for the lanes
     for i in range(lo, hi):
         if not active[i]:
             continue
-        yi, Ri, oi = y[i], R[i], out[i]
-        e0 = yi[K.E_STATE]
-        t[i] = K.advance_with(t[i], yi, Ri, u[i], dt[i], n_sub[i], P[i], tab[i], oi, work, Rwork)
-        steps[i] += 1
-        roll = K.roll_of(Ri)
-        ok = observe(roll, yi, Ri, ob)
-        if not ok:  # the last finite observation stays (and is scored)
-            for k in range(ob.shape[0]):
-                ob[k] = last[i, k]
-        energy = yi[K.E_STATE] - e0
-        q = np.float64(ob[_ROLL]) / roll_scale
-        c[C_RROLL], c[C_REFFORT] = -(q * q), -effort_weight * energy
-        rew = c[C_RROLL] + c[C_REFFORT]
-        _info_row(c, roll, yi, oi, energy)
-        c[C_TIME] = steps[i] * control_dt
-        ok_out[i] = ok and math.isfinite(rew)
-        if not ok_out[i]:  # MFEnv._finish_step: last finite obs, reward 0, terminated
-            for k in range(ob.shape[0]):
-                ob[k] = last[i, k]
-            rew = 0.0
-        reward[i] = rew
+        if P0.shape[0] > 0 and (a == 0 or n_sub[i] == n_sub[idx[0]]):
+            idx[a], e0s[a] = i, y[i, K.E_STATE]
+            a += 1
+            if a == L.LANES:
+                L.advance_block(idx, t, y, R, u, dt, n_sub[idx[0]], P, tab, out, P0, X, KL,
+                                near0s, mws, work, Rwork)  # fmt: skip
+                for j in range(L.LANES):
+                    _row_tail(idx[j], e0s[j], y, R, out, steps, last, obs, cols, ok_out,
+                              reward, roll_scale, effort_weight, control_dt, ob, c)  # fmt: skip
+                a = 0
+            continue
+        _scalar_row(i, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
+                    reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
+    for j in range(a):  # fewer than LANES left
+        _scalar_row(idx[j], t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
+                    reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
+
+
+@kernel(forceinline=True)
+def _scalar_row(i, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out, reward,
+                roll_scale, effort_weight, control_dt, work, Rwork, ob, c):  # fmt: skip
+    """Row i by the single env's step (`advance_with`) and `_row_tail`."""
+    e0 = y[i, K.E_STATE]
+    t[i] = K.advance_with(t[i], y[i], R[i], u[i], dt[i], n_sub[i], P[i], tab[i], out[i], work,
+                           Rwork)  # fmt: skip
+    _row_tail(i, e0, y, R, out, steps, last, obs, cols, ok_out, reward, roll_scale,
+              effort_weight, control_dt, ob, c)  # fmt: skip
+
+
+@kernel(forceinline=True)
+def _row_tail(i, e0, y, R, out, steps, last, obs, cols, ok_out, reward, roll_scale,
+              effort_weight, control_dt, ob, c):  # fmt: skip
+    """Row i after its physics step (drive energy e0 in J before it): its step count,
+    observation, reward terms and info columns (`step_rows`)."""
+    yi, Ri, oi = y[i], R[i], out[i]
+    steps[i] += 1
+    roll = K.roll_of(Ri)
+    ok = observe(roll, yi, Ri, ob)
+    if not ok:  # the last finite observation stays (and is scored)
         for k in range(ob.shape[0]):
-            obs[i, k] = ob[k]
-        for k in range(c.shape[0]):
-            cols[k, i] = c[k]
+            ob[k] = last[i, k]
+    energy = yi[K.E_STATE] - e0
+    q = np.float64(ob[_ROLL]) / roll_scale
+    c[C_RROLL], c[C_REFFORT] = -(q * q), -effort_weight * energy
+    rew = c[C_RROLL] + c[C_REFFORT]
+    _info_row(c, roll, yi, oi, energy)
+    c[C_TIME] = steps[i] * control_dt
+    ok_out[i] = ok and math.isfinite(rew)
+    if not ok_out[i]:  # MFEnv._finish_step: last finite obs, reward 0, terminated
+        for k in range(ob.shape[0]):
+            ob[k] = last[i, k]
+        rew = 0.0
+    reward[i] = rew
+    for k in range(ob.shape[0]):
+        obs[i, k] = ob[k]
+    for k in range(c.shape[0]):
+        cols[k, i] = c[k]
 
 
 @numba.njit(cache=True)

@@ -50,6 +50,7 @@ from mf_envs.envs.gyro_stabilizer.rows import (
     step_rows,
 )
 from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship import lanes
 from mf_envs.physics.ship.batch import alloc_batch
 from mf_envs.physics.ship.layout import Slot
 
@@ -119,6 +120,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         same = set(np.flatnonzero(p1 != p2).tolist()) <= {int(Slot.WPHASE)}
         self._p_sign = float(np.sign(p1[Slot.WPHASE]))
         self._predraw_alloc(n, same and "irregular_waves" not in env.effects)
+        self._p0: np.ndarray | None = None  # `_lane_params`
 
     def _load(self, i: int) -> None:
         row, b = self.template.batch_row(), self.b
@@ -128,6 +130,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
             b[key][i] = row[key]
         self._dt[i], self._nsub[i] = self.template.physics_dt, self.template.n_substeps
         self._steps[i] = 0
+        self._p0 = None  # the rows' shared parameters for the SIMD lanes: checked again
 
     def state_nbytes(self) -> int:
         """Bytes of the per-env batch state (physics arrays, observations, info columns)."""
@@ -154,6 +157,15 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
             info[f"_{key}"] = mask.copy()
         return info
 
+    def _lane_params(self) -> np.ndarray:
+        """The parameter row every row shares but for the wave phase, for the SIMD lanes
+        (`physics.ship.lanes`), or an empty array (rows differ, or a scene the lanes do not
+        model): checked once after rows are loaded (`_load`), not per step."""
+        if self._p0 is None:
+            P = self.b["P"]
+            self._p0 = P[0].copy() if lanes.uniform(P) else np.empty(0)
+        return self._p0
+
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         b, env = self.b, self.template
         u = spec.precession_command(actions[:, 0], env.max_precession_rate)
@@ -162,7 +174,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         args = (
             active, b["t"], b["y"], b["R"], u, self._dt, self._nsub, b["P"], b["tab"],
             b["out"], self._steps, self._obs, self._fresh, cols, self._ok, self._reward,
-            env.roll_scale, env.effort_weight, env.control_dt,
+            env.roll_scale, env.effort_weight, env.control_dt, self._lane_params(),
         )  # fmt: skip
         self.blocks.run(step_rows, *args)
         info: dict[str, Any] = dict(zip(COLS, cols))

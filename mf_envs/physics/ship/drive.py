@@ -172,7 +172,7 @@ def _clip(x: float, lo: float, hi: float) -> float:
     return min(max(x, lo), hi)
 
 
-@kernel(forceinline=True)
+@kernel(forceinline=True, error_model="numpy")
 def stop_envelope(u: float, phi: float, phi_max: float, stop_time: float) -> float:
     """The end-stop envelope, the one definition (the servo's, the machine drives' and the
     controllers'): a precession rate u (rad/s) clipped to (-phi_max - phi) / stop_time <= u <=
@@ -189,7 +189,7 @@ def rate_command(u: float, phi: float, D: np.ndarray, o: int = 0) -> float:
     return stop_envelope(ue, phi, D[o + DPHIMAX], D[o + DTSTOP])
 
 
-@kernel(forceinline=True)
+@kernel(forceinline=True, error_model="numpy")
 def machine_limit(tau: float, phid: float, D: np.ndarray, o: int = 0) -> float:
     """tau (N m) saturated to the machine envelope at gimbal rate phid (rad/s), module doc;
     D[o:] the packed drive vector."""
@@ -235,11 +235,20 @@ def drive_torque(phi, phid, z, u, gyro_torque, r20, r22, n_gyros, D, o=0):
         tau -= D[o + DK] * phi
     if kind != KIND_ELECTRIC and kind != KIND_BRAKE:
         return tau, 0.0
+    tau_m, dz = active_torque(phi, phid, z, u, gyro_torque, D, o)
+    return tau + tau_m, dz
+
+
+@kernel(forceinline=True, error_model="numpy")
+def active_torque(phi, phid, z, u, gyro_torque, D, o=0):
+    """(machine torque tau_m in N m, z' in rad/s) of the active drives' PI rate loop (module
+    doc), `drive_torque` without the bearing friction; division by zero gives inf/NaN (numpy's
+    error model: no exception path, so the ship's SIMD lanes can inline it)."""
     e = rate_command(u, phi, D, o) - phid
     tau_c = D[o + DKP] * e + D[o + DKI] * z - D[o + DFF] * gyro_torque
     tau_m = machine_limit(tau_c, phid, D, o)
     dz = e + (tau_m - tau_c) / D[o + DKP] if D[o + DKI] > 0.0 else 0.0
-    return tau + tau_m, dz
+    return tau_m, dz
 
 
 @numba.njit(cache=True)

@@ -81,8 +81,8 @@ N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt 
 Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
 
-@kernel(forceinline=True)
-def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v=0.0, roll=0.0):
+@kernel(forceinline=True, error_model="numpy")
+def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v, roll, coupled):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
     at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame), gimbal
     angle phi given by c = cos(phi), s = sin(phi) (computed once per stage by the caller).
@@ -92,8 +92,10 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
     one gyro:  d2 (w2' + phi'') = tau + H w_g1 - (d1 - d3) w_g1 w_g3,
                w_g = (c w1 - s w3, w2, s w1 + c w3) the gimbal's body rates;
     the pair:  d2 phi'' = tau + H c w1 - (d1 - d3) s c (w1^2 - w3^2).
-    With the coupling on (P[S.CPLON]) the roll and yaw rows are solved together with the sway
-    equation of `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad).
+    With the coupling on (`coupled`: P[S.CPLON] > 0.5, a constant False in the SIMD lanes, which
+    removes the call) the roll and yaw rows are solved together with the sway equation of
+    `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad). Division by zero
+    gives inf/NaN (numpy's error model: no exception path to inline).
     Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'', v' in m/s^2).
     """
     n = int(P[S.NGYRO])
@@ -132,7 +134,7 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
             r1 += jg * phid * w3
             r3 -= (jg - 0.25 * P[S.JR3] * c2) * phid * w1
     dv = 0.0
-    if P[S.CPLON] > 0.5:
+    if coupled:
         C = P[CPL0 : CPL0 + N_COUPLING]
         dv, a1, a3 = solve_sway_roll_yaw(jxx, jzz, jxz, r1, r3, P[S.SPEED], v, w1, w3, roll, C)
     else:
@@ -185,9 +187,10 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
         phidd = gimbal_motion(0.0, phi, phid, u, P)[2]  # the servo keeps phi, phi'
         tau = P[S.D2] * phidd - gyro_gimbal_torque(w1, w3, phi, P, c, s)  # what it applies
     m1, m2, m3 = hull_moment(w1, w2, w3, r20, r21, r22, P)
-    roll = math.atan2(r21, r22) if P[S.CPLON] > 0.5 else 0.0
+    coupled = P[S.CPLON] > 0.5
+    roll = math.atan2(r21, r22) if coupled else 0.0
     a1, a2, a3, _, phidd, dv = ship_accel(
-        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll
+        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll, coupled
     )
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
@@ -203,7 +206,7 @@ def _trans_rates(x3, v1, v2, v3, fw, P):
 def stage_inputs(t, args):
     """The state-free inputs at time t: (wave moment N m, heave force N, prescribed gimbal
     (phi, phi', phi'') of gyro 1; unused by the servo and torque drives). args = (u, P, tab,
-    near), near the step's start values of `_near`."""
+    near), near the step's start values of `start_values`."""
     u, P, tab, near = args
     mw, fw = wave_loads_near(t, P, tab, near[3], near[4], near[5])
     mode = int(P[S.GMODE])
@@ -248,14 +251,23 @@ def rk4_step(t, y, R, u, dt, P, tab, work, Rwork):
     `gimbal_limits` then meets its inelastic end stops (`_stop_gimbal`). work (5, n),
     Rwork (2, 3, 3): the stepper's scratch (`frames.kernels.rk4_work`, `rkmk4_rwork`).
     Returns the wave moment (N m) at t + dt."""
-    return rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, _near(t, y[3], P))
+    return rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, start_values(t, y[3], P))
 
 
 @kernel
 def rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, near):
-    """`rk4_step` with the step's start values `near` (`_near`: libm, or `_near_from` an
-    earlier start) given."""
+    """`rk4_step` with the step's start values `near` given (`start_values`: libm, or
+    `start_values_from` an earlier start)."""
     inp = _rkmk4(t, y, R, dt, (u, P, tab, near), work, Rwork)
+    return end_step(y, R, dt, P, work, Rwork, inp)
+
+
+@kernel(forceinline=True)
+def end_step(y, R, dt, P, work, Rwork, inp):
+    """The end of `rk4_step_near` after its stepper (also of the SIMD lanes' step, `lanes`):
+    y += the increment work[0], R <- the new attitude Rwork[1], then the prescribed gimbal's
+    value, the rate cap or the hard stops; returns the wave moment of inp, the stage inputs
+    at t + dt."""
     dy, R1 = work[0], Rwork[1]
     for i in range(y.shape[0]):
         y[i] += dy[i]
@@ -273,7 +285,7 @@ def rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, near):
 
 
 @kernel(forceinline=True)
-def _near(t, phi, P):
+def start_values(t, phi, P):
     """(phi, cos phi, sin phi, t, cos a, sin a) at a step's start: gimbal angle phi (rad) of the
     servo and torque drives and the regular wave's phase a = omega t + eps (rad), from which
     the stages get theirs (`frames.kernels.sincos_near`; zeros where unused)."""
@@ -288,8 +300,8 @@ def _near(t, phi, P):
 
 
 @kernel(forceinline=True)
-def _near_from(near0, t, phi, P):
-    """`_near` at (t, phi) from the values near0 of an earlier start (`sincos_near`: the
+def start_values_from(near0, t, phi, P):
+    """`start_values` at (t, phi) from the values near0 of an earlier start (`sincos_near`: the
     addition formulas while within 0.1 rad of it, libm beyond; no libm sin/cos for a control
     step's later substeps, whose angles move by ~0.05 rad each)."""
     c, s, cw, sw = near0[1], near0[2], near0[4], near0[5]
@@ -361,13 +373,21 @@ def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
     """`advance` with the caller's stepper scratch work (5, N_STATE), Rwork (2, 3, 3) (the batch
     reuses one pair for every row)."""
     mw = wave_loads(t, P, tab)[0] if n_sub == 0 else 0.0
-    near0 = _near(t, y[3], P)  # libm once; the later substeps and the outputs start from it
+    near0 = start_values(t, y[3], P)  # libm once; the later substeps and the outputs start from it
     near = near0
     for k in range(n_sub):
         if k > 0:
-            near = _near_from(near0, t, y[3], P)
+            near = start_values_from(near0, t, y[3], P)
         mw = rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, near)
         t += dt
+    step_outputs(t, y, R, u, P, out, mw, near0)
+    return t
+
+
+@kernel(forceinline=True)
+def step_outputs(t, y, R, u, P, out, mw, near0):
+    """out (`advance`'s doc) at the end of a control step at time t: mw the wave moment (N m)
+    at t, near0 the step's start values (`start_values`)."""
     c, s = math.nan, math.nan  # cos, sin of the final gimbal angle (NaN: libm in the callees)
     mode = int(P[S.GMODE])
     if mode == GIMBAL_SERVO or mode == GIMBAL_TORQUE:
@@ -377,7 +397,6 @@ def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
     out[2], out[3] = drive_output(t, y, R, u, P, c, s)
     out[4] = mount_moment(y, out[2], P)
     out[5] = P[S.PROTOR]
-    return t
 
 
 @kernel

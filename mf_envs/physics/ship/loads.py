@@ -55,6 +55,12 @@ def gyro_gimbal_torque(w1, w3, phi, P, c=math.nan, s=math.nan):
     sin(phi) if the caller has them (NaN: computed here)."""
     if c != c:  # NaN: not given
         c, s = math.cos(phi), math.sin(phi)
+    return gyro_torque_cs(w1, w3, c, s, P)
+
+
+@kernel(forceinline=True)
+def gyro_torque_cs(w1, w3, c, s, P):
+    """`gyro_gimbal_torque` from c = cos(phi), s = sin(phi) (no libm)."""
     h = P[S.JR3] * P[S.PSID]
     return h * (c * w1 - s * w3) if int(P[S.NGYRO]) == 1 else h * c * w1
 
@@ -71,17 +77,32 @@ def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c=math.nan, s=math.nan):
 _TAN14_SQ = math.tan(1.4) ** 2  # the wall-sided GZ's tan(r) is clipped to |r| <= 1.4 rad
 
 
+ASIN_SERIES = 0.05  # |x| below which `_asin` uses its series
+
+
 @kernel(forceinline=True)
 def _asin(x: float) -> float:
-    """asin(x); for |x| < 0.05 (pitch below 2.9 deg) its Taylor series to x^11 (truncation
-    < 2e-19 |x|, as accurate as libm asin, and a few times cheaper)."""
-    if abs(x) < 0.05:
-        x2 = x * x
-        return x + x * x2 * (
-            1.0 / 6.0
-            + x2 * (3.0 / 40.0 + x2 * (5.0 / 112.0 + x2 * (35.0 / 1152.0 + x2 * (63.0 / 2816.0))))
-        )
+    """asin(x); for |x| < ASIN_SERIES (pitch below 2.9 deg) its Taylor series to x^11
+    (truncation < 2e-19 |x|, as accurate as libm asin, and a few times cheaper)."""
+    if abs(x) < ASIN_SERIES:
+        return asin_series(x)
     return math.asin(x)
+
+
+@kernel(forceinline=True)
+def asin_series(x: float) -> float:
+    """The series of `_asin` (no libm: the SIMD lanes' form)."""
+    x2 = x * x
+    return x + x * x2 * (
+        1.0 / 6.0
+        + x2 * (3.0 / 40.0 + x2 * (5.0 / 112.0 + x2 * (35.0 / 1152.0 + x2 * (63.0 / 2816.0))))
+    )
+
+
+@kernel(forceinline=True)
+def pitch_sine(r20: float) -> float:
+    """-R31 clipped to [-1, 1]: the sine of the pitch, the argument of its asin."""
+    return max(min(-r20, 1.0), -1.0)
 
 
 @kernel(forceinline=True)
@@ -92,6 +113,18 @@ def hull_moment(w1, w2, w3, r20, r21, r22, P):
     Roll r = atan2(R32, R33) enters the wall-sided GZ only through sin(r) = R32 / |(R32, R33)|
     and tan(r)^2 = (R32 / R33)^2 (clipped at |r| = 1.4), the same numbers without atan2/sin/tan.
     """
+    roll = 0.0
+    if P[S.K44] > 0.0 and (P[S.GZR] <= 0.0 or P[S.GZ3] > 0.0):
+        roll = math.atan2(r21, r22)
+    pitch = _asin(pitch_sine(r20)) if P[S.K55] > 0.0 else 0.0
+    return hull_moment_with(w1, w2, w3, r21, r22, P, roll, pitch)
+
+
+@kernel(forceinline=True, error_model="numpy")
+def hull_moment_with(w1, w2, w3, r21, r22, P, roll, pitch):
+    """`hull_moment` given the roll angle atan2(R32, R33) (rad; read only by the linear and
+    the cubic GZ) and the pitch asin(-R31) (rad; read only with C55 > 0): no libm, so the
+    ship's SIMD lanes inline it (`lanes`)."""
     m1 = 0.0
     m2 = 0.0
     if P[S.K44] > 0.0:
@@ -103,12 +136,11 @@ def hull_moment(w1, w2, w3, r20, r21, r22, P):
                 t2 = min((r21 / r22) * (r21 / r22), _TAN14_SQ)
             m1 -= P[S.K44] * sr * (1.0 + 0.5 * P[S.GZR] * t2)
         else:
-            m1 -= P[S.K44] * math.atan2(r21, r22)
+            m1 -= P[S.K44] * roll
         if P[S.GZ3] > 0.0:  # cubic GZ (MSS's K_phiphiphi phi^3)
-            r = math.atan2(r21, r22)
-            m1 -= P[S.K44] * P[S.GZ3] * r * r * r
+            m1 -= P[S.K44] * P[S.GZ3] * roll * roll * roll
     if P[S.K55] > 0.0:
-        m2 -= P[S.K55] * _asin(max(min(-r20, 1.0), -1.0))
+        m2 -= P[S.K55] * pitch
     m1 -= P[S.B44] * w1 + P[S.B44Q] * abs(w1) * w1
     m2 -= P[S.B55] * w2
     return m1, m2, -P[S.B66] * w3
