@@ -73,7 +73,7 @@ from mf_envs.physics.ship.loads import (
     pitch_sine,
 )
 
-LANES = 64  # rows per block (a compile-time constant: the offsets F * LANES + j)
+LANES = 32  # rows per block (a compile-time constant: the offsets F * LANES + j)
 # lane inputs X (field F at F * LANES + j): the RKMK4 step's start state, attitude third row,
 # the gimbal's start values, the stage inputs' wave moments at t, t + dt/2, t + dt, command, dt
 XW1, XW2, XW3, XPHI, XPHID, XZ, XR0, XR1, XR2, XNPHI, XNC, XNS, XM0, XMH, XM1, XU, XDT = range(17)
