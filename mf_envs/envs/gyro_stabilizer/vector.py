@@ -24,10 +24,15 @@ threads (`step_rows` releases the GIL), the split adapting so that the blocks en
 rows are independent, so results are bit-identical to one thread (`tests/test_vector_envs.py`).
 Default: one block per CPU once each gets >= 128 rows. The row loop (`_rows`) and the ship's
 step are `mf_envs._jit.kernel`s: compiled without reference counting, so the rows' views of the
-shared arrays cost nothing. Measured (N = 1024, random actions, autoresets, 2-core machine,
-medians of five 3 s runs): 1.12M env-steps/s on one thread, 1.79M on two (runs 1.69-1.88M;
-issue 17); with both cores busy elsewhere, two threads gained nothing over one (and lost
-< 10 %).
+shared arrays cost nothing.
+
+SIMD lanes (`physics.ship.lanes`): when every row has the same parameters but the wave phase
+and the scene is one the lanes model (the default, electric drives, irregular seas, one or two
+gyros, either form), the rows are stepped 32 at a time with the RKMK4 stages in AVX lanes,
+each row keeping the scalar step's bits (`tests/test_ship_lanes.py`); otherwise every row takes
+the scalar step. Measured (N = 1024, random actions, autoresets, the default scene, 2-core
+shared VM, `throughput.py`): 1.9-2.6M env-steps/s on two threads in its usual minutes (the
+scalar rows in the same minutes: 0.86-0.95M); figures of each run in docs/stabilizer_physics.md.
 """
 
 from __future__ import annotations

@@ -149,7 +149,7 @@ def _stage_row(r0, r1, r2, th):
 
 
 @kernel(forceinline=True)
-def _dexpinv(th, w):
+def _algebra_rate(th, w):
     """`dexpinv_right3` by its series, and True if out of range."""
     x2 = th[0] * th[0] + th[1] * th[1] + th[2] * th[2]
     return _two_term3(th, w, 0.5, dexpinv_series(x2)), not x2 < _SERIES_X2
@@ -185,17 +185,17 @@ def lane_block(X, K, P):
         s0, s1, s2, b1 = _stage_row(r[0], r[1], r[2], th)
         ys = _point(y, h, k1)
         k2 = _stage(ys, (s0, s1, s2), u, X[XMH * LANES + j], nphi, nc, ns, P)
-        q2, b2 = _dexpinv(th, (ys[0], ys[1], ys[2]))
+        q2, b2 = _algebra_rate(th, (ys[0], ys[1], ys[2]))
         th = (h * q2[0], h * q2[1], h * q2[2])
         s0, s1, s2, b3 = _stage_row(r[0], r[1], r[2], th)
         ys = _point(y, h, k2)
         k3 = _stage(ys, (s0, s1, s2), u, X[XMH * LANES + j], nphi, nc, ns, P)
-        q3, b4 = _dexpinv(th, (ys[0], ys[1], ys[2]))
+        q3, b4 = _algebra_rate(th, (ys[0], ys[1], ys[2]))
         th = (dt * q3[0], dt * q3[1], dt * q3[2])
         s0, s1, s2, b5 = _stage_row(r[0], r[1], r[2], th)
         ys = _point(y, dt, k3)
         k4 = _stage(ys, (s0, s1, s2), u, X[XM1 * LANES + j], nphi, nc, ns, P)
-        q4, b6 = _dexpinv(th, (ys[0], ys[1], ys[2]))
+        q4, b6 = _algebra_rate(th, (ys[0], ys[1], ys[2]))
         theta = _rk4_combine3(dt, q1, q2, q3, q4)
         c = dt / 6.0
         K[KDY * LANES + j] = _rk4_weight(c, k1[0], k2[0], k3[0], k4[0])
