@@ -71,6 +71,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GyroStabilizerEnv
     DRAWS_PER_RESET = 3
+    row_align = lanes.LANES  # a thread's block of rows: whole lane blocks (`physics.ship.lanes`)
     # held per row (packed parameters P, the sea's table, the physics step): `randomize_rows`
     ROW_KWARGS = frozenset(
         ("wave_period", "wave_moment_amplitude", "significant_wave_height", "rotor_speed")
