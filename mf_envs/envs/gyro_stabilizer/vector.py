@@ -31,8 +31,8 @@ and the scene is one the lanes model (the default, electric drives, irregular se
 gyros, either form), the rows are stepped 32 at a time with the RKMK4 stages in AVX lanes,
 each row keeping the scalar step's bits (`tests/test_ship_lanes.py`); otherwise every row takes
 the scalar step. Measured (N = 1024, random actions, autoresets, the default scene, 2-core
-shared VM, `throughput.py`): 1.53-2.44M env-steps/s on two threads in 10 runs (the scalar rows
-in turns: 0.88-1.12M); docs/stabilizer_physics.md "Throughput".
+shared VM, `throughput.py`): 1.66-3.14M env-steps/s on two threads in 16 runs (the scalar rows
+in turns: 0.88-1.91M); docs/stabilizer_physics.md "Throughput".
 """
 
 from __future__ import annotations
