@@ -16,6 +16,7 @@ import mf_envs  # noqa: F401
 from mf_envs.frames.steppers import rk4_work, rkmk4_rwork
 from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship import lanes
+from mf_envs.physics.ship.layout import Slot as S
 
 N, STEPS = 2 * lanes.LANES + 7, 260  # two lane blocks and a scalar remainder; an autoreset
 FULL = ("gyroscopic", "gimbal_inertia", "added_inertia", "hydrostatic_restoring",
@@ -86,11 +87,12 @@ def test_scenes_the_lanes_do_not_model_take_the_scalar_step(kwargs):
     assert not lanes.supported(envs.b["P"][0])
 
 
-def test_rows_with_other_parameters_take_the_scalar_step():
+def test_rows_may_differ_in_the_wave_phase_only():
     envs = gym.make_vec("GyroStabilizer-v0", num_envs=8, vectorization_mode="vector_entry_point")
     envs.reset(seed=0)
     assert envs._lane_params().size > 0
     P = envs.b["P"].copy()
+    assert len(set(P[:, int(S.WPHASE)])) == 8  # each row its own phase, the lanes still on
     P[3, 0] *= 1.5
     assert lanes.uniform(envs.b["P"]) and not lanes.uniform(P)
 

@@ -91,8 +91,7 @@ def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, o
     """
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
     ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
-    lane = (np.empty(L.N_X * L.LANES), np.empty(L.N_K * L.LANES), np.empty(6 * L.LANES),
-            np.empty(L.LANES), np.empty(L.LANES, dtype=np.int64), np.empty(L.LANES))  # fmt: skip
+    lane = L.lane_scratch()
     _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
           reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c, P0,
           lane)  # fmt: skip

@@ -28,6 +28,7 @@ Hand-written (numba; no library vectorizes a Lie-group integrator across indepen
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from mf_envs._jit import kernel
@@ -71,6 +72,7 @@ from mf_envs.physics.ship.loads import (
     gyro_torque_cs,
     hull_moment_with,
     pitch_sine,
+    roll_needed,
 )
 
 LANES = 32  # rows per block (a compile-time constant: the offsets F * LANES + j)
@@ -90,13 +92,12 @@ def supported(P: np.ndarray) -> bool:
     an active drive (electric or brake), no sway-roll-yaw coupling, no heave, and a hull whose
     restoring moment needs no roll angle (the wall-sided GZ, or none)."""
     kind = int(P[DRV0 + DKIND])
-    gz_angle = P[S.K44] > 0.0 and (P[S.GZR] <= 0.0 or P[S.GZ3] > 0.0)
     return (
         int(P[S.GMODE]) == GIMBAL_TORQUE
         and kind in (KIND_ELECTRIC, KIND_BRAKE)
         and P[S.CPLON] <= 0.5
         and P[S.TRANS] <= 0.5
-        and not gz_angle
+        and not roll_needed(P)
     )
 
 
@@ -212,12 +213,28 @@ def lane_block(X, K, P):
         K[KBAD * LANES + j] = 1.0 if bad else 0.0
 
 
+@numba.njit(cache=True)
+def lane_scratch():
+    """The scratch of `advance_block` for one thread: (X, K, near0s, mws, idx, e0s), the float
+    ones views of one buffer (e0s: the rows' drive energies before the step, for the caller)."""
+    n = LANES
+    buf = np.empty((N_X + N_K + 6 + 2) * n)
+    a, b, c = N_X * n, (N_X + N_K) * n, (N_X + N_K + 6) * n
+    return buf[:a], buf[a:b], buf[b:c], buf[c : c + n], np.empty(n, dtype=np.int64), buf[c + n :]
+
+
+@kernel(forceinline=True)
+def _start(j, near0s):
+    """Lane j's control-step start values (`start_values`), kept in near0s."""
+    return (near0s[6 * j], near0s[6 * j + 1], near0s[6 * j + 2], near0s[6 * j + 3],
+            near0s[6 * j + 4], near0s[6 * j + 5])  # fmt: skip
+
+
 @kernel(forceinline=True)
 def _near(k, j, near0s, t, y, P):
     """Row's start values for substep k (`advance_with`): its control step's own at k = 0,
     from them after (`start_values_from`)."""
-    n0 = (near0s[6 * j], near0s[6 * j + 1], near0s[6 * j + 2], near0s[6 * j + 3],
-          near0s[6 * j + 4], near0s[6 * j + 5])  # fmt: skip
+    n0 = _start(j, near0s)
     if k == 0:
         return n0
     return start_values_from(n0, t, y[3], P)
@@ -276,6 +293,4 @@ def advance_block(idx, t, y, R, u, dt, n_sub, P, tab, out, P0, X, K, near0s, mws
             t[i] += dt[i]
     for j in range(LANES):
         i = idx[j]
-        n0 = (near0s[6 * j], near0s[6 * j + 1], near0s[6 * j + 2], near0s[6 * j + 3],
-              near0s[6 * j + 4], near0s[6 * j + 5])  # fmt: skip
-        step_outputs(t[i], y[i], R[i], u[i], P[i], out[i], mws[j], n0)
+        step_outputs(t[i], y[i], R[i], u[i], P[i], out[i], mws[j], _start(j, near0s))

@@ -113,11 +113,16 @@ def hull_moment(w1, w2, w3, r20, r21, r22, P):
     Roll r = atan2(R32, R33) enters the wall-sided GZ only through sin(r) = R32 / |(R32, R33)|
     and tan(r)^2 = (R32 / R33)^2 (clipped at |r| = 1.4), the same numbers without atan2/sin/tan.
     """
-    roll = 0.0
-    if P[S.K44] > 0.0 and (P[S.GZR] <= 0.0 or P[S.GZ3] > 0.0):
-        roll = math.atan2(r21, r22)
+    roll = math.atan2(r21, r22) if roll_needed(P) else 0.0
     pitch = _asin(pitch_sine(r20)) if P[S.K55] > 0.0 else 0.0
     return hull_moment_with(w1, w2, w3, r21, r22, P, roll, pitch)
+
+
+@kernel(forceinline=True)
+def roll_needed(P) -> bool:
+    """Whether `hull_moment` reads the roll angle itself: the linear GZ or the cubic term (the
+    wall-sided GZ needs only R32 and R33)."""
+    return P[S.K44] > 0.0 and (P[S.GZR] <= 0.0 or P[S.GZ3] > 0.0)
 
 
 @kernel(forceinline=True, error_model="numpy")
