@@ -1,17 +1,24 @@
 """`mf-envs` command line: demo, bench, render, train, evaluate, sweep (docs/api.md, "CLI").
 
-User mistakes (bad ids, bad options, ValueError from the library, an output path that cannot be
-written, a missing optional extra) print one line on stderr and exit with status 2; Ctrl-C prints
-one line and exits with 130. Outputs are written into a temporary folder beside the target and
-moved into place when complete (`mf_envs._staging`), so an interrupted run leaves the previous
-outputs intact; the files written are named on stdout. A deprecated env id (`GOWEC-v1`) works
-and prints one note naming its new id. Everything else is a real bug and keeps its traceback.
+User mistakes (bad ids, bad options, a ValueError that the library raises on purpose, an output
+path that cannot be written, a missing optional extra) print one line on stderr and exit with
+status 2; Ctrl-C prints one line and exits with 130. Outputs are written into a temporary folder
+beside the target and moved into place when complete (`mf_envs._staging`), so an interrupted run
+leaves the previous outputs intact; the files written are named on stdout. A deprecated env id
+(`GOWEC-v1`) works and prints one note naming its new id.
+
+Everything else is a bug: its traceback is printed, then one line saying so, and the status is
+1. A ValueError counts as a user mistake only when a `raise` statement of this package raised it
+(the library's validation); one raised inside numpy, scipy or Python itself (for example a
+reduction over an empty array) is a bug, not the user's fault.
 """
 
 from __future__ import annotations
 
 import argparse
+import dis
 import sys
+import traceback
 import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -216,12 +223,14 @@ def _run(
     try:
         written = func(args)
     except ValueError as exc:
+        if not raised_by_package(exc):
+            return _bug(who)
         print(f"{who}: error: {exc}", file=sys.stderr)
         return 2
     except ModuleNotFoundError as exc:
         extra = missing_extra(exc)
         if extra is None:
-            raise
+            return _bug(who)
         print(f"{who}: needs the {extra} extra: {install_hint(extra)} ({exc})", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
@@ -229,9 +238,41 @@ def _run(
         return 130
     except OSError as exc:
         if exc.filename is None:
-            raise
+            return _bug(who)
         print(f"{who}: error: {exc.strerror}: {exc.filename}", file=sys.stderr)
         return 2
+    except Exception:
+        return _bug(who)
     if written:
         print(_written(written))
     return 0
+
+
+_PACKAGE_DIR = str(Path(__file__).resolve().parents[1])
+_RAISE = dis.opmap["RAISE_VARARGS"]
+
+
+def raised_by_package(exc: BaseException) -> bool:
+    """Whether `exc` was raised by a `raise` statement in this package's own code: the innermost
+    frame of its traceback is in `mf_envs/` and the instruction there is a raise (not a call
+    into C that failed, such as `np.max` of an empty array)."""
+    tb = exc.__traceback__
+    if tb is None:
+        return False
+    while tb.tb_next is not None:
+        tb = tb.tb_next
+    code = tb.tb_frame.f_code
+    if not str(Path(code.co_filename).resolve()).startswith(_PACKAGE_DIR):
+        return False
+    return 0 <= tb.tb_lasti < len(code.co_code) and code.co_code[tb.tb_lasti] == _RAISE
+
+
+def _bug(who: str) -> int:
+    """An internal error: its traceback, one line that says it is a bug, status 1."""
+    traceback.print_exc()
+    print(
+        f"{who}: internal error (a bug in mf_envs, not in what you typed); the traceback above "
+        "says where. Please report it with the command you ran.",
+        file=sys.stderr,
+    )
+    return 1

@@ -4,8 +4,12 @@ Writes into `out`:
 - gowec_v1_episode.png  the default sea (regular, a = 1 m, T = 6 s) with the efficient_pto
                         and with the rotor off: buoy pitch, gimbal angle, mechanical PTO power,
                         against the wave elevation (two-way coupling: the loaded gyro changes
-                        the buoy's motion)
+                        the buoy's motion). An episode that ends early (the rotor-off hull
+                        pitching past its limit) is plotted over what it ran, its end marked.
 - gowec_v1.gif          the buoy, gimbal and rotor over two wave periods (not with --quick)
+
+`--quick` runs the same 60 s episodes and only skips the GIF: a shorter run would show nothing
+but the wave's ramp.
 """
 
 from __future__ import annotations
@@ -54,7 +58,17 @@ def _episode(kind: str, rotor: bool, seconds: float, frames: int = 0):
             shots.append(env.render())
         done = term or trunc
     u = env.unwrapped
-    extra = {"J": u.wave_power_flux(), "Tn": u.natural_period(), "units": u.model.p.gyro[5]}
+    end = ""
+    if term:
+        end = "pitch or roll limit" if info.get("out_of_range") else "gimbal overspeed"
+        end = "numerical failure" if info.get("numerical_failure") else end
+    extra = {
+        "end": end,
+        "ramp": float(u.wave_ramp),
+        "J": u.wave_power_flux(),
+        "Tn": u.natural_period(),
+        "units": u.model.p.gyro[5],
+    }
     # the linear PTO's torque c phi' + k phi against the generator's torque and power limits
     rec_rate, rec_phi = np.asarray(rec["gimbal_rate"]), np.asarray(rec["gimbal_angle"])
     m = ctrl.c * rec_rate + ctrl.k * rec_phi if hasattr(ctrl, "c") else np.zeros_like(rec_rate)
@@ -73,21 +87,28 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    seconds = 20.0 if quick else SECONDS
+    seconds = SECONDS
     n_frames = 0 if quick else 60
     pto, ex, shots = _episode("efficient_pto", True, seconds, n_frames)
-    off, _, _ = _episode("efficient_pto", False, seconds)
+    off, ex_off, _ = _episode("efficient_pto", False, seconds)
     fig, ax = plt.subplots(4, 1, figsize=(8, 8), sharex=True)
     ax[0].plot(pto["time"], pto["wave_elevation"], "k", lw=0.8)
     ax[0].set_ylabel("wave elevation (m)")
-    ax[1].plot(off["time"], np.degrees(off["buoy_pitch"]), label="rotor off")
+    off_label = "rotor off" + (
+        f" (episode ends at {off['time'][-1]:.0f} s: {ex_off['end']})" if ex_off["end"] else ""
+    )
+    ax[1].plot(off["time"], np.degrees(off["buoy_pitch"]), label=off_label)
+    if ex_off["end"]:
+        ax[1].plot(off["time"][-1], np.degrees(off["buoy_pitch"][-1]), "x", color="tab:blue")
     ax[1].plot(pto["time"], np.degrees(pto["buoy_pitch"]), label="rotor on, linear PTO")
     ax[1].set_ylabel("buoy pitch (deg)")
-    ax[1].legend(loc="upper right")
+    lo, hi = ax[1].get_ylim()
+    ax[1].set_ylim(lo, hi + 0.6 * (hi - lo))  # room for the legend above the traces
+    ax[1].legend(loc="upper left", ncol=2, fontsize=8)
     ax[2].plot(pto["time"], np.degrees(pto["gimbal_angle"]))
     ax[2].set_ylabel("gimbal angle (deg)")
-    ax[3].plot(pto["time"], pto["power_mechanical"])
-    ax[3].set_ylabel(f"PTO power, {ex['units']:.0f} units (W)")
+    ax[3].plot(pto["time"], pto["power_mechanical"] / 1e3)
+    ax[3].set_ylabel(f"PTO power, {ex['units']:.0f} units (kW)")
     ax[3].set_xlabel("time (s)")
     sat = ex["saturated"]
     if sat.any():  # where the PTO's c phi' + k phi asks for more than the generator's rating
@@ -100,7 +121,10 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
             f"{ex['torque_limit'] / 1e3:.0f} kN m (per unit); the torque clips and power peaks"
         ))  # fmt: skip
         ax[3].legend(loc="upper left", fontsize=8)
-    fig.suptitle("FloatingGOWEC-v0, regular wave a = 1 m, T = 6 s (efficiency-aware linear PTO)")
+    fig.suptitle(
+        "FloatingGOWEC-v0, regular wave a = 1 m, T = 6 s: the loaded gyros (efficient_pto)\n"
+        "hold the hull's pitch that, with the rotor off, grows past its limit"
+    )
     fig.tight_layout()
     files = [out / "gowec_v1_episode.png"]
     fig.savefig(files[0], dpi=100)
@@ -109,14 +133,19 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
         from mf_envs.render import save_gif
 
         files.append(save_gif(shots, out / "gowec_v1.gif", fps=5))
-    half = len(pto["time"]) // 2
-    p = float(np.mean(pto["power_mechanical"][half:]))
+    steady = pto["time"] > max(ex["ramp"], pto["time"][-1] / 2)  # after the wave's ramp
+    p = float(np.mean(pto["power_mechanical"][steady]))
     lines = [
         f"natural pitch period (rotor off) {ex['Tn']:.2f} s; wave power flux {ex['J']:.0f} W/m",
-        f"efficiency-aware linear PTO: {p:.0f} W mechanical, capture width {p / ex['J']:.3f} m "
-        f"(net electrical after the 3 kW rotor loss: {np.mean(pto['power'][half:]):.0f} W)",
-        "pitch amplitude rotor off / on: "
-        f"{np.degrees(np.abs(off['buoy_pitch'][half:]).max()):.2f} / "
-        f"{np.degrees(np.abs(pto['buoy_pitch'][half:]).max()):.2f} deg",
+        f"efficiency-aware linear PTO, t > {pto['time'][steady][0]:.0f} s: {p:.0f} W mechanical,"
+        f" capture width {p / ex['J']:.3f} m (net electrical after the rotor's running loss: "
+        f"{np.mean(pto['power'][steady]):.0f} W)",
+        f"largest pitch, rotor on: {np.degrees(np.abs(pto['buoy_pitch'][steady]).max()):.2f} deg;"
+        f" rotor off: {np.degrees(np.abs(off['buoy_pitch']).max()):.2f} deg"
+        + (
+            f" (its episode ends at {off['time'][-1]:.1f} s: {ex_off['end']})"
+            if ex_off["end"]
+            else ""
+        ),
     ]
     return files, lines

@@ -219,7 +219,8 @@ def fig_3_14_15(out: Path, quick: bool) -> tuple[Path, str]:
 
 
 def env_episode(kind: str | None, frames: bool = False, seed: int = 0, seconds: float = 30.0):
-    """(t, roll, gimbal, frames) of GyroStabilizer-v0 defaults with a baseline (None: rotor off)."""
+    """(t, roll, gimbal, frames, title) of GyroStabilizer-v0 defaults with a baseline (None:
+    rotor off); `title` names the unit and its capacity as the env reports them."""
     import gymnasium as gym
 
     import mf_envs  # noqa: F401
@@ -235,6 +236,8 @@ def env_episode(kind: str | None, frames: bool = False, seed: int = 0, seconds: 
         render_mode="rgb_array" if frames else None,
     )
     obs, info = env.reset(seed=seed)
+    u = env.unwrapped
+    title = f"{u.scene.unit_name or 'gyro'} (capacity {build_capacity(u):.2f})"
     ctrl = make_baseline(env, kind) if kind else None
     t, roll, gim, imgs = [0.0], [info["roll"]], [info["gimbal_angle"]], []
     done = False
@@ -248,7 +251,15 @@ def env_episode(kind: str | None, frames: bool = False, seed: int = 0, seconds: 
         if frames and len(t) % 4 == 0 and t[-1] <= 20.0:
             imgs.append(env.render())
     env.close()
-    return np.array(t), np.array(roll), np.array(gim), imgs
+    return np.array(t), np.array(roll), np.array(gim), imgs, title
+
+
+def build_capacity(u) -> float:
+    """The unit's capacity M0 / (n H w sin(max gimbal angle)) on the default wave, computed with
+    the rotor on (the rotor-off episode's own scene has H = 0)."""
+    from mf_envs.envs.gyro_stabilizer import build
+
+    return build.capacity(u.scene) if "gyroscopic" in u.effects else float("nan")
 
 
 def fig_yacht(out: Path, quick: bool) -> tuple[list[Path], str]:
@@ -257,31 +268,40 @@ def fig_yacht(out: Path, quick: bool) -> tuple[list[Path], str]:
     plt = _plt()
     fig, ax = plt.subplots(2, 1, figsize=(10, 5.4), sharex=True)
     rms = {}
-    frames = []
+    frames, titles = [], []
+    colors = {None: "tab:gray", "pid": "tab:blue", "lqr": "tab:green"}
     for kind in (None, "pid", "lqr"):
-        t, roll, gim, imgs = env_episode(
+        t, roll, gim, imgs, title = env_episode(
             kind, frames=(kind == "pid"), seconds=15.0 if quick else 30.0
         )
+        titles.append(title)
         if imgs:
             frames = imgs
         name = kind or "rotor off"
         rms[name] = float(np.sqrt(np.mean(roll[t > 10.0] ** 2)))
-        ax[0].plot(t, np.degrees(roll), label=f"{name}: RMS {math.degrees(rms[name]):.2f} deg")
+        lab = f"{name}: RMS {math.degrees(rms[name]):.2f} deg (t > 10 s)"
+        ax[0].plot(t, np.degrees(roll), color=colors[kind], label=lab)
         if kind:
-            ax[1].plot(t, np.degrees(gim), label=name)
-    ax[0].set_ylabel("roll [deg]")
-    ax[1].set_ylabel("gimbal [deg]")
-    ax[1].set_xlabel("t [s]")
+            ax[1].plot(t, np.degrees(gim), color=colors[kind], label=name)
+    ax[0].set_ylabel("roll (deg)")
+    ax[1].set_ylabel("gimbal angle (deg)")
+    ax[1].set_xlabel("time (s)")
     for a_ in ax:
         a_.grid(alpha=0.3)
-        a_.legend(fontsize=8)
-    fig.suptitle("GyroStabilizer-v0: 18 t yacht + Seakeeper 9 at roll resonance (capacity 0.60)")
+        lo, hi = a_.get_ylim()
+        a_.set_ylim(lo, hi + 0.35 * (hi - lo))  # room for the legend above the traces
+        a_.legend(fontsize=8, ncol=3, loc="upper left")
+    off = rms["rotor off"]
+    fig.suptitle(
+        f"GyroStabilizer-v0: 18 t yacht + {titles[1]} at roll resonance:\n"
+        f"LQR cuts the RMS roll by {100 * (1 - rms['lqr'] / off):.0f} %, PID by "
+        f"{100 * (1 - rms['pid'] / off):.0f} %"
+    )
     fig.tight_layout()
     p = out / "stabilizer_yacht.png"
     fig.savefig(p, dpi=100)
     plt.close(fig)
     g = save_gif(frames, out / "stabilizer_yacht.gif", fps=5)
-    off = rms["rotor off"]
     return [p, g], (
         f"yacht RMS roll: off {math.degrees(off):.2f} deg, PID "
         f"{math.degrees(rms['pid']):.2f} (RR {1 - rms['pid'] / off:.3f}), LQR "
