@@ -11,7 +11,6 @@ EXTRAS = {
     "torch": "train",
     "safetensors": "train",
     "rich": "train",
-    "rliable": "train",
     "elastica": "compare",
     "mhkit": "compare",
     "pygame": "render",

@@ -3,7 +3,7 @@
 Numba's runtime counts references to every array a compiled function binds: each view
 (`work[0]`, `y[i]`) and each array argument of a helper inlined with `inline="always"` costs an
 atomic increment and decrement (`lock inc` / `lock dec`, each a full memory barrier). In the
-ship's RK4-Munthe-Kaas step they took 23 % of the samples (perf, issue 17) although every array
+ship's RK4-Munthe-Kaas step they took 23 % of the samples (perf) although every array
 there belongs to the caller for the whole call. `kernel` compiles such a function with numba's
 `_nrt=False` flag (the one numba uses for its own allocation-free helpers), which emits none.
 

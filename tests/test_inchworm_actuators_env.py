@@ -9,7 +9,7 @@ import pytest
 
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.controllers import make_baseline
-from mf_envs.envs.inchworm import ISSUE16_SCENE, RIOS2017_SCENE
+from mf_envs.envs.inchworm import LAG_FRICTION_SCENE, RIOS2017_SCENE
 
 L = 0.3
 
@@ -18,7 +18,7 @@ def test_bang_bang_actions_respect_the_actuator_and_grip_limits():
     """Bang-bang actions (every control point and the grip flipping at random every step):
     the realised kappa# (info['kappa_sharp']) never changes faster than the rate limit, and the
     feet's engagement never faster than 1 / grip_time_constant."""
-    scene = {**ISSUE16_SCENE, "grip_time_constant": 0.15}
+    scene = {**LAG_FRICTION_SCENE, "grip_time_constant": 0.15}
     env = gym.make("Inchworm-v0", actuator_rate_limit=10.0, **scene)
     base = env.unwrapped
     assert base.actuator_rate_limit == 10.0
@@ -91,7 +91,7 @@ def test_seed_scene_still_crawls_the_seed_gait():
 
 
 def test_seed_gait_runs_at_the_fastest_cycle_the_actuator_allows():
-    env = gym.make("Inchworm-v0", **ISSUE16_SCENE)
+    env = gym.make("Inchworm-v0", **LAG_FRICTION_SCENE)
     ctrl = make_baseline(env, "seed_uniform")
     act = env.unwrapped.actuator
     assert ctrl.period == pytest.approx(np.ceil(act.fastest_cycle(13.0) / 0.1 - 1e-9) * 0.1)
@@ -111,7 +111,7 @@ def test_tuned_gait_is_at_least_the_seed_gait_and_keeps_the_limits():
     never moves faster than the actuator's rate limit."""
     from mf_envs.benchmarks.controllers import inchworm as b
 
-    scene = ISSUE16_SCENE  # the lag actuator's tuned gait (issue 16's robot)
+    scene = LAG_FRICTION_SCENE  # the lag actuator's tuned gait (issue 16's robot)
     tuned = b._episode("tuned", 1000, scene, 2)
     seed = b._episode("seed_uniform", 1000, scene, 2)
     assert tuned["speed_L_per_s"] > seed["speed_L_per_s"]

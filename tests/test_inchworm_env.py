@@ -9,7 +9,7 @@ from gymnasium.utils.env_checker import check_env
 
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.controllers import baseline_kinds, make_baseline
-from mf_envs.envs.inchworm import ISSUE16_SCENE, RIOS2017_BODY, RIOS2017_SCENE
+from mf_envs.envs.inchworm import LAG_FRICTION_SCENE, RIOS2017_BODY, RIOS2017_SCENE
 from mf_envs.physics.beam import NewtonSettings
 
 L = 0.3
@@ -119,7 +119,7 @@ def test_render_rgb_array():
 
 
 @pytest.mark.parametrize(
-    "scene, crawl", [(RIOS2017_SCENE, 0.5 * L), (ISSUE16_SCENE, 0.01 * L), ({}, -np.inf)]
+    "scene, crawl", [(RIOS2017_SCENE, 0.5 * L), (LAG_FRICTION_SCENE, 0.01 * L), ({}, -np.inf)]
 )
 def test_reset_far_from_origin_is_a_translated_copy(scene, crawl):
     """reset(options={"x_tail": 9.0}) must not raise (it did: NewtonDivergence, round-off of

@@ -17,7 +17,7 @@ import pytest
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.controllers import make_baseline
 from mf_envs.controllers.inchworm import VALIDATION_COOL, VALIDATION_HEAT, _tune_wires
-from mf_envs.envs.inchworm import ISSUE16_SCENE
+from mf_envs.envs.inchworm import LAG_FRICTION_SCENE
 from mf_envs.envs.inchworm.spec import QUASI_STATIC_LIMIT
 from mf_envs.physics.actuators.sma import RATED_STRESS, maker_times
 from mf_envs.physics.beam import GAUSS_W
@@ -217,7 +217,7 @@ def test_the_quasi_static_flag_fires_on_the_old_5_hz_gait_only():
     """Issue 16's tuned gait (T = 0.2 s, a = 7.30, b = 5.45 1/m on the seed's body): its feet
     jerk by 20 mm per 0.1 s step: inertia above QUASI_STATIC_LIMIT of the friction. The SMA
     robot's validation gait stays below it."""
-    old = _env(**ISSUE16_SCENE)
+    old = _env(**LAG_FRICTION_SCENE)
     gait = make_baseline(old, "tuned", period=0.2, amplitude=7.30, bias=5.45)
     speed, *_, qse_old, _ = _crawl(old, gait, warm_cycles=8, cycles=5)
     assert speed > 0.05  # it crawls (m/s)

@@ -18,7 +18,7 @@ from test_vector_envs import actions, assert_infos_equal  # (tests/ is on sys.pa
 
 import mf_envs  # noqa: F401  (registers the ids)
 from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
-from mf_envs.envs.inchworm import ISSUE16_SCENE
+from mf_envs.envs.inchworm import LAG_FRICTION_SCENE
 from mf_envs.envs.inchworm.build import FRICTION_KEYS
 from mf_envs.train.randomize import (
     DomainRandomization,
@@ -72,7 +72,7 @@ CASES = {
     # template's feet would leave Sync's trajectory)
     **{
         f"inchworm{scene}{only}": ("Inchworm-v0", {"episode_seconds": 0.5, **kw}, ranges, None)
-        for scene, kw in (("", {}), ("_friction", ISSUE16_SCENE))
+        for scene, kw in (("", {}), ("_friction", LAG_FRICTION_SCENE))
         for only, ranges in (("", None), ("_feet_only", FRICTION))
     },
 }
@@ -154,7 +154,7 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
         ("FloatingGOWEC-v0", {}),
         ("FloatingGOWEC-v0", {"significant_wave_height": 2.0}),
         ("Inchworm-v0", {}),
-        ("Inchworm-v0", ISSUE16_SCENE),
+        ("Inchworm-v0", LAG_FRICTION_SCENE),
         ("Serpentine-v0", {}),
         ("Serpentine-v0", {"effects": ("viscous_ground",)}),
         ("Eel-v0", {}),
@@ -178,7 +178,7 @@ def test_inchworm_draws_its_feet_friction():
     every coefficient of its resolved `friction_coefficients`, natively held per row in both
     feet's scenes; a given friction (4 numbers or a partial dict) is the nominal; bad input is
     refused naming the parameter."""
-    for kw in ({}, ISSUE16_SCENE):
+    for kw in ({}, LAG_FRICTION_SCENE):
         draws = Randomizer("Inchworm-v0", kw)
         assert set(draws.ranges) == set(default_ranges("Inchworm-v0"))
         assert draws.ranges["friction_coefficients"] == (0.5, 1.5)
@@ -227,7 +227,7 @@ def test_a_drawn_friction_changes_the_inchworm(scene: str) -> None:
     and the rows differ: the feet's holding margin (info["quasi_static_error"] ~ 1 / factor)
     and, on the gripping feet, the crawl. (Quasi-static: the feet's forces balance each other,
     so one factor on every coefficient moves the crawl only through the body's axial load.)"""
-    kw = {"episode_seconds": 6.0, **(ISSUE16_SCENE if scene == "friction" else {})}
+    kw = {"episode_seconds": 6.0, **(LAG_FRICTION_SCENE if scene == "friction" else {})}
     vec = gym.make_vec("Inchworm-v0", 2, vectorization_mode="vector_entry_point", **kw)
     vec.unwrapped.randomize_rows(FeetByRow((0.5, 1.5)))
     _, info = vec.reset(seed=[0, 1])

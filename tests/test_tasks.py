@@ -154,7 +154,6 @@ def test_the_best_baseline_is_below_90_percent_of_the_headline_ceiling(task_name
     """Issue 32's first acceptance line, measured as docs/benchmark.md does: the best
     baseline's IQM over the 20 frozen test seeds is below 0.9 of the ceiling, and no episode of
     it reaches the ceiling."""
-    pytest.importorskip("rliable")
     from mf_envs.benchmarks import rl_benchmark as rb
 
     task = rb.TASKS[task_name]()

@@ -1,6 +1,6 @@
 """Where does phase-locking pay on a floating GOWEC? Net electrical power of the dissertation's
 PLL (a gimbal driven in phase with the wave, Rios 2017 Eq. 95) and of the best linear PTO
-(`efficient_pto`) on the ISWEC-class device, against the rotor size (issue 29, item 6).
+(`efficient_pto`) on the ISWEC-class device, against the rotor size.
 
 The rotor's angular momentum H is scaled from the device's (J x 0.03 .. 3 at its speed); the
 x axis is the ratio n H w / (|X| a) of the pair's gyroscopic moment at a precession rate of

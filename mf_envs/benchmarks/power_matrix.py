@@ -1,5 +1,5 @@
 """FloatingGOWEC-v0's power matrix: mean net electrical power over significant wave height x
-peak period, as the power matrices published for wave energy converters (issue 29).
+peak period, as the power matrices published for wave energy converters.
 
 Each cell is a JONSWAP sea (gamma 3.3) scored over `--seconds` (default 1200 s, 20 min) of
 simulated time per seed after the start-up ramp, on unseen seeds 2000.., with a controller

@@ -1,4 +1,4 @@
-"""GyroStabilizer-v0 on irregular seas: the grid bench of issue 30.
+"""GyroStabilizer-v0 on irregular seas: the grid bench.
 
 The default device (a Seakeeper Model 7000 on the 18 t yacht, hydraulic brake; docs/
 stabilizer_physics.md §4) in long-crested JONSWAP seas over a grid

@@ -258,5 +258,5 @@ class SquareWaveController(_GimbalTracker):
 
 register(ENV_ID, "pll", PLLController)
 register(ENV_ID, "fixed_rate", FixedRateController)
-# the strongest (1.2714 of Eq. 95 against the 4/pi square-wave ceiling): the default (issue 32)
+# the strongest (1.2714 of Eq. 95 against the 4/pi square-wave ceiling): the default
 register(ENV_ID, "bang_bang", SquareWaveController, default=True)

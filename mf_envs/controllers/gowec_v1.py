@@ -5,7 +5,7 @@ and the matched linear PTO.
   observation slots (gimbal encoder, buoy IMU rate w1) and the device's own rotor and gimbal
   (`env.unwrapped.model.inert`, `.psid`). On the floating buoy the rate they lock to is the
   buoy's actual motion, which the gyro's reaction changes.
-- `linear_pto`: the classical impedance match (issue 14). With the gimbal as a linear load
+- `linear_pto`: the classical impedance match. With the gimbal as a linear load
   Z_g = c + i (w I_g - k / w) the gyro presents H^2 / Z_g to the hull; matching it to the
   conjugate of the hull's pitch impedance Z_h = R + i X_h, R = B(w) + b_v (radiation + viscous),
   X_h = w (I + A(w)) - C / w, gives (n = gyro_units in parallel: load n H^2 / Z_g)
@@ -16,7 +16,7 @@ and the matched linear PTO.
   (`env.unwrapped.set_pto`, evaluated every physics substep); the torque command is 0.
   It maximises *mechanical* power: the reactive power k phi phi' it circulates through the
   generator costs 1 - eta each way, so on a real drive it is not the best linear PTO.
-- `efficient_pto` and `passive_damper` (issue 29): the linear PTO (c, k) and the damper (c,
+- `efficient_pto` and `passive_damper`: the linear PTO (c, k) and the damper (c,
   with only the small centring spring k_c that keeps the gimbal from drifting to +-90 deg) that
   maximise the *net electrical* power eta P+ - P- / eta - rotor loss of the
   linearised device in the sea the env has just drawn (`net_electrical_power`: frequency-domain

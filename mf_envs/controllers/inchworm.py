@@ -95,7 +95,7 @@ class OpenLoopGait:
 
 
 class WireGait:
-    """Open-loop duty cycles of the SMA wire groups (`sma_wires`, issue 31) with Eq. 102 grips
+    """Open-loop duty cycles of the SMA wire groups (`sma_wires`) with Eq. 102 grips
     on the wires' predicted kappa#: the gait keeps its own copy of the wires' state (the env's
     own kernel, synchronised at reset) and advances it with the duties it commands, so it stays
     open loop (the observation is not used).
@@ -364,7 +364,7 @@ def tuned(
     bias [1/m] optimised for speed on the env's physics (`_tune`, cached per configuration;
     a few minutes on the defaults) unless all three are given."""
     base = env.unwrapped
-    if base.sma:  # issue 31: the SMA robot's square wave of duties
+    if base.sma:  # the SMA robot's square wave of duties
         cfg = base.drive_config()
         t_heat, t_cool, off = TUNED_SMA if cfg == _default_config() else _tune_wires(cfg)[:3]
         return heat_cool(env, t_heat, t_cool, off)
@@ -388,5 +388,5 @@ def tuned(
 
 register(ENV_ID, "seed_uniform", seed_uniform)
 register(ENV_ID, "seed_linear", seed_linear)
-register(ENV_ID, "tuned", tuned, default=True)  # the fastest on the default robot (issue 32)
+register(ENV_ID, "tuned", tuned, default=True)  # the fastest on the default robot
 register(ENV_ID, "heat_cool", heat_cool)

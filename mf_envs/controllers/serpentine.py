@@ -121,7 +121,7 @@ def tune(env: Any, x0: tuple = ELASTICA, max_evals: int = 40) -> tuple[tuple, fl
     return tuple(float(v) for v in res.x), float(-res.fun)
 
 
-# the default is the strongest on the default scene (issue 32 item 4; the start heading is
+# the default is the strongest on the default scene (the start heading is
 # random, so the open-loop gaits crawl off target): `mf-envs evaluate`, seeds 1000-1004, speed
 # heading 0.0581, tuned 0.0137, serpenoid 0.0051 m/s
 register(ENV_ID, "heading", HeadingSerpenoid, default=True)

@@ -19,7 +19,7 @@ PID tuning procedure (model-based, then checked on the env; python-control has n
    after 10 s) and keep the best RMS roll among the gains whose gimbal stays >= 5 % inside the
    end stops: zeta_g = 1, ki_ratio = 0.1, centering_ratio = 0.3 (RMS roll reduction 0.908;
    zeta_g >= 1.5 reduces more, 0.94, but rides the end stops). Re-scanned on the torque-limited
-   electric drive (issue 15; same grid, ki_ratio {0, 0.1, 0.25}, centering {0.1, 0.3}): the
+   electric drive (same grid, ki_ratio {0, 0.1, 0.25}, centering {0.1, 0.3}): the
    same gains win (RR 0.907, gimbal peak 0.90 rad; zeta_g 1.5-2 give 0.94-0.95 on the stops).
    The gains then scale with the ship (steps 2-3); `benchmarks/controllers/stabilizer.py`
    reports other scenes.

@@ -70,7 +70,7 @@ class RowBlocks:
     the GIL: numba `nogil=True`). Rows are independent, so no result depends on the split.
 
     Not numba's `parallel=True`: its OpenMP threads spin, and with another process busy on one
-    of 2 cores they ran 2.7-10x slower than one thread (measured, issue 17); these wait. With
+    of 2 cores they ran 2.7-10x slower than one thread (measured); these wait. With
     one of 2 cores busy elsewhere two blocks cost GOWEC-v0 (N = 1024) 7.5 % against one and
     gained the inchworm (N = 64) 6 %; on a quiet machine they gain 1.5-1.9x.
 

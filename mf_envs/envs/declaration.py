@@ -54,7 +54,7 @@ RETURN = Metric("return", True, "1")
 
 @dataclass(frozen=True)
 class Ceiling:
-    """What no controller of a task can beat, for one of its scores (issue 32).
+    """What no controller of a task can beat, for one of its scores.
 
     `value` (in `unit`) is a constant, or None when it depends on the episode's scene: then
     `fn`, "module:function", computes it from the env after its reset (e.g. a sea's power
@@ -134,7 +134,7 @@ class EnvDeclaration:
     - `bench`, `demo`: modules of the controllers benchmark and the demo (optional).
     - `slow`: steps take about a millisecond (benchmarks time it longer; its native vector env
       may support only some scenes: the vector class's `supports`).
-    - `role`, `ceiling`, `headroom`, `summary`: the id as a benchmark task (issue 32, docs/
+    - `role`, `ceiling`, `headroom`, `summary`: the id as a benchmark task (docs/
       benchmark.md): "easy" (the regular-sea or seed scene) or "headline" (irregular seas, the
       real device), the score's ceiling (`Ceiling`) and, in `headroom`, the best baseline's
       measured gap to it or why none is stated.

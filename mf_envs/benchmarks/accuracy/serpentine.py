@@ -1,4 +1,4 @@
-"""Work-precision of the serpentine beam (issue 33): elements x time step against a converged run.
+"""Work-precision of the serpentine beam: elements x time step against a converged run.
 
 Scenes (`dt` = the physics step [s], `method` = the number of elements):
 - `serpentine_elastica`: PyElastica's continuum snake in our model (`speed.snake_elastica.snake`:

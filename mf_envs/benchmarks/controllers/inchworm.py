@@ -1,13 +1,13 @@
 """Inchworm-v0 baselines: the seed gaits (Eqs. 101, 103), the tuned gait and (SMA robot) the
 validation gait, through the actions.
 
-Scenes: `pdms_sma` = the Inchworm-v0 defaults (issue 31: the buildable PDMS robot, L = 60 mm,
-Flexinol wires heated by duty cycles, gripping feet); `issue16` = issue 16's robot (the seed's
-section, L = 0.3 m, kappa0# = 13 1/m through the rate-limited lag on Coulomb friction feet,
-`ISSUE16_SCENE`); `seed_scene` = the dissertation's scene (kinematic anchors, kappa# as
+Scenes: `pdms_sma` = the Inchworm-v0 defaults (the buildable PDMS robot, L = 60 mm, Flexinol wires
+heated by duty cycles, gripping feet); `lag_friction` = the lag-friction robot (the seed's section,
+L = 0.3 m, kappa0# = 13 1/m through the rate-limited lag on Coulomb friction feet,
+`LAG_FRICTION_SCENE`); `seed_scene` = the dissertation's scene (kinematic anchors, kappa# as
 commanded, quasi-static, `RIOS2017_SCENE`). Each episode: a warm-up of one cycle and at least
 `WARMUP_SECONDS` (SMA wires: two cycles and at least `WIRE_WARMUP_SECONDS`), then 3 measured
-cycles of the gait's period; the shipped PPO policy (trained on issue 16's robot, so scored
+cycles of the gait's period; the shipped PPO policy (trained on the lag-friction robot, so scored
 there) over `PPO_SECONDS`, its cycles counted as head -> tail grip switches; seeds 1000-1004.
 Metrics: speed of the feet's midpoint (body lengths per second; equal to the tail's over whole
 cycles of a periodic gait, but a body still curling up does not count), cost of transport =
@@ -27,15 +27,15 @@ import numpy as np
 import mf_envs  # noqa: F401
 from mf_envs.benchmarks.controllers.ppo import make_controller, with_ppo
 from mf_envs.controllers.inchworm import WARMUP_SECONDS, WIRE_WARMUP_SECONDS
-from mf_envs.envs.inchworm import ISSUE16_SCENE, RIOS2017_SCENE
+from mf_envs.envs.inchworm import LAG_FRICTION_SCENE, RIOS2017_SCENE
 from mf_envs.envs.inchworm.task import DECLARATION
 
 ENV_ID = DECLARATION.env_id
 SCORES_PPO = True  # PPO rows beside the baselines here, not in ppo.py
-SCENES = {"pdms_sma": {}, "issue16": ISSUE16_SCENE, "seed_scene": RIOS2017_SCENE}
+SCENES = {"pdms_sma": {}, "lag_friction": LAG_FRICTION_SCENE, "seed_scene": RIOS2017_SCENE}
 KINDS = ("seed_uniform", "seed_linear", "tuned")
 SMA_KINDS = (*KINDS, "heat_cool")
-PPO_SCENE = "issue16"  # the shipped policy's training scene
+PPO_SCENE = "lag_friction"  # the shipped policy's training scene
 SEEDS = tuple(range(1000, 1005))
 PPO_SECONDS = 6.0  # PPO's measured span (s) after the warm-up
 
@@ -153,22 +153,22 @@ def _trace(kind: str, seed: int, seconds: float, kwargs: dict) -> dict[str, np.n
 def plot(out, rows: list[dict]) -> list:
     """`inchworm_gaits.png`: realised kappa#, grips and tail/head positions after the warm-up
     (seed 1000): the SMA robot's validation and tuned gaits over 12 s on the default scene,
-    issue 16's tuned gait and PPO (when shipped) over 3 s on its scene."""
+    the lag-friction robot's tuned gait and PPO (when shipped) over 3 s on its scene."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    cases = [("heat_cool", {}, 12.0), ("tuned", {}, 12.0), ("tuned", ISSUE16_SCENE, 3.0)]
+    cases = [("heat_cool", {}, 12.0), ("tuned", {}, 12.0), ("tuned", LAG_FRICTION_SCENE, 3.0)]
     if "ppo" in controllers():
-        cases.append(("ppo", ISSUE16_SCENE, 3.0))
+        cases.append(("ppo", LAG_FRICTION_SCENE, 3.0))
     fig, axes = plt.subplots(3, len(cases), figsize=(5.0 * len(cases), 7), squeeze=False)
     for j, (kind, kwargs, seconds) in enumerate(cases):
         tr = _trace(kind, SEEDS[0], seconds, kwargs)
         x0 = tr["x_tail"][0]
         axes[0, j].plot(tr["t"], tr["kappa"], drawstyle="steps-post")
         axes[0, j].set_ylabel("realised kappa# (1/m)")
-        scene = "pdms_sma" if not kwargs else "issue16"
+        scene = "pdms_sma" if not kwargs else "lag_friction"
         axes[0, j].set_title(f"{scene} {kind}: S = 0, L/2, L")
         axes[1, j].plot(tr["t"], tr["grip"][:, 0], label="tail grip")
         axes[1, j].plot(tr["t"], tr["grip"][:, 1], label="head grip")

@@ -14,7 +14,7 @@ An env's bench module is its declaration's `bench`; it may define `SCENES` (or `
 `SCORES_PPO` and `ppo_extra_rows(scene, kwargs, per_seed, seeds)`.
 
 The policies were trained on default parameters only: the other scenes measure generalisation.
-Robustness (issue 7 item 4): scenes `shift: ...` run PPO and every classical baseline on shifted
+Robustness: scenes `shift: ...` run PPO and every classical baseline on shifted
 physical parameters (the declaration's `shifts`, `train.randomize.shift_scenes`, e.g. wave period
 x0.8 / x1.2); baselines are made for the shifted env (`make_baseline(env)`), i.e. they know
 whatever they read from it.

@@ -1,6 +1,6 @@
 """GyroStabilizer-v0 baselines: RMS roll reduction RR = 1 - RMS_on / RMS_off on several seas.
 
-Scenes (the default 18 t yacht + one Seakeeper Model 7000 on its hydraulic brake since issue 30,
+Scenes (the default 18 t yacht + one Seakeeper Model 7000 on its hydraulic brake,
 before it a Seakeeper 9 on an electric drive; the irregular-sea grid: `stabilizer_grid`; natural
 roll period T_n = 3.70 s, M0 = 8 kN m):
 - `resonance`: regular beam wave at T_n (capacity M0 / (H w sin(phi_max)) = 0.88; 0.60 for

@@ -13,7 +13,7 @@ Cases (columns `case, variant, steps_per_s, reference, reference_steps_per_s, ra
   `bytes_per_env` = tracemalloc peak of make + reset. Gymnasium's own two are rows too.
 - `vector_env`: `gym.make_vec(id, N, "vector_entry_point")` env-steps/s at N = 1, 64, 1024,
   8192 vs Pendulum-v1 through gym.make (a SyncVectorEnv of it runs at about its single-env rate);
-  `bytes_per_env` = batch state bytes / N; `target`, `meets_target`: issue 17's goal of each id
+  `bytes_per_env` = batch state bytes / N; `target`, `meets_target`: the throughput goal of each id
   (the env declaration's `vector_target`; single env: `single_target`).
 - `effects`: the native vector env at N = 1024 (256 with --quick; single env for ids without
   one) with no effect, each effect alone, the default and every effect, each timed alternating
@@ -49,9 +49,9 @@ PENDULUM, ACROBOT = "Pendulum-v1", "Acrobot-v1"
 # CPU seconds of the stepping thread: on a machine shared with other jobs, wall time measures the
 # scheduler; the thread's CPU time measures the env (numba kernels run in the calling thread)
 CLOCK = time.thread_time
-TARGET_VECTOR = 1.0e6  # env-steps/s at N = 1024 (issue 6), the default target
-# issue 17's goals come from each env's declaration: `vector_target` (N, native vector env-steps/s,
-# random actions, autoreset included; default TARGET_VECTOR at N = 1024), `single_target`
+TARGET_VECTOR = 1.0e6  # env-steps/s at N = 1024, the default target
+# the throughput goals come from each env's declaration: `vector_target` (N, native vector env-
+# steps/s, random actions, autoreset included; default TARGET_VECTOR at N = 1024), `single_target`
 # (a multiple of Pendulum-v1 in the same run, or absolute steps/s), `vector_n_max` (the ladder's
 # largest N for envs whose steps take ~1 ms: 8192 of them take seconds per step)
 N_LADDER = (1, 8, 64, 256, 1024, 4096, 8192)
@@ -322,7 +322,7 @@ def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
 
 
 def summary(rows: list[dict[str, Any]]) -> list[str]:
-    """Acceptance lines of issue 6 from one run's rows."""
+    """The throughput goals' verdicts from one run's rows."""
     lines = []
     for r in rows:
         if r["case"] == "single_env" or (r["case"] == "vector_env" and "target" in r):

@@ -3,7 +3,7 @@
 Case `rigid_body_racket`: the tennis racket (ch. 2), 20 000 steps of dt = 2.5e-4 s (5 s flight).
 Reference: the same seed scheme (RK4 on H, Eq. 22; midpoint Rodrigues, Eqs. 29-31) written as
 an ordinary Python loop over numpy arrays (np.cross, mf_envs.frames.exp_so3), run in the same
-process right before. `ratio` = numba steps/s over the reference's steps/s (issue 2: >= 10
+process right before. `ratio` = numba steps/s over the reference's steps/s (>= 10
 for the seed scheme). Every other method is listed against the same reference.
 """
 

@@ -1,4 +1,4 @@
-"""The serpentine beam side by side with PyElastica 1.0's continuum snake (issue 33).
+"""The serpentine beam side by side with PyElastica 1.0's continuum snake.
 
 PyElastica: `examples/ContinuumSnakeCase/continuum_snake.py` with its parameters (L = 0.35 m,
 r = 0.011 L, E = 1 MPa, G = E / 1.5 (the example's `E / (poisson + 1)`), rho = 1000 kg/m^3,

@@ -106,7 +106,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | effects | resistive, reactive | either or both; () a body in vacuum |
 
     ## Version History
-    * v0: initial release (issue 34).
+    * v0: initial release.
     """
 
     RESET_OPTIONS = spec.RESET_OPTIONS

@@ -1,4 +1,4 @@
-"""FloatingGOWEC-v0: the gyroscopic wave energy converter as it floats (issue 14; Rios 2017
+"""FloatingGOWEC-v0: the gyroscopic wave energy converter as it floats (Rios 2017
 Sec. 3.2)."""
 
 from __future__ import annotations
@@ -101,9 +101,9 @@ class GOWECV1Env(MFEnv):
     | episode_seconds, control_dt, physics_dt | 120 s, 0.02 s, device (0.02 s) | timing |
 
     ## Version History
-    - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency (issue 14).
+    - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency.
     - v0 (0.5): the ISWEC-class device by default, surge and heave, Morison drag, wave ramp,
-      pitch limit, shutdown charge, the wave elevation in the observation (issue 29).
+      pitch limit, shutdown charge, the wave elevation in the observation.
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)

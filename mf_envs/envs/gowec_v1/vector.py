@@ -30,7 +30,7 @@ components then adds exact zeros after the row's own terms (a sum started at +0.
 (tests/test_randomize_vector.py).
 
 Measured (N = 1024, random actions every step, autoresets, 2-core machine, medians of five 3 s
-runs): 0.41M env-steps/s on one thread, 0.68M on two (issue 17; runs 0.57-0.74M on this shared
+runs): 0.41M env-steps/s on one thread, 0.68M on two (runs 0.57-0.74M on this shared
 machine). The kernel is `step_row` (a `mf_envs._jit.kernel`, as the row loop) at ~2.2 us per
 row: 16 RK4 stages of ~140 ns; most of the rest is the Python around the resets (under random
 actions some row resets in three steps of four).

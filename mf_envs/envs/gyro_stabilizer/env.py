@@ -45,13 +45,13 @@ class GyroStabilizerEnv(MFEnv):
     numba fast path of `mf_envs.physics.ship.kernels` (agrees with the multibody engine to
     round-off).
 
-    Defaults (`preset="seakeeper_7000"`, issue 30; docs/stabilizer_physics.md §4): one
+    Defaults (`preset="seakeeper_7000"`; docs/stabilizer_physics.md §4): one
     Seakeeper Model 7000 (J = 6.7 kg m^2 at 10,000 rpm, H = 7 016 N m s; +-60 deg precession;
     sold for 15.9-24.9 t boats) on the 18 t, 12-13 m motor yacht (`physics.ship.hulls.Hull.
     yacht`, roll period 3.70 s, roll damping by the simplified Ikeda method), its closed-circuit
     hydraulic brake as the gimbal drive (it only dissipates), the precession rate capped at
     max_precession_rate in the physics, cushioned stops from 50 to 60 deg; beam seas at the roll
-    resonance, M0 = 8 000 N m. `preset="seed"`: the issue-15 default (the seed's Table 3-1
+    resonance, M0 = 8 000 N m. `preset="seed"`: the electric-drive default (the seed's Table 3-1
     Seakeeper 9 on the same yacht, a torque-limited electric drive, inelastic stops, the
     rule-of-thumb damping), bit for bit. The gimbal drive is a machine (`physics.ship.drive`);
     seas (`physics.ship.seas`) are met at `heading` and `ship_speed` (encounter frequency); the
@@ -141,10 +141,10 @@ class GyroStabilizerEnv(MFEnv):
     max_gimbal_angle in (0, pi]; control_dt <= 60 s, <= 1e4 physics substeps per step.
 
     ## Version History
-    - v0: initial release; issue 15 made the torque-limited electric drive the default, added
+    - v0: initial release; then the torque-limited electric drive became the default, with
       heading, speed, short-crested seas, the Hull dataclass and the energy effort term;
-      issue 30 made a Seakeeper Model 7000 with its hydraulic brake, rate cap and cushioned
-      stops the default (`preset="seed"` keeps the previous default) and added the info keys
+      later a Seakeeper Model 7000 with its hydraulic brake, rate cap and cushioned stops
+      became the default (`preset="seed"` keeps the previous default) and added the info keys
       `mount_moment`, `rotor_power`.
     """
 

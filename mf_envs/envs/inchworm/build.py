@@ -4,7 +4,7 @@
 soil, actuator and feet); `drive_kwargs`: `make_driven`'s arguments once the effects and the
 physics step are known; `DEFAULT_EPISODE_STEPS`: the default episode length.
 
-`beam_params`: the body (length, section, material, mesh). `robot_params` (issue 16): the
+`beam_params`: the body (length, section, material, mesh). `robot_params`: the
 actuator and feet kwargs `actuator_time_constant` [s], `actuator_rate_limit` [1/(m s)],
 `grip_time_constant` [s] and `friction_coefficients` become the physics' `ActuatorParams` and
 `FrictionParams` (`mf_envs.physics.actuators.curvature`,
@@ -30,17 +30,17 @@ from mf_envs.physics.terrain import SOILS
 
 # the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
 SEED_SCENE_EFFECTS = ("gravity", "shear_deformation", "anchor_switching")
-# issue 16's robot: the seed's body with a lag actuator and Coulomb friction feet
-ISSUE16_EFFECTS = (*SEED_SCENE_EFFECTS, "actuator_dynamics", "friction")
+# the lag-friction robot: the seed's body with a lag actuator and Coulomb friction feet
+LAG_FRICTION_EFFECTS = (*SEED_SCENE_EFFECTS, "actuator_dynamics", "friction")
 # the seed's body (§4.10, Eqs. 99-103): gym.make("Inchworm-v0", **RIOS2017_SCENE) is the
-# dissertation's scene, bit for bit as before issue 31
+# dissertation's scene, bit for bit as before the SMA robot became the default
 RIOS2017_BODY = {
     "length": 0.3, "width": 0.02, "height": 0.01, "youngs_modulus": 2.4e9,
     "shear_modulus": 0.96e9, "mass_per_length": 0.278, "max_curvature": 13.0,
 }  # fmt: skip
 RIOS2017_SCENE = {**RIOS2017_BODY, "effects": SEED_SCENE_EFFECTS}
-# issue 16's default robot (the seed's body on friction feet through a lag actuator)
-ISSUE16_SCENE = {**RIOS2017_BODY, "effects": ISSUE16_EFFECTS, "grip_time_constant": 0.2}
+# the lag-friction robot's default robot (the seed's body on friction feet through a lag actuator)
+LAG_FRICTION_SCENE = {**RIOS2017_BODY, "effects": LAG_FRICTION_EFFECTS, "grip_time_constant": 0.2}
 # the default body: PDMS after Wang et al. 2014 (physics.inchworm.presets.BuildableInchworm)
 PDMS_E = 1.5e6  # Pa
 PDMS_G = PDMS_E / (2.0 * (1.0 + 0.49))  # Pa, Poisson 0.49

@@ -18,7 +18,7 @@ from mf_envs.physics.inchworm import INCHWORM_EFFECTS
 from mf_envs.physics.inchworm.drive import DRIVE_EFFECTS, make_driven
 
 AVAILABLE_EFFECTS = {**INCHWORM_EFFECTS, **DRIVE_EFFECTS}
-# issue 31: the buildable robot's SMA wires and feet that must grip
+# the buildable robot's SMA wires and feet that must grip
 DEFAULT_EFFECTS = (*SEED_SCENE_EFFECTS, "sma_wires", "gripping_feet")
 CURVATURE_OBS_LIMIT = spec.CURVATURE_OBS_LIMIT
 REACTION_OBS_LIMIT = spec.REACTION_OBS_LIMIT
@@ -34,7 +34,7 @@ class InchwormEnv(MFEnv):
     §4.7-4.10): kappa#(S) is the pre-curvature of the active law M3 = EI (kappa - kappa#) (Eq.
     53); the shape follows from equilibrium (quasi-static; Newmark dynamics with `inertia`). Both
     ends rest on the ground (Eq. 100); with `anchor_switching` the agent chooses which foot
-    grips. Goal: crawl forward (+x) with little energy. Default (issue 31): a buildable robot
+    grips. Goal: crawl forward (+x) with little energy. Default: a buildable robot
     after Wang et al. 2014, a 60 x 10 x 3 mm PDMS body bent by Flexinol wires sized to the moment
     (`physics.inchworm.presets`); `sma_wires`: one wire group per control point heated by the
     commanded duty cycle (Joule heat, still-air cooling, martensite fraction with hysteresis;
@@ -42,8 +42,8 @@ class InchwormEnv(MFEnv):
     `gripping_feet`: a foot anchors only above `grip_threshold`, below it slides on its smooth
     face, regularised friction solved with the beam (`physics.beam.contact.grip_feet`). The
     dissertation's scene: `gym.make("Inchworm-v0", **RIOS2017_SCENE)` (kinematic anchors of
-    Eq. 102, kappa# as commanded); issue 16's robot (lag actuator, Coulomb feet):
-    `**ISSUE16_SCENE` (both in `mf_envs.envs.inchworm`); `terrain`: Bekker/Janosi soil. The
+    Eq. 102, kappa# as commanded); the lag-friction robot (lag actuator, Coulomb feet):
+    `**LAG_FRICTION_SCENE` (both in `mf_envs.envs.inchworm`); `terrain`: Bekker/Janosi soil. The
     wires contract in 2.9 s at the rated current and relax in 1.3 s: a gait cycle needs tens of
     0.1 s steps. `info["quasi_static_error"]`: the neglected inertia over the feet's friction.
 
@@ -120,7 +120,7 @@ class InchwormEnv(MFEnv):
     | effort_weight | None | weight of the effort term [1/J], >= 0; None: see Rewards |
     | actuator_time_constant | 0.3 | tau [s] of the lag (`actuator_dynamics`) |
     | actuator_rate_limit | 13.0 | largest abs(d kappa#/dt) [1/(m s)] (`actuator_dynamics`) |
-    | grip_time_constant | 0.5 | engage/release time constant of the feet [s] (ISSUE16_SCENE: 0.2) |
+    | grip_time_constant | 0.5 | feet's engage/release time constant [s] (LAG_FRICTION_SCENE: 0.2) |
     | friction_coefficients | None | dict grip_forward, grip_backward, slide_forward, |
     |  |  | slide_backward (defaults 0.6, 1.0, 0.1, 0.15) or 4 numbers in that order |
     |  |  | (gripping feet: slide_forward is the isotropic smooth face) |
@@ -140,8 +140,8 @@ class InchwormEnv(MFEnv):
     alloy's repeatable strain (6 %), else ValueError naming max_curvature.
 
     ## Version History
-    * v0: initial release (kinematic anchoring of Eq. 102; quasi-static by default); issue 16:
-      actuator dynamics, friction feet and the energy effort term by default; issue 31: the
+    * v0: initial release (kinematic anchoring of Eq. 102; quasi-static by default); then
+      actuator dynamics, friction feet and the energy effort term by default; the
       buildable PDMS robot with SMA wires and gripping feet by default, the seed's scene as
       `RIOS2017_SCENE`.
     """

@@ -137,7 +137,7 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
 
 @numba.njit(cache=True, nogil=True)
 def step_rows_grip(lo, hi, active, actions, state, work, cfg, out):
-    """`step_rows` for the scenes on gripping feet (`quasistatic.grip_step`; issue 31's
+    """`step_rows` for the scenes on gripping feet (`quasistatic.grip_step`; the
     default: SMA wires): every active row runs what `InchwormEnv.step` runs.
 
     state = (d (N, n_dof), x_origin (N,), lag kappa# (N, n), realised kappa_ctrl (N, n), feet

@@ -42,8 +42,8 @@ INFO_KEYS = (
 
 
 # quasi_static_error above this: the neglected inertia exceeds half the feet's friction (our
-# choice; measured: issue 16's 5 Hz gait 0.71 every step, the SMA robot's gaits median 0.003-0.012,
-# 0.25-0.31 for one step per cycle at the slip onset; docs/inchworm.md)
+# choice; measured: the lag-friction robot's 5 Hz gait 0.71 every step, the SMA robot's gaits
+# median 0.003-0.012, 0.25-0.31 for one step per cycle at the slip onset; docs/inchworm.md)
 QUASI_STATIC_LIMIT = 0.5
 WIRE_TEMPERATURE_OBS_LIMIT = 4.0  # bound of (T - T_amb) / (Af - T_amb)
 

@@ -243,7 +243,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
 
     def _finish_info(self, info, electrical, mechanical, temperature, cmd, feet_old, limit, ok,
                      active, progress, effort) -> None:  # fmt: skip
-        """The keys issue 31 added (`spec.INFO_KEYS`) and the reward terms."""
+        """The SMA robot's info keys (`spec.INFO_KEYS`) and the reward terms."""
         env = self.template
         n = self.num_envs
         info["electrical_energy"] = electrical

@@ -106,7 +106,7 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     | effects | friction, actuator_dynamics | viscous_ground for friction; () none of them |
 
     ## Version History
-    * v0: initial release (issue 33).
+    * v0: initial release.
     """
 
     RESET_OPTIONS = spec.RESET_OPTIONS

@@ -1,5 +1,5 @@
 """Wires sized to the moment they must deliver: for a beam section bent to a target curvature by
-straight wires at a lever arm e from its neutral axis (issue 31).
+straight wires at a lever arm e from its neutral axis.
 
     ---------------------------  body: E, width b, height h, EI = E b h^3 / 12
        =====  wires  =====  <- e below the neutral axis: a wire shortened by eps = kappa e

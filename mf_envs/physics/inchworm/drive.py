@@ -52,7 +52,7 @@ DRIVE_EFFECTS = {
     "sma_wires": "kappa# from SMA wire groups heated by a commanded duty cycle (Joule heating, "
     "still-air cooling, martensite fraction with hysteresis); the effort is electrical energy",
     "gripping_feet": "feet that anchor only above an engagement threshold, regularised friction "
-    "(issue 31; implies the weight)",
+    "(implies the weight)",
 }
 GRIP_COMMANDS = {"head": (0.0, 1.0), "tail": (1.0, 0.0), None: (1.0, 1.0)}  # (tail, head)
 

@@ -1,4 +1,4 @@
-"""The SMA inchworm on gripping feet with inertia (issue 31): the energy-momentum beam of
+"""The SMA inchworm on gripping feet with inertia: the energy-momentum beam of
 `mf_envs.physics.beam.dynamics` with the feet's regularised friction as a velocity-dependent load,
 to measure what the quasi-static model (`quasistatic.grip_step`, the env's) leaves out.
 

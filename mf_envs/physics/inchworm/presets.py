@@ -1,4 +1,4 @@
-"""A buildable inchworm (issue 31): a soft PDMS-like body bent by Flexinol wires sized to the
+"""A buildable inchworm: a soft PDMS-like body bent by Flexinol wires sized to the
 moment they must deliver (`mf_envs.physics.actuators.sizing`). Numbers and their sources; not
 the default robot of Inchworm-v0 (docs/inchworm.md, "A buildable robot", has the table).
 

@@ -89,7 +89,7 @@ def drive_step(
 
 
 # ---------------------------------------------------------------- SMA wires on gripping feet
-# actuation modes of `grip_step` (issue 31)
+# actuation modes of `grip_step`
 ACT_DIRECT, ACT_LAG, ACT_SMA = 0, 1, 2
 # report slots of `grip_step`: the feet's (grip_feet), then the actuation's
 REP_ELEC, REP_WIRE, REP_A2POS, REP_A2NET, REP_SUBSTEPS = (

@@ -23,7 +23,7 @@ s_a s_b s_c = parity(a, b, c) * sign(J_c - J_b). The phase u0 = F(phi0 | m) is c
 sn(u0), cn(u0) with Carlson's R_F (scipy.special.elliprf), again in terms of 1 - m.
 
 scipy.special.ellipj takes m, so it cannot see 1 - m below ~1e-16 and, worse, its m -> 1
-branch is wrong for 1 - m < 1e-9 and u > K (scipy issue #8480). `jacobi_sn_cn_dn` therefore
+branch is wrong for 1 - m < 1e-9 and u > K (scipy gh-8480). `jacobi_sn_cn_dn` therefore
 evaluates sn, cn, dn by the arithmetic-geometric mean started from b0 = sqrt(1 - m) (Abramowitz &
 Stegun 16.4; the descending Landen sequence), with u reduced modulo 4K first. At 1 - m == 0 it
 returns the separatrix limit sn = tanh, cn = dn = sech (a flip that takes infinitely long).

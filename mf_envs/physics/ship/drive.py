@@ -1,4 +1,4 @@
-"""The gimbal (precession) drive of a gyro roll stabilizer as a machine (issue 15, item 1).
+"""The gimbal (precession) drive of a gyro roll stabilizer as a machine.
 
 The gimbal of each gyro turns about the ship's e_2 under the torque of its drive, the gyroscopic
 torque H w_g1 of the spinning rotor and, for a pendulous gimbal, gravity (the phi-row of ch. 3

@@ -1,5 +1,5 @@
 """A gyro stabilizer unit as it is built and sold: its rotor, its drive hardware (the rate cap,
-the cushioned stops, the torque ratings) and its capacity on a hull (issue 30;
+the cushioned stops, the torque ratings) and its capacity on a hull (;
 docs/stabilizer_physics.md §4). Used by `GyroStabilizer-v0`'s presets (`envs.gyro_stabilizer.
 build`); plain functions, no Gymnasium.
 
@@ -156,7 +156,7 @@ HULL_DAMPINGS = ("ikeda", "rule_of_thumb")
 def preset_defaults(kw: dict[str, Any]) -> dict[str, Any]:
     """Fill the kwargs left None from `kw["preset"]` in place; returns the preset's other
     numbers (`ship.unit.preset_unit`: units per gyro, name, running and spool-up power per
-    unit; the hull damping). "seed": the issue-15 default (Table 3-1 Seakeeper 9 on the yacht,
+    unit; the hull damping). "seed": the electric-drive default (Table 3-1 Seakeeper 9 on the yacht,
     electric drive, inelastic stops, rule-of-thumb damping). "seakeeper_7000": the unit of
     `ship.unit.UNIT_OF_HULL`, the hydraulic brake, cushions, Ikeda damping."""
     preset = check_choice("preset", kw["preset"], PRESETS)

@@ -1,9 +1,9 @@
-"""Feet that must grip to anchor (issue 31): a regularised friction law with an engagement
+"""Feet that must grip to anchor: a regularised friction law with an engagement
 threshold, a small quasi-static two-foot model to test it, and the quasi-static model's error.
 
 Why: in quasi-static Coulomb friction (`friction`, `stick_slip`) the foot with the lower holding
 limit slips and the other holds, however small the difference; with anisotropic sliding
-coefficients two never-gripping feet then ratchet at full speed (issue 31: grips between 0.38
+coefficients two never-gripping feet then ratchet at full speed (grips between 0.38
 and 0.62 crawl as fast as gripping ones).
 
 Law (force on a foot of normal load N moving at v, direction s = sign v):

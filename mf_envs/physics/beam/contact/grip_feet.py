@@ -1,4 +1,4 @@
-"""Compiled quasi-static increment of a beam on two feet that must grip (issue 31): the
+"""Compiled quasi-static increment of a beam on two feet that must grip: the
 regularised friction law of `grip.GripLaw` at the end nodes, solved together with the beam.
 
 Why not `stick_slip`: in its rate-independent Coulomb law the foot with the lower holding limit

@@ -14,9 +14,9 @@ not modelled: the buoy rotates about G, its translation is held by the mooring):
     C     hydrostatic pitch stiffness C55 = rho g (I_wp + V z_B) - m g z_G (N m/rad)
 
 The shipped default hull (`cylinder_r2p5_converged.npz`, made by `scripts/compute_hydro.py` with
-Capytaine on a keel-graded mesh, issue 29) is a vertical cylinder: radius 2.5 m, draft 2.0 m,
+Capytaine on a keel-graded mesh) is a vertical cylinder: radius 2.5 m, draft 2.0 m,
 z_G = -0.6 m, pitch radius of gyration 1.5 m. The earlier 768-panel table of the same hull
-(B55 18-56 % low at 1-2.5 rad/s) is no longer shipped: it fails the Haskind check (issue 29);
+(B55 18-56 % low at 1-2.5 rad/s) is no longer shipped: it fails the Haskind check;
 tests/data/legacy_hull_768_panels.npz keeps it as a regression fixture.
 Files are `.npz` read with `allow_pickle=False` (nothing loaded executes code).
 """
@@ -35,7 +35,7 @@ from numpy.typing import NDArray
 
 from mf_envs.physics.constants import RHO_SEAWATER, G
 
-# issue 29: the converged mesh's coefficients (the seed buoy's hull, `devices`)
+# the converged mesh's coefficients (the seed buoy's hull, `devices`)
 DEFAULT_HULL_FILE = Path(__file__).with_name("cylinder_r2p5_converged.npz")
 RHO = RHO_SEAWATER  # kg/m^3, what the BEM runs use (the seed's Eq. 15 uses 1020)
 

@@ -98,7 +98,7 @@ def deep_green_function():
     HAMS): evaluated from its series and asymptotic expansions, not interpolated from a table.
     Capytaine's default (Delhommeau's tabulated wave term) leaves an interpolation error in the
     influence matrices, which B55 about G of the GOWEC cylinder, a 0.1-3 % difference of large
-    terms, turns into +-8 % frequency-to-frequency noise at 2.3-3.3 rad/s (issue 29)."""
+    terms, turns into +-8 % frequency-to-frequency noise at 2.3-3.3 rad/s."""
     import capytaine as cpt
 
     return cpt.LiangWuNoblesseGF()
@@ -135,7 +135,7 @@ def from_capytaine(
 ) -> HullCoefficients:
     """Pitch A(w), B(w), X(w) (head wave along +x), A_0, A_inf and C55 of `hull` at the
     frequencies omega (rad/s), deep water. `mesh` = (n_theta, n_side, n_bottom, ratio) selects
-    the keel-graded axisymmetric mesh (`meshes.cylinder_mesh`, the converged one of issue 29);
+    the keel-graded axisymmetric mesh (`meshes.cylinder_mesh`, the converged one);
     without it, resolution = (radial, azimuthal, vertical) panels of Capytaine's uniform
     cylinder before clipping at the waterline (the pre-issue-29 mesh, under-resolved at the
     keel). C55 is the mesh hydrostatics (`CylinderHull.stiffness` is the independent check).

@@ -1,4 +1,4 @@
-"""Named floating GOWEC devices: a hull, its gyroscope units, PTO limits and losses (issue 29).
+"""Named floating GOWEC devices: a hull, its gyroscope units, PTO limits and losses.
 
 `FloatingGOWEC-v0(device=...)` starts from one of these; any of its kwargs overrides a field.
 

@@ -35,7 +35,7 @@ between stage times (`rk4_steps_into`): for an irregular sea of M components tha
 sin/cos pairs per control step instead of 3 M per substep, equal to the direct evaluation to
 round-off (tests/test_gowec_v1_physics.py).
 
-Issue 29 adds, each free when off: quadratic Morison drag relative to the incident wave's
+Added, each free when off: quadratic Morison drag relative to the incident wave's
 water (`drag_loads`), a ramp of the incident wave (`ramp`), and surge along the wave and heave
 (`translation_params` in `model`; `mechanics` eliminates s'' so the solve stays 3 x 3).
 
@@ -97,7 +97,7 @@ def excitation_coefficients(
     return -math.sin(direction) * c, math.cos(direction) * c
 
 
-# quadratic drag (issue 29): N_KEEL nodes on the keel plate, N_SIDE on the side, and the sea's
+# quadratic drag: N_KEEL nodes on the keel plate, N_SIDE on the side, and the sea's
 # per-node water velocities; the sea parameters `sp` (SP_LEN,) = [drag on (0/1), ramp time (s),
 # c_keel (N_KEEL) = 1/2 rho C_d area (kg/m), x_keel, y_keel (N_KEEL, m from the axis),
 # c_side (N_SIDE) = 1/2 rho C_d D dz (kg/m), lever z - z_G of the side nodes (N_SIDE, m),

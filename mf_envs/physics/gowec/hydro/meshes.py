@@ -8,7 +8,7 @@ times, and its solver then works on one wedge's block-circulant system (cost ~ n
 `cylinder_mesh` grades the panels towards the keel edge (r = R, z = -d): the velocity potential
 of a rotating or translating cylinder is singular there (a 270-degree corner, flow ~ rho^(-1/3)),
 and the pitch moment about G of a shallow-draft cylinder is a small difference of large
-contributions from the side and the bottom (issue 29), so the panel error at the corner controls
+contributions from the side and the bottom, so the panel error at the corner controls
 B55 and |X5|. Grading: panel sizes grow geometrically away from the corner by `ratio`.
 """
 

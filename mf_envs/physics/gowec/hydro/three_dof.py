@@ -1,6 +1,6 @@
 """Surge-heave-pitch hydrodynamic coefficients of a floating hull (BEM, linear potential flow).
 
-The ISWEC-class hull's data (issue 29): 3 x 3 added mass and damping matrices over the modes
+The ISWEC-class hull's data: 3 x 3 added mass and damping matrices over the modes
 (surge 1, heave 3, pitch 5) with their couplings (A15, A51, B15, ...), the excitation of each
 mode, the hydrostatic and rigid-body mass matrices, all about the centre of gravity G, at a
 finite water depth. Conventions as `mf_envs.physics.gowec.hydro`: head wave along +x,

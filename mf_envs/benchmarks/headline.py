@@ -1,0 +1,247 @@
+"""The README's env table, measured: each id's default baseline on the first test seeds, scored
+by its headline quantity against its ceiling, written to a results file that the README's table
+is generated from (`python -m mf_envs.benchmarks.headline --readme README.md`).
+
+    python -m mf_envs.benchmarks.headline --out docs/results/headline.json   # measure (minutes)
+    python -m mf_envs.benchmarks.headline --readme README.md                 # regenerate table
+    python -m mf_envs.benchmarks.headline --readme README.md --check         # table up to date?
+
+Per id (`ROWS`): the declared default baseline (`controllers.make_baseline(env)`) runs the id's
+default episode (its spec's length) from `reset(seed=s)` for s in `SEEDS`, the benchmark's first
+test seeds (never used by training). The score per episode:
+- `rms_roll_reduction`: 1 - RMS roll / RMS roll of the same seed with the rotor off (ceiling 1);
+- `net_power_of_ceiling`: mean net electrical power over the episode's second half / the sea's
+  `net_power_ceiling` (loss-inclusive, loose);
+- `power_ratio`: mean power over the last 3/4 / Eq. 95 (ceiling 4/pi, tight);
+- `speed`: the env's declared speed in m/s (no ceiling derived).
+The file records each episode's score, the seeds, the package version and the machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import platform
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+SEEDS = tuple(range(20_000, 20_005))
+RESULTS = Path("docs/results/headline.json")
+BEGIN, END = "<!-- headline-table: begin (generated) -->", "<!-- headline-table: end -->"
+
+
+@dataclass(frozen=True)
+class Row:
+    """One row of the README's table: the id, what it is in words, and how it is scored."""
+
+    env_id: str
+    system: str
+    observation: str
+    action: str
+    score: str  # rms_roll_reduction | net_power_of_ceiling | power_ratio | speed
+
+
+ROWS = (
+    Row("GyroStabilizer-v0", "18 t motor yacht with a Seakeeper 7000 gyro, regular beam sea at "
+        "roll resonance (§3.3)", "roll, body rates, gimbal angle and rate",
+        "gimbal precession-rate command (hydraulic brake)", "rms_roll_reduction"),
+    Row("GyroStabilizer-JONSWAP-v0", "the same, JONSWAP beam sea Hs 0.8 m, Tp 5.92 s, 120 s "
+        "(headline)", "as above", "as above", "rms_roll_reduction"),
+    Row("GOWEC-v0", "one gyroscope of a gyroscopic wave energy converter on a buoy rocked by a "
+        "regular wave (§3.2)", "gimbal angle and rate, buoy rates",
+        "generator torque on the gimbal", "power_ratio"),
+    Row("FloatingGOWEC-v0", "the GOWEC afloat: ISWEC-class hull (BEM, Cummins equation) with two "
+        "gyro units, regular sea", "gimbal angle and rate, hull rates, pitch, roll, wave "
+        "elevation", "generator torque (power-limited)", "net_power_of_ceiling"),
+    Row("FloatingGOWEC-JONSWAP-v0", "the same, JONSWAP Hs 1.5 m, Tp 6 s, a new sea per seed "
+        "(headline)", "as above", "as above", "net_power_of_ceiling"),
+    Row("Inchworm-v0", "60 mm PDMS inchworm robot: active C¹ beam, SMA wires, gripping feet "
+        "(§4.7-4.10)", "curvatures, wire temperatures, feet", "SMA wire duty cycles",
+        "speed"),
+    Row("Serpentine-v0", "PyElastica's continuum snake (0.35 m) as the active beam on "
+        "anisotropic friction (§4.5)", "curvatures, heading to target, velocity",
+        "curvature at 7 control points", "speed"),
+    Row("Eel-v0", "anguilliform swimmer (0.2 m eel) with resistive and reactive fluid forces "
+        "(§4.5)", "curvatures, heading to target, velocity, tail",
+        "curvature at 7 control points", "speed"),
+)  # fmt: skip
+
+
+def _episode(env: Any, ctrl: Any, seed: int) -> tuple[list[float], list[dict[str, Any]]]:
+    obs, info = env.reset(seed=seed)
+    ctrl.reset()
+    rewards, infos, done = [], [info], False
+    while not done:
+        obs, r, term, trunc, info = env.step(ctrl.predict(obs, deterministic=True)[0])
+        rewards.append(float(r))
+        infos.append(info)
+        done = term or trunc
+    return rewards, infos
+
+
+class _Zero:
+    """The zero action (the stabilizer's rotor-off reference runs with the rotor off instead)."""
+
+    def __init__(self, env: Any) -> None:
+        self.shape, self.dtype = env.action_space.shape, env.action_space.dtype
+
+    def reset(self) -> None:
+        return None
+
+    def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        return np.zeros(self.shape, self.dtype), None
+
+
+def measure(row: Row, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
+    """The default baseline's per-episode scores of `row` on `seeds`, with its name and the
+    ceiling's value per episode (nan without one)."""
+    import gymnasium as gym
+
+    from mf_envs.controllers import baseline_kinds, make_baseline
+    from mf_envs.envs import declaration
+    from mf_envs.train.evaluate import episode_metrics
+
+    decl = declaration(row.env_id)
+    env = gym.make(row.env_id)
+    kind = baseline_kinds(row.env_id)[0]
+    ctrl = make_baseline(env, kind)
+    scores, ceilings, ends = [], [], []
+    for s in seeds:
+        rewards, infos = _episode(env, ctrl, s)
+        m = episode_metrics(row.env_id, env, rewards, infos)
+        ends.append(float(infos[-1].get("time", math.nan)))
+        if row.score == "rms_roll_reduction":
+            scores.append(1.0 - m["rms_roll"] / _rotor_off_rms(row.env_id, s))
+            ceilings.append(1.0)
+        elif row.score == "net_power_of_ceiling":
+            c = float(decl.ceiling.of(env))
+            scores.append(m["net_power"] / c)
+            ceilings.append(c)
+        elif row.score == "power_ratio":
+            scores.append(m["power_ratio"])
+            ceilings.append(float(decl.ceiling.value))
+        else:
+            scores.append(m["speed"] if "speed" in m else _inchworm_speed(env, m))
+            ceilings.append(math.nan)
+    env.close()
+    return {"env_id": row.env_id, "baseline": kind, "score": row.score, "seeds": list(seeds),
+            "scores": scores, "ceilings": ceilings, "episode_end_s": ends}  # fmt: skip
+
+
+def _rotor_off_rms(env_id: str, seed: int) -> float:
+    """RMS roll of the same seed's sea with the rotor off (the stabilizer's reference)."""
+    import gymnasium as gym
+
+    from mf_envs.envs import declaration
+    from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
+    from mf_envs.train.evaluate import episode_metrics
+
+    effects = declaration(env_id).kwargs.get("effects", DEFAULT_EFFECTS)
+    env = gym.make(env_id, effects=tuple(e for e in effects if e != "gyroscopic"))
+    rewards, infos = _episode(env, _Zero(env), seed)
+    rms = episode_metrics(env_id, env, rewards, infos)["rms_roll"]
+    env.close()
+    return float(rms)
+
+
+def _inchworm_speed(env: Any, m: dict[str, float]) -> float:
+    """The inchworm's speed (m/s): its declared tail advance per control step / the step."""
+    return m["tail_advance_per_step"] / float(env.unwrapped.control_dt)
+
+
+def run(out: Path = RESULTS, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
+    """Measure every row and write the results file (atomically)."""
+    from tqdm import tqdm
+
+    from mf_envs.cli import package_version
+
+    rows = []
+    for row in tqdm(ROWS, desc="headline", unit="id"):
+        rows.append(measure(row, seeds))
+    result = {
+        "command": f"python -m mf_envs.benchmarks.headline --out {out}",
+        "version": package_version(),
+        "machine": f"{platform.machine()}, {platform.system()}, Python {platform.python_version()}",
+        "date": time.strftime("%Y-%m-%d", time.gmtime()),
+        "rows": rows,
+    }
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = out.with_name(out.name + ".tmp")
+    tmp.write_text(json.dumps(result, indent=1) + "\n")
+    tmp.replace(out)
+    return result
+
+
+def _cell(r: dict[str, Any]) -> str:
+    """The score column: mean over the seeds (min-max), against the ceiling."""
+    x = np.asarray(r["scores"], float)
+    spread = f"{x.min():.3f}-{x.max():.3f}" if len(x) > 1 else ""
+    if r["score"] == "rms_roll_reduction":
+        return f"RMS roll reduction {x.mean():.3f} ({spread}) of 1 (loose)"
+    if r["score"] == "net_power_of_ceiling":
+        kw = np.asarray(r["ceilings"]) * x / 1e3
+        return (f"net power {kw.mean():.1f} kW ({kw.min():.1f} to {kw.max():.1f}): "
+                f"{100 * x.mean():.1f} % of a loose ceiling")  # fmt: skip
+    if r["score"] == "power_ratio":
+        c = r["ceilings"][0]
+        return f"{x.mean():.4f} x Eq. 95, {100 * x.mean() / c:.1f} % of 4/π (tight)"
+    mm = 1e3 * x
+    return f"{mm.mean():.3g} mm/s ({mm.min():.3g}-{mm.max():.3g}); no ceiling derived"
+
+
+def table(result: dict[str, Any]) -> str:
+    """The README's env table (markdown) from a results file's content."""
+    by_id = {r["env_id"]: r for r in result["rows"]}
+    n = len(result["rows"][0]["seeds"])
+    lines = [
+        BEGIN,
+        "| id | system | observation | action | default baseline | its score, mean over "
+        f"{n} test seeds (range) |",
+        "|---|---|---|---|---|---|",
+    ]
+    for row in ROWS:
+        r = by_id[row.env_id]
+        lines.append(f"| `{row.env_id}` | {row.system} | {row.observation} | {row.action} | "
+                     f"`{r['baseline']}` | {_cell(r)} |")  # fmt: skip
+    lines.append(f"\nGenerated from [{RESULTS}]({RESULTS}) (`{result['command']}`, "
+                 f"mf_envs {result['version']}, {result['date']}).")  # fmt: skip
+    lines.append(END)
+    return "\n".join(lines)
+
+
+def splice(readme: str, block: str) -> str:
+    """`readme` with the text between the markers replaced by `block` (ValueError without them)."""
+    if BEGIN not in readme or END not in readme:
+        raise ValueError(f"readme: no {BEGIN} ... {END} block")
+    head, rest = readme.split(BEGIN, 1)
+    return head + block + rest.split(END, 1)[1]
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--out", type=Path, help="measure every row and write this results file")
+    p.add_argument("--results", type=Path, default=RESULTS, help="results file for --readme")
+    p.add_argument("--readme", type=Path, help="regenerate this README's table from the results")
+    p.add_argument("--check", action="store_true", help="with --readme: only check it is current")
+    a = p.parse_args(argv)
+    if a.out is not None:
+        run(a.out)
+    if a.readme is not None:
+        text = a.readme.read_text()
+        new = splice(text, table(json.loads(a.results.read_text())))
+        if a.check:
+            if new != text:
+                print(f"{a.readme}: its table differs from {a.results}; regenerate with --readme")
+                return 1
+            return 0
+        a.readme.write_text(new)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
