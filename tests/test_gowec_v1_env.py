@@ -202,6 +202,11 @@ def test_no_controller_beats_the_bounds(sea, kind):
     policy, on the default (ISWEC-class) device."""
     if kind == "ppo":
         pytest.importorskip("stable_baselines3", reason="the PPO policy needs the train extra")
+        from mf_envs.train.policy import policy_dir
+
+        if not (policy_dir("FloatingGOWEC-v0") / "policy.json").is_file():
+            pytest.skip("no PPO policy shipped for FloatingGOWEC-v0 (its last one was removed "
+                        "when the device changed; the RL benchmark retrains it)")  # fmt: skip
     for seed in range(100, 105):
         env = gym.make("FloatingGOWEC-v0", episode_seconds=60.0, **sea)
         P, _ = _episode(env, kind, seed)

@@ -188,9 +188,10 @@ def test_shipped_ppo_policy_as_a_controller(tmp_path):
         pytest.importorskip(module, reason="needs the train extra: pip install -e '.[train]'")
     from mf_envs.train import load_policy
 
-    data = {**SMALL, "seeds": [3], "controllers": ["ppo"], "scenes": {"s": {"wave_period": 3.7}}}
+    data = {"env_id": "GOWEC-v0", "seeds": [3], "controllers": ["ppo"],
+            "env_kwargs": {"n_periods": 3}, "scenes": {"s": {"wave_period": 6.5}}}  # fmt: skip
     path, _ = run_sweep(parse_config(data), tmp_path, serial=True, progress=False)
     (row,) = ResultStore(path).rows()
-    env = gym.make("GyroStabilizer-v0", episode_seconds=12.0, wave_period=3.7)
-    ref = run_episode("GyroStabilizer-v0", env, load_policy("GyroStabilizer-v0"), 3)
-    assert row["controller"] == "ppo" and row["rms_roll"] == ref["rms_roll"]
+    env = gym.make("GOWEC-v0", n_periods=3, wave_period=6.5)
+    ref = run_episode("GOWEC-v0", env, load_policy("GOWEC-v0"), 3)
+    assert row["controller"] == "ppo" and row["power_ratio"] == ref["power_ratio"]

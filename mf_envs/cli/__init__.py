@@ -201,12 +201,17 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _one_line_notes(who: str, shown: Callable[..., None]) -> Callable[..., None]:
     """A `warnings.showwarning` that prints a `DeprecatedIdWarning` (a renamed env id) as one
-    line `WHO: note: ...` on stderr and passes every other warning to `shown`."""
+    line `WHO: note: ...` and a `PolicyEnvWarning` (a policy used on an env that differs from
+    the one it was trained on) as `WHO: warning: ...` on stderr, and passes every other warning
+    to `shown`."""
     from mf_envs.envs import DeprecatedIdWarning
+    from mf_envs.train.provenance import PolicyEnvWarning
 
     def show(message, category, filename, lineno, file=None, line=None):
         if issubclass(category, DeprecatedIdWarning):
             print(f"{who}: note: {message}", file=sys.stderr)
+        elif issubclass(category, PolicyEnvWarning):
+            print(f"{who}: warning: {message}", file=sys.stderr)
         else:
             shown(message, category, filename, lineno, file, line)
 

@@ -183,10 +183,14 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     `path`: a policy folder or its `policy.json`. Nothing is unpickled: the policy is rebuilt
     from `policy.json` and its weights read from `policy.safetensors`. ValueError if there is
     none, if it is a pickle-based file (an SB3 `model.zip`), or if its `meta.json` names
-    another env. ImportError if stable-baselines3/torch/safetensors (the `train` extra) are
-    missing.
+    another env. ModuleNotFoundError naming the `train` extra if stable-baselines3, torch or
+    safetensors are missing. A `PolicyEnvWarning` if the env it was trained on (its meta.json's
+    `env_kwargs_full` and `env_probe`, `train.provenance`) differs from `env_id`'s today.
     """
     from mf_envs.envs import canonical_env_id
+    from mf_envs.train.provenance import warn_if_env_differs
+
+    _need_train_extra()
 
     env_id = canonical_env_id(env_id)  # a deprecated id (GOWEC-v1): its new id, with a warning
     folder = Path(path) if path is not None else policy_dir(env_id)
@@ -208,7 +212,25 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
             norm = ObsNormalization.from_json(_read_json(norm_path), obs_dim)
         except ValueError as exc:
             raise ValueError(f"policy: {norm_path}: {exc}") from exc
-    return PPOPolicy(_rebuild(folder, desc), norm, meta, desc["policy_kwargs"], desc["algo"])
+    policy = PPOPolicy(_rebuild(folder, desc), norm, meta, desc["policy_kwargs"], desc["algo"])
+    warn_if_env_differs(meta, env_id, str(folder))
+    return policy
+
+
+def _need_train_extra() -> None:
+    """ModuleNotFoundError that names the `train` extra when one of its packages is missing."""
+    from mf_envs._extras import install_hint, missing_extra
+
+    try:
+        import safetensors  # noqa: F401
+        import stable_baselines3  # noqa: F401
+        import torch  # noqa: F401
+    except ModuleNotFoundError as exc:
+        extra = missing_extra(exc) or "train"
+        raise ModuleNotFoundError(
+            f"load_policy needs the {extra} extra ({exc.name} is missing): {install_hint(extra)}",
+            name=exc.name,
+        ) from exc
 
 
 def _refuse_pickles(folder: Path, path: str | Path | None) -> None:

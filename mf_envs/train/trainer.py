@@ -40,6 +40,7 @@ from mf_envs.train.policy import (
     save_policy,
     write_meta,
 )
+from mf_envs.train.provenance import env_record
 
 # unseen seeds: training envs use seed, seed + 1, ...; the EvalCallback env seed + 10_000
 EVAL_SEEDS = tuple(range(1000, 1005))
@@ -118,7 +119,7 @@ def train(
         meta = {"env_id": env_id, "algo": algo, "command": command, "seed": seed,
                 **meta_run.pop("run"), "vectorization": f"{vec_kind} x{hp.n_envs}",
                 "selected": "final", "hyperparams": _jsonable_hp(hp, overrides, total),
-                "versions": _versions()}  # fmt: skip
+                "versions": _versions(), **env_record(env_id, hp.env_kwargs)}  # fmt: skip
         vecnorm = venv if hp.normalize is not None else None
         files = save_policy(run_dir, model, vecnorm, meta)
         venv.close()
