@@ -71,7 +71,7 @@ def test_every_picture_and_local_link_of_the_readme_exists():
 
 
 def test_no_page_or_module_names_an_issue_number():
-    pat = re.compile(r"\bissues? ?#?\d+|\bISSUE\d+", re.I)
+    pat = re.compile(r"\bissues? ?#?\d+|\bissue-?\d+", re.I)
     hits = []
     for folder in ("mf_envs", "docs"):
         for path in (ROOT / folder).rglob("*"):

@@ -94,8 +94,8 @@ def _stabilizer_irregular() -> Task:
 
 def _stabilizer_resonance() -> Task:
     """The default scene (regular beam wave at the roll resonance): the easy task, where the
-    issue-32 review saw SAC beat the classical controllers; a test seed sets only the wave's
-    phase and the start, so its 20 episodes are nearly one."""
+    benchmark's first review saw SAC beat the classical controllers; a test seed sets only the
+    wave's phase and the start, so its 20 episodes are nearly one."""
     from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
 
     irregular = _stabilizer_irregular()

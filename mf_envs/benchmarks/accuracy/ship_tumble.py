@@ -9,7 +9,7 @@ tumbling for 5 s. Errors (max over the run):
 - `attitude`: |log(R_ref^T R)| in rad against `rigid_body.attitude_reference` (R' = R hat(omega)
   driven by the exact omega, DOP853 at rtol 1e-13: there is no closed-form R in the package).
 Column `order`: the observed order (least-squares slope of log error vs log dt) of the quantity,
-the same in every row of it. The issue-11 bug (dexp^-1 sign) made the attitude 2nd order.
+the same in every row of it. An earlier bug (a dexp^-1 sign) made the attitude 2nd order.
 """
 
 from __future__ import annotations

@@ -8,7 +8,8 @@ over the last half of the episode / wave power flux J, `bound_ratio` = that powe
 baselines and, when the `train` extra is installed, the shipped PPO policy (trained with domain
 randomisation on regular and JONSWAP seas, `train/configs/ppo_randomized.yml`), all on the same
 unseen seeds 2000-2004 (training used 0.., its evaluation 1000..). `figures(out)` draws the
-docs' free decay, RAO against the frequency domain and the two-way coupling plot.
+docs' free decay, RAO against the frequency domain and the two-way coupling plot
+(`python -m mf_envs.benchmarks.controllers.gowec_v1 docs/img`).
 """
 
 from __future__ import annotations
@@ -251,18 +252,38 @@ def _coupling(out: Path) -> Path:
             done = term or trunc
         res[label] = (np.array(t), np.array(th), np.array(M))
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
-    for label, (t, th, M) in res.items():
-        a1.plot(t, th, lw=1, label=label)
-        a2.plot(t, M / 1e3, lw=1, label=label)
-    a1.set_ylabel("buoy pitch (rad)")
+    style = {"rotor on, PLL": dict(color="tab:green", alpha=0.5, lw=2.5, zorder=1),
+             "rotor off": dict(color="tab:blue", lw=1.2, zorder=3),
+             "rotor on, matched linear PTO": dict(color="tab:orange", lw=1.2,
+                                                  zorder=2)}  # fmt: skip
+    for label in ("rotor on, PLL", "rotor off", "rotor on, matched linear PTO"):  # PLL behind
+        t, th, M = res[label]
+        a1.plot(t, np.degrees(th), label=label, **style[label])
+        a2.plot(t, M / 1e3, label=label, **style[label])
+    a1.set_ylabel("buoy pitch (deg)")
     a2.set_yscale("symlog", linthresh=10.0)
     a2.set_ylabel("gyro moment on hull (kN m, symlog)")
     a2.set_xlabel("time (s)")
-    a1.set_title("Two-way coupling, a = 0.5 m, T = 6 s (dual Seakeeper 26)")
-    a1.set_ylim(-0.8, 1.1)
+    a1.set_title(
+        "Two-way coupling on the seed buoy, a = 0.5 m, T = 6 s (dual Seakeeper 26):\n"
+        "the loaded gyro changes how the buoy pitches"
+    )
+    lo, hi = a1.get_ylim()
+    a1.set_ylim(lo, hi + 0.3 * (hi - lo))  # room for the legend
     a1.legend(fontsize=8, loc="upper left", ncol=3)
     fig.tight_layout()
     p = out / "gowec_v1_coupling.png"
     fig.savefig(p, dpi=110)
     plt.close(fig)
     return p
+
+
+if __name__ == "__main__":  # python -m mf_envs.benchmarks.controllers.gowec_v1 OUT_FOLDER
+    import sys
+
+    if len(sys.argv) != 2:
+        raise SystemExit("usage: python -m mf_envs.benchmarks.controllers.gowec_v1 OUT_FOLDER")
+    folder = Path(sys.argv[1])
+    folder.mkdir(parents=True, exist_ok=True)
+    for written in figures(folder):
+        print(f"wrote {written}")

@@ -231,14 +231,9 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
         )
         for s in scenes
     ]
-    ax.plot(
-        np.arange(len(scenes)) + 0.4 - width / 2,
-        ceil,
-        "k_",
-        ms=30,
-        mew=2,
-        label="bound min(1, 1/capacity), sinusoidal gimbal",
-    )
+    left = np.arange(len(scenes)) - width / 2  # each scene's bound spans its group of bars
+    ax.hlines(ceil, left, left + 0.8, colors="k", lw=2,
+              label="bound min(1, 1/capacity), sinusoidal gimbal")  # fmt: skip
     ax.set_xticks(np.arange(len(scenes)) + 0.4 - width / 2, scenes, fontsize=8)
     ax.set_ylabel("RMS roll reduction RR")
     low = min([0.0, *[r["mean"] for r in rows if r["metric"] == "rr"]])

@@ -105,7 +105,7 @@ def deep_green_function():
 
 
 def _legacy_body(hull: CylinderHull, resolution: tuple[int, int, int]):
-    """The pre-issue-29 mesh: Capytaine's uniform cylinder clipped at the waterline."""
+    """The older uniform mesh: Capytaine's uniform cylinder clipped at the waterline."""
     import capytaine as cpt
 
     mesh = cpt.mesh_vertical_cylinder(
@@ -137,7 +137,7 @@ def from_capytaine(
     frequencies omega (rad/s), deep water. `mesh` = (n_theta, n_side, n_bottom, ratio) selects
     the keel-graded axisymmetric mesh (`meshes.cylinder_mesh`, the converged one);
     without it, resolution = (radial, azimuthal, vertical) panels of Capytaine's uniform
-    cylinder before clipping at the waterline (the pre-issue-29 mesh, under-resolved at the
+    cylinder before clipping at the waterline (the older uniform mesh, under-resolved at the
     keel). C55 is the mesh hydrostatics (`CylinderHull.stiffness` is the independent check).
     The graded mesh is solved with the exact deep-water Green function (`deep_green_function`);
     the legacy mesh with Capytaine's default, as the old file was."""
