@@ -18,7 +18,8 @@ EFFECT_NAMES: dict[str, str] = {
     "wave_2d": "oblique (2-D) wave direction (ch. 3 Eqs. 89-93)",
     "irregular_waves": "irregular sea from a JONSWAP/Pierson-Moskowitz spectrum",
     "hydrostatic_restoring": "hydrostatic roll restoring moment rho g V GM (or GZ curve)",
-    "roll_damping": "linear + quadratic roll damping",
+    "roll_damping": "linear hull damping in roll, pitch and yaw (B44, B55, B66; the quadratic "
+    "roll term is `quadratic_roll_damping`)",
     "added_inertia": "hydrodynamic added roll inertia",
     "wave_moment": "wave-induced roll moment on the hull",
     "gimbal_limits": "gimbal end stops and precession-rate limit",

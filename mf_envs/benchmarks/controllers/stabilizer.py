@@ -234,14 +234,15 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
     left = np.arange(len(scenes)) - width / 2  # each scene's bound spans its group of bars
     ax.hlines(ceil, left, left + 0.8, colors="k", lw=2,
               label="bound min(1, 1/capacity), sinusoidal gimbal")  # fmt: skip
-    ax.set_xticks(np.arange(len(scenes)) + 0.4 - width / 2, scenes, fontsize=8)
+    ax.set_xticks(np.arange(len(scenes)) + 0.4 - width / 2, scenes, fontsize=8, rotation=15)
     ax.set_ylabel("RMS roll reduction RR")
     low = min([0.0, *[r["mean"] for r in rows if r["metric"] == "rr"]])
     ax.set_ylim(max(FLOOR, low - 0.05), 1.05)
     ax.axhline(0, color="0.5", lw=0.8)
     ax.grid(alpha=0.3, axis="y")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax.set_title("GyroStabilizer-v0 baselines (18 t yacht, Seakeeper Model 7000)")
+    ax.set_title("GyroStabilizer-v0 baselines (18 t yacht, Seakeeper Model 7000): RMS roll "
+                 "reduction on six seas (higher is better)", fontsize=10)  # fmt: skip
     if low < FLOOR:
         ax.set_xlabel(f"bars below {FLOOR:g} are cut at the axis and labelled with their value",
                       fontsize=7)  # fmt: skip
