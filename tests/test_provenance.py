@@ -81,3 +81,21 @@ def test_evaluate_prints_the_warning_on_one_line(capsys, tmp_path):
     assert code == 0
     lines = [ln for ln in err.splitlines() if "warning:" in ln]
     assert len(lines) == 1 and "gamma: trained with 2.0, now 3.3" in lines[0]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("env_id", sorted(p.name for p in policy_dir("x").parent.iterdir()))
+def test_every_shipped_policy_reproduces_its_recorded_evaluation(env_id):
+    """A shipped policy's training-time evaluation (its meta.json: the primary metric's mean on
+    the evaluation seeds), re-run today on the env it records, gives the same figure (1e-6), so
+    the figure the docs quote for it still holds."""
+    import numpy as np
+
+    from mf_envs.train.evaluate import episodes
+
+    policy = load_policy(env_id)
+    ev = policy.meta["evaluation"]
+    per_seed = episodes(env_id, lambda env: policy, ev["seeds"],
+                        policy.meta["hyperparams"].get("env_kwargs") or {})  # fmt: skip
+    now = np.mean([m[ev["metric"]] for m in per_seed])
+    assert now == pytest.approx(ev["ppo"]["mean"], rel=1e-6)
