@@ -60,14 +60,14 @@ ROWS = (
         "elevation", "generator torque (power-limited)", "net_power_of_ceiling"),
     Row("FloatingGOWEC-JONSWAP-v0", "the same, JONSWAP Hs 1.5 m, Tp 6 s, a new sea per seed "
         "(headline)", "as above", "as above", "net_power_of_ceiling"),
-    Row("Inchworm-v0", "60 mm PDMS inchworm robot: active C¹ beam, SMA wires, gripping feet "
-        "(§4.7-4.10)", "curvatures, wire temperatures, feet", "SMA wire duty cycles",
+    Row("Inchworm-v0", "60 mm PDMS inchworm robot: planar active C¹ beam, SMA wires, gripping "
+        "feet (§4.7-4.10)", "curvatures, wire temperatures, feet", "SMA wire duty cycles",
         "speed"),
-    Row("Serpentine-v0", "PyElastica's continuum snake (0.35 m) as the active beam on "
+    Row("Serpentine-v0", "PyElastica's continuum snake (0.35 m) as a planar active beam on "
         "anisotropic friction (§4.5)", "curvatures, heading to target, velocity",
         "curvature at 7 control points", "speed"),
-    Row("Eel-v0", "anguilliform swimmer (0.2 m eel) with resistive and reactive fluid forces "
-        "(§4.5)", "curvatures, heading to target, velocity, tail",
+    Row("Eel-v0", "planar anguilliform swimmer (0.2 m eel) with resistive and reactive fluid "
+        "forces (§4.5)", "curvatures, heading to target, velocity, tail",
         "curvature at 7 control points", "speed"),
 )  # fmt: skip
 
