@@ -11,6 +11,7 @@ EXTRAS = {
     "torch": "train",
     "safetensors": "train",
     "rich": "train",
+    "tensorboard": "tensorboard",
     "elastica": "compare",
     "mhkit": "compare",
     "pygame": "render",

@@ -344,8 +344,8 @@ def _tensorboard_dir(out: str | Path, env_id: str) -> str:
         import tensorboard  # noqa: F401
     except ImportError:
         raise ValueError(
-            "tensorboard: the package is not installed (pip install tensorboard), "
-            "or run without --tensorboard"
+            "tensorboard: the package is not installed (pip install tensorboard, or the "
+            'extra: pip install "mf-envs[tensorboard]"), or run without --tensorboard'
         ) from None
     return str(Path(out) / env_id / "tensorboard")
 

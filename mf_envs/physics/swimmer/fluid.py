@@ -8,7 +8,8 @@ C1 beam with their consistent tangents.
     y      water at rest, density rho
     |   tail S = 0  ~~~~~~~~~~~~~~~~~~~~>  head S = L
     +---- x        t = (cos psi, sin psi), n = (-sin psi, cos psi)
-                   f(S) = resistive + reactive, plus Lighthill's force at the tail
+                   f(S) = resistive + reactive, plus Lighthill's force at the end
+                   that trails (the tail when swimming head first)
 
 At a point of the centreline with frame angle psi and velocity v (relative to the water at rest),
 v_t = v . t, v_n = v . n:
@@ -24,10 +25,17 @@ v_t = v . t, v_n = v . n:
 * reactive (Lighthill 1960, J. Fluid Mech. 9; large-amplitude form Lighthill 1971, Proc. R. Soc.
   B 179): the water carried with a section has momentum P = m_a w n per length, w = v_n,
   m_a = rho pi d^2 / 4 (the added mass of a circular section); the body feels -dP/dt along the
-  body plus, at the trailing edge (the tail, S = 0), the momentum shed into the wake and the
-  pressure on the plane there:
+  body plus, at the trailing edge (where the water streaming past the body leaves it), the
+  momentum shed into the wake and the pressure on the plane there. At the tail (S = 0) when it
+  trails (the body moves head first there, u > 0):
       F_tail = m_a (-u w n + w^2 t / 2),  u = v . t, w = v . n at S = 0,
-      dF_tail/dv = m_a (-w n t^T - u n n^T + w t n^T),  dF_tail/dpsi = m_a (u^2 - w^2 / 2) n.
+      dF_tail/dv = m_a (-w n t^T - u n n^T + w t n^T),  dF_tail/dpsi = m_a (u^2 - w^2 / 2) n;
+  at the head (S = L) when it trails (u < 0 there), the same term mirrored (S -> L - S turns t,
+  n and w around): F_head = -m_a (-u w n + w^2 t / 2) at S = L. The leading edge sheds nothing.
+  Which end trails is decided by the sign of u at each end, smoothly: the tail's term is
+  weighted by sigma(u_tail), the head's by sigma(-u_head), sigma(x) = (1 + x / sqrt(x^2 +
+  eps^2)) / 2 with eps = `Water.end_speed` (1 mm/s: a body swimming either way at more than a
+  few mm/s sheds at one end only), and the weights' derivatives are in the tangent.
   Averaged over a period of a small-amplitude wave the force is Lighthill's mean thrust
   T = m_a / 2 < h_t^2 - U^2 h_x^2 >_tail (`theory.lighthill_thrust`). The -dP/dt term is an
   added mass on the normal direction that depends on psi; `kernels` puts it in the residual as
@@ -63,15 +71,17 @@ RHO_WATER = RHO_FRESHWATER  # kg/m^3, the eel's water
 C_NORMAL = 1.1
 C_TANGENTIAL = 0.0055
 # packed layout of `Water.packed()`
-W_KN, W_KT, W_LINEAR, W_CN, W_CT, W_RESISTIVE, W_MA, W_TAIL = range(8)
+W_KN, W_KT, W_LINEAR, W_CN, W_CT, W_RESISTIVE, W_MA, W_TAIL, W_END_SPEED = range(9)
+END_SPEED = 1e-3  # m/s, the width of the smooth switch between the ends (module docstring)
 
 
 @dataclass(frozen=True)
 class Water:
     """The fluid laws (module docstring): water density rho [kg/m^3], body diameter d [m], Taylor's
     dimensionless C_N, C_T (quadratic law) or the linear coefficients c_n, c_t [N s/m^2] when
-    `linear`; `resistive`, `reactive` switch the two forces (`tail`: Lighthill's tail term with
-    the reactive force)."""
+    `linear`; `resistive`, `reactive` switch the two forces (`tail`: Lighthill's trailing-edge
+    term with the reactive force, at whichever end trails; `end_speed` [m/s] the width of the
+    smooth switch between the ends)."""
 
     density: float = RHO_WATER
     diameter: float = 0.012
@@ -83,8 +93,10 @@ class Water:
     resistive: bool = True
     reactive: bool = True
     tail: bool = True
+    end_speed: float = END_SPEED
 
     def __post_init__(self) -> None:
+        check_positive("end_speed", self.end_speed)
         check_positive("density", self.density)
         check_positive("diameter", self.diameter)
         for name in ("c_normal", "c_tangential", "linear_normal", "linear_tangential"):
@@ -106,7 +118,7 @@ class Water:
         return 0.5 * self.density * math.pi * self.diameter * self.c_tangential
 
     def packed(self) -> np.ndarray:
-        """The compiled layout (k_n, k_t, linear, c_n, c_t, resistive, m_a, tail)."""
+        """The compiled layout (k_n, k_t, linear, c_n, c_t, resistive, m_a, tail, end_speed)."""
         return np.array(
             [
                 self.k_normal,
@@ -117,6 +129,7 @@ class Water:
                 1.0 if self.resistive else 0.0,
                 self.added_mass,
                 1.0 if (self.tail and self.reactive) else 0.0,
+                self.end_speed,
             ]
         )
 
@@ -192,21 +205,44 @@ def _gauss_point(de, ve, nz, npsi):
 
 
 @numba.njit(cache=True, nogil=True)
+def _end_into(d, v, base, sign, law, f, ab, cd, cv):
+    """The trailing-edge term at the node whose dofs start at `base` (sign +1: the tail, -1:
+    the head), weighted by sigma(sign u) (module docstring), added to f and, with its tangent
+    (cd dF/dd + cv dF/dv), to the band ab. Returns its power [W]."""
+    pf = np.empty(8)
+    v1, v2, psi = v[base], v[base + 2], d[base + 4]
+    tail_force(v1, v2, psi, law[W_MA], pf)
+    c, s = math.cos(psi), math.sin(psi)
+    u = c * v1 + s * v2
+    x, eps = sign * u, law[W_END_SPEED]
+    r = math.sqrt(x * x + eps * eps)
+    weight = 0.5 * (1.0 + x / r)
+    dweight = 0.5 * eps * eps / (r * r * r) * sign  # d weight / d u
+    g = sign * weight  # the head's term is the tail's formula with the opposite sign
+    f[base] += g * pf[0]
+    f[base + 2] += g * pf[1]
+    if cd != 0.0 or cv != 0.0:
+        du_dv = (c, s)
+        du_dpsi = -s * v1 + c * v2
+        for ci in range(2):
+            fi = sign * dweight * pf[ci]  # d(sign weight)/du times the force's component
+            for cj in range(2):
+                dfdv = g * pf[2 + 2 * ci + cj] + fi * du_dv[cj]
+                ab[HALF_BW + 2 * ci - 2 * cj, base + 2 * cj] += cv * dfdv
+            ab[HALF_BW + 2 * ci - 4, base + 4] += cd * (g * pf[6 + ci] + fi * du_dpsi)
+    return g * (pf[0] * v1 + pf[1] * v2)
+
+
+@numba.njit(cache=True, nogil=True)
 def tail_into(d, v, law, f, ab, cd, cv):
-    """Lighthill's tail force (if on) at (d, v) added to f, cd dF/dd + cv dF/dv to the band ab
-    (cd = cv = 0: no tangent). Returns its power [W]."""
+    """Lighthill's trailing-edge force (if on) at (d, v), at whichever end trails (module
+    docstring), added to f, cd dF/dd + cv dF/dv to the band ab (cd = cv = 0: no tangent).
+    Returns its power [W]."""
     if law[W_TAIL] <= 0.0:
         return 0.0
-    pf = np.empty(8)
-    tail_force(v[0], v[2], d[4], law[W_MA], pf)  # node 0: z1 = d[0], z2 = d[2], psi = d[4]
-    f[0] += pf[0]
-    f[2] += pf[1]
-    if cd != 0.0 or cv != 0.0:
-        for ci in range(2):
-            for cj in range(2):
-                ab[HALF_BW + 2 * ci - 2 * cj, 2 * cj] += cv * pf[2 + 2 * ci + cj]
-            ab[HALF_BW + 2 * ci - 4, 4] += cd * pf[6 + ci]
-    return pf[0] * v[0] + pf[1] * v[2]
+    power = _end_into(d, v, 0, 1.0, law, f, ab, cd, cv)  # node 0: z1, z2, psi = d[0], d[2], d[4]
+    # the last node (n_dof = 6 n_el + 5): z1, z2, psi = d[6 n_el], d[6 n_el + 2], d[6 n_el + 4]
+    return power + _end_into(d, v, d.shape[0] - 5, -1.0, law, f, ab, cd, cv)
 
 
 @numba.njit(cache=True, nogil=True)
