@@ -99,9 +99,8 @@ class GyroStabilizerEnv(MFEnv):
     ## Episode End
     Truncation after `episode_seconds` (`max_episode_steps` = ceil(episode_seconds / control_dt))
     or `max_episode_steps`; termination only on a numerical failure (`info["numerical_failure"]`).
-    The spec's `max_episode_steps` is 600 (30 s at 0.05 s): `gym.make` with a longer
-    `episode_seconds` or another `control_dt` needs `max_episode_steps` too (ValueError
-    otherwise, never a silent cut: docs/api.md, "Episode length").
+    The default episode is 600 steps (30 s at 0.05 s); the env truncates itself, so
+    `gym.make(..., episode_seconds=...)` alone sets the length (docs/api.md, "Episode length").
 
     ## Arguments
     | Argument | default | meaning |
@@ -124,7 +123,7 @@ class GyroStabilizerEnv(MFEnv):
     | max_precession_rate | 2.0 | rad/s |
     | max_gimbal_angle | None | rad: end stops (seed pi/3) or cushions' start (7000: 50 deg) |
     | episode_seconds | None | s; None: 30 s, or max_episode_steps steps |
-    | max_episode_steps | None | control steps per episode (gym.make's TimeLimit agrees) |
+    | max_episode_steps | None | control steps per episode (or episode_seconds) |
     | effects | see DEFAULT_EFFECTS | tuple of names from `SHIP_EFFECTS` |
     | control_dt | 0.05 | s |
     | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |

@@ -76,9 +76,8 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     overrides; any other key or value raises ValueError naming it (and draws nothing).
 
     ## Episode End
-    Truncation after `episode_seconds` or `max_episode_steps` (the spec's: 400 = 20 s at 0.05 s;
-    `gym.make` with another length or `control_dt` needs `max_episode_steps` too, else
-    ValueError: docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
+    Truncation after `episode_seconds` or `max_episode_steps` (default 400 = 20 s at 0.05 s;
+    docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
     after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
 
     ## Arguments
