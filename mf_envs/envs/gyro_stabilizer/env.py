@@ -314,7 +314,7 @@ class GyroStabilizerEnv(MFEnv):
         self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
         self._t, self._energy = 0.0, 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
-        tau0, pow0 = K.drive_output(0.0, self._y, self._R, 0.0, self._P)
+        tau0, pow0 = K.drive_output(0.0, self._y, self._R, 0.0, self._P, math.nan, math.nan)
         mount0 = K.mount_moment(self._y, tau0, self._P)
         self._out[:] = (0.0, mw, tau0, pow0, mount0, self._P[Slot.PROTOR])
         roll0 = K.roll_of(self._R)

@@ -199,7 +199,7 @@ def reset_rows(idx, draws, ptr, p_sign, t, y, R, P, tab, out, steps, obs, cols):
         t[i], steps[i] = 0.0, 0
         out[i, 0] = 0.0
         out[i, 1] = K.external_moment(0.0, y[i], Ri, P[i], tab[i])[3]
-        out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i])
+        out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i], math.nan, math.nan)
         out[i, 4] = K.mount_moment(y[i], out[i, 2], P[i])
         out[i, 5] = P[i, Slot.PROTOR]
         roll0 = K.roll_of(Ri)

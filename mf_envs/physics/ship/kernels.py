@@ -351,7 +351,7 @@ def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyr
 
 
 @kernel
-def gyro_moment(y, P, c=math.nan):
+def gyro_moment(y, P, c):
     """Gyro roll moment (N m, Eq. 123) of state y: `gyro_roll_moment` with the packed P;
     c = cos(phi) if the caller has it (NaN: libm)."""
     if c != c:
@@ -412,7 +412,7 @@ def mount_moment(y, tau, P):
 
 
 @kernel
-def drive_output(t, y, R, u, P, c=math.nan, s=math.nan):
+def drive_output(t, y, R, u, P, c, s):
     """(torque on gyro 1's gimbal in N m, power n tau phi' in W) of the drive at state y.
 
     Torque drives: the machine's torque (`gimbal_drive`). The kinematic servo (and prescribed
@@ -446,7 +446,7 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
     ts[0] = 0.0
     ys[0] = y
     Rs[0] = R
-    mg[0] = gyro_moment(y, P)
+    mg[0] = gyro_moment(y, P, math.nan)
     t = 0.0
     work, Rwork = rk4_work(y.shape[0]), rkmk4_rwork()
     for k in range(n):
@@ -455,5 +455,5 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
         ts[k + 1] = t
         ys[k + 1] = y
         Rs[k + 1] = R
-        mg[k + 1] = gyro_moment(y, P)
+        mg[k + 1] = gyro_moment(y, P, math.nan)
     return ts, ys, Rs, mg
