@@ -92,7 +92,6 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
 
     single_env_cls: type[gym.Env]
     row_cost = "light"  # microsecond rows; "heavy": millisecond rows (`resolve_threads`)
-    row_align = 1  # the rows' split over threads on multiples of this (`_rows.RowBlocks`)
     metadata: dict[str, Any] = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(
@@ -130,7 +129,7 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
         self._obs = np.zeros((n, *self.single_observation_space.shape), dtype=np.float32)
         self._all = np.ones(n, dtype=bool)
         self._is_reset = False
-        self.blocks = RowBlocks(n, self.num_threads, self.row_align)  # the split over threads
+        self.blocks = RowBlocks(n, self.num_threads)  # the split over threads
         self._alloc(n)
 
     @classmethod

@@ -78,7 +78,7 @@ def times_exp_row2_into(out: np.ndarray, R: np.ndarray, theta) -> None:
 @numba.njit(cache=True, inline="always")
 def row_times_exp(r0, r1, r2, x, y, z, a, b):
     """The row (r0, r1, r2) times exp(hat((x, y, z))) given its Rodrigues coefficients a, b
-    (`times_exp_row2_into`; the ship's SIMD lanes call it with their series)."""
+    (`times_exp_row2_into`)."""
     c0, c1, c2 = y * r2 - z * r1, z * r0 - x * r2, x * r1 - y * r0
     d0, d1, d2 = y * c2 - z * c1, z * c0 - x * c2, x * c1 - y * c0
     return r0 - a * c0 + b * d0, r1 - a * c1 + b * d1, r2 - a * c2 + b * d2

@@ -243,7 +243,7 @@ def drive_torque(phi, phid, z, u, gyro_torque, r20, r22, n_gyros, D, o=0):
 def active_torque(phi, phid, z, u, gyro_torque, D, o=0):
     """(machine torque tau_m in N m, z' in rad/s) of the active drives' PI rate loop (module
     doc), `drive_torque` without the bearing friction; division by zero gives inf/NaN (numpy's
-    error model: no exception path, so the ship's SIMD lanes can inline it)."""
+    error model: no exception path; the env's numerical-failure path catches them)."""
     e = rate_command(u, phi, D, o) - phid
     tau_c = D[o + DKP] * e + D[o + DKI] * z - D[o + DFF] * gyro_torque
     tau_m = machine_limit(tau_c, phid, D, o)

@@ -82,7 +82,7 @@ Z_STATE, E_STATE, V_STATE = 11, 12, 13
 
 
 @kernel(forceinline=True, error_model="numpy")
-def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v, roll, coupled):
+def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v, roll):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
     at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame), gimbal
     angle phi given by c = cos(phi), s = sin(phi) (computed once per stage by the caller).
@@ -92,10 +92,9 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
     one gyro:  d2 (w2' + phi'') = tau + H w_g1 - (d1 - d3) w_g1 w_g3,
                w_g = (c w1 - s w3, w2, s w1 + c w3) the gimbal's body rates;
     the pair:  d2 phi'' = tau + H c w1 - (d1 - d3) s c (w1^2 - w3^2).
-    With the coupling on (`coupled`: P[S.CPLON] > 0.5, a constant False in the SIMD lanes, which
-    removes the call) the roll and yaw rows are solved together with the sway equation of
-    `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad). Division by zero
-    gives inf/NaN (numpy's error model: no exception path to inline).
+    With the coupling on (P[S.CPLON] > 0.5) the roll and yaw rows are solved together with the
+    sway equation of `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad).
+    Division by zero gives inf/NaN (numpy's error model: no exception path to inline).
     Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'', v' in m/s^2).
     """
     n = int(P[S.NGYRO])
@@ -134,7 +133,7 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
             r1 += jg * phid * w3
             r3 -= (jg - 0.25 * P[S.JR3] * c2) * phid * w1
     dv = 0.0
-    if coupled:
+    if P[S.CPLON] > 0.5:  # the sway-roll-yaw coupling
         C = P[CPL0 : CPL0 + N_COUPLING]
         dv, a1, a3 = solve_sway_roll_yaw(jxx, jzz, jxz, r1, r3, P[S.SPEED], v, w1, w3, roll, C)
     else:
@@ -190,7 +189,7 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
     coupled = P[S.CPLON] > 0.5
     roll = math.atan2(r21, r22) if coupled else 0.0
     a1, a2, a3, _, phidd, dv = ship_accel(
-        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll, coupled
+        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll
     )
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
@@ -264,7 +263,7 @@ def rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, near):
 
 @kernel(forceinline=True)
 def end_step(y, R, dt, P, work, Rwork, inp):
-    """The end of `rk4_step_near` after its stepper (also of the SIMD lanes' step, `lanes`):
+    """The end of `rk4_step_near` after its stepper:
     y += the increment work[0], R <- the new attitude Rwork[1], then the prescribed gimbal's
     value, the rate cap or the hard stops; returns the wave moment of inp, the stage inputs
     at t + dt."""

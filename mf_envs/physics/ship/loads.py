@@ -91,7 +91,7 @@ def _asin(x: float) -> float:
 
 @kernel(forceinline=True)
 def asin_series(x: float) -> float:
-    """The series of `_asin` (no libm: the SIMD lanes' form)."""
+    """The series of `_asin` (|x| < ASIN_SERIES)."""
     x2 = x * x
     return x + x * x2 * (
         1.0 / 6.0
@@ -128,8 +128,7 @@ def roll_needed(P) -> bool:
 @kernel(forceinline=True, error_model="numpy")
 def hull_moment_with(w1, w2, w3, r21, r22, P, roll, pitch):
     """`hull_moment` given the roll angle atan2(R32, R33) (rad; read only by the linear and
-    the cubic GZ) and the pitch asin(-R31) (rad; read only with C55 > 0): no libm, so the
-    ship's SIMD lanes inline it (`lanes`)."""
+    the cubic GZ) and the pitch asin(-R31) (rad; read only with C55 > 0)."""
     m1 = 0.0
     m2 = 0.0
     if P[S.K44] > 0.0:
