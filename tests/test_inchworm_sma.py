@@ -21,7 +21,7 @@ from mf_envs.envs.inchworm import ISSUE16_SCENE
 from mf_envs.envs.inchworm.spec import QUASI_STATIC_LIMIT
 from mf_envs.physics.actuators.sma import RATED_STRESS, maker_times
 from mf_envs.physics.beam import GAUSS_W
-from mf_envs.physics.inchworm.drive import heat_cool_gait
+from mf_envs.physics.inchworm.open_loop import heat_cool_gait
 from mf_envs.physics.inchworm.presets import BuildableInchworm
 
 WANG_SPEED = 3.6e-3  # m/s, Wang et al. 2014 (abstract)
