@@ -92,9 +92,6 @@ def _reward_terms(info: dict) -> dict[str, float]:
     return terms
 
 
-pytestmark = pytest.mark.skipif(not ENV_IDS, reason="no env module has landed yet")
-
-
 @pytest.fixture
 def make():
     """`make(env_id, **kw)` -> env made with gym.make; every env is closed afterwards."""
@@ -422,7 +419,6 @@ def test_random_action_soak(env_id, make):
             env.reset(seed=int(rng.integers(1 << 31)))
 
 
-@pytest.mark.skipif("GOWEC-v0" not in ENV_IDS, reason="GOWEC-v0 has not landed")
 @pytest.mark.parametrize("theta", [np.pi / 2, np.pi / 3])
 def test_gowec_analytic_max_power_is_eq95(theta, make):
     """docs/api.md: `analytic_max_power()` is ch.3 Eq. 95,

@@ -122,15 +122,16 @@ def test_bad_parameter_raises_naming_the_public_argument(env_id, kwargs, name):
 
 
 def test_inchworm_episode_length_from_one_argument():
-    """`max_episode_steps` (the env's, or gym.make's for its TimeLimit: tests/test_env_limits.py)
-    and `episode_seconds` together must give the same steps."""
+    """`max_episode_steps` and `episode_seconds` given to the env together must give the same
+    steps; gym.make's `max_episode_steps` is its TimeLimit (tests/test_env_limits.py)."""
     from mf_envs.envs.inchworm import InchwormEnv
 
     with pytest.raises(ValueError, match="episode_seconds=1.0 is 10 control steps"):
         InchwormEnv(max_episode_steps=5, episode_seconds=1.0)
     assert InchwormEnv(max_episode_steps=5).max_episode_steps == 5
     assert InchwormEnv(max_episode_steps=10, episode_seconds=1.0).max_episode_steps == 10
-    assert gym.make("Inchworm-v0", max_episode_steps=5).unwrapped.max_episode_steps == 5
+    env = gym.make("Inchworm-v0", max_episode_steps=5)
+    assert env.spec.max_episode_steps == 5 and env.unwrapped.max_episode_steps == 400
 
 
 def test_inchworm_full_noise_resets_and_steps():
@@ -174,9 +175,9 @@ def test_episode_seconds_and_time_is_steps_times_dt(env_id, kwargs, steps):
 
 
 def test_long_stabilizer_episode_length_follows_episode_seconds():
-    """The issue's 1e4 s episode (200 001 steps with accumulated time): 200 000 now (gym.make
-    needs the steps for its TimeLimit too: tests/test_env_limits.py)."""
-    env = gym.make("GyroStabilizer-v0", episode_seconds=1e4, max_episode_steps=200_000)
+    """A 1e4 s episode (200 001 steps with accumulated time): 200 000 now, from gym.make with
+    episode_seconds alone."""
+    env = gym.make("GyroStabilizer-v0", episode_seconds=1e4)
     assert env.unwrapped.max_episode_steps == 200_000
     assert GyroStabilizerEnv(episode_seconds=1e4).max_episode_steps == 200_000
     assert gym.make("GOWEC-v0").unwrapped.max_episode_steps == 20 * 300  # n_periods default

@@ -22,6 +22,7 @@ Three layers:
 
 from __future__ import annotations
 
+import functools
 import importlib
 import inspect
 import math
@@ -67,8 +68,13 @@ WILD = st.one_of(
     st.integers(-(2**70), 2**70),
     st.floats(allow_nan=True, allow_infinity=True),
 )
-# every effect an env can switch (MFEnv.available_effects of its default instance)
-EFFECTS = {e: gym.make(e, disable_env_checker=True).unwrapped.available_effects for e in ENV_IDS}
+
+
+@functools.cache
+def effects_of(env_id: str) -> tuple[str, ...]:
+    """Every effect the env can switch (MFEnv.available_effects of its default instance), built
+    when a test first needs it (not at collection)."""
+    return gym.make(env_id, disable_env_checker=True).unwrapped.available_effects
 
 
 # steps per example: 20, or 3 for an env declared `slow` (a nonlinear solve per step)
@@ -238,7 +244,7 @@ def _near(default: Any) -> st.SearchStrategy[Any]:
 
 def _kwarg(env_id: str, name: str, default: Any) -> st.SearchStrategy[Any]:
     if name == "effects":
-        names = list(EFFECTS[env_id])
+        names = list(effects_of(env_id))
         valid = st.one_of(
             st.none(),
             st.lists(st.sampled_from(names), max_size=len(names), unique=True).map(tuple),

@@ -24,13 +24,8 @@ from mf_envs.physics.beam.contact import stick_slip as ss
 from mf_envs.physics.beam.contact.feet import FrictionFeet, grip_response
 from mf_envs.physics.beam.contact.friction import FORWARD, FrictionParams
 from mf_envs.physics.inchworm import Inchworm, InchwormParams, run_gait, seed_uniform_kappa
-from mf_envs.physics.inchworm.drive import (
-    DrivenInchworm,
-    cosine_gait,
-    grip_for,
-    run_open_loop,
-    square_gait,
-)
+from mf_envs.physics.inchworm.drive import DrivenInchworm
+from mf_envs.physics.inchworm.open_loop import cosine_gait, grip_for, run_open_loop, square_gait
 
 TAU, RATE = 0.3, 13.0
 P = InchwormParams(n_elements=12)

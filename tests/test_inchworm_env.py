@@ -165,7 +165,7 @@ def test_render_after_numerical_failure_shows_last_finite_frame():
 def test_long_seed_gait_episode_crawls_past_10_m():
     """The training helper's failure (numerical_failure at x_tail ~ 8-10 m): the coarsest seed
     gait through the env from x = 0 to past 10 m, every cycle advancing by the same distance."""
-    env = gym.make("Inchworm-v0", max_episode_steps=10_000, **RIOS2017_SCENE)
+    env = gym.make("Inchworm-v0", episode_seconds=1000.0, **RIOS2017_SCENE)  # 10 000 steps
     ctrl = make_baseline(env, "seed_uniform", steps_per_cycle=2)
     obs, info = env.reset(seed=0, options={"kappa": np.zeros(3)})
     xs = [info["x_tail"]]

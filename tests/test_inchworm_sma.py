@@ -21,7 +21,7 @@ from mf_envs.envs.inchworm import LAG_FRICTION_SCENE
 from mf_envs.envs.inchworm.spec import QUASI_STATIC_LIMIT
 from mf_envs.physics.actuators.sma import RATED_STRESS, maker_times
 from mf_envs.physics.beam import GAUSS_W
-from mf_envs.physics.inchworm.drive import heat_cool_gait
+from mf_envs.physics.inchworm.open_loop import heat_cool_gait
 from mf_envs.physics.inchworm.presets import BuildableInchworm
 
 WANG_SPEED = 3.6e-3  # m/s, Wang et al. 2014 (abstract)
@@ -30,7 +30,8 @@ MAKER_COOLING_HT_015 = 1.2  # s, Dynalloy F1140, 0.15 mm HT wire in still air
 
 
 def _env(**kw):
-    return gym.make("Inchworm-v0", max_episode_steps=10**6, **kw)
+    # 10**6 control steps: the env's own length (gym.make's max_episode_steps is a TimeLimit)
+    return gym.make("Inchworm-v0", episode_seconds=10**6 * kw.get("control_dt", 0.1), **kw)
 
 
 def _crawl(env, ctrl, warm_cycles=2, cycles=3, seed=1000):

@@ -96,22 +96,55 @@ def test_the_checks_catch_a_kernel_that_breaks_the_rules() -> None:
         del _jit.KERNELS[n_kernels:]
 
 
-def test_kernel_caches_are_stamped_by_the_whole_package(tmp_path, monkeypatch):
+def _tree(root, files):
+    for name, text in files.items():
+        path = root / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+
+
+def test_kernel_caches_are_stamped_by_their_dependencies():
     """A cached kernel must not survive a change to a callee in another file (a stale cached
     GyroStabilizer-v0 step raised ZeroDivisionError after a merge): mf_envs' kernels use the
-    package-stamped locator (`mf_envs._cache`), and the stamp changes with any file's bytes."""
+    dependency-stamped locator (`mf_envs._cache`): the stamp of the ship's kernels covers the
+    steppers and SO(3) kernels they call, and no CLI, training or benchmark file."""
     from mf_envs import _cache
     from mf_envs.physics.gowec.hydro import floating
+    from mf_envs.physics.ship import kernels
 
     loc = floating.deriv._cache._impl._locator
-    assert type(loc).__name__ in ("_PackageLocator", "_PackageUserDirLocator")
-    assert loc.get_source_stamp() == _cache.package_stamp()
-    (tmp_path / "a.py").write_text("x = 1\n")
-    (tmp_path / "sub").mkdir()
-    (tmp_path / "sub" / "b.py").write_text("y = 2\n")
-    monkeypatch.setattr(_cache, "_ROOT", tmp_path)
-    monkeypatch.setattr(_cache, "_STAMP", None)
-    s1 = _cache.package_stamp()
-    monkeypatch.setattr(_cache, "_STAMP", None)
-    (tmp_path / "sub" / "b.py").write_text("y = 3\n")
-    assert _cache.package_stamp() != s1
+    assert type(loc).__name__ in ("_InTreeLocator", "_UserDirLocator")
+    assert loc.get_source_stamp() == _cache.source_stamp(floating.__file__)
+    root = _cache._ROOT
+    deps = {p.relative_to(root).as_posix() for p in _cache.dependencies(kernels.__file__)}
+    assert {"physics/ship/kernels.py", "frames/steppers.py", "frames/kernels.py"} <= deps
+    for mod in ("envs/gyro_stabilizer/rows.py", "envs/gowec_v1/rows.py", "envs/serpentine/rows.py"):
+        deps = {p.relative_to(root).parts[0] for p in _cache.dependencies(root / mod)}
+        assert not deps & set(_cache.NOT_KERNEL_CODE), mod
+
+
+def test_a_cli_edit_leaves_kernel_stamps_alone_and_a_callee_edit_changes_them(tmp_path):
+    """In a package tree of three modules (a kernel module importing a callee, relatively and
+    absolutely, and a CLI module): editing the CLI file keeps the kernel module's stamp, editing
+    the callee changes it."""
+    from mf_envs import _cache
+
+    root = tmp_path / "mf_envs"
+    _tree(root, {
+        "__init__.py": "",
+        "physics/__init__.py": "",
+        "physics/callee.py": "A = 1\n",
+        "physics/rows.py": "from .callee import A\nimport mf_envs.frames.k\n",
+        "frames/__init__.py": "",
+        "frames/k.py": "B = 1\n",
+        "cli/__init__.py": "",
+        "cli/main.py": '"""doc"""\nfrom mf_envs.physics import rows\n',
+    })  # fmt: skip
+    kernel_file = str(root / "physics" / "rows.py")
+    deps = {p.relative_to(root).as_posix() for p in _cache.dependencies(kernel_file, root)}
+    assert deps == {"physics/rows.py", "physics/callee.py", "frames/k.py"}
+    stamp = _cache.source_stamp.__wrapped__(kernel_file, root)
+    (root / "cli" / "main.py").write_text('"""another doc"""\nfrom mf_envs.physics import rows\n')
+    assert _cache.source_stamp.__wrapped__(kernel_file, root) == stamp
+    (root / "frames" / "k.py").write_text("B = 2\n")
+    assert _cache.source_stamp.__wrapped__(kernel_file, root) != stamp

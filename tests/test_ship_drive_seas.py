@@ -19,11 +19,12 @@ from scipy.integrate import quad
 
 from mf_envs.physics.ship import drive as DR
 from mf_envs.physics.ship import seas as S
+from mf_envs.physics.ship import step_bound as SB
 from mf_envs.physics.ship.hulls import Hull, roll_decay
 from mf_envs.physics.waves import WaveField
 
 JG, JROLL, H = 14.3, 55_000.0, 9000.0  # gimbal, hull roll inertia (kg m^2), H (N m s)
-PLANT = DR.RollGimbal(JG, JROLL, H, 1, 158_922.0, 7480.0)
+PLANT = SB.RollGimbal(JG, JROLL, H, 1, 158_922.0, 7480.0)
 
 
 def _roll_gimbal_rhs(x, u, D, hull_c, hull_b, n=1):
@@ -91,15 +92,15 @@ def test_stable_dt_bound_is_tight(kind):
     """RK4 on the linearised system: decays just below the bound, grows just above it."""
     d = DR.DriveParams(kind, damping=900.0 if kind != "electric" else 0.0, stiffness=2e4)
     D = d.pack(JG)
-    h = DR.stable_physics_dt(D, PLANT)
-    A = DR.roll_gimbal_matrix(D, PLANT, False)
+    h = SB.stable_physics_dt(D, PLANT)
+    A = SB.roll_gimbal_matrix(D, PLANT, False)
     lam = np.linalg.eigvals(A)
     assert np.all(lam.real <= 1e-12)
     for s, grows in ((0.97, False), (1.03, True)):
-        amp = DR.rk4_amplification(s * h * lam).max()
+        amp = SB.rk4_amplification(s * h * lam).max()
         if d.active:  # the bound may come from the saturated matrix
-            As = DR.roll_gimbal_matrix(D, PLANT, True)
-            amp = max(amp, DR.rk4_amplification(s * h * np.linalg.eigvals(As)).max())
+            As = SB.roll_gimbal_matrix(D, PLANT, True)
+            amp = max(amp, SB.rk4_amplification(s * h * np.linalg.eigvals(As)).max())
         assert (amp > 1.0) == grows
 
 
@@ -109,7 +110,7 @@ def test_drive_survives_any_action_sequence(pattern):
     torque and power within the limits, gimbal inside its stops."""
     d = DR.electric_drive(H)
     D = d.pack(JG)
-    dt = 0.5 * DR.stable_physics_dt(D, PLANT)
+    dt = 0.5 * SB.stable_physics_dt(D, PLANT)
     rng = np.random.default_rng(3)
     x = np.array([0.3, 0.0, 0.0, 0.0, 0.0])
     for k in range(int(60.0 / dt)):

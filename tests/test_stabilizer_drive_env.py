@@ -2,7 +2,7 @@
 
 Truths: the encounter-frequency formula (the roll answers at w_e, not w), scipy's DOP853 roll
 decay of the MSS naval vessel with MSS's coefficients, the drive's limits, and the RK4 step
-bound (`ship.drive.stable_physics_dt`).
+bound (`ship.step_bound.stable_physics_dt`).
 """
 
 from __future__ import annotations

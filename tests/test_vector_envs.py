@@ -481,12 +481,6 @@ def test_row_blocks_share_rows_so_that_blocks_end_together() -> None:
     assert rb.bounds() == [0, 1, 1000]
     rb3 = RowBlocks(2, 3)  # fewer rows than blocks: one row each
     assert rb3.k == 2 and rb3.bounds() == [0, 1, 2]
-    rb4 = RowBlocks(1024, 2, align=32)  # whole lane blocks per thread (the stabilizer's)
-    for n0 in (500, 520, 530):
-        rb4._rebalance([(0.0, n0 * 1e-3), (0.0, (1024 - n0) * 1e-3 * n0 / 512)])
-        assert rb4.bounds()[1] % 32 == 0
-    assert RowBlocks(40, 2, align=32).bounds() == [0, 32, 40]
-    assert RowBlocks(20, 2, align=32).bounds() == [0, 1, 20]  # no whole block: each keeps a row
     # a worker 1.5x slower per row (a shared core), starting with the caller: T = 0.6 s when
     # rows split 600 / 400 (600 x 1 ms = 400 x 1.5 ms)
     rb = RowBlocks(1000, 2)

@@ -35,7 +35,14 @@ INCHWORM_SEED_BODY = {
     "mass_per_length": 0.278,
     "max_curvature": 13.0,
 }
-STEPS = {"GOWEC-v0": 300, "GyroStabilizer-v0": 300, "Inchworm-v0": 40, "FloatingGOWEC-v0": 300}
+STEPS = {
+    "GOWEC-v0": 300,
+    "GyroStabilizer-v0": 300,
+    "Inchworm-v0": 40,
+    "FloatingGOWEC-v0": 300,
+    "Serpentine-v0": 60,
+    "Eel-v0": 120,
+}
 VARIANTS = {
     "GOWEC-v0": [
         {},
@@ -46,6 +53,7 @@ VARIANTS = {
         {"n_gyros": 1},
         {"gimbal_drive": "torque"},
         {"effects": SHIP_IRREGULAR},
+        {"episode_seconds": 4.0},  # episodes of 80 steps: the env's own truncation and resets
     ],
     # the seed's body spelled out (the default robot changed in issue 31); the cases run the
     # same physics on a commit before it
@@ -66,6 +74,9 @@ VARIANTS = {
         },
     ],
     "FloatingGOWEC-v0": [{}, {"significant_wave_height": 1.5}],
+    # the beam robots; a short episode (40 and 100 steps) crosses its end within the run
+    "Serpentine-v0": [{}, {"episode_seconds": 2.0}],
+    "Eel-v0": [{}, {"episode_seconds": 2.0}],
 }
 VECTOR_STEPS = 120  # native vector env, 3 rows, fixed random actions, NEXT_STEP autoreset
 

@@ -80,9 +80,9 @@ def render_command(args: argparse.Namespace) -> list[Path]:
         env = gym.make(args.env_id, render_mode="rgb_array")
         try:
             policy = make_policy(env, args.env_id, args.policy)
-            steps = (
-                args.steps or (env.spec.max_episode_steps if env.spec else None) or DEFAULT_STEPS
-            )
+            limit = env.spec.max_episode_steps if env.spec else None  # a TimeLimit's
+            own = getattr(env.unwrapped, "max_episode_steps", None)  # an env that ends itself
+            steps = args.steps or limit or own or DEFAULT_STEPS
             every = max(1, math.ceil(steps / MAX_FRAMES))  # keep memory bounded on long runs
             obs, _ = env.reset(seed=args.seed)
             if hasattr(policy, "reset"):

@@ -36,11 +36,11 @@ from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.actuators.curvature import RateLimitedLag
 from mf_envs.physics.actuators.sma import maker_times
 from mf_envs.physics.inchworm import quasistatic as qs
-from mf_envs.physics.inchworm.drive import (
+from mf_envs.physics.inchworm.drive import make_driven
+from mf_envs.physics.inchworm.open_loop import (
     CommandFn,
     cosine_gait,
     heat_cool_gait,
-    make_driven,
     run_duty_loop,
     run_open_loop,
     square_gait,
@@ -246,7 +246,7 @@ def heat_cool(
     t_cool: float = VALIDATION_COOL,
     duty_off: float = 0.0,
 ) -> WireGait:
-    """Square wave of the SMA wires (`drive.heat_cool_gait`): all groups at duty 1 for t_heat
+    """Square wave of the SMA wires (`open_loop.heat_cool_gait`): all groups at duty 1 for t_heat
     [s], then at duty_off for t_cool [s]; Eq. 102 grips. Defaults: the validation timing."""
     base = env.unwrapped
     if not base.sma:

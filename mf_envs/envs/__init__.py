@@ -70,11 +70,12 @@ def register_envs() -> None:
     for env_id, decl in task_declarations().items():
         if decl.installed() and env_id not in gym.registry:
             vec = decl.vector_entry_point if decl.vector_installed() else None
+            # no TimeLimit: the env truncates itself at its own length (its default, or its
+            # episode_seconds / n_periods / max_episode_steps kwargs); docs/api.md
             gym.register(
                 id=env_id,
                 entry_point=decl.entry_point,
                 vector_entry_point=vec,
-                max_episode_steps=decl.max_episode_steps,
                 kwargs=dict(decl.kwargs),
             )
     register_aliases()

@@ -21,7 +21,6 @@ filters), then build the target's env or native vector env. One visible trace: a
 from __future__ import annotations
 
 import dataclasses
-import sys
 import warnings
 from typing import Any
 
@@ -36,23 +35,14 @@ class DeprecatedIdWarning(FutureWarning):
     """An env id that still works but has been renamed (FutureWarning: shown by default)."""
 
 
-def _outside_frame_level() -> int:
-    """The `stacklevel` of the first caller outside gymnasium and mf_envs (the user's line)."""
-    frame, level = sys._getframe(1), 1  # stacklevel 1: the function that calls warnings.warn
-    while frame.f_back is not None and frame.f_globals.get("__name__", "").partition(".")[0] in (
-        "gymnasium",
-        "mf_envs",
-    ):
-        frame, level = frame.f_back, level + 1
-    return level
-
-
-def notice(old_id: str) -> None:
-    """Warn that `old_id` is deprecated, naming its replacement (once per calling line)."""
+def notice(old_id: str, stacklevel: int = 2) -> None:
+    """Warn that `old_id` is deprecated, naming its replacement (once per calling line).
+    `stacklevel` as `warnings.warn`'s, counted from the caller of `notice` (2: that caller's
+    caller)."""
     warnings.warn(
         f"env id {old_id!r} is deprecated: use {ALIASES[old_id]!r} (the same env, renamed)",
         DeprecatedIdWarning,
-        stacklevel=_outside_frame_level(),
+        stacklevel=stacklevel + 1,
     )
 
 
@@ -61,7 +51,7 @@ def canonical_env_id(env_id: str, *, notice_alias: bool = True) -> str:
     if env_id not in ALIASES:
         return env_id
     if notice_alias:
-        notice(env_id)
+        notice(env_id, stacklevel=3)  # the line that called canonical_env_id's caller
     return ALIASES[env_id]
 
 
@@ -82,7 +72,7 @@ class DeprecatedId:
         return self._target().metadata
 
     def __call__(self, **kwargs: Any) -> Any:
-        notice(self.old_id)
+        notice(self.old_id, stacklevel=3)  # gym.make's (or make_vec's) caller
         return self._target()(**kwargs)
 
 

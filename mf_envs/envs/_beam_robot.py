@@ -1,24 +1,91 @@
-"""The control step, step info, centreline and frame shared by the planar beam robots on a
-distributed load (`Serpentine-v0` on the ground, `Eel-v0` in water). Each env provides its
-compiled row step (`_advance`), its heading (`_heading`) and its drawing (`_draw`); the rows
-report into `rep` by the slots below (`envs.serpentine.rows`, `envs.eel.rows`)."""
+"""The construction, reset, control step, step info, centreline and frame shared by the planar
+beam robots on a distributed load (`Serpentine-v0` on the ground, `Eel-v0` in water). Each env
+provides its modules (`robot_build`, `robot_rows`, `robot_spec`), its compiled row step
+(`_advance`), its heading (`_heading`) and its drawing (`_draw`); the rows report into `rep`
+by the slots below (`envs.serpentine.rows`, `envs.eel.rows`)."""
 
 from __future__ import annotations
 
 import math
 from abc import ABCMeta, abstractmethod
+from types import ModuleType
 from typing import Any
 
 import numpy as np
+from gymnasium import spaces
 
+from mf_envs._validate import check_range
+from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.serpentine import spec
+from mf_envs.envs.serpentine.build import initial_dofs
+from mf_envs.physics.beam.solver import BeamModel
 
 REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
+MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 
 class BeamRobotMixin(metaclass=ABCMeta):
-    """`step`, `_info`, `centerline` and `_draw_frame` of a beam robot (put before `MFEnv`); an
-    env that lacks one of the three hooks below cannot be instantiated (TypeError)."""
+    """`step`, reset, `_info`, `centerline` and `_draw_frame` of a beam robot (put before
+    `MFEnv`); an env that lacks one of the three hooks below cannot be instantiated
+    (TypeError). `robot_build`, `robot_rows`, `robot_spec`: the env's own `build`, `rows` and
+    `spec` modules."""
+
+    robot_build: ModuleType
+    robot_rows: ModuleType
+    robot_spec: ModuleType
+
+    def _make_robot(self, kw: dict[str, Any], episode_default: float) -> None:
+        """The start of the constructor (after `MFEnv.__init__`): the scene from the kwargs
+        `kw` (`build.build`), the episode length (`episode_default` s unless given) and the
+        beam model."""
+        self._set_scene(self.robot_build.build(kw, self.effects))
+        steps, _ = self._seconds_episode(
+            kw["episode_seconds"], kw["max_episode_steps"], episode_default
+        )
+        self.max_steps, self.episode_seconds = steps, steps * self.control_dt
+        self.model = BeamModel(self.scene.params)
+
+    def _make_state(self, n_actions: int) -> None:
+        """The spaces (`n_actions` actions in [-1, 1]), the state (d, v) of the straight beam,
+        the command and the row buffers."""
+        n, nd = self.n_ctrl, self.model.n_dof
+        self.action_space = spaces.Box(-1.0, 1.0, (n_actions,), np.float32)
+        self.obs_layout = self.robot_spec.observation_layout(n)
+        hi = self.obs_layout.high()
+        self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
+        self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
+        self.state[0] = self.model.straight()
+        self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
+        self._body, self._rep = np.zeros(5), np.zeros(self.robot_rows.N_REPORT)
+        self._obs = np.zeros(self.obs_layout.size, np.float32)
+        self._steps = 0
+        self._track: list[tuple[float, float]] = []
+
+    def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
+        heading = None
+        if "heading" in opts:
+            heading = check_range("heading", opts["heading"], -MAX_HEADING, MAX_HEADING)
+        kappa = None
+        if "kappa" in opts:
+            kappa = check_curvature_option(opts["kappa"], self.n_ctrl, self.max_curvature)
+        return {"heading": heading, "kappa": kappa}
+
+    def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
+        heading, kappa = opts["heading"], opts["kappa"]
+        rng, sc = self.np_random, self.scene
+        drawn_heading = rng.uniform(-sc.initial_heading_range, sc.initial_heading_range)
+        noise = rng.uniform(-1.0, 1.0, self.n_ctrl) * sc.reset_noise_scale * self.max_curvature
+        heading = drawn_heading if heading is None else heading
+        kappa = noise if kappa is None else kappa
+        self.state[0] = initial_dofs(sc.params, kappa, heading)
+        self.state[1] = 0.0
+        self.cmd[:] = kappa
+        self.robot_rows.observe_row(
+            self.state[0], self.state[1], self.cmd, self.cfg, self._body, self._obs
+        )
+        self._track = [(self._body[0], self._body[1])]
+        info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
+        return self._obs.copy(), info
 
     @abstractmethod
     def _advance(self, action: np.ndarray, rep: np.ndarray) -> None:

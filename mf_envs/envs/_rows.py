@@ -83,22 +83,18 @@ class RowBlocks:
 
     SMOOTH = 0.3  # weight of the latest run's balanced shares
 
-    def __init__(self, n_rows: int, n_blocks: int, align: int = 1) -> None:
+    def __init__(self, n_rows: int, n_blocks: int) -> None:
         self.n_rows = int(n_rows)
         self.k = max(1, min(int(n_blocks), self.n_rows))
-        # inner edges on multiples of `align` (a kernel that steps rows in groups of that
-        # size, `gyro_stabilizer`'s SIMD lanes, then leaves no part-group in a block but the last)
-        self.align = max(1, int(align))
         self.shares = [self.n_rows / self.k] * self.k  # rows per block (floats)
         self._edges = self.bounds()
 
     def bounds(self) -> list[int]:
-        """Block edges 0 = b_0 < b_1 < ... < b_k = n_rows from the shares (each block >= 1 row),
-        the inner ones rounded to multiples of `align` where that leaves every block a row."""
-        b, acc, a = [0], 0.0, self.align
+        """Block edges 0 = b_0 < b_1 < ... < b_k = n_rows from the shares (each block >= 1 row)."""
+        b, acc = [0], 0.0
         for j in range(self.k):
             acc += self.shares[j]
-            b.append(max(b[-1] + 1, min(round(acc / a) * a, self.n_rows - (self.k - 1 - j))))
+            b.append(max(b[-1] + 1, min(round(acc), self.n_rows - (self.k - 1 - j))))
         b[-1] = self.n_rows
         return b
 

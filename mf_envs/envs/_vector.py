@@ -39,7 +39,6 @@ from gymnasium.vector.utils import batch_space
 
 from mf_envs._validate import as_action, check_int
 from mf_envs.envs._drawn_rows import DrawnRows
-from mf_envs.envs._limit import make_vec_injected
 from mf_envs.envs._rows import RowBlocks
 
 # rows per thread below which more threads do not pay (`resolve_threads`' automatic choice)
@@ -93,7 +92,6 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
 
     single_env_cls: type[gym.Env]
     row_cost = "light"  # microsecond rows; "heavy": millisecond rows (`resolve_threads`)
-    row_align = 1  # the rows' split over threads on multiples of this (`_rows.RowBlocks`)
     metadata: dict[str, Any] = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(
@@ -118,15 +116,8 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
         self.render_mode = None
         self.autoreset_mode = parse_autoreset_mode(autoreset_mode)
         self.metadata = {**type(self).metadata, "autoreset_mode": self.autoreset_mode}
-        env_kwargs, limit = self._spec_limit(env_kwargs)
-        self.template = self.single_env_cls(**env_kwargs)  # validates every kwarg once
-        if limit is not None and self.template.max_steps > limit:
-            raise ValueError(
-                f"max_episode_steps: the episode of these kwargs (episode_seconds, control_dt) "
-                f"is {self.template.max_steps} control steps, more than the spec's "
-                f"max_episode_steps={limit} that gym.make_vec passes: pass "
-                f"max_episode_steps={self.template.max_steps} to gym.make_vec as well"
-            )
+        # validates every kwarg once; a `max_episode_steps` given is the rows' episode length
+        self.template = self.single_env_cls(**env_kwargs)
         self.env_kwargs = dict(env_kwargs)
         self.single_observation_space = self.template.observation_space
         self.single_action_space = self.template.action_space
@@ -138,19 +129,8 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
         self._obs = np.zeros((n, *self.single_observation_space.shape), dtype=np.float32)
         self._all = np.ones(n, dtype=bool)
         self._is_reset = False
-        self.blocks = RowBlocks(n, self.num_threads, self.row_align)  # the split over threads
+        self.blocks = RowBlocks(n, self.num_threads)  # the split over threads
         self._alloc(n)
-
-    def _spec_limit(self, env_kwargs: dict[str, Any]) -> tuple[dict[str, Any], int | None]:
-        """(the single env's kwargs, the spec's max_episode_steps to check it against or None).
-        `gym.make_vec` adds the spec's `max_episode_steps` when its caller gave none
-        (`mf_envs.envs._limit`): that one checks the env's own episode, as gym.make's TimeLimit
-        does, rather than setting it: the episode must not be longer (a `max_episode_steps`
-        the caller gave sets it)."""
-        kwargs = dict(env_kwargs)
-        if "max_episode_steps" not in kwargs or not make_vec_injected(self):
-            return kwargs, None
-        return kwargs, kwargs.pop("max_episode_steps")
 
     @classmethod
     def supports(cls, **env_kwargs: Any) -> bool:

@@ -19,13 +19,23 @@ import numpy as np
 
 from mf_envs._validate import as_action, check_int, check_range
 from mf_envs.effects import resolve_effects
-from mf_envs.envs._limit import gym_make_limit
 from mf_envs.envs._spec import check_options
 
 MIN_DT = 1e-6  # s, smallest control or physics step
 MAX_CONTROL_DT = 60.0  # s, largest control step
 MAX_SUBSTEPS = 10_000  # physics substeps per control step (a step must stay fast)
 MAX_EPISODE_STEPS = 10_000_000  # control steps per episode
+
+
+def episode_steps_arg(value: Any) -> int | None:
+    """`max_episode_steps` as given to an env or a native vector env: None (not given), else an
+    integer in [1, MAX_EPISODE_STEPS]; ValueError naming it otherwise (a float, even 100.0, or a
+    bool is refused)."""
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"max_episode_steps: expected an integer, got {value!r}")
+    return check_int("max_episode_steps", value, 1, MAX_EPISODE_STEPS)
 
 
 def _field_names(scene: Any) -> frozenset[str]:
@@ -91,52 +101,21 @@ class MFEnv(gym.Env):
         return max(1, math.ceil(ratio - 1e-9))
 
     def _episode_length(
-        self,
-        max_episode_steps: Any,
-        own: tuple[str, Any, int] | None,
-        default: int,
-        default_note: str = "",
+        self, max_episode_steps: Any, own: tuple[str, Any, int] | None, default: int
     ) -> int:
-        """Control steps per episode, agreeing with any TimeLimit Gymnasium puts on the env
-        (`mf_envs.envs._limit` module doc): `max_episode_steps` (the constructor's, or the one
-        given to `gym.make`) sets it; `own` = (argument, value, its steps) is the env's own
-        length argument given (`episode_seconds`, `n_periods`), which must then give the same
-        steps; else `default` (the default episode at these kwargs, `default_note` saying
-        which of them set it, e.g. "30 s at control_dt=0.02 s"). Under `gym.make`
-        without `max_episode_steps`, the result must not exceed the spec's (its TimeLimit would
-        cut the episode short; a shorter one the env ends itself). ValueError naming
-        `max_episode_steps` (and the argument) otherwise."""
-        limit = gym_make_limit(self)
-        steps = None
-        if max_episode_steps is not None:
-            steps = check_int("max_episode_steps", max_episode_steps, 1, MAX_EPISODE_STEPS)
-        if limit is not None and limit[0] == "given":
-            given = check_int("max_episode_steps", limit[1], 1, MAX_EPISODE_STEPS)
-            if steps is not None and steps != given:
-                raise ValueError(
-                    f"max_episode_steps: the env's max_episode_steps={steps} and gym.make's "
-                    f"max_episode_steps={given} differ; give one"
-                )
-            steps = given
-        if own is not None:
-            name, value, n = own
-            if steps is not None and n != steps:
-                raise ValueError(
-                    f"max_episode_steps: {name}={value!r} is {n} control steps but "
-                    f"max_episode_steps={steps}; give one of them, or both agreeing"
-                )
-        else:
-            n = default if steps is None else steps
-        if limit is not None and limit[0] == "spec" and n > limit[1]:
-            what = f"{own[0]}={own[1]!r}" if own is not None else "the default episode"
-            if own is None and default_note:
-                what += f" ({default_note})"
+        """Control steps per episode, the env's own (it truncates itself; no TimeLimit is
+        registered): `max_episode_steps` given (`episode_steps_arg`) sets it; `own` = (argument,
+        value, its steps) is the env's own length argument given (`episode_seconds`,
+        `n_periods`), which must then give the same steps (ValueError naming both); else
+        `default`, the default episode at these kwargs."""
+        steps = episode_steps_arg(max_episode_steps)
+        if own is None:
+            return default if steps is None else steps
+        name, value, n = own
+        if steps is not None and n != steps:
             raise ValueError(
-                f"max_episode_steps: {what} is {n} control steps at control_dt="
-                f"{self.control_dt:g} s, but gym.make wraps the env in "
-                f"TimeLimit(max_episode_steps={limit[1]}), its spec's, which would end "
-                f"episodes at step {limit[1]}: pass max_episode_steps={n} to gym.make as well "
-                "(or max_episode_steps=-1: no TimeLimit)"
+                f"max_episode_steps: {name}={value!r} is {n} control steps but "
+                f"max_episode_steps={steps}; give one of them, or both agreeing"
             )
         return n
 
@@ -154,8 +133,7 @@ class MFEnv(gym.Env):
         are those given, the default's, or steps x control_dt."""
         own = self._own_seconds(episode_seconds)
         default = self._episode_steps(default_seconds)
-        note = f"{default_seconds:g} s at control_dt={self.control_dt:g} s"
-        steps = self._episode_length(max_episode_steps, own, default, note)
+        steps = self._episode_length(max_episode_steps, own, default)
         if own is not None:
             return steps, float(episode_seconds)
         return steps, float(default_seconds) if steps == default else steps * self.control_dt
@@ -171,10 +149,9 @@ class MFEnv(gym.Env):
 
     @property
     def max_episode_steps(self) -> int:
-        """Control steps per episode, `max_steps`: the constructor's (or `gym.make`'s)
-        `max_episode_steps`, else ceil(episode_seconds / control_dt) (`_episode_steps`;
-        GOWEC-v0: n_periods x steps_per_period), else the default episode's
-        (`_episode_length`)."""
+        """Control steps per episode, `max_steps`: the constructor's `max_episode_steps`, else
+        ceil(episode_seconds / control_dt) (`_episode_steps`; GOWEC-v0: n_periods x
+        steps_per_period), else the default episode's (`_episode_length`)."""
         return self.max_steps
 
     @property

@@ -116,9 +116,9 @@ class EnvDeclaration:
     """What the upper layers know of one env id (all optional except the id and entry point).
 
     - `entry_point`, `vector_entry_point`: "module:Class" (the vector class has `supports(**kw)`).
-    - `max_episode_steps`: control steps of the env's default episode, registered as the spec's
-      `max_episode_steps` (Gymnasium's TimeLimit; `mf_envs.envs._limit`; the contract tests
-      check it against the env).
+    - `max_episode_steps`: control steps of the env's default episode (the contract tests check
+      it against the env). The id is registered without a TimeLimit (the env truncates itself),
+      so the spec's `max_episode_steps` is None; tools read the default length here.
     - `baselines`: the module that registers the env's classical controllers on import
       (`controllers.register(env_id, kind, factory)`).
     - `metric`, `episode_metrics`: the primary metric and the function computing it (with any

@@ -88,8 +88,7 @@ def matmul3(A: np.ndarray, B: np.ndarray) -> np.ndarray:
 
 @numba.njit(cache=True, inline="always")
 def rodrigues_series(x2: float) -> tuple[float, float]:
-    """`rodrigues_coeffs` by their Taylor series to x^8 / x^10, for x2 < _SERIES_X2 (no libm:
-    the form the ship's SIMD lanes call, `physics.ship.lanes`)."""
+    """`rodrigues_coeffs` by their Taylor series to x^8 / x^10, for x2 < _SERIES_X2."""
     # constant reciprocals, not x2 / 362880.0: a division by a constant stays a division
     # (~14 cycles on the stage's critical path) unless the constant is a power of two;
     # Estrin's scheme (x^4 beside the low terms), not Horner's: half the dependent chain
@@ -193,7 +192,7 @@ def sincos_near(x: float, x0: float, c0: float, s0: float) -> tuple[float, float
 @numba.njit(cache=True, inline="always")
 def sincos_series(d: float, c0: float, s0: float) -> tuple[float, float]:
     """`sincos_near` for 0 < |d| < SINCOS_NEAR, d = x - x0: the addition formulas with the
-    Taylor series of cos d, sin d (no libm: the form the ship's SIMD lanes call)."""
+    Taylor series of cos d, sin d."""
     d2 = d * d
     d4 = d2 * d2  # Estrin's scheme, as `rodrigues_coeffs`
     cd = (1.0 - 0.5 * d2) + d4 * ((1.0 / 24.0 - d2 * (1.0 / 720.0)) + d4 * (1.0 / 40320.0))
@@ -212,7 +211,7 @@ def _dexpinv_c(x2: float) -> float:
 
 @numba.njit(cache=True, inline="always")
 def dexpinv_series(x2: float) -> float:
-    """`_dexpinv_c` by its series, for x2 < _SERIES_X2 (no libm: the SIMD lanes' form)."""
+    """`_dexpinv_c` by its series, for x2 < _SERIES_X2."""
     x4 = x2 * x2  # Estrin's scheme, as `rodrigues_coeffs`
     return (1.0 / 12.0 + x2 * (1.0 / 720.0)) + x4 * (
         (1.0 / 30240.0 + x2 * (1.0 / 1209600.0)) + x4 * (1.0 / 47900160.0)

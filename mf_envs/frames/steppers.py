@@ -14,20 +14,13 @@ classical RK4 one, the Munthe-Kaas form is Iserles et al., Acta Numerica 9 (2000
 from __future__ import annotations
 
 import types
-import zlib
 from collections.abc import Callable
-from pathlib import Path
 
 import numba
 import numpy as np
 
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import _rodrigues_entries, dexpinv_right3, rodrigues_coeffs
-
-# stamps the steppers' caches (see `_specialise`): this file and the SO(3) kernels they call
-_SOURCE_CRC = zlib.crc32(Path(__file__).read_bytes())
-_SOURCE_CRC = zlib.crc32(Path(__file__).with_name("kernels.py").read_bytes(), _SOURCE_CRC)
-
 
 # ---- the steppers (templates; see the module doc and `make_rk4` / `make_rkmk4`) ----
 
@@ -85,7 +78,7 @@ def times_exp_row2_into(out: np.ndarray, R: np.ndarray, theta) -> None:
 @numba.njit(cache=True, inline="always")
 def row_times_exp(r0, r1, r2, x, y, z, a, b):
     """The row (r0, r1, r2) times exp(hat((x, y, z))) given its Rodrigues coefficients a, b
-    (`times_exp_row2_into`; the ship's SIMD lanes call it with their series)."""
+    (`times_exp_row2_into`)."""
     c0, c1, c2 = y * r2 - z * r1, z * r0 - x * r2, x * r1 - y * r0
     d0, d1, d2 = y * c2 - z * c1, z * c0 - x * c2, x * c1 - y * c0
     return r0 - a * c0 + b * d0, r1 - a * c1 + b * d1, r2 - a * c2 + b * d2
@@ -186,11 +179,11 @@ def _specialise(
     inline=True makes it a `mf_envs._jit.kernel` that LLVM inlines into its callers
     (`forceinline`; numba's IR inlining, `inline="always"`, cost minutes of compilation here).
 
-    The result is cached beside the model's module (its file stamps the cache) under a name that
-    also carries a checksum of this file, so editing either invalidates it."""
+    The result is cached beside the model's module (the module that defines `rhs` and calls
+    `make_rk4` / `make_rkmk4`): `mf_envs._cache` stamps that cache with the module's source and
+    the sources it imports, this file among them, so editing either invalidates it."""
     py = rhs.py_func
-    tag = zlib.crc32(py.__code__.co_code, _SOURCE_CRC) & 0xFFFFFFFF
-    name = f"{prefix}_{py.__name__}_{tag:08x}"
+    name = f"{prefix}_{py.__name__}"
     code = template.__code__.replace(
         co_filename=py.__code__.co_filename, co_name=name, co_qualname=name
     )

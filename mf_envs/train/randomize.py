@@ -265,8 +265,9 @@ class DomainRandomization(gym.Wrapper):
         self.randomizer = Randomizer(self.env_id, self.base_kwargs, ranges, choices)
         self.ranges, self.nominal = self.randomizer.ranges, self.randomizer.nominal
         self.choices = self.randomizer.choices
-        # the re-made env gets the TimeLimit gym.make put on `env` (its spec's max_episode_steps:
-        # a given one is passed on; None: no TimeLimit, -1)
+        # the re-made env gets the TimeLimit gym.make put on `env` when it is not the registered
+        # one (a max_episode_steps given to gym.make is passed on; None: no TimeLimit, -1); the
+        # mf_envs ids register none and truncate themselves
         limit = env.spec.max_episode_steps
         self._limit = {}
         if limit != gym.spec(self.env_id).max_episode_steps:

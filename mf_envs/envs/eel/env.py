@@ -6,14 +6,10 @@ import math
 from typing import Any
 
 import numpy as np
-from gymnasium import spaces
 
 from mf_envs.envs._beam_robot import BeamRobotMixin
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.eel import build, render, rows, spec
-from mf_envs.envs.serpentine.build import initial_dofs
-from mf_envs.envs.serpentine.env import SerpentineEnv
-from mf_envs.physics.beam.solver import BeamModel
 from mf_envs.physics.swimmer.fluid import C_NORMAL, C_TANGENTIAL, RHO_WATER, point_forces
 
 AVAILABLE_EFFECTS = {
@@ -79,9 +75,8 @@ class EelEnv(BeamRobotMixin, MFEnv):
     overrides; any other key or value raises ValueError naming it (and draws nothing).
 
     ## Episode End
-    Truncation after `episode_seconds` or `max_episode_steps` (the spec's: 500 = 10 s at 0.02 s;
-    `gym.make` with another length or `control_dt` needs `max_episode_steps` too, else
-    ValueError: docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
+    Truncation after `episode_seconds` or `max_episode_steps` (default 500 = 10 s at 0.02 s;
+    docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
     after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
 
     ## Arguments
@@ -110,6 +105,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     """
 
     RESET_OPTIONS = spec.RESET_OPTIONS
+    robot_build, robot_rows, robot_spec = build, rows, spec  # (`BeamRobotMixin`)
     AVAILABLE_EFFECTS, DEFAULT_EFFECTS = AVAILABLE_EFFECTS, DEFAULT_EFFECTS
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 50}
     target_direction = 0.0  # rad: +x
@@ -143,47 +139,18 @@ class EelEnv(BeamRobotMixin, MFEnv):
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
         super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
                          render_mode=render_mode)  # fmt: skip
-        self._set_scene(build.build(kw, self.effects))
-        steps, _ = self._seconds_episode(episode_seconds, max_episode_steps, EPISODE_SECONDS)
-        self.max_steps, self.episode_seconds = steps, steps * self.control_dt
-        self.model = BeamModel(self.scene.params)
+        self._make_robot(kw, EPISODE_SECONDS)
         self.cfg = rows.pack(self.scene, self.model, self.n_substeps, self.physics_dt,
                              self.control_dt, self.target_direction)  # fmt: skip
-        n, nd = self.n_ctrl, self.model.n_dof
-        n_act = n if self.scene.action_mode == "curvature" else 3
-        self.action_space = spaces.Box(-1.0, 1.0, (n_act,), np.float32)
-        self.obs_layout = spec.observation_layout(n)
-        hi = self.obs_layout.high()
-        self.observation_space = spaces.Box(-hi, hi, dtype=np.float32)
-        self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
-        self.state[0] = self.model.straight()
-        self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
+        self._make_state(self.n_ctrl if self.scene.action_mode == "curvature" else 3)
         self.phase = np.zeros(1)  # the wave's phase [rad] (action_mode "wave")
         self._sc = rows.scratch(self.model)
-        self._newton = rows.newton_scratch(nd, self.model.n_elements)  # the Newton step's
-        self._body, self._rep = np.zeros(5), np.zeros(rows.N_REPORT)
-        self._obs = np.zeros(self.obs_layout.size, np.float32)
-        self._steps = 0
-        self._track: list[tuple[float, float]] = []
+        self._newton = rows.newton_scratch(self.model.n_dof, self.model.n_elements)  # Newton's
 
     # ------------------------------------------------------------------ API
-    _check_reset_options = SerpentineEnv._check_reset_options  # heading, kappa: the same
-
     def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
-        heading, kappa = opts["heading"], opts["kappa"]
-        rng, sc = self.np_random, self.scene
-        drawn_heading = rng.uniform(-sc.initial_heading_range, sc.initial_heading_range)
-        noise = rng.uniform(-1.0, 1.0, self.n_ctrl) * sc.reset_noise_scale * self.max_curvature
-        heading = drawn_heading if heading is None else heading
-        kappa = noise if kappa is None else kappa
-        self.state[0] = initial_dofs(sc.params, kappa, heading)
-        self.state[1] = 0.0
-        self.cmd[:] = kappa
         self.phase[:] = 0.0
-        rows.observe_row(self.state[0], self.state[1], self.cmd, self.cfg, self._body, self._obs)
-        self._track = [(self._body[0], self._body[1])]
-        info = self._info(0.0, 0.0, 0, {"progress": 0.0, "effort": 0.0})
-        return self._obs.copy(), info
+        return super()._start(opts)
 
     # ------------------------------------------------------------------ helpers
     def _advance(self, action: np.ndarray, rep: np.ndarray) -> None:

@@ -83,8 +83,8 @@ class GOWECEnv(MFEnv):
 
     ## Episode End
     Truncation after `episode_seconds` (default `n_periods` = 20 wave periods) or
-    `max_episode_steps` (the spec's: 6000 = 20 periods of 300 steps; `gym.make` with another
-    length needs `max_episode_steps` too, else ValueError: docs/api.md, "Episode length").
+    `max_episode_steps` (default 6000 = 20 periods of 300 steps; docs/api.md, "Episode
+    length").
     Termination on a gimbal overspeed trip, |phi'| > `max_gimbal_rate` (`info["overspeed"]`: a
     real unit brakes its gimbal; nothing else limits a gimbal that the generator motors), or on
     numerical failure (`info["numerical_failure"]`). The baselines stay below 18 rad/s.
@@ -154,8 +154,7 @@ class GOWECEnv(MFEnv):
         spp = self.steps_per_period
         own = build.own_length(n_periods, episode_seconds, spp, self._episode_steps)
         default = build.DEFAULT_N_PERIODS * spp
-        note = f"n_periods={build.DEFAULT_N_PERIODS} x steps_per_period={spp}"
-        self.max_steps = self._episode_length(max_episode_steps, own, default, note)
+        self.max_steps = self._episode_length(max_episode_steps, own, default)
         whole = self.max_steps % spp == 0 and episode_seconds is None
         self.n_periods = self.max_steps // spp if whole else self.max_steps / spp
         self.episode_seconds = self.max_steps * self.control_dt

@@ -76,7 +76,7 @@ class GOWECV1Env(MFEnv):
     `reset(options=...)`: buoy_pitch, buoy_roll (rad), gimbal_angle (rad), gimbal_rate (rad/s).
 
     ## Episode End
-    Truncation after `episode_seconds` or `max_episode_steps` (spec: 6000; docs/api.md,
+    Truncation after `episode_seconds` or `max_episode_steps` (default 6000; docs/api.md,
     "Episode length"); termination if |phi'| > max_gimbal_rate ("overspeed"), |theta| or |rho|
     > pitch_limit ("out_of_range"; 20 deg on the ISWEC-class device) or a numerical failure. A
     termination by overspeed or pitch limit is charged the rotor loss of the steps left.

@@ -39,10 +39,11 @@ from mf_envs.effects import resolve_effects
 from mf_envs.envs.base import MAX_SUBSTEPS
 from mf_envs.physics.ship import unit as U
 from mf_envs.physics.ship.coupling import SwayRollYaw
-from mf_envs.physics.ship.drive import DriveParams, drive_machine, drive_stable_step
+from mf_envs.physics.ship.drive import DriveParams, drive_machine
 from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.model import SHIP_EFFECTS, GimbalDrive
 from mf_envs.physics.ship.params import GyroParams, ShipParams, capacity_ratio
+from mf_envs.physics.ship.step_bound import drive_stable_step
 from mf_envs.physics.ship.unit import CUSHION_START, CUSHION_TRAVEL  # noqa: F401 (re-exported)
 
 
@@ -286,7 +287,7 @@ def build_machine(
 def stable_step(
     drive: GimbalDrive, gyro: GyroParams, hull: Hull, ship: ShipParams, n: int, eff: frozenset
 ) -> float:
-    """Largest stable RK4 physics step (s) of the drive (`ship.drive.drive_stable_step`)."""
+    """Largest stable RK4 physics step (s) of the drive (`ship.step_bound.drive_stable_step`)."""
     j = hull.roll_inertia("added_inertia" in eff)
     return drive_stable_step(drive, gyro, j, hull.roll_stiffness, ship.roll_damping, n, eff)
 
@@ -303,7 +304,7 @@ def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: floa
             f"gimbal_damping, gimbal_stiffness, gimbal_loop_gain, drive_bandwidth, ship_inertia, "
             f"gimbal_inertia, rotor_inertia, rotor_speed, max_precession_rate, design_roll_rate "
             f"(the unit's cushions): this drive needs physics steps below {dt_max:.3g} s (RK4 "
-            f"limit, `ship.drive.stable_physics_dt`), more than {MAX_SUBSTEPS} per control step; "
+            f"limit, `step_bound.stable_physics_dt`), more than {MAX_SUBSTEPS} per control step; "
             "soften the drive or enlarge the inertias"
         )
     return 0.5 * min(cdt, dt_max)
@@ -315,7 +316,7 @@ def check_step(physics_dt: float, dt_max: float) -> None:
     if physics_dt > dt_max:
         raise ValueError(
             f"physics_dt: {physics_dt:.4g} s is beyond the RK4 stability limit {dt_max:.4g} s "
-            "of this gimbal drive (`ship.drive.stable_physics_dt`); pass physics_dt <= that, or "
+            "of this gimbal drive (`step_bound.stable_physics_dt`); pass physics_dt <= that, or "
             "a control_dt it divides"
         )
 

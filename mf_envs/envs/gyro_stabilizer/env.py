@@ -99,9 +99,8 @@ class GyroStabilizerEnv(MFEnv):
     ## Episode End
     Truncation after `episode_seconds` (`max_episode_steps` = ceil(episode_seconds / control_dt))
     or `max_episode_steps`; termination only on a numerical failure (`info["numerical_failure"]`).
-    The spec's `max_episode_steps` is 600 (30 s at 0.05 s): `gym.make` with a longer
-    `episode_seconds` or another `control_dt` needs `max_episode_steps` too (ValueError
-    otherwise, never a silent cut: docs/api.md, "Episode length").
+    The default episode is 600 steps (30 s at 0.05 s); the env truncates itself, so
+    `gym.make(..., episode_seconds=...)` alone sets the length (docs/api.md, "Episode length").
 
     ## Arguments
     | Argument | default | meaning |
@@ -124,7 +123,7 @@ class GyroStabilizerEnv(MFEnv):
     | max_precession_rate | 2.0 | rad/s |
     | max_gimbal_angle | None | rad: end stops (seed pi/3) or cushions' start (7000: 50 deg) |
     | episode_seconds | None | s; None: 30 s, or max_episode_steps steps |
-    | max_episode_steps | None | control steps per episode (gym.make's TimeLimit agrees) |
+    | max_episode_steps | None | control steps per episode (or episode_seconds) |
     | effects | see DEFAULT_EFFECTS | tuple of names from `SHIP_EFFECTS` |
     | control_dt | 0.05 | s |
     | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |
@@ -315,7 +314,7 @@ class GyroStabilizerEnv(MFEnv):
         self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
         self._t, self._energy = 0.0, 0.0
         mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
-        tau0, pow0 = K.drive_output(0.0, self._y, self._R, 0.0, self._P)
+        tau0, pow0 = K.drive_output(0.0, self._y, self._R, 0.0, self._P, math.nan, math.nan)
         mount0 = K.mount_moment(self._y, tau0, self._P)
         self._out[:] = (0.0, mw, tau0, pow0, mount0, self._P[Slot.PROTOR])
         roll0 = K.roll_of(self._R)

@@ -15,7 +15,6 @@ from mf_envs.envs.gyro_stabilizer import spec
 from mf_envs.envs.gyro_stabilizer.build import Scene
 from mf_envs.frames.steppers import rk4_work, rkmk4_rwork
 from mf_envs.physics.ship import kernels as K
-from mf_envs.physics.ship import lanes as L
 from mf_envs.physics.ship.layout import Slot
 from mf_envs.physics.ship.model import WaveLoad, pack_params
 from mf_envs.physics.ship.seas import (
@@ -76,7 +75,7 @@ def _info_row(c, roll, y, out, energy):
 
 @numba.njit(cache=True, nogil=True)
 def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
-              ok_out, reward, roll_scale, effort_weight, control_dt, P0):  # fmt: skip
+              ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
     """One control step of the active rows lo <= i < hi (GyroStabilizerEnv.step without Python;
     the GIL is released, so threads can step disjoint blocks of rows at once).
 
@@ -85,62 +84,29 @@ def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, o
     (N,) int64; last (N, 6) float32 the last returned observations; writes obs (N, 6) float32,
     cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False on a numerical
     failure (the step then scores 0 and keeps the last observation), reward (N,).
-    P0 (N_PARAMS,): the parameters every row shares but for the wave phase, for the SIMD lanes
-    (`physics.ship.lanes.uniform`), or empty: every row on the scalar step.
     This task's scratch is allocated here; the rows are stepped by `_rows`.
     """
     work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
     ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
-    lane = L.lane_scratch()
     _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c, P0,
-          lane)  # fmt: skip
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
 
 
 @kernel
 def _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c, P0,
-          lane):  # fmt: skip
+          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c):  # fmt: skip
     """The row loop of `step_rows` on the batch arrays in place (a `mf_envs._jit.kernel`: its
-    row views cost no reference counts, so threads share the arrays freely); work, Rwork: the
-    stepper's scratch, ob (6,) float32 and c (N_COLS,) one row's observation and info columns;
-    lane: the SIMD lanes' scratch (X, K, start values, wave moments, rows, drive energies).
-
-    With P0 given, active rows with the first one's number of substeps are gathered LANES at a
-    time and stepped in the lanes (`physics.ship.lanes.advance_block`: each row's bits are
-    `advance_with`'s); the others, and the last < LANES, take `advance_with`."""
-    X, KL, near0s, mws, idx, e0s = lane
-    a = 0  # rows gathered for the lanes
+    row views cost no reference counts, so threads share the arrays freely): each active row
+    by the single env's step (`advance_with`) and `_row_tail`; work, Rwork: the stepper's
+    scratch, ob (6,) float32 and c (N_COLS,) one row's observation and info columns."""
     for i in range(lo, hi):
         if not active[i]:
             continue
-        if P0.shape[0] > 0 and (a == 0 or n_sub[i] == n_sub[idx[0]]):
-            idx[a], e0s[a] = i, y[i, K.E_STATE]
-            a += 1
-            if a == L.LANES:
-                L.advance_block(idx, t, y, R, u, dt, n_sub[idx[0]], P, tab, out, P0, X, KL,
-                                near0s, mws, work, Rwork)  # fmt: skip
-                for j in range(L.LANES):
-                    _row_tail(idx[j], e0s[j], y, R, out, steps, last, obs, cols, ok_out,
-                              reward, roll_scale, effort_weight, control_dt, ob, c)  # fmt: skip
-                a = 0
-            continue
-        _scalar_row(i, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-                    reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
-    for j in range(a):  # fewer than LANES left
-        _scalar_row(idx[j], t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-                    reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
-
-
-@kernel(forceinline=True)
-def _scalar_row(i, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out, reward,
-                roll_scale, effort_weight, control_dt, work, Rwork, ob, c):  # fmt: skip
-    """Row i by the single env's step (`advance_with`) and `_row_tail`."""
-    e0 = y[i, K.E_STATE]
-    t[i] = K.advance_with(t[i], y[i], R[i], u[i], dt[i], n_sub[i], P[i], tab[i], out[i], work,
-                           Rwork)  # fmt: skip
-    _row_tail(i, e0, y, R, out, steps, last, obs, cols, ok_out, reward, roll_scale,
-              effort_weight, control_dt, ob, c)  # fmt: skip
+        e0 = y[i, K.E_STATE]
+        t[i] = K.advance_with(t[i], y[i], R[i], u[i], dt[i], n_sub[i], P[i], tab[i], out[i],
+                               work, Rwork)  # fmt: skip
+        _row_tail(i, e0, y, R, out, steps, last, obs, cols, ok_out, reward, roll_scale,
+                  effort_weight, control_dt, ob, c)  # fmt: skip
 
 
 @kernel(forceinline=True)
@@ -199,7 +165,7 @@ def reset_rows(idx, draws, ptr, p_sign, t, y, R, P, tab, out, steps, obs, cols):
         t[i], steps[i] = 0.0, 0
         out[i, 0] = 0.0
         out[i, 1] = K.external_moment(0.0, y[i], Ri, P[i], tab[i])[3]
-        out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i])
+        out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i], math.nan, math.nan)
         out[i, 4] = K.mount_moment(y[i], out[i, 2], P[i])
         out[i, 5] = P[i, Slot.PROTOR]
         roll0 = K.roll_of(Ri)

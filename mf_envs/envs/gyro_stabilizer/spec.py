@@ -68,9 +68,10 @@ step (physics_dt = min(0.05, servo_time_constant)): against a reference at 0.05/
 episode of the default scene (seeds 0-2) the roll differs by 4.6e-6 rad RMS (0.03 % of the
 1.8e-2 rad RMS roll) under `pid`, 3.4e-7...7.5e-7 under `lqr` and 6.8e-5 rad RMS (0.04 %) with
 uniform random actions. The torque drives run two steps per control step by default
-(physics_dt = min(control_dt, RK4 limit) / 2, the limit from `physics.ship.drive.
-stable_physics_dt`, 0.139 s for the electric drive on the default yacht): against 0.05/32 s
-(seeds 0-2, 30 s) the roll differs by 6.0e-7 rad RMS under `pid` (0.003 % of its RMS roll),
+(physics_dt = min(control_dt, RK4 limit) / 2, the limit from
+`physics.ship.step_bound.stable_physics_dt`, 0.139 s for the electric drive on the default
+yacht): against 0.05/32 s (seeds 0-2, 30 s) the roll differs by 6.0e-7 rad RMS under `pid`
+(0.003 % of its RMS roll),
 3.1e-5 under `lqr` (0.35 %) and 3.1e-4 with uniform random actions (0.7 %; 1.9e-3 at one 0.05 s
 step): saturations and the inelastic end stops are not smooth, so RK4 loses its order there.
 A physics_dt beyond the RK4 limit is refused (ValueError naming physics_dt).

@@ -26,13 +26,8 @@ Default: one block per CPU once each gets >= 128 rows. The row loop (`_rows`) an
 step are `mf_envs._jit.kernel`s: compiled without reference counting, so the rows' views of the
 shared arrays cost nothing.
 
-SIMD lanes (`physics.ship.lanes`): when every row has the same parameters but the wave phase
-and the scene is one the lanes model (the default, electric drives, irregular seas, one or two
-gyros, either form), the rows are stepped 32 at a time with the RKMK4 stages in AVX lanes,
-each row keeping the scalar step's bits (`tests/test_ship_lanes.py`); otherwise every row takes
-the scalar step. Measured (N = 1024, random actions, autoresets, the default scene, 2-core
-shared VM, `throughput.py`): 1.66-3.14M env-steps/s on two threads in 16 runs (the scalar rows
-in turns: 0.88-1.91M); docs/stabilizer_physics.md "Throughput".
+Each row takes the single env's step (`physics.ship.kernels.advance_with`), so it keeps the
+single env's bits; docs/stabilizer_physics.md "Throughput" has the measured rates.
 """
 
 from __future__ import annotations
@@ -55,7 +50,6 @@ from mf_envs.envs.gyro_stabilizer.rows import (
     step_rows,
 )
 from mf_envs.physics.ship import kernels as K
-from mf_envs.physics.ship import lanes
 from mf_envs.physics.ship.batch import alloc_batch
 from mf_envs.physics.ship.layout import Slot
 
@@ -71,7 +65,6 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     single_env_cls = GyroStabilizerEnv
     DRAWS_PER_RESET = 3
-    row_align = lanes.LANES  # a thread's block of rows: whole lane blocks (`physics.ship.lanes`)
     # held per row (packed parameters P, the sea's table, the physics step): `randomize_rows`
     ROW_KWARGS = frozenset(
         ("wave_period", "wave_moment_amplitude", "significant_wave_height", "rotor_speed")
@@ -126,7 +119,6 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         same = set(np.flatnonzero(p1 != p2).tolist()) <= {int(Slot.WPHASE)}
         self._p_sign = float(np.sign(p1[Slot.WPHASE]))
         self._predraw_alloc(n, same and "irregular_waves" not in env.effects)
-        self._p0: np.ndarray | None = None  # `_lane_params`
 
     def _load(self, i: int) -> None:
         row, b = self.template.batch_row(), self.b
@@ -136,7 +128,6 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
             b[key][i] = row[key]
         self._dt[i], self._nsub[i] = self.template.physics_dt, self.template.n_substeps
         self._steps[i] = 0
-        self._p0 = None  # the rows' shared parameters for the SIMD lanes: checked again
 
     def state_nbytes(self) -> int:
         """Bytes of the per-env batch state (physics arrays, observations, info columns)."""
@@ -163,15 +154,6 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
             info[f"_{key}"] = mask.copy()
         return info
 
-    def _lane_params(self) -> np.ndarray:
-        """The parameter row every row shares but for the wave phase, for the SIMD lanes
-        (`physics.ship.lanes`), or an empty array (rows differ, or a scene the lanes do not
-        model): checked once after rows are loaded (`_load`), not per step."""
-        if self._p0 is None:
-            P = self.b["P"]
-            self._p0 = P[0].copy() if lanes.uniform(P) else np.empty(0)
-        return self._p0
-
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         b, env = self.b, self.template
         u = spec.precession_command(actions[:, 0], env.max_precession_rate)
@@ -180,7 +162,7 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         args = (
             active, b["t"], b["y"], b["R"], u, self._dt, self._nsub, b["P"], b["tab"],
             b["out"], self._steps, self._obs, self._fresh, cols, self._ok, self._reward,
-            env.roll_scale, env.effort_weight, env.control_dt, self._lane_params(),
+            env.roll_scale, env.effort_weight, env.control_dt,
         )  # fmt: skip
         self.blocks.run(step_rows, *args)
         info: dict[str, Any] = dict(zip(COLS, cols))

@@ -24,8 +24,8 @@ from mf_envs.physics.actuators.sma import FLEXINOL_HT, FLEXINOL_LT, SMAWireParam
 from mf_envs.physics.beam.contact.friction import FrictionParams
 from mf_envs.physics.beam.contact.grip import GripFeetParams, GripLaw
 from mf_envs.physics.inchworm import InchwormParams
-from mf_envs.physics.inchworm.drive import SMAWires
 from mf_envs.physics.inchworm.presets import V_GRIP, V_SLIDE
+from mf_envs.physics.inchworm.wires import SMAWires
 from mf_envs.physics.terrain import SOILS
 
 # the seed's scene (§4.10): kinematic anchors (Eq. 102), kappa# as commanded, quasi-static
@@ -153,7 +153,7 @@ def grip_feet_params(feet: FrictionParams, threshold: Any) -> GripFeetParams:
 def wire_groups(
     kw: dict[str, Any], params: InchwormParams, max_curvature: float, n_ctrl: int, on: bool
 ) -> SMAWires | None:
-    """The SMA wire groups (one per control point, `drive.SMAWires`) sized to the body: the
+    """The SMA wire groups (one per control point, `wires.SMAWires`) sized to the body: the
     wires at `wire_lever_arm` must hold EI max_curvature at the maker's 172 MPa
     (`sizing.size_wires`) with their strain max_curvature x lever arm inside the alloy's
     repeatable range. The wire kwargs are checked always, the sizing with `sma_wires` only

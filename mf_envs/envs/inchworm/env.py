@@ -98,7 +98,7 @@ class InchwormEnv(MFEnv):
     ValueError naming it (and draws nothing).
 
     ## Episode End
-    Truncation after `max_episode_steps` (default and spec's 400 steps, 40 s of 0.1 s) or
+    Truncation after `max_episode_steps` (default 400 steps, 40 s of 0.1 s) or
     `episode_seconds` (docs/api.md, "Episode length"). Termination when Newton-Raphson fails even
     after step halving (info["numerical_failure"] = True), or when both Coulomb feet would slip
     at once (no quasi-static equilibrium); render() then draws the last finite state. Translation

@@ -18,7 +18,6 @@ dynamics would need a regularised or event-driven contact, not built).
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,7 +29,6 @@ from mf_envs.physics.actuators.curvature import (
     increment_work,
     kappa_at_gauss,
 )
-from mf_envs.physics.actuators.sma import SMAWireParams
 from mf_envs.physics.beam import NewmarkState, NewtonDivergence, static
 from mf_envs.physics.beam.contact import grip_feet as gf
 from mf_envs.physics.beam.contact import stick_slip as ss
@@ -44,6 +42,7 @@ from mf_envs.physics.beam.contact.friction import FrictionParams
 from mf_envs.physics.beam.contact.grip import GripFeetParams
 from mf_envs.physics.inchworm import quasistatic as qs
 from mf_envs.physics.inchworm.model import Inchworm, InchwormParams
+from mf_envs.physics.inchworm.wires import SMAWires
 
 DRIVE_EFFECTS = {
     "actuator_dynamics": "actuator lag + rate limit on kappa# (off = kappa# as commanded)",
@@ -55,54 +54,6 @@ DRIVE_EFFECTS = {
     "(implies the weight)",
 }
 GRIP_COMMANDS = {"head": (0.0, 1.0), "tail": (1.0, 0.0), None: (1.0, 1.0)}  # (tail, head)
-
-
-@dataclass(frozen=True)
-class SMAWires:
-    """The wire groups of an SMA-driven body: one group per control point, each of `params`
-    (its n_wires, a length of body / control points), at a lever arm under the neutral axis such
-    that a fully contracted group holds kappa# = -kappa_full [1/m] (kappa_full = the recovery
-    strain / lever arm)."""
-
-    params: SMAWireParams
-    kappa_full: float
-    n_groups: int
-
-    @property
-    def group_power(self) -> float:
-        """Electrical power [W] of one group at duty 1 (rated current)."""
-        p = self.params
-        return p.current**2 * p.resistance_per_length * p.length * p.n_wires
-
-    @property
-    def power_per_length(self) -> float:
-        """Joule power per length of one wire at duty 1 [W/m]."""
-        return self.params.current**2 * self.params.resistance_per_length
-
-    def state_for(self, kappa_ctrl: np.ndarray) -> np.ndarray:
-        """SMA state (5, n) of groups at rest holding kappa# (n,) [1/m] in [-kappa_full, 0]:
-        at ambient (xi = 1) for kappa# = 0, else warm on the heating branch at the temperature
-        whose martensite fraction is 1 + kappa# / kappa_full (a wire heated to there)."""
-        a = self.params.alloy
-        xi = np.clip(1.0 + np.asarray(kappa_ctrl, float) / self.kappa_full, 0.0, 1.0)
-        out = np.empty((5, len(xi)))
-        t_amb = self.params.ambient
-        temp = (
-            a.austenite_start
-            + (a.austenite_finish - a.austenite_start) * np.arccos(2.0 * xi - 1.0) / np.pi
-        )
-        out[qs.SMA_T] = np.where(xi >= 1.0, t_amb, temp)
-        out[qs.SMA_XI] = xi
-        out[qs.SMA_DIR] = np.where(xi >= 1.0, -1.0, 1.0)  # sma_kernels COOLING / HEATING
-        out[qs.SMA_TR] = t_amb
-        out[qs.SMA_XIR] = 1.0
-        return out
-
-    def kernel_args(self) -> tuple:
-        """((hp, cap, T_amb), (As, Af, Ms, Mf, L/c), power per length [W/m], kappa_full,
-        group power [W])."""
-        thermal, tt = self.params.kernel_args()
-        return thermal, tt, self.power_per_length, self.kappa_full, self.group_power
 
 
 @dataclass
@@ -426,123 +377,3 @@ def make_driven(
         wires if "sma_wires" in effects else None,
         grip_feet if "gripping_feet" in effects else None,
     )
-
-
-# ---------------------------------------------------------------------- open-loop gaits
-CommandFn = Callable[[float], np.ndarray]  # t [s] -> commanded kappa# (n,) [1/m]
-
-
-def cosine_gait(amplitude: float, shape: np.ndarray, period: float) -> CommandFn:
-    """The seed's gait in seconds: kappa#(S, t) = -a s(S) (1 + cos(2 pi t / T - pi)) / 2
-    (Eqs. 101, 103 with the bookkeeping time 2 pi t / T); shape s (n,) = c1 + c2 S / L."""
-    shape = np.asarray(shape, float)
-    return lambda t: -0.5 * amplitude * shape * (1.0 + np.cos(2.0 * np.pi * t / period - np.pi))
-
-
-def square_gait(amplitude: float, shape: np.ndarray, period: float, bias: float = 0.0) -> CommandFn:
-    """Bang-bang command between two curl levels: -(b + a) s for the first half period, -b s
-    for the second (b = bias >= 0, 0: release fully); the actuator's lag and rate limit shape
-    the realised kappa#. A bias keeps the body arched, where the head-tail distance changes to
-    first order with kappa# (near straight only to second order)."""
-    shape = np.asarray(shape, float)
-
-    def command(t: float) -> np.ndarray:
-        phase = (t / period) % 1.0  # t = k dt: snap round-off at the switching instants
-        phase = 0.0 if phase > 1.0 - 1e-9 else phase
-        return -(bias + amplitude * float(phase < 0.5 - 1e-9)) * shape
-
-    return command
-
-
-def grip_for(driven: DrivenInchworm, command: np.ndarray, dt: float) -> str:
-    """Eq. 102 on the realised actuation: the head grips while kappa# decreases over the next
-    step (loading, neutral included), the tail while it increases; predicted by the lag."""
-    if driven.lag is None:
-        change = command - driven.kappa_ctrl
-    else:
-        change = driven.lag.trajectory(command, np.array([dt]))[0] - driven.lag.kappa
-    return "head" if float(np.mean(change)) <= 0.0 else "tail"
-
-
-@dataclass
-class GaitMetrics:
-    """Speed [body lengths / s], advance per cycle [body lengths], cost of transport
-    E / (m_A g L * distance) [-], energy [J] and tail distance [m] over the measured cycles."""
-
-    speed: float
-    advance_per_cycle: float
-    cost_of_transport: float
-    energy: float
-    distance: float
-
-
-def run_open_loop(
-    driven: DrivenInchworm,
-    command: CommandFn,
-    period: float,
-    dt: float,
-    n_cycles: int = 2,
-    warmup_cycles: int = 1,
-) -> GaitMetrics:
-    """Drive `driven` (already reset) with command(t) held over control steps of dt [s], the
-    grip by `grip_for`; measure the tail over n_cycles after warmup_cycles."""
-    sim = driven.sim
-    n_warm = int(round(warmup_cycles * period / dt))
-    n_meas = int(round(n_cycles * period / dt))
-    x0 = e0 = 0.0
-    for k in range(n_warm + n_meas):
-        if k == n_warm:
-            x0, e0 = sim.x_tail, driven.meter.input_energy
-        c = command((k + 1) * dt)
-        driven.step(c, grip_for(driven, c, dt), dt)
-    dist, energy = sim.x_tail - x0, driven.meter.input_energy - e0
-    p, span = sim.params, n_meas * dt
-    weight = p.mass_per_length * p.gravity * p.length
-    cot = energy / (weight * dist) if dist > 0.0 else float("inf")
-    return GaitMetrics(dist / span / p.length, dist / p.length * period / span, cot, energy, dist)
-
-
-# ---------------------------------------------------------------------- SMA duty gaits
-DutyFn = Callable[[float], np.ndarray]  # t [s] -> duty cycles (n,) in [0, 1]
-
-
-def heat_cool_gait(t_heat: float, t_cool: float, n: int, duty_off: float = 0.0) -> DutyFn:
-    """Every wire group at duty 1 for t_heat [s], then at duty_off (0: the current off; > 0:
-    kept warm) for t_cool [s]: the SMA inchworm's square wave (period t_heat + t_cool)."""
-    period = t_heat + t_cool
-
-    def duty(t: float) -> np.ndarray:
-        phase = t % period
-        phase = 0.0 if phase > period - 1e-9 else phase  # snap round-off at the switches
-        return np.full(n, 1.0 if phase < t_heat - 1e-9 else duty_off)
-
-    return duty
-
-
-def run_duty_loop(
-    driven: DrivenInchworm,
-    duty: DutyFn,
-    period: float,
-    dt: float,
-    n_cycles: int = 2,
-    warmup_cycles: int = 1,
-) -> GaitMetrics:
-    """`run_open_loop` for the SMA wires (`sma_wires`): duty(t) (a `heat_cool_gait`) held over
-    control steps of dt [s], the head gripping while the wires are heated at duty 1, the tail
-    otherwise (Eq. 102 on the command); the distance is the feet's midpoint's (a body still
-    curling up over the warm-up does not count as crawling); the cost of transport is
-    electrical."""
-    sim = driven.sim
-    n_warm = int(round(warmup_cycles * period / dt))
-    n_meas = int(round(n_cycles * period / dt))
-    x0 = e0 = 0.0
-    for k in range(n_warm + n_meas):
-        if k == n_warm:
-            x0, e0 = 0.5 * (sim.x_tail + sim.x_head), driven.electrical_energy
-        u = duty((k + 1) * dt)
-        driven.step(u, "head" if u[0] == 1.0 else "tail", dt)
-    dist, energy = 0.5 * (sim.x_tail + sim.x_head) - x0, driven.electrical_energy - e0
-    p, span = sim.params, n_meas * dt
-    weight = p.mass_per_length * p.gravity * p.length
-    cot = energy / (weight * dist) if dist > 0.0 else float("inf")
-    return GaitMetrics(dist / span / p.length, dist / p.length * period / span, cot, energy, dist)

@@ -41,7 +41,7 @@ def run_dynamic(
 ) -> np.ndarray:
     """Drive `driven` (an SMA robot on gripping feet, its quasi-static state the start, at rest)
     with duty(t) (n,) held over control steps of dt [s], the head gripping while the wires are
-    heated at duty 1 and the tail otherwise (as `drive.run_duty_loop`), through n_steps control
+    heated at duty 1 and the tail otherwise (as `open_loop.run_duty_loop`), through n_steps control
     steps of n_sub energy-momentum steps each (`dynamics.time_step`, rho_inf 0.8). t0 [s]: the
     time of the start in the gait (duty is evaluated at t0 + (k + 1) dt). mass_scale scales the
     inertia only (not the weight): 1e-3 gives the quasi-static limit of the same time

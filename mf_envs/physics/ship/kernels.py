@@ -50,16 +50,21 @@ from mf_envs.physics.ship.drive import DKS, DRCAP, cap_rate, cushion_torque, end
 from mf_envs.physics.ship.layout import (  # noqa: F401 (re-exported)
     CPL0,
     DRV0,
+    E_STATE,
     FORM_EXACT,
     FORM_SEED,
     GIMBAL_CONTINUOUS,
     GIMBAL_SERVO,
     GIMBAL_SINUSOIDAL,
     GIMBAL_TORQUE,
+    N_OUT,
     N_PARAMS,
+    N_STATE,
+    V_STATE,
     WAVE_NONE,
     WAVE_REGULAR,
     WAVE_TABLE,
+    Z_STATE,
 )
 from mf_envs.physics.ship.layout import Slot as S
 from mf_envs.physics.ship.loads import (  # noqa: F401 (re-exported: the kernels' public face)
@@ -72,17 +77,21 @@ from mf_envs.physics.ship.loads import (  # noqa: F401 (re-exported: the kernels
     wave_loads,
     wave_loads_near,
 )
+from mf_envs.physics.ship.outputs import (  # noqa: F401 (re-exported: the kernels' public face)
+    drive_output,
+    gyro_moment,
+    gyro_roll_moment,
+    mount_moment,
+    roll_of,
+    step_outputs,
+)
 
-# P: the packed parameter vector of `layout.KernelParams`, indexed P[S.NAME]
-# out (N_OUT,): gyro roll moment, wave moment, drive torque (N m), drive power (W), mount moment
-# per unit (N m; |(H phi', drive + cushion torque)| of one unit), rotor running power (W, all)
-N_OUT = 6
-N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt (J), sway v (m/s)
-Z_STATE, E_STATE, V_STATE = 11, 12, 13
+# P: the packed parameter vector of `layout.KernelParams`, indexed P[S.NAME]; the state y
+# (N_STATE,) and the outputs out (N_OUT,) as `layout` lays them out
 
 
 @kernel(forceinline=True, error_model="numpy")
-def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v, roll, coupled):
+def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v, roll):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
     at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame), gimbal
     angle phi given by c = cos(phi), s = sin(phi) (computed once per stage by the caller).
@@ -92,10 +101,9 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
     one gyro:  d2 (w2' + phi'') = tau + H w_g1 - (d1 - d3) w_g1 w_g3,
                w_g = (c w1 - s w3, w2, s w1 + c w3) the gimbal's body rates;
     the pair:  d2 phi'' = tau + H c w1 - (d1 - d3) s c (w1^2 - w3^2).
-    With the coupling on (`coupled`: P[S.CPLON] > 0.5, a constant False in the SIMD lanes, which
-    removes the call) the roll and yaw rows are solved together with the sway equation of
-    `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad). Division by zero
-    gives inf/NaN (numpy's error model: no exception path to inline).
+    With the coupling on (P[S.CPLON] > 0.5) the roll and yaw rows are solved together with the
+    sway equation of `ship.coupling` at sway velocity v (m/s) and roll angle `roll` (rad).
+    Division by zero gives inf/NaN (numpy's error model: no exception path to inline).
     Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'', v' in m/s^2).
     """
     n = int(P[S.NGYRO])
@@ -134,7 +142,7 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
             r1 += jg * phid * w3
             r3 -= (jg - 0.25 * P[S.JR3] * c2) * phid * w1
     dv = 0.0
-    if coupled:
+    if P[S.CPLON] > 0.5:  # the sway-roll-yaw coupling
         C = P[CPL0 : CPL0 + N_COUPLING]
         dv, a1, a3 = solve_sway_roll_yaw(jxx, jzz, jxz, r1, r3, P[S.SPEED], v, w1, w3, roll, C)
     else:
@@ -190,7 +198,7 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
     coupled = P[S.CPLON] > 0.5
     roll = math.atan2(r21, r22) if coupled else 0.0
     a1, a2, a3, _, phidd, dv = ship_accel(
-        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll, coupled
+        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll
     )
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
@@ -264,7 +272,7 @@ def rk4_step_near(t, y, R, u, dt, P, tab, work, Rwork, near):
 
 @kernel(forceinline=True)
 def end_step(y, R, dt, P, work, Rwork, inp):
-    """The end of `rk4_step_near` after its stepper (also of the SIMD lanes' step, `lanes`):
+    """The end of `rk4_step_near` after its stepper:
     y += the increment work[0], R <- the new attitude Rwork[1], then the prescribed gimbal's
     value, the rate cap or the hard stops; returns the wave moment of inp, the stage inputs
     at t + dt."""
@@ -334,31 +342,6 @@ def _cap_gimbal(y, dt, P):
         y[1] -= P[S.D2] * jump / (P[S.J2] + P[S.D2])
 
 
-@kernel
-def roll_of(R) -> float:
-    """Roll r = atan2(R32, R33) (rad, z-y-x Euler angles) of one attitude R (3, 3) with libm's
-    scalar atan2: the single env (through numba's dispatch) and the vector kernel call this one
-    function, so they agree bit for bit (numpy's SIMD `arctan2`, `ship.roll_angle`, can differ
-    from it by an ulp on AVX-512 machines)."""
-    return math.atan2(R[2, 1], R[2, 2])
-
-
-@numba.njit(cache=True)
-def gyro_roll_moment(phi: float, phi_rate: float, angular_momentum: float, n_gyros: int) -> float:
-    """Gyroscopic roll moment on the hull, -n H phi' cos(phi) (N m; Eq. 123 right-hand side):
-    gimbal angle phi (rad) and rate phi' (rad/s) of gyro 1, H = J3^(3) psi' (N m s) per gyro."""
-    return -n_gyros * angular_momentum * phi_rate * math.cos(phi)
-
-
-@kernel
-def gyro_moment(y, P, c=math.nan):
-    """Gyro roll moment (N m, Eq. 123) of state y: `gyro_roll_moment` with the packed P;
-    c = cos(phi) if the caller has it (NaN: libm)."""
-    if c != c:
-        return gyro_roll_moment(y[3], y[4], P[S.JR3] * P[S.PSID], P[S.NGYRO])
-    return -P[S.NGYRO] * (P[S.JR3] * P[S.PSID]) * y[4] * c
-
-
 @numba.njit(cache=True)
 def advance(t, y, R, u, dt, n_sub, P, tab, out):
     """n_sub RK4 steps of size dt with the command u held; returns the new time.
@@ -384,51 +367,6 @@ def advance_with(t, y, R, u, dt, n_sub, P, tab, out, work, Rwork):
     return t
 
 
-@kernel(forceinline=True)
-def step_outputs(t, y, R, u, P, out, mw, near0):
-    """out (`advance`'s doc) at the end of a control step at time t: mw the wave moment (N m)
-    at t, near0 the step's start values (`start_values`)."""
-    c, s = math.nan, math.nan  # cos, sin of the final gimbal angle (NaN: libm in the callees)
-    mode = int(P[S.GMODE])
-    if mode == GIMBAL_SERVO or mode == GIMBAL_TORQUE:
-        c, s = sincos_near(y[3], near0[0], near0[1], near0[2])
-    out[0] = gyro_moment(y, P, c)
-    out[1] = mw
-    out[2], out[3] = drive_output(t, y, R, u, P, c, s)
-    out[4] = mount_moment(y, out[2], P)
-    out[5] = P[S.PROTOR]
-
-
-@kernel
-def mount_moment(y, tau, P):
-    """Moment (N m) one unit's foundation takes (`N_OUT` doc): |(H phi', tau_g)| / units, the
-    precession moment H phi' (roll and yaw of the unit's frame) and the gimbal-axis torque
-    tau_g = drive torque tau (N m, of the lumped gyro) + cushion torque."""
-    hp = P[S.JR3] * P[S.PSID] * y[4]
-    tg = tau
-    if P[DRV0 + DKS] > 0.0:
-        tg = tau + cushion_torque(y[3], y[4], P, DRV0)
-    return math.sqrt(hp * hp + tg * tg) / P[S.UNITS]
-
-
-@kernel
-def drive_output(t, y, R, u, P, c=math.nan, s=math.nan):
-    """(torque on gyro 1's gimbal in N m, power n tau phi' in W) of the drive at state y.
-
-    Torque drives: the machine's torque (`gimbal_drive`). The kinematic servo (and prescribed
-    gimbals) report the torque they impose, J_g phi'' - H w_g1 (the gimbal's own equation with
-    the hull's pitch acceleration neglected), without any limit. c, s: cos, sin of the gimbal
-    angle if the caller has them (NaN: libm).
-    """
-    phi, phid = y[3], y[4]
-    if int(P[S.GMODE]) == GIMBAL_TORQUE:
-        tau = gimbal_drive(y[0], y[2], phi, phid, y[Z_STATE], u, R[2, 0], R[2, 2], P, c, s)[0]
-    else:
-        phidd = gimbal_motion(t, phi, phid, u, P)[2]
-        tau = P[S.D2] * phidd - gyro_gimbal_torque(y[0], y[2], phi, P, c, s)
-    return tau, P[S.NGYRO] * tau * phid
-
-
 @numba.njit(cache=True)
 def simulate_kernel(y0, R0, t_end, dt, P, tab):
     """Open-loop run (prescribed gimbal, or servo / torque drive with u = 0): t, y, R, moment."""
@@ -446,7 +384,7 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
     ts[0] = 0.0
     ys[0] = y
     Rs[0] = R
-    mg[0] = gyro_moment(y, P)
+    mg[0] = gyro_moment(y, P, math.nan)
     t = 0.0
     work, Rwork = rk4_work(y.shape[0]), rkmk4_rwork()
     for k in range(n):
@@ -455,5 +393,5 @@ def simulate_kernel(y0, R0, t_end, dt, P, tab):
         ts[k + 1] = t
         ys[k + 1] = y
         Rs[k + 1] = R
-        mg[k + 1] = gyro_moment(y, P)
+        mg[k + 1] = gyro_moment(y, P, math.nan)
     return ts, ys, Rs, mg

@@ -6,8 +6,9 @@ derived from it, so adding a hull parameter is one field here plus its use in th
 `mf_envs.physics.ship.model.pack_params`. A tuple field is a block (`BLOCKS`: the torque drive's
 `ship.drive.DriveParams.pack`, the `ship.coupling` coefficients) filling slots NAME_0 ..
 NAME_{len-1}; the kernels slice it at the generated offset (`DRV0 = Slot.DRIVE_0`, `CPL0`), so
-the sub-indices are the block's own (`ship.drive.DPHIMAX` ...). (numba's cache watches only a
-kernel's own file: after editing this one, touch `kernels.py` and `batch.py`.)
+the sub-indices are the block's own (`ship.drive.DPHIMAX` ...). Also the layouts of the
+kernels' state y (`N_STATE`) and outputs (`N_OUT`). The kernels' numba caches are stamped by
+this file too (`mf_envs._cache`: it is among their imports).
 """
 
 from __future__ import annotations
@@ -113,3 +114,12 @@ Slot = enum.IntEnum("Slot", _slot_names(), start=0)
 N_PARAMS = len(Slot)
 DRV0 = int(Slot.DRIVE_0)  # first slot of the drive block: P[DRV0 : DRV0 + N_DRIVE]
 CPL0 = int(Slot.COUPLING_0)  # first slot of the coupling block: P[CPL0 : CPL0 + N_COUPLING]
+
+# the kernels' state y (N_STATE,): body rates w1, w2, w3 (rad/s), gimbal angle phi (rad) and
+# rate phi' (rad/s), hull translation (3 positions, 3 velocities) and these three
+N_STATE = 14  # + drive loop integral z (rad), drive energy int n |tau phi'| dt (J), sway v (m/s)
+Z_STATE, E_STATE, V_STATE = 11, 12, 13
+# a step's outputs out (N_OUT,): gyro roll moment, wave moment, drive torque (N m), drive power
+# (W), mount moment per unit (N m; |(H phi', drive + cushion torque)| of one unit), rotor running
+# power (W, all)
+N_OUT = 6

@@ -49,7 +49,7 @@ def gimbal_motion(t: float, phi: float, phid: float, u: float, P: np.ndarray):
 
 
 @kernel(forceinline=True)
-def gyro_gimbal_torque(w1, w3, phi, P, c=math.nan, s=math.nan):
+def gyro_gimbal_torque(w1, w3, phi, P, c, s):
     """H w_g1 (N m): the gyroscopic torque on gyro 1's gimbal, H (cos phi w1 - sin phi w3) for
     one gyro, H cos(phi) w1 on the common coordinate of the mirrored pair. c, s: cos(phi),
     sin(phi) if the caller has them (NaN: computed here)."""
@@ -66,7 +66,7 @@ def gyro_torque_cs(w1, w3, c, s, P):
 
 
 @kernel(forceinline=True)
-def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c=math.nan, s=math.nan):
+def gimbal_drive(w1, w3, phi, phid, z, u, r20, r22, P, c, s):
     """(tau in N m, z' in rad/s) of the torque drive (`ship.drive.drive_torque`) on gyro 1's
     gimbal; the gyroscopic torque it feeds forward is H w_g1 (one gyro) or H cos(phi) w1 (pair).
     c, s: cos(phi), sin(phi) if the caller has them (`gyro_gimbal_torque`)."""
@@ -91,7 +91,7 @@ def _asin(x: float) -> float:
 
 @kernel(forceinline=True)
 def asin_series(x: float) -> float:
-    """The series of `_asin` (no libm: the SIMD lanes' form)."""
+    """The series of `_asin` (|x| < ASIN_SERIES)."""
     x2 = x * x
     return x + x * x2 * (
         1.0 / 6.0
@@ -128,8 +128,7 @@ def roll_needed(P) -> bool:
 @kernel(forceinline=True, error_model="numpy")
 def hull_moment_with(w1, w2, w3, r21, r22, P, roll, pitch):
     """`hull_moment` given the roll angle atan2(R32, R33) (rad; read only by the linear and
-    the cubic GZ) and the pitch asin(-R31) (rad; read only with C55 > 0): no libm, so the
-    ship's SIMD lanes inline it (`lanes`)."""
+    the cubic GZ) and the pitch asin(-R31) (rad; read only with C55 > 0)."""
     m1 = 0.0
     m2 = 0.0
     if P[S.K44] > 0.0:
