@@ -116,3 +116,34 @@ def test_wave_action_mode_swims_as_the_wave_baseline():
     want = np.mean([i["speed"] for i in ref[51:]])
     assert want > 0.1
     assert got == pytest.approx(want, rel=1e-3)
+
+
+def test_a_body_too_light_for_its_entrained_water_is_refused_by_name():
+    with pytest.raises(ValueError, match=r"^density: must be >= 0.25 x water_density"):
+        gym.make("Eel-v0", density=10.0)
+    with pytest.raises(ValueError, match="density"):
+        gym.make("Eel-v0", density=100.0, water_density=1025.0)
+
+
+@pytest.mark.parametrize("pattern", ["random", "alternate", "hold"])
+def test_the_lightest_allowed_body_survives_bang_bang_strokes(pattern):
+    """Reactive force only (no drag to damp anything), density at the lower bound: 400 steps of
+    bang-bang curvature commands (random per point, all switching every 5 steps, held then
+    reversed) end in no numerical failure."""
+    env = gym.make("Eel-v0", density=250.0, effects=("reactive",))
+    env.reset(seed=0)
+    rng = np.random.default_rng(1)
+    shape = env.action_space.shape
+    failures = 0
+    for k in range(400):
+        if pattern == "random":
+            a = np.where(rng.random(shape) < 0.5, -1.0, 1.0)
+        elif pattern == "alternate":
+            a = np.full(shape, 1.0 if (k // 5) % 2 else -1.0)
+        else:
+            a = np.full(shape, 1.0 if k < 200 else -1.0)
+        _, _, term, trunc, info = env.step(a.astype(np.float32))
+        failures += bool(info["numerical_failure"])
+        if term or trunc:
+            env.reset(seed=k + 1)
+    assert failures == 0

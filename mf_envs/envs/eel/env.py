@@ -84,7 +84,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     |---|---|---|
     | length, diameter | 0.2, 0.06 L | body length L, diameter d [m] (d <= L / 5) |
     | youngs_modulus, shear_modulus | 1e6, E / 1.5 | E, G [Pa] in [1e3, 1e12] |
-    | density, water_density | 1000, 1000 | body and water density [kg/m^3] |
+    | density, water_density | 1000, 1000 | body, water density [kg/m^3]; body >= 0.25 x water |
     | drag_normal, drag_tangential | 1.1, 0.0055 | Taylor's C_N, C_T (docs/eel.md) |
     | n_elements | 6 | C1 elements, 2..64 |
     | max_curvature | 50 | action scale [1/m], max_curvature L <= 20 |
