@@ -20,7 +20,7 @@ from typing import Any
 
 import gymnasium as gym
 
-from mf_envs._files import inside
+from mf_envs._files import inside, make_dirs
 from mf_envs._staging import moved, staged_dir
 from mf_envs.train.config import (
     ALGOS,
@@ -108,7 +108,7 @@ def train(
     final = Path(out) / env_id / ("" if algo == "ppo" else algo) / f"seed{seed}"
     if progress_bar and importlib.util.find_spec("rich") is None:
         progress_bar = False  # SB3's bar needs tqdm and rich; train without it
-    with staged_dir(final, replace=True, force=force) as run_dir:
+    with staged_dir(final, replace=True, force=force, root=Path(out)) as run_dir:
         torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
         venv, vec_kind, eval_env = _make_envs(hp, seed, prefer_native=vec_env == "auto")
@@ -346,7 +346,7 @@ def _tensorboard_dir(out: str | Path, env_id: str) -> str:
             "tensorboard: the package is not installed (pip install tensorboard), "
             "or run without --tensorboard"
         ) from None
-    return str(Path(out) / env_id / "tensorboard")
+    return str(make_dirs(out, Path(out) / env_id / "tensorboard"))
 
 
 def _command(

@@ -1,0 +1,149 @@
+"""Outputs never follow a planted link, documents and headers are bounded before they are read,
+and every refusal is one line naming the key, file or parameter the user gave.
+
+Each case plants its payload (a symbolic link to a victim file outside the output folder, a
+deeply nested document, a huge array header, a FIFO, a silent address) and asserts both the
+exact name in the error and that the victim is unchanged.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import pytest
+
+from mf_envs.cli import main
+
+SWEEP = """env_id: GOWEC-v0
+seeds: [0]
+controllers: [baseline]
+env_kwargs: {episode_seconds: 1.0}
+"""
+VICTIM = "line1\nline2 without a newline"
+
+
+def _victim(tmp_path: Path) -> Path:
+    v = tmp_path / "victim.txt"
+    v.write_text(VICTIM)
+    return v
+
+
+def _one_line(capsys) -> str:
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    return err[0]
+
+
+# ---------------------------------------------------------------------- planted links
+def test_sweep_refuses_a_planted_trials_csv_link(tmp_path, capsys):
+    victim = _victim(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "trials.csv").symlink_to(victim)
+    cfg = tmp_path / "cfg.yml"
+    cfg.write_text(SWEEP)
+    args = ["sweep", str(cfg), "--serial", "--no-progress", "--out", str(out)]
+    assert main(args) == 2
+    line = _one_line(capsys)
+    assert "trials.csv" in line and "symbolic link" in line
+    assert victim.read_text() == VICTIM
+    # a planted link at a picture's name is refused too (after the trials ran)
+    (out / "trials.csv").unlink()
+    (out / "cfg_power_ratio.png").symlink_to(victim)
+    assert main(args) == 2
+    assert "cfg_power_ratio.png" in _one_line(capsys)
+    assert victim.read_text() == VICTIM
+
+
+def test_sweep_names_a_malformed_or_special_trials_csv(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    cfg = tmp_path / "cfg.yml"
+    cfg.write_text(SWEEP)
+    args = ["sweep", str(cfg), "--serial", "--no-progress", "--out", str(out)]
+    (out / "trials.csv").write_text("a,b\n1,2\n")
+    assert main(args) == 2
+    line = _one_line(capsys)
+    assert "trials.csv" in line and "trial_id" in line
+    assert (out / "trials.csv").read_text() == "a,b\n1,2\n"
+    (out / "trials.csv").unlink()
+    os.mkfifo(out / "trials.csv")  # never opened for reading (no hang)
+    assert main(args) == 2
+    assert "not a regular file" in _one_line(capsys)
+
+
+def test_store_cuts_a_torn_line_atomically(tmp_path):
+    from mf_envs.sweep.store import ResultStore
+
+    p = tmp_path / "trials.csv"
+    p.write_text("trial_id,x\nabc,1\ndef,")
+    store = ResultStore(p)
+    assert p.read_text() == "trial_id,x\nabc,1\n"
+    store.append({"trial_id": "ghi", "x": 2.5})
+    assert store.done_ids() == {"abc", "ghi"}
+    assert [q.name for q in tmp_path.iterdir()] == ["trials.csv"]  # no temporary left
+
+
+def test_train_refuses_a_planted_run_folder_link(tmp_path, capsys):
+    pytest.importorskip("stable_baselines3", reason="needs the train extra")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    (runs / "GOWEC-v0").symlink_to(elsewhere)
+    args = ["train", "GOWEC-v0", "--timesteps", "64", "--out", str(runs)]
+    assert main(args) == 2
+    line = _one_line(capsys)
+    assert "runs/GOWEC-v0" in line and "symbolic link" in line
+    assert list(elsewhere.iterdir()) == []
+
+
+def test_staged_outputs_refuse_links_inside_the_folder(tmp_path):
+    from mf_envs._staging import staged_dir
+
+    victim = _victim(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "table.csv").symlink_to(victim)
+    with pytest.raises(ValueError, match="table.csv.*symbolic link"):
+        with staged_dir(out) as tmp:
+            (tmp / "table.csv").write_text("new")
+            (tmp / "other.csv").write_text("new")
+    assert victim.read_text() == VICTIM
+    assert not (out / "other.csv").exists()  # nothing moved: refused before the first move
+    (out / "sub").symlink_to(tmp_path)
+    with pytest.raises(ValueError, match="sub.*symbolic link"):
+        with staged_dir(out) as tmp:
+            (tmp / "sub").mkdir()
+            (tmp / "sub" / "victim.txt").write_text("new")
+    assert victim.read_text() == VICTIM
+
+
+def test_policy_files_are_not_written_through_links(tmp_path):
+    from mf_envs.train.policy import write_meta
+
+    victim = _victim(tmp_path)
+    folder = tmp_path / "pol"
+    folder.mkdir()
+    (folder / "meta.json").symlink_to(victim)
+    with pytest.raises(ValueError, match="meta.json.*symbolic link"):
+        write_meta(folder, {"env_id": "GOWEC-v0"})
+    assert victim.read_text() == VICTIM
+    (folder / "meta.json").unlink()
+    write_meta(folder, {"env_id": "GOWEC-v0"})
+    assert json.loads((folder / "meta.json").read_text()) == {"env_id": "GOWEC-v0"}
+    assert sorted(q.name for q in folder.iterdir()) == ["meta.json"]
+
+
+def test_a_gif_is_not_written_through_a_link(tmp_path):
+    import numpy as np
+
+    from mf_envs.render import save_gif
+
+    victim = _victim(tmp_path)
+    (tmp_path / "o.gif").symlink_to(victim)
+    with pytest.raises(ValueError, match="o.gif.*symbolic link"):
+        save_gif([np.zeros((4, 4, 3), np.uint8)], tmp_path / "o.gif")
+    assert victim.read_text() == VICTIM
