@@ -9,6 +9,8 @@
 - `inside`: the resolved path must stay inside the output folder it was given.
 - `read_regular`: the bytes of a regular file (a FIFO, a device or a folder is refused without
   blocking on it), bounded in size; `check_depth`: JSON nesting bounded before it is parsed.
+- `check_npz`: every member header of an `.npz` archive checked (dtype, shape, bytes) before
+  `np.load` allocates an array of the shape it declares.
 - Writing under an output folder the caller gave never follows a symbolic link the caller did
   not give: `make_dirs` creates the folders below it one by one and refuses a link among them,
   `atomic_path`/`write_atomic` write a temporary file in the same folder and `os.replace` it
@@ -18,10 +20,12 @@
 
 from __future__ import annotations
 
+import math
 import os
 import re
 import stat
 import tempfile
+import zipfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -109,6 +113,41 @@ def check_depth(data: bytes, where: str, limit: int = MAX_DEPTH) -> None:
     steps -= np.isin(b, (ord("]"), ord("}")))
     if steps.size and int(np.cumsum(steps).max()) > limit:
         raise ValueError(f"{where} nests deeper than {limit} levels; refused")
+
+
+MAX_NPZ_MEMBERS = 64
+
+
+def check_npz(path: str | Path, max_bytes: int) -> None:
+    """ValueError (or zipfile.BadZipFile) unless `path` is a zip of at most MAX_NPZ_MEMBERS
+    `.npy` members whose headers declare a plain numeric dtype (no objects: nothing unpickled)
+    and at most `max_bytes` of data each; only the headers are read. The caller names the
+    file (the hull loaders: ValueError naming it)."""
+    fmt = np.lib.format
+    with zipfile.ZipFile(path) as z:
+        members = z.infolist()
+        if len(members) > MAX_NPZ_MEMBERS:
+            raise ValueError(f"{len(members)} members, more than {MAX_NPZ_MEMBERS}")
+        for info in members:
+            name = info.filename
+            if not name.endswith(".npy"):
+                raise ValueError(f"member {name!r} is not an .npy array")
+            with z.open(info) as fh:
+                version = fmt.read_magic(fh)
+                if version == (1, 0):
+                    shape, _, dtype = fmt.read_array_header_1_0(fh, max_header_size=10_000)
+                elif version == (2, 0):
+                    shape, _, dtype = fmt.read_array_header_2_0(fh, max_header_size=10_000)
+                else:
+                    raise ValueError(f"member {name!r}: unsupported .npy version {version}")
+            if dtype.hasobject or dtype.kind not in "biuf":
+                raise ValueError(f"member {name!r}: dtype {dtype} is not a real number type")
+            nbytes = math.prod(shape) * dtype.itemsize
+            if nbytes > max_bytes:
+                raise ValueError(
+                    f"member {name!r}: its header declares shape {shape} ({nbytes} bytes), "
+                    f"more than {max_bytes}"
+                )
 
 
 def read_regular(path: str | Path, max_bytes: int, what: str) -> bytes:

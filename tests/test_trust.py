@@ -147,3 +147,99 @@ def test_a_gif_is_not_written_through_a_link(tmp_path):
     with pytest.raises(ValueError, match="o.gif.*symbolic link"):
         save_gif([np.zeros((4, 4, 3), np.uint8)], tmp_path / "o.gif")
     assert victim.read_text() == VICTIM
+
+
+# ---------------------------------------------------------------------- policy folders
+def _deep(n: int) -> str:
+    return "[" * n + "]" * n
+
+
+@pytest.mark.parametrize(
+    ("name", "payload", "match"),
+    [
+        ("policy.json", lambda d: '{"a": ' + _deep(100_000) + "}", "nests deeper"),
+        ("meta.json", lambda d: '{"a": ' + _deep(100_000) + "}", "nests deeper"),
+        ("obs_normalization.json", lambda d: _deep(100_000), "nests deeper"),
+        ("policy.json", lambda d: json.dumps({**d, "algo": ["PPO"]}), "algo"),
+        (
+            "policy.json",
+            lambda d: json.dumps({**d, "policy_kwargs": {"net_arch": [1_000_000, 1_000_000]}}),
+            "net_arch",
+        ),
+        (
+            "policy.json",
+            lambda d: json.dumps({**d, "policy_kwargs": {"net_arch": [4096] * 16}}),
+            "net_arch needs",
+        ),
+    ],
+)
+def test_policy_documents_are_bounded_before_parsing(tmp_path, name, payload, match):
+    from test_security import _policy_folder
+
+    from mf_envs.train import load_policy
+
+    folder = _policy_folder(tmp_path)
+    p = folder / name
+    p.write_text(payload(json.loads(p.read_text())))
+    with pytest.raises(ValueError, match=match) as info:
+        load_policy("Pendulum-v1", folder)
+    assert name in str(info.value)
+
+
+def test_policy_fifo_and_nan_weights_are_named(tmp_path):
+    import threading
+
+    from safetensors.torch import load_file, save_file
+    from test_security import _policy_folder
+
+    from mf_envs.train import load_policy
+
+    folder = _policy_folder(tmp_path)
+    norm = folder / "obs_normalization.json"
+    norm.unlink()
+    os.mkfifo(norm)
+    # were the FIFO opened for reading, this writer would unblock it; the test must not hang
+    timer = threading.Timer(10.0, lambda: open(norm, "w").close())
+    timer.start()
+    try:
+        with pytest.raises(ValueError, match="obs_normalization.json.*not a regular file"):
+            load_policy("Pendulum-v1", folder)
+    finally:
+        timer.cancel()
+    norm.unlink()
+    weights = folder / "policy.safetensors"
+    state = load_file(weights)
+    key = sorted(state)[0]
+    state[key] = state[key].clone().fill_(float("nan"))
+    save_file(state, weights)
+    with pytest.raises(ValueError, match=f"policy.safetensors: tensor '{key}' holds NaN"):
+        load_policy("Pendulum-v1", folder)
+
+
+# ---------------------------------------------------------------------- hull files
+def test_a_hull_member_declaring_a_huge_shape_is_refused_from_its_header(tmp_path):
+    import io
+    import zipfile
+
+    import gymnasium as gym
+    import numpy as np
+
+    from mf_envs.physics.gowec.hydro import load_hull
+
+    good = tmp_path / "good.npz"
+    load_hull().save(good)
+    evil = tmp_path / "evil.npz"
+    with zipfile.ZipFile(good) as src, zipfile.ZipFile(evil, "w") as dst:
+        for info in src.infolist():
+            data = src.read(info)
+            if info.filename == "omega.npy":
+                buf = io.BytesIO()
+                header = {"descr": "<f8", "fortran_order": False, "shape": (10**12,)}
+                np.lib.format.write_array_header_1_0(buf, header)
+                data = buf.getvalue() + b"\0" * 4096
+            dst.writestr(info.filename, data)
+    assert evil.stat().st_size < 10_000
+    for make in (lambda: load_hull(evil), lambda: gym.make("FloatingGOWEC-v0", hull=str(evil))):
+        with pytest.raises(ValueError, match=r"evil\.npz.*omega\.npy.*\(1000000000000,\)") as info:
+            make()
+        assert type(info.value) is ValueError
