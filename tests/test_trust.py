@@ -243,3 +243,54 @@ def test_a_hull_member_declaring_a_huge_shape_is_refused_from_its_header(tmp_pat
         with pytest.raises(ValueError, match=r"evil\.npz.*omega\.npy.*\(1000000000000,\)") as info:
             make()
         assert type(info.value) is ValueError
+
+
+# ---------------------------------------------------------------------- configs
+BAD_TRAIN_ENTRIES = {
+    'normalize: "{"': "normalize",
+    "normalize: {norm_obs: true, bogus: 1}": "normalize: unknown key 'bogus'",
+    "learning_rate: [1, 2]": "learning_rate",
+    "learning_rate: lin_abc": "learning_rate",
+    "gamma: abc": "gamma",
+    "gamma: .nan": "gamma",
+    "n_steps: 0": "n_steps",
+    "tensorboard_log: /tmp/elsewhere": "tensorboard_log",
+    "env_kwargs: {bogus: 1}": "env_kwargs: 'bogus'",
+    "n_envs: !!float 1e8": "n_envs",
+    'policy_kwargs: "dict(net_arch=[1000000000])"': "net_arch",
+    "env_wrapper: [{gymnasium.wrappers.TimeLimit: {bogus: 1}}]": "unknown argument 'bogus'",
+    "clip_range: -1": "clip_range",
+    "batch_size: 1.5": "batch_size",
+    "policy: CnnPolicy": "policy",
+    "not_a_key: 1": "'not_a_key'",
+    "ent_coef: auto": "ent_coef",
+}
+
+
+@pytest.mark.parametrize("entry", list(BAD_TRAIN_ENTRIES))
+def test_train_config_is_checked_in_one_pass_naming_the_key(tmp_path, capsys, entry):
+    cfg = tmp_path / "bad.yml"
+    cfg.write_text(f"GOWEC-v0:\n  n_timesteps: 64\n  {entry}\n")
+    before = sorted(tmp_path.rglob("*"))
+    assert main(["train", "GOWEC-v0", "--config", str(cfg), "--out", str(tmp_path / "r")]) == 2
+    assert BAD_TRAIN_ENTRIES[entry] in _one_line(capsys)
+    assert sorted(tmp_path.rglob("*")) == before  # refused before any folder is made
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "GOWEC-v0:\n  env_kwargs: " + "[" * 3000 + "]" * 3000 + "\n",
+        "- " * 3000 + "1\n",
+        "{a: " * 3000 + "1" + "}" * 3000 + "\n",
+    ],
+)
+def test_deep_yaml_is_refused_by_the_loader(tmp_path, text):
+    from mf_envs.sweep.config import load_config
+    from mf_envs.train.config import load_hyperparams
+
+    p = tmp_path / "deep.yml"
+    p.write_text(text)
+    for load in (load_config, lambda q: load_hyperparams("GOWEC-v0", q)):
+        with pytest.raises(ValueError, match=r"deep\.yml nests deeper than 64"):
+            load(p)
