@@ -109,6 +109,24 @@ def check_int(name: str, value: Any, low: int | None = None, high: int | None = 
     return value
 
 
+def arg_int(low: int, high: int) -> Any:
+    """An argparse `type`: a whole number in [low, high]; otherwise argparse's one-line usage
+    error (exit status 2) naming the option and the range, never an OverflowError later."""
+    import argparse
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"must be in [{low}, {high}], got {_short(text)}")
+        return value
+
+    parse.__name__ = "int"  # argparse's messages name the type
+    return parse
+
+
 def check_choice(name: str, value: Any, choices: Iterable[Any]) -> Any:
     """`value` must be one of `choices`."""
     choices = tuple(choices)

@@ -294,3 +294,58 @@ def test_deep_yaml_is_refused_by_the_loader(tmp_path, text):
     for load in (load_config, lambda q: load_hyperparams("GOWEC-v0", q)):
         with pytest.raises(ValueError, match=r"deep\.yml nests deeper than 64"):
             load(p)
+
+
+# ---------------------------------------------------------------------- CLI bounds, Ray
+@pytest.mark.parametrize(
+    ("argv", "option"),
+    [
+        (["render", "GOWEC-v0", "--out", "o.gif", "--steps", "100000000000000000000"], "--steps"),
+        (["render", "GOWEC-v0", "--out", "o.gif", "--seed", "99999999999999999999"], "--seed"),
+        (["train", "GOWEC-v0", "--timesteps", "1" + "0" * 30], "--timesteps"),
+        (["train", "GOWEC-v0", "--eval-episodes", "100000000"], "--eval-episodes"),
+        (["evaluate", "GOWEC-v0", "--episodes", "1e9"], "--episodes"),
+        (["sweep", "x.yml", "--num-cpus", "100000000000"], "--num-cpus"),
+    ],
+)
+def test_cli_counts_are_bounded(tmp_path, monkeypatch, capsys, argv, option):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 2
+    line = _one_line(capsys)
+    assert f"argument {option}:" in line
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_silent_ray_address_fails_fast_naming_it(tmp_path, capsys):
+    import time
+
+    from mf_envs._ray import probe_address
+
+    t0 = time.perf_counter()
+    with pytest.raises(ValueError, match=r"address: no Ray cluster answers at '127\.0\.0\.1:1'"):
+        probe_address("127.0.0.1:1", timeout=1.0)
+    with pytest.raises(ValueError, match="address: expected HOST:PORT"):
+        probe_address("127.0.0.1")
+    assert time.perf_counter() - t0 < 5.0
+    pytest.importorskip("ray", reason="needs the ray extra")
+    cfg = tmp_path / "cfg.yml"
+    cfg.write_text(SWEEP)
+    out = tmp_path / "out"
+    argv = ["sweep", str(cfg), "--address", "127.0.0.1:1", "--out", str(out), "--no-progress"]
+    t0 = time.perf_counter()
+    assert main(argv) == 2
+    assert "'127.0.0.1:1'" in _one_line(capsys)
+    assert time.perf_counter() - t0 < 30.0 and not out.exists()
+
+
+def test_ray_usage_stats_are_off_unless_turned_on(monkeypatch):
+    from mf_envs._ray import quiet_usage_stats
+
+    monkeypatch.delenv("RAY_USAGE_STATS_ENABLED", raising=False)
+    quiet_usage_stats()
+    assert os.environ["RAY_USAGE_STATS_ENABLED"] == "0"
+    monkeypatch.setenv("RAY_USAGE_STATS_ENABLED", "1")
+    quiet_usage_stats()
+    assert os.environ["RAY_USAGE_STATS_ENABLED"] == "1"
