@@ -86,3 +86,17 @@ def make_vec_injected(venv: Any) -> bool:
     in_spec = registered is not None and "max_episode_steps" in registered.kwargs
     own = getattr(spec, "max_episode_steps", None) != _registered_limit(spec)  # a spec's given
     return "max_episode_steps" not in user and not in_spec and not own
+
+
+def check_max_episode_steps(value: Any, high: int) -> int:
+    """`max_episode_steps` as given to gym.make, make_vec or the constructor: a Python int in
+    [1, high] (what gym.make's TimeLimit takes, so every way of making the env gives the same
+    answer); ValueError naming it otherwise (100.0 or numpy integers included)."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise ValueError(
+            f"max_episode_steps: expected a whole number of control steps (a Python int, as "
+            f"gym.make's TimeLimit takes), got {value!r} ({type(value).__name__})"
+        )
+    if not 1 <= value <= high:
+        raise ValueError(f"max_episode_steps: must be in [1, {high}], got {value}")
+    return value

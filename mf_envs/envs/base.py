@@ -17,9 +17,9 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from mf_envs._validate import as_action, check_int, check_range
+from mf_envs._validate import as_action, check_range
 from mf_envs.effects import resolve_effects
-from mf_envs.envs._limit import gym_make_limit
+from mf_envs.envs._limit import check_max_episode_steps, gym_make_limit
 from mf_envs.envs._spec import check_options
 
 MIN_DT = 1e-6  # s, smallest control or physics step
@@ -109,9 +109,9 @@ class MFEnv(gym.Env):
         limit = gym_make_limit(self)
         steps = None
         if max_episode_steps is not None:
-            steps = check_int("max_episode_steps", max_episode_steps, 1, MAX_EPISODE_STEPS)
+            steps = check_max_episode_steps(max_episode_steps, MAX_EPISODE_STEPS)
         if limit is not None and limit[0] == "given":
-            given = check_int("max_episode_steps", limit[1], 1, MAX_EPISODE_STEPS)
+            given = check_max_episode_steps(limit[1], MAX_EPISODE_STEPS)
             if steps is not None and steps != given:
                 raise ValueError(
                     f"max_episode_steps: the env's max_episode_steps={steps} and gym.make's "
