@@ -30,6 +30,15 @@ def _victim(tmp_path: Path) -> Path:
     return v
 
 
+def _planted(tmp_path: Path, folder: str, name: str) -> tuple[Path, Path]:
+    """(victim file outside, `tmp_path/folder`) with `folder/name` a link to the victim."""
+    victim = _victim(tmp_path)
+    out = tmp_path / folder
+    out.mkdir()
+    (out / name).symlink_to(victim)
+    return victim, out
+
+
 def _one_line(capsys) -> str:
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1, err
@@ -38,10 +47,7 @@ def _one_line(capsys) -> str:
 
 # ---------------------------------------------------------------------- planted links
 def test_sweep_refuses_a_planted_trials_csv_link(tmp_path, capsys):
-    victim = _victim(tmp_path)
-    out = tmp_path / "out"
-    out.mkdir()
-    (out / "trials.csv").symlink_to(victim)
+    victim, out = _planted(tmp_path, "out", "trials.csv")
     cfg = tmp_path / "cfg.yml"
     cfg.write_text(SWEEP)
     args = ["sweep", str(cfg), "--serial", "--no-progress", "--out", str(out)]
@@ -103,10 +109,7 @@ def test_train_refuses_a_planted_run_folder_link(tmp_path, capsys):
 def test_staged_outputs_refuse_links_inside_the_folder(tmp_path):
     from mf_envs._staging import staged_dir
 
-    victim = _victim(tmp_path)
-    out = tmp_path / "out"
-    out.mkdir()
-    (out / "table.csv").symlink_to(victim)
+    victim, out = _planted(tmp_path, "out", "table.csv")
     with pytest.raises(ValueError, match="table.csv.*symbolic link"):
         with staged_dir(out) as tmp:
             (tmp / "table.csv").write_text("new")
@@ -124,10 +127,7 @@ def test_staged_outputs_refuse_links_inside_the_folder(tmp_path):
 def test_policy_files_are_not_written_through_links(tmp_path):
     from mf_envs.train.policy import write_meta
 
-    victim = _victim(tmp_path)
-    folder = tmp_path / "pol"
-    folder.mkdir()
-    (folder / "meta.json").symlink_to(victim)
+    victim, folder = _planted(tmp_path, "pol", "meta.json")
     with pytest.raises(ValueError, match="meta.json.*symbolic link"):
         write_meta(folder, {"env_id": "GOWEC-v0"})
     assert victim.read_text() == VICTIM
@@ -349,3 +349,73 @@ def test_ray_usage_stats_are_off_unless_turned_on(monkeypatch):
     monkeypatch.setenv("RAY_USAGE_STATS_ENABLED", "1")
     quiet_usage_stats()
     assert os.environ["RAY_USAGE_STATS_ENABLED"] == "1"
+
+
+# ---------------------------------------------------------------------- envs name what was given
+def test_errors_name_the_parameter_the_user_passed():
+    import gymnasium as gym
+
+    import mf_envs  # noqa: F401
+
+    with pytest.raises(ValueError, match=r"^control_dt: must be >= 2e-06"):
+        gym.make("GyroStabilizer-v0", control_dt=1e-6)
+    with pytest.raises(ValueError, match="shear_modulus"):
+        gym.make("Inchworm-v0", shear_modulus=3.96e9)
+
+
+@pytest.mark.parametrize("env_id", ["GOWEC-v0", "Inchworm-v0"])
+def test_max_episode_steps_gets_one_answer_from_make_and_make_vec(env_id):
+    import gymnasium as gym
+
+    import mf_envs  # noqa: F401
+
+    msg = r"^max_episode_steps: expected a whole number .* got 100\.0 \(float\)"
+    with pytest.raises(ValueError, match=msg):
+        gym.make(env_id, max_episode_steps=100.0)
+    with pytest.raises(ValueError, match=msg):
+        gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point",
+                     max_episode_steps=100.0)  # fmt: skip
+    assert gym.make(env_id, max_episode_steps=100).spec.max_episode_steps == 100
+
+
+def test_vector_reset_options_and_action_shapes_are_named():
+    import gymnasium as gym
+    import numpy as np
+
+    import mf_envs  # noqa: F401
+
+    envs = gym.make_vec("GOWEC-v0", num_envs=2, vectorization_mode="vector_entry_point")
+    for bad in (1, "abc", [("a", 1)]):
+        with pytest.raises(ValueError, match=r"^options: expected a dict or None"):
+            envs.reset(options=bad)
+    envs.reset(seed=0)
+    n = envs.single_action_space.shape[0]
+    with pytest.raises(ValueError, match=rf"^actions: expected shape \(2, {n}\), got shape \(2,\)"):
+        envs.step(np.zeros(2 * n))
+    envs.step(np.zeros((2, n)))
+    envs.close()
+    env = gym.make("GOWEC-v0")
+    env.reset(seed=0)
+    with pytest.raises(
+        ValueError, match=rf"^action: expected shape \({n},\), got shape \({n}, 1\)"
+    ):
+        env.step(np.zeros((n, 1)))
+    env.step(np.zeros(n))
+    env.close()
+
+
+@pytest.mark.parametrize(
+    ("extra", "key"),
+    [
+        ({"mode": "random", "samples": 2, "random": {"x": {"low": "a", "high": 1}}}, "random.x"),
+        ({"mode": "random", "samples": 2, "sampler_seed": -1, "random": {}}, "sampler_seed"),
+        ({"plot": {"log": "yes"}}, "plot.log"),
+        ({"mode": "random", "samples": 2, "random": {"x": {"choices": []}}}, "random.x"),
+    ],
+)
+def test_sweep_config_values_are_named(extra, key):
+    from mf_envs.sweep.config import parse_config
+
+    base = {"env_id": "GOWEC-v0", "seeds": [0], "controllers": ["baseline"]}
+    with pytest.raises(ValueError, match=rf"^config: {key}:"):
+        parse_config({**base, **extra})

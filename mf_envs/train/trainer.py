@@ -20,7 +20,7 @@ from typing import Any
 
 import gymnasium as gym
 
-from mf_envs._files import inside, make_dirs
+from mf_envs._files import atomic_path, inside, make_dirs
 from mf_envs._staging import moved, staged_dir
 from mf_envs.train.config import (
     ALGOS,
@@ -247,11 +247,13 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
     if "env_id" not in meta:
         raise ValueError(f"run_dir: {run_dir} has no meta.json with an env_id")
     dest = inside(root, Path(root) / meta["env_id"], f"{run_dir}/meta.json: env_id")
-    dest.mkdir(parents=True, exist_ok=True)
+    make_dirs(root, Path(root) / meta["env_id"])  # a link in place of the folder is refused
     out = []
     for name in SHIP_FILES:
         if (run_dir / name).is_file():
-            out.append(Path(shutil.copy2(run_dir / name, dest / name)))
+            with atomic_path(dest / name) as tmp:  # never copied through a link at dest
+                shutil.copy2(run_dir / name, tmp)
+            out.append(dest / name)
     return out
 
 
