@@ -421,3 +421,19 @@ def test_sweep_config_values_are_named(extra, key):
     base = {"env_id": "GOWEC-v0", "seeds": [0], "controllers": ["baseline"]}
     with pytest.raises(ValueError, match=rf"^config: {key}:"):
         parse_config({**base, **extra})
+
+
+@pytest.mark.parametrize(
+    ("overrides", "key"),
+    [
+        ({"lr": [1, 2]}, "lr"),
+        ({"fcnet_hiddens": [10**9]}, "fcnet_hiddens"),
+        ({"num_envs_per_env_runner": 1e8}, "num_envs_per_env_runner"),
+        ({"env_kwargs": "x"}, "env_kwargs"),
+    ],
+)
+def test_rllib_settings_are_checked_naming_the_key(overrides, key):
+    from mf_envs.train.rllib import ppo_settings
+
+    with pytest.raises(ValueError, match=rf"^config: GOWEC-v0: {key} must be"):
+        ppo_settings("GOWEC-v0", overrides)
