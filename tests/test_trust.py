@@ -437,3 +437,15 @@ def test_rllib_settings_are_checked_naming_the_key(overrides, key):
 
     with pytest.raises(ValueError, match=rf"^config: GOWEC-v0: {key} must be"):
         ppo_settings("GOWEC-v0", overrides)
+
+
+def test_a_whitelisted_wrapper_refusing_its_kwargs_is_named():
+    import functools
+
+    from gymnasium.wrappers import TimeLimit
+
+    from mf_envs.train.vec import _make_wrapped
+
+    bad = functools.partial(TimeLimit, max_episode_steps="abc")
+    with pytest.raises(ValueError, match=r"^env_wrapper: TimeLimit: .*max_episode_steps"):
+        _make_wrapped("GOWEC-v0", (bad,))

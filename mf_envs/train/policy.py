@@ -211,8 +211,9 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     norm = None
     if os.path.lexists(norm_path):  # a FIFO or a folder there is an error, not "absent"
         obs_dim = math.prod(desc["observation_space"]["shape"])
+        stats = _read_json(norm_path)  # a FIFO, a deep or malformed file: named by it
         try:
-            norm = ObsNormalization.from_json(_read_json(norm_path), obs_dim)
+            norm = ObsNormalization.from_json(stats, obs_dim)
         except ValueError as exc:
             raise ValueError(f"policy: {norm_path}: {exc}") from exc
     return PPOPolicy(_rebuild(folder, desc), norm, meta, desc["policy_kwargs"], desc["algo"])
@@ -269,8 +270,8 @@ def read_description(folder: Path) -> dict[str, Any]:
         n_act = math.prod(desc["action_space"]["shape"])
         arch = desc["policy_kwargs"].get("net_arch", [64, 64])
         check_arch_size(arch, n, n_act)  # before the network is allocated
-    except ValueError as exc:
-        raise ValueError(f"policy: {p}: policy_kwargs: {exc}") from exc
+    except ValueError as exc:  # its message starts with the key (policy_kwargs, activation_fn)
+        raise ValueError(f"policy: {p}: {exc}") from exc
     return desc
 
 
