@@ -3,6 +3,10 @@
 Used by every `mf-envs` command that writes files (demo, bench, render, train, evaluate), so an
 interrupted or failed run (Ctrl-C, an exception) leaves the previous outputs exactly as they were
 and never a mix of old and new files. Folder checks raise `ValueError` naming `out`.
+
+No symbolic link the caller did not give is followed: the folders between the output folder
+the caller named (`root`) and the target are created one by one and a link among them is
+refused (`_files.make_dirs`), and a file moved into place never lands on a link (refused).
 """
 
 from __future__ import annotations
@@ -13,6 +17,8 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
+
+from mf_envs._files import check_target, make_dirs
 
 
 def check_out(target: Path, *, folder: bool = True) -> Path:
@@ -37,27 +43,36 @@ def check_out(target: Path, *, folder: bool = True) -> Path:
     return target
 
 
-def _mkdtemp(parent: Path, name: str) -> Path:
+def _mkdtemp(parent: Path, name: str, root: Path | None = None) -> Path:
+    make_dirs(parent if root is None else root, parent)
     try:
-        parent.mkdir(parents=True, exist_ok=True)
         return Path(tempfile.mkdtemp(prefix=f".{name}.tmp-", dir=parent))
     except OSError as exc:
         raise ValueError(f"out: cannot write into {str(parent)!r} ({exc.strerror})") from exc
 
 
 @contextmanager
-def staged_dir(target: Path, *, replace: bool = False, force: bool = False) -> Iterator[Path]:
+def staged_dir(
+    target: Path, *, replace: bool = False, force: bool = False, root: Path | None = None
+) -> Iterator[Path]:
     """Yield a temporary folder beside `target`; on success move its content into `target`.
 
     replace=False (demo, bench): each new file replaces the file of the same name in `target`,
     other files stay. replace=True (a run folder of train/evaluate): ValueError if `target`
     exists and is not empty, unless `force`; then the whole folder is swapped. On any exception,
     KeyboardInterrupt included, the temporary folder is deleted and `target` is untouched.
+    `root`: the output folder the caller gave, `target` being below it (a run folder
+    `OUT/ENV_ID/seedS`); no folder from it down to `target` may be a symbolic link.
     """
-    target = check_out(Path(target))
+    target = Path(target)
+    if root is not None:
+        make_dirs(root, target.parent)
+        if target.is_symlink():
+            raise ValueError(f"out: {str(target)!r} is a symbolic link; refused (not followed)")
+    target = check_out(target)
     if replace and target.is_dir() and any(target.iterdir()) and not force:
         raise ValueError(f"out: {str(target)!r} already exists; pass --force to replace it")
-    tmp = _mkdtemp(target.parent, target.name)
+    tmp = _mkdtemp(target.parent, target.name, root)
     try:
         yield tmp
         if replace:
@@ -69,13 +84,18 @@ def staged_dir(target: Path, *, replace: bool = False, force: bool = False) -> I
 
 
 def _merge(src: Path, dst: Path) -> None:
+    """Move the files of `src` into `dst` (its own folders created, a link among them or at a
+    file's name refused, before anything is moved)."""
+    moves = []
     for path in sorted(src.rglob("*")):
         dest = dst / path.relative_to(src)
         if path.is_dir():
-            dest.mkdir(parents=True, exist_ok=True)
+            make_dirs(dst, dest)
         else:
-            dest.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(path, dest)
+            make_dirs(dst, dest.parent)
+            moves.append((path, check_target(dest)))
+    for path, dest in moves:
+        os.replace(path, dest)
 
 
 def _swap(src: Path, dst: Path) -> None:

@@ -109,6 +109,24 @@ def check_int(name: str, value: Any, low: int | None = None, high: int | None = 
     return value
 
 
+def arg_int(low: int, high: int) -> Any:
+    """An argparse `type`: a whole number in [low, high]; otherwise argparse's one-line usage
+    error (exit status 2) naming the option and the range, never an OverflowError later."""
+    import argparse
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"must be in [{low}, {high}], got {_short(text)}")
+        return value
+
+    parse.__name__ = "int"  # argparse's messages name the type
+    return parse
+
+
 def check_choice(name: str, value: Any, choices: Iterable[Any]) -> Any:
     """`value` must be one of `choices`."""
     choices = tuple(choices)
@@ -119,9 +137,11 @@ def check_choice(name: str, value: Any, choices: Iterable[Any]) -> Any:
 
 
 def as_action(name: str, action: Any, shape: tuple[int, ...]) -> np.ndarray:
-    """`action` as a finite float64 array of `shape` (an array of the same size is reshaped);
-    ValueError naming `name` for strings, bools, objects, complex numbers, NaN/inf and a wrong
-    size: numpy would silently read "0.5" as 0.5 and True as 1.0."""
+    """`action` as a finite float64 array of exactly `shape` (a single number is also taken
+    for shape (1,)); ValueError naming `name` and the expected shape for strings, bools,
+    objects, complex numbers, NaN/inf and any other shape, also one of the same size ((N, 1)
+    for (N,), a flat (rows * N,) for (rows, N)): numpy would silently read "0.5" as 0.5 and
+    True as 1.0, and a reshape would hide a caller's mix-up of rows and columns."""
     try:
         raw = np.asarray(action)
     except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, odd objects
@@ -133,8 +153,7 @@ def as_action(name: str, action: Any, shape: tuple[int, ...]) -> np.ndarray:
             f"{name}: expected real numbers of shape {shape}, got {_short(action)} "
             f"(dtype {raw.dtype})"
         )
-    size = math.prod(shape)
-    if raw.size != size:
+    if raw.shape != shape and not (raw.ndim == 0 and shape == (1,)):
         raise ValueError(f"{name}: expected shape {shape}, got shape {raw.shape}")
     a = raw.astype(np.float64).reshape(shape)
     if not np.all(np.isfinite(a)):

@@ -12,6 +12,8 @@ from typing import Any
 
 import numpy as np
 
+from mf_envs._files import atomic_path
+
 
 def timed(fn: Any, *args: Any, repeat: int = 1, **kwargs: Any) -> tuple[Any, float]:
     """(fn(*args, **kwargs), best wall seconds over `repeat` calls) with time.perf_counter."""
@@ -43,7 +45,7 @@ def write_csv(path: Path, rows: Sequence[dict[str, Any]], first: Sequence[str]) 
     """Write dict rows with the `first` columns in order, then any other keys alphabetically."""
     path.parent.mkdir(parents=True, exist_ok=True)
     extra = sorted({k for r in rows for k in r} - set(first))
-    with path.open("w", newline="") as fh:
+    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=[*first, *extra])
         w.writeheader()
         for r in rows:
@@ -129,6 +131,7 @@ def work_precision_plot(path: Path, rows: Sequence[dict[str, Any]], title: str) 
     fig.suptitle(title)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format=path.suffix.lstrip(".") or "png")
     plt.close(fig)
     return path

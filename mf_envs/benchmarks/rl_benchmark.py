@@ -38,6 +38,8 @@ from typing import Any
 
 import numpy as np
 
+from mf_envs._files import make_dirs, write_atomic
+
 TEST_SEEDS = tuple(range(20_000, 20_020))
 TRAIN_SEEDS = (0, 1, 2)
 ALGOS = ("sac", "td3", "ppo")
@@ -254,9 +256,9 @@ def write_config(task: Task, algo: str, folder: Path) -> Path:
     entry["env_kwargs"] = {k: list(v) if isinstance(v, tuple) else v
                            for k, v in task.env_kwargs.items()}  # fmt: skip
     folder.mkdir(parents=True, exist_ok=True)
-    path = folder / f"{algo}.yml"
-    path.write_text(yaml.safe_dump({task.env_id: entry}, sort_keys=False))
-    return path
+    return write_atomic(
+        folder / f"{algo}.yml", yaml.safe_dump({task.env_id: entry}, sort_keys=False)
+    )
 
 
 def train_runs(task: Task, algos: Sequence[str], seeds: Sequence[int], out: Path) -> dict:
@@ -309,8 +311,7 @@ def curves(task: Task, runs: dict, path: Path) -> Path:
 
 def run(task_name: str, algos: Sequence[str], seeds: Sequence[int], out: Path) -> dict[str, Any]:
     task = TASKS[task_name]()
-    folder = out / task.name
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = make_dirs(out, out / task.name)  # a planted link there is refused
     runs = train_runs(task, algos, seeds, folder)
     rows: dict[str, dict[str, Any]] = {}
     for kind in task.baselines:
@@ -323,11 +324,11 @@ def run(task_name: str, algos: Sequence[str], seeds: Sequence[int], out: Path) -
                       "per_run": per_run.tolist()}  # fmt: skip
         print(f"{algo}: {rows[algo]}", flush=True)
     md = table(task, rows)
-    (folder / "table.md").write_text(md + "\n")
+    write_atomic(folder / "table.md", md + "\n")
     result = {"task": task.name, "env_id": task.env_id, "env_kwargs": task.env_kwargs,
               "eval_seconds": task.eval_seconds, "test_seeds": list(TEST_SEEDS),
               "train_seeds": list(seeds), "rows": rows}  # fmt: skip
-    (folder / "results.json").write_text(json.dumps(result, indent=1, default=str))
+    write_atomic(folder / "results.json", json.dumps(result, indent=1, default=str))
     if any(items for items in runs.values()):
         curves(task, runs, folder / "learning_curves.png")
     print(md)

@@ -25,8 +25,14 @@ from pathlib import Path
 from typing import Any
 
 from mf_envs._extras import install_hint, missing_extra
+from mf_envs._validate import arg_int
 
 BENCH_KINDS = ("accuracy", "speed", "controllers")
+# upper bounds of the counts the commands take (docs/api.md, "Command line")
+MAX_SEED = 2**32 - 1  # numpy's seeds
+MAX_STEPS = 10_000_000  # render --steps
+MAX_TIMESTEPS = 10**10  # train --timesteps
+MAX_EPISODES = 10_000  # evaluate --episodes, train --eval-episodes
 
 
 def _cmd_demo(args: argparse.Namespace) -> list[Path]:
@@ -122,8 +128,14 @@ def _add_run_commands(sub: Any) -> None:
     r.add_argument("env_id")
     r.add_argument("--policy", default="baseline", help="baseline | baseline:KIND | ppo | PATH")
     r.add_argument("--out", required=True, help="output .gif path")
-    r.add_argument("--steps", type=int, default=None, help="number of env steps (default: env's)")
-    r.add_argument("--seed", type=int, default=0, help="reset seed, >= 0 (default: %(default)s)")
+    r.add_argument(
+        "--steps", type=arg_int(1, MAX_STEPS), default=None,
+        help=f"number of env steps, 1..{MAX_STEPS} (default: env's)",
+    )  # fmt: skip
+    r.add_argument(
+        "--seed", type=arg_int(0, MAX_SEED), default=0,
+        help="reset seed, 0..2**32-1 (default: %(default)s)",
+    )  # fmt: skip
     r.set_defaults(func=_cmd_render)
 
 
@@ -135,8 +147,11 @@ def _add_train_commands(sub: Any) -> None:
         "--algo", choices=("ppo", "sac", "td3"), default="ppo",
         help="Stable-Baselines3 algorithm (default: %(default)s); config: configs/ALGO.yml",
     )  # fmt: skip
-    t.add_argument("--timesteps", type=int, default=None, help="default: from the env's config")
-    t.add_argument("--seed", type=int, default=0)
+    t.add_argument(
+        "--timesteps", type=arg_int(1, MAX_TIMESTEPS), default=None,
+        help="1..1e10 (default: from the env's config)",
+    )  # fmt: skip
+    t.add_argument("--seed", type=arg_int(0, MAX_SEED - 10_000), default=0, help="0..2**32-10001")
     t.add_argument("--config", default=None, help="YAML hyperparameters (rl-zoo3 format)")
     t.add_argument(
         "--out", default="runs", help="writes OUT/ENV_ID/seedSEED/ (default: %(default)s)"
@@ -144,7 +159,10 @@ def _add_train_commands(sub: Any) -> None:
     t.add_argument("--force", action="store_true", help="replace an existing run folder")
     t.add_argument("--tensorboard", action="store_true", help="write TensorBoard logs")
     t.add_argument(
-        "--eval-episodes", type=int, default=5, help="episodes per evaluation (default: 5)"
+        "--eval-episodes",
+        type=arg_int(1, MAX_EPISODES),
+        default=5,
+        help=f"episodes per evaluation, 1..{MAX_EPISODES} (default: 5)",
     )
     t.add_argument(
         "--vec-env",
@@ -158,8 +176,11 @@ def _add_train_commands(sub: Any) -> None:
     e = sub.add_parser("evaluate", help="PPO vs every classical baseline on unseen seeds")
     e.add_argument("env_id")
     e.add_argument("--policy", default=None, help="policy path (default: the shipped policy)")
-    e.add_argument("--episodes", type=int, default=5)
-    e.add_argument("--seed", type=int, default=1000, help="first evaluation seed")
+    e.add_argument("--episodes", type=arg_int(1, MAX_EPISODES), default=5, help="1..10000")
+    e.add_argument(
+        "--seed", type=arg_int(0, MAX_SEED - MAX_EPISODES), default=1000,
+        help="first evaluation seed, 0..2**32-10001",
+    )  # fmt: skip
     e.add_argument(
         "--out",
         default="mf_envs_eval",

@@ -29,6 +29,7 @@ Rendering is not supported (`render_mode` must be None): render a single env ins
 from __future__ import annotations
 
 import abc
+from collections.abc import Mapping
 from typing import Any
 
 import gymnasium as gym
@@ -179,6 +180,8 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
     ) -> tuple[np.ndarray, dict[str, Any]]:
         """Reset all sub-envs, or those in `options["reset_mask"]` ((N,) bool array)."""
         seeds = seed_list(seed, self.num_envs)
+        if options is not None and not isinstance(options, Mapping):
+            raise ValueError(f"options: expected a dict or None, got {type(options).__name__}")
         options = dict(options) if options is not None else None
         mask = self._all
         if options is not None and "reset_mask" in options:

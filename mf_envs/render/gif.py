@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
+from mf_envs._files import atomic_path
 from mf_envs._validate import positive_scalar
 
 
@@ -42,13 +43,14 @@ def save_gif(frames: Iterable[np.ndarray], path: str | Path, fps: float = 30) ->
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     duration = max(20, round(100 / fps) * 10)  # ms, a multiple of 10 (GIF centiseconds)
-    images[0].save(
-        path,
-        format="GIF",
-        save_all=True,
-        append_images=images[1:],
-        duration=duration,
-        loop=0,
-        optimize=False,
-    )
+    with atomic_path(path) as tmp:  # no link followed at `path`; the old GIF or the new one
+        images[0].save(
+            tmp,
+            format="GIF",
+            save_all=True,
+            append_images=images[1:],
+            duration=duration,
+            loop=0,
+            optimize=False,
+        )
     return path

@@ -5,7 +5,10 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from mf_envs._validate import arg_int
+
 CONFIG_DIR = Path(__file__).parent / "configs"
+MAX_CPUS = 1024
 
 
 def resolve_config(name: str) -> Path:
@@ -26,7 +29,10 @@ def add_arguments(s: argparse.ArgumentParser) -> None:
     s.add_argument("--out", default=None, help="output folder (default: sweeps/<config name>)")
     s.add_argument("--serial", action="store_true", help="run in this process, without Ray")
     s.add_argument("--address", default=None, help="Ray cluster address (default: local Ray)")
-    s.add_argument("--num-cpus", type=int, default=2, help="local Ray CPUs (default: 2)")
+    s.add_argument(
+        "--num-cpus", type=arg_int(1, MAX_CPUS), default=2,
+        help=f"local Ray CPUs, 1..{MAX_CPUS} (default: 2)",
+    )  # fmt: skip
     s.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 

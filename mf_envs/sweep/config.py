@@ -245,8 +245,8 @@ def _random_points(data: dict[str, Any]) -> tuple[list[dict[str, Any]], tuple[st
     if not isinstance(n, int) or isinstance(n, bool) or not 1 <= n <= MAX_TRIALS:
         raise _fail("samples", f"random mode needs samples: an int in [1, {MAX_TRIALS}], got {n!r}")
     seed = data.get("sampler_seed", 0)
-    if not isinstance(seed, int):
-        raise _fail("sampler_seed", f"an int, got {seed!r}")
+    if not _plain_int(seed):
+        raise _fail("sampler_seed", f"an int in [0, 2**32), got {_short(seed)}")
     rng = np.random.default_rng(seed)
     draws = {k: _draw(f"random.{k}", spec, rng, n) for k, spec in axes.items()}
     return [{k: v[i] for k, v in draws.items()} for i in range(n)], tuple(axes)
@@ -254,9 +254,14 @@ def _random_points(data: dict[str, Any]) -> tuple[list[dict[str, Any]], tuple[st
 
 def _draw(key: str, spec: Any, rng: np.random.Generator, n: int) -> list[Any]:
     if isinstance(spec, dict) and set(spec) == {"choices"} and isinstance(spec["choices"], list):
+        if not spec["choices"]:
+            raise _fail(key, "choices: a non-empty list")
         return [spec["choices"][i] for i in rng.integers(0, len(spec["choices"]), n)]
     if isinstance(spec, dict) and {"low", "high"} <= set(spec) <= {"low", "high", "log"}:
-        lo, hi, log = float(spec["low"]), float(spec["high"]), bool(spec.get("log", False))
+        log = spec.get("log", False)
+        if not (_real(spec["low"]) and _real(spec["high"]) and isinstance(log, bool)):
+            raise _fail(key, f"low and high must be numbers, log true or false; got {spec!r}")
+        lo, hi = float(spec["low"]), float(spec["high"])
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi and (lo > 0 or not log)):
             raise _fail(key, f"needs finite low < high (and low > 0 with log), got {spec!r}")
         u = rng.uniform(np.log(lo), np.log(hi), n) if log else rng.uniform(lo, hi, n)
@@ -264,10 +269,17 @@ def _draw(key: str, spec: Any, rng: np.random.Generator, n: int) -> list[Any]:
     raise _fail(key, f"{{low, high[, log]}} or {{choices: [...]}}, got {spec!r}")
 
 
+def _real(v: Any) -> bool:
+    """A real number (not a bool or a string)."""
+    return isinstance(v, int | float) and not isinstance(v, bool)
+
+
 def _plot(value: Any, axes: tuple[str, ...]) -> dict[str, Any]:
     plot = _mapping("plot", value or {})
     if set(plot) - {"metric", "x", "y", "log"}:
         raise _fail("plot", f"keys are metric, x, y, log; got {sorted(plot)}")
+    if not isinstance(plot.get("log", False), bool):
+        raise _fail("plot.log", f"true or false, got {_short(plot['log'])}")
     if "metric" in plot:
         safe_name("config: plot.metric", plot["metric"])  # it names the picture's file
     for k in ("x", "y"):

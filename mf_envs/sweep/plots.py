@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs._files import inside, safe_name
+from mf_envs._files import atomic_path, inside, safe_name
 from mf_envs.sweep.config import SweepConfig
 
 UNITS = {
@@ -137,6 +137,9 @@ def _save(fig: Any, out: Path, name: str) -> Path:
     path = inside(out, Path(out) / safe_name("config: name", name), "config: name")
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    try:
+        with atomic_path(Path(out) / name) as tmp:  # no link at its name; old or new picture
+            fig.savefig(tmp, dpi=110, format="png")
+    finally:
+        plt.close(fig)
     return path

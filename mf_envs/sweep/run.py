@@ -20,7 +20,7 @@ from typing import Any
 
 import gymnasium as gym
 
-from mf_envs._ray import init_local_ray
+from mf_envs._ray import init_local_ray, probe_address, quiet_usage_stats
 from mf_envs._ray import require_ray as _require_ray
 from mf_envs.sweep.config import SweepConfig, Trial
 from mf_envs.sweep.store import ResultStore
@@ -127,6 +127,8 @@ def run_ray(
     ray = require_ray()
     started = not ray.is_initialized()
     if started and address:
+        probe_address(address)  # seconds, not minutes, when nothing answers there
+        quiet_usage_stats()
         try:
             ray.init(address=address, include_dashboard=False, log_to_driver=False)
         except (ConnectionError, RuntimeError) as exc:
@@ -163,6 +165,8 @@ def run_sweep(
 
     if not serial:
         require_ray()
+        if address:
+            probe_address(address)  # before any env is built or any file written
     check_env_kwargs(cfg)
     store = ResultStore(Path(out) / "trials.csv")
     done = store.done_ids()

@@ -5,6 +5,10 @@ line to a file opened with `O_APPEND`, followed by `fsync`, so an interruption l
 torn last line; `ResultStore` cuts such a line off before appending again. Floats are written
 with `repr` (round-trip exact), so a resumed sweep and a fresh one hold the same numbers.
 The header is fixed by the first row written (the same keys for every trial of one env id).
+
+The file is never reached through a symbolic link (one at its name is refused; it is opened with
+`O_NOFOLLOW`), the torn line is cut by an atomic rewrite (`_files.write_atomic`), and a file
+whose header has no `trial_id` column is refused by name: it is not a sweep's results.
 """
 
 from __future__ import annotations
@@ -15,6 +19,10 @@ import os
 from pathlib import Path
 from typing import Any
 
+from mf_envs._files import check_target, open_append, read_regular, write_atomic
+
+MAX_CSV_BYTES = 1 << 30  # 1 GiB: a million trials of a few hundred bytes
+
 
 class ResultStore:
     """`path` (a CSV): `done_ids()`, `append(row)` and `rows()` (values parsed back)."""
@@ -22,29 +30,51 @@ class ResultStore:
     def __init__(self, path: Path) -> None:
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
+        check_target(self.path)
         self._drop_torn_line()
         self._header = self._read_header()
 
+    def _text(self) -> str:
+        """The file's text ('' if absent), read as a regular file only."""
+        if not os.path.lexists(self.path):
+            return ""
+        check_target(self.path)
+        data = read_regular(self.path, MAX_CSV_BYTES, "out")
+        try:
+            return data.decode()
+        except UnicodeDecodeError:
+            raise ValueError(f"out: {str(self.path)!r} is not a sweep's results CSV") from None
+
     def _drop_torn_line(self) -> None:
-        if not self.path.exists():
-            return
-        data = self.path.read_bytes()
-        if data and not data.endswith(b"\n"):
-            with self.path.open("r+b") as fh:
-                fh.truncate(data.rfind(b"\n") + 1)
+        data = self._text()
+        if data and not data.endswith("\n"):
+            write_atomic(self.path, data[: data.rfind("\n") + 1])
 
     def _read_header(self) -> list[str] | None:
-        if not self.path.exists() or self.path.stat().st_size == 0:
+        text = self._text()
+        if not text:
             return None
-        with self.path.open(newline="") as fh:
-            return next(csv.reader(fh))
+        header = next(csv.reader(io.StringIO(text)))
+        if "trial_id" not in header or len(set(header)) != len(header):
+            raise ValueError(
+                f"out: {str(self.path)!r} is not a sweep's results CSV (its header has no "
+                "trial_id column, or repeats one); move it away or give another --out"
+            )
+        return header
 
     def rows(self) -> list[dict[str, Any]]:
         """Every stored row, numbers parsed back to int/float (other cells stay strings)."""
         if self._header is None:
             return []
-        with self.path.open(newline="") as fh:
-            return [{k: _parse(v) for k, v in r.items()} for r in csv.DictReader(fh)]
+        reader = csv.DictReader(io.StringIO(self._text(), newline=""))
+        rows = []
+        for n, r in enumerate(reader, start=2):
+            if None in r or None in r.values():  # more or fewer cells than the header
+                raise ValueError(
+                    f"out: {str(self.path)!r} line {n}: {len(r)} cells do not match the header"
+                )
+            rows.append({k: _parse(v) for k, v in r.items()})
+        return rows
 
     def by_id(self, drop: tuple[str, ...] = ("wall_s",)) -> dict[str, dict[str, Any]]:
         """{trial id: row without the `drop` columns} (by default without the wall time)."""
@@ -63,7 +93,7 @@ class ResultStore:
             self._header = [*first, *sorted(set(row) - set(first))]
             writer.writerow(self._header)
         writer.writerow([_format(row.get(k, "")) for k in self._header])
-        fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        fd = open_append(self.path)
         try:
             os.write(fd, buf.getvalue().encode())
             os.fsync(fd)

@@ -64,7 +64,8 @@ def evaluate_command(args: argparse.Namespace) -> list[Path]:
     if args.seed < 0:
         raise ValueError(f"seed: must be >= 0, got {args.seed}")
     target = check_out(Path(args.out)) / args.env_id
-    with staged_dir(target, replace=True, force=args.force) as tmp:  # fails before the episodes
+    # checked and created now: a bad --out fails before the episodes
+    with staged_dir(target, replace=True, force=args.force, root=Path(args.out)) as tmp:
         rows = _evaluate_rows(args, load_policy(args.env_id, args.policy))
         files = [write_rows_csv(tmp / "evaluate.csv", rows)]
     return moved(files, tmp, target)

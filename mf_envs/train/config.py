@@ -19,6 +19,11 @@ One top-level key per env id. Recognised keys, as in rl-zoo3:
 - every other key is passed to the algorithm (`stable_baselines3.PPO`, `SAC`, `TD3`) unchanged
   (a key it does not take is refused naming it, `check_algo_kwargs`).
 
+Every key is checked for its type and range before anything is built or imported (`ALGO_KEYS`:
+numbers finite and in the range SB3 accepts, sizes bounded, schedules as a number or
+`lin_<number>`); an unknown key, or one the trainer sets itself (`seed`, `device`,
+`tensorboard_log`: command-line options), is refused naming it.
+
 The files load unchanged in rl-zoo3 (`python -m rl_zoo3.train --algo ppo --env ENV_ID
 --gym-packages mf_envs -conf FILE`): mf-envs' own options (`--eval-episodes`, `--vec-env`) are
 command-line options, as they are the zoo's.
@@ -91,6 +96,161 @@ def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
     return data
 
 
+MAX_ENVS = 256  # n_envs: parallel envs of one run (the shipped configs use 1 or 2)
+MAX_TIMESTEPS = 10**10
+_RESERVED = {"seed": "--seed", "device": "(always cpu)", "tensorboard_log": "--tensorboard",
+             "env": "ENV_ID", "verbose": "(set by mf-envs train)"}  # fmt: skip
+
+
+def _num(lo: float, hi: float, *, lo_open: bool = False) -> Any:
+    """A checker of a finite real number in [lo, hi] ((lo, hi] with `lo_open`)."""
+
+    def check(v: Any) -> str | None:
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+            return "a finite number"
+        if v < lo or v > hi or (lo_open and v == lo):
+            return f"a number in {'(' if lo_open else '['}{lo:g}, {hi:g}]"
+        return None
+
+    return check
+
+
+def _int(lo: int, hi: int) -> Any:
+    """A checker of a whole number in [lo, hi] (`!!float 2e3` included)."""
+
+    def check(v: Any) -> str | None:
+        ok = isinstance(v, int | float) and not isinstance(v, bool)
+        if not ok or not math.isfinite(v) or v != int(v) or not lo <= v <= hi:
+            return f"a whole number in [{lo}, {hi}]"
+        return None
+
+    return check
+
+
+def _schedule(lo: float, hi: float) -> Any:
+    """A checker of a number in (lo, hi] or the zoo's linear schedule `lin_<number>`."""
+    number = _num(lo, hi, lo_open=True)
+
+    def check(v: Any) -> str | None:
+        if isinstance(v, str) and v.startswith("lin_"):
+            try:
+                v = float(v[4:])
+            except ValueError:
+                return f"a number in ({lo:g}, {hi:g}] or 'lin_<number>'"
+        return None if number(v) is None else f"a number in ({lo:g}, {hi:g}] or 'lin_<number>'"
+
+    return check
+
+
+def _one_of(*choices: Any) -> Any:
+    """A checker of one of `choices` (by type and value: 1 is not True)."""
+
+    def check(v: Any) -> str | None:
+        if any(v is c or (type(v) is type(c) and v == c) for c in choices):
+            return None
+        return f"one of {list(choices)}"
+
+    return check
+
+
+def _either(*checks: Any) -> Any:
+    def check(v: Any) -> str | None:
+        errors = [c(v) for c in checks]
+        return None if None in errors else " or ".join(errors)
+
+    return check
+
+
+def _entropy(v: Any) -> str | None:
+    """ent_coef: a number >= 0; SAC also 'auto' or 'auto_<initial value>'."""
+    if isinstance(v, str):
+        tail = v[5:] if v.startswith("auto_") else None
+        if v == "auto" or (tail and _float_ok(tail) and 0 < float(tail) <= 1e6):
+            return None
+        return "a number >= 0, 'auto' or 'auto_<number>'"
+    return _num(0.0, 1e6)(v)
+
+
+def _float_ok(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _train_freq(v: Any) -> str | None:
+    """SAC/TD3 train_freq: a whole number >= 1, or [n, 'step' | 'episode']."""
+    if isinstance(v, list) and len(v) == 2 and v[1] in ("step", "episode"):
+        v = v[0]
+    return None if _int(1, 10**6)(v) is None else "a whole number >= 1 or [n, 'step'|'episode']"
+
+
+_FLAG = _one_of(True, False)
+# every algorithm key a config may hold, with its check (None: valid; else what is expected)
+ALGO_KEYS: dict[str, Any] = {
+    "learning_rate": _schedule(0.0, 1.0),
+    "clip_range": _schedule(0.0, 10.0),
+    "clip_range_vf": _either(_one_of(None), _schedule(0.0, 10.0)),
+    "n_steps": _int(1, 10**6),
+    "batch_size": _int(1, 10**7),
+    "n_epochs": _int(1, 1000),
+    "gamma": _num(0.0, 1.0),
+    "gae_lambda": _num(0.0, 1.0),
+    "ent_coef": _entropy,
+    "vf_coef": _num(0.0, 1e6),
+    "max_grad_norm": _num(0.0, 1e6, lo_open=True),
+    "use_sde": _FLAG,
+    "sde_sample_freq": _int(-1, 10**6),
+    "target_kl": _either(_one_of(None), _num(0.0, 1e6, lo_open=True)),
+    "normalize_advantage": _FLAG,
+    "stats_window_size": _int(1, 10**6),
+    "policy_kwargs": lambda v: None,  # the whitelist of train.kwargs (parse_policy_kwargs)
+    "buffer_size": _int(1, 10**7),
+    "learning_starts": _int(0, 10**9),
+    "tau": _num(0.0, 1.0),
+    "train_freq": _train_freq,
+    "gradient_steps": _either(_one_of(-1), _int(1, 10**4)),
+    "target_update_interval": _int(1, 10**9),
+    "target_entropy": _either(_one_of("auto"), _num(-1e6, 1e6)),
+    "use_sde_at_warmup": _FLAG,
+    "optimize_memory_usage": _FLAG,
+    "policy_delay": _int(1, 10**6),
+    "target_policy_noise": _num(0.0, 1e6),
+    "target_noise_clip": _num(0.0, 1e6),
+}
+
+
+def check_algo_values(env_id: str, ppo: dict[str, Any], n_envs: int) -> None:
+    """ValueError naming the first algorithm key of a config entry that is unknown, reserved
+    for a command-line option, or of the wrong type or range (`ALGO_KEYS`)."""
+    for key, value in ppo.items():
+        if not isinstance(key, str):
+            raise ValueError(f"config: {env_id}: key {key!r} is not a name")
+        if key in _RESERVED:
+            raise ValueError(
+                f"config: {env_id}: {key} is set by mf-envs train ({_RESERVED[key]}); remove it"
+            )
+        check = ALGO_KEYS.get(key)
+        if check is None:
+            close = difflib.get_close_matches(key, sorted(ALGO_KEYS), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise ValueError(
+                f"config: {env_id}: {key!r} is not a parameter mf-envs train passes to "
+                f"stable-baselines3{hint}"
+            )
+        expected = check(value)
+        if expected is not None:
+            raise ValueError(f"config: {env_id}: {key} must be {expected}, got {_short(value)}")
+    if "n_steps" in ppo and int(ppo["n_steps"]) * n_envs < 2:
+        raise ValueError(f"config: {env_id}: n_steps x n_envs must be >= 2 (a PPO rollout)")
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else f"{text[:60]}... ({len(text)} characters)"
+
+
 def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
     """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`; the
     other algorithms' files: `default_config(algo)`). An env the shipped file has no entry for
@@ -108,18 +268,23 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
             f"give it on the command line: mf-envs train {_MOVED[k]}"
         )
     ppo = {k: v for k, v in raw.items() if k not in _ZOO_KEYS}
+    n_envs = _count(env_id, "n_envs", raw.get("n_envs", 1), MAX_ENVS)
+    check_algo_values(env_id, ppo, n_envs)
     if "policy_kwargs" in ppo:
         ppo["policy_kwargs"] = parse_policy_kwargs(ppo["policy_kwargs"])
+    policy = raw.get("policy", "MlpPolicy")
+    if policy != "MlpPolicy":
+        raise ValueError(f"config: {env_id}: policy must be 'MlpPolicy', got {_short(policy)}")
     return Hyperparams(
         env_id=env_id,
-        n_timesteps=_count(env_id, "n_timesteps", raw["n_timesteps"])
+        n_timesteps=_count(env_id, "n_timesteps", raw["n_timesteps"], MAX_TIMESTEPS)
         if "n_timesteps" in raw
         else None,
-        n_envs=_count(env_id, "n_envs", raw.get("n_envs", 1)),
-        policy=str(raw.get("policy", "MlpPolicy")),
+        n_envs=n_envs,
+        policy=policy,
         normalize=_parse_normalize(raw.get("normalize", False)),
         env_wrappers=_parse_wrappers(raw.get("env_wrapper")),
-        env_kwargs=dict(raw.get("env_kwargs") or {}),
+        env_kwargs=_env_kwargs(env_id, raw.get("env_kwargs")),
         action_noise=_parse_noise(env_id, raw.get("noise_type"), raw.get("noise_std")),
         ppo_kwargs=ppo,
     )
@@ -153,21 +318,63 @@ def _declared(env_id: str, path: Path) -> dict[str, Any] | None:
     return dict(decl.hyperparams[path.stem])
 
 
-def _count(env_id: str, key: str, value: Any) -> int:
-    """A positive whole number (`!!float 3e5` included), ValueError naming the key otherwise."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError, OverflowError):
-        x = math.nan
-    if isinstance(value, bool) or not (math.isfinite(x) and x >= 1 and x.is_integer()):
-        raise ValueError(f"config: {env_id}: {key} must be a whole number >= 1, got {value!r}")
+def _count(env_id: str, key: str, value: Any, high: int) -> int:
+    """A whole number in [1, high] (`!!float 3e5` included), ValueError naming the key."""
+    x = float(value) if isinstance(value, int | float) and not isinstance(value, bool) else math.nan
+    if not (math.isfinite(x) and 1 <= x <= high and x.is_integer()):
+        raise ValueError(
+            f"config: {env_id}: {key} must be a whole number in [1, {high}], got {_short(value)}"
+        )
     return int(x)
+
+
+def _env_kwargs(env_id: str, value: Any) -> dict[str, Any]:
+    """The config's `env_kwargs`: a mapping whose names the env's constructor takes (checked
+    against its signature, before the env is built); ValueError naming the key."""
+    if value is None:
+        return {}
+    if not isinstance(value, dict) or not all(isinstance(k, str) for k in value):
+        raise ValueError(f"config: {env_id}: env_kwargs must be a mapping of names to values")
+    params = _constructor_params(env_id)
+    if params is not None:
+        for key in value:
+            if key not in params:
+                close = difflib.get_close_matches(key, sorted(params), n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                raise ValueError(
+                    f"config: {env_id}: env_kwargs: {key!r} is not a parameter of {env_id}{hint}"
+                )
+    return dict(value)
+
+
+def _constructor_params(env_id: str) -> set[str] | None:
+    """The keyword names `gym.make(env_id, ...)` passes on to the env's class; None when the
+    class takes **kwargs or cannot be inspected without building it."""
+    import gymnasium as gym
+
+    spec = gym.registry.get(env_id)
+    entry = getattr(spec, "entry_point", None)
+    try:
+        cls = gym.envs.registration.load_env_creator(entry) if isinstance(entry, str) else entry
+        sig = inspect.signature(cls)
+    except (ValueError, TypeError, ImportError, AttributeError):
+        return None
+    if any(p.kind is p.VAR_KEYWORD for p in sig.parameters.values()):
+        return None
+    return {n for n, p in sig.parameters.items() if p.kind is not p.VAR_POSITIONAL} | {
+        "max_episode_steps",
+        "render_mode",
+    }
 
 
 def check_algo_kwargs(algo: Any, kwargs: dict[str, Any], env_id: str) -> None:
     """ValueError naming a config key that `algo` (an SB3 class) does not take, with the
     closest parameter name: a typo (`learning_rat`) is one line, not a traceback."""
     params = set(inspect.signature(algo.__init__).parameters) - {"self", "policy", "env"}
+    if algo.__name__ != "SAC" and isinstance(kwargs.get("ent_coef"), str):
+        raise ValueError(
+            f"config: {env_id}: ent_coef 'auto' is SAC's; {algo.__name__} takes a number"
+        )
     for key in kwargs:
         if key not in params:
             close = difflib.get_close_matches(key, sorted(params), n=1)
@@ -219,16 +426,43 @@ def _parse_noise(env_id: str, kind: Any, std: Any) -> tuple[str, float] | None:
     return str(kind), sigma
 
 
+# VecNormalize's kwargs a config's `normalize` may set, with their checks
+_NORMALIZE_KEYS = {
+    "norm_obs": _FLAG,
+    "norm_reward": _FLAG,
+    "clip_obs": _num(0.0, 1e9, lo_open=True),
+    "clip_reward": _num(0.0, 1e9, lo_open=True),
+    "gamma": _num(0.0, 1.0),
+    "epsilon": _num(0.0, 1.0, lo_open=True),
+}
+
+
 def _parse_normalize(value: Any) -> dict[str, Any] | None:
+    """`normalize`: a bool, or a mapping (or its string form, read as a Python literal, never
+    run) of VecNormalize kwargs (`_NORMALIZE_KEYS`); ValueError naming normalize."""
     if isinstance(value, str):
-        value = ast.literal_eval(value)
+        try:
+            value = ast.literal_eval(value)
+        except (SyntaxError, ValueError, TypeError, MemoryError, RecursionError):
+            raise ValueError(
+                f"normalize: {_short(value)} is not a literal bool or dict of VecNormalize kwargs"
+            ) from None
     if value is True:
         return {}
     if value is False or value is None:
         return None
-    if isinstance(value, dict):
-        return dict(value)
-    raise ValueError(f"normalize: expected a bool or a dict of VecNormalize kwargs, got {value!r}")
+    if not isinstance(value, dict):
+        raise ValueError(
+            f"normalize: expected a bool or a dict of VecNormalize kwargs, got {_short(value)}"
+        )
+    for key, v in value.items():
+        check = _NORMALIZE_KEYS.get(key) if isinstance(key, str) else None
+        if check is None:
+            raise ValueError(f"normalize: unknown key {key!r}; known: {sorted(_NORMALIZE_KEYS)}")
+        expected = check(v)
+        if expected is not None:
+            raise ValueError(f"normalize: {key} must be {expected}, got {_short(v)}")
+    return dict(value)
 
 
 def _parse_wrappers(value: Any) -> tuple[tuple[str, dict[str, Any]], ...]:
@@ -250,9 +484,19 @@ def _parse_wrappers(value: Any) -> tuple[tuple[str, dict[str, Any]], ...]:
             raise ValueError(
                 f"env_wrapper: expected 'module.Class' or {{path: kwargs}}, got {item!r}"
             )
-    for name, _ in out:
-        if name not in WRAPPERS:
-            wrapper_class(name)  # the ValueError naming env_wrapper and the allowed names
+    for name, kwargs in out:
+        cls = wrapper_class(name)  # a name outside WRAPPERS: ValueError naming env_wrapper
+        sig = inspect.signature(cls)
+        params = [n for n, p in sig.parameters.items() if p.kind is not p.VAR_KEYWORD]
+        unknown = [k for k in kwargs if k not in params[1:]]  # the first is the env
+        if unknown and len(params) == len(sig.parameters):
+            raise ValueError(
+                f"env_wrapper: {name}: unknown argument {unknown[0]!r}; it takes {params[1:]}"
+            )
+        try:  # a required argument missing
+            sig.bind(None, **kwargs)
+        except TypeError as exc:
+            raise ValueError(f"env_wrapper: {name}: {exc}") from None
     return tuple(out)
 
 

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs._files import atomic_path
+
 
 def load_curve(folder: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(timesteps (k,), mean return (k,), std return (k,)) of the eval episodes at each check."""
@@ -52,6 +54,7 @@ def plot_learning_curves(
     ax.legend(fontsize=8)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format=path.suffix.lstrip(".") or "png")
     plt.close(fig)
     return path

@@ -20,6 +20,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from mf_envs._files import atomic_path
 from mf_envs.envs.declaration import RETURN, Metric, base_metrics, declaration
 
 
@@ -145,7 +146,7 @@ def format_table(rows: Sequence[dict[str, Any]], env_id: str) -> str:
 def write_rows_csv(path: Path, rows: Sequence[dict[str, Any]]) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     cols = ["env_id", "scene", "controller", "metric", "mean", "std", "n_seeds"]
-    with path.open("w", newline="") as fh:
+    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=cols, extrasaction="ignore")
         w.writeheader()
         for r in rows:

@@ -3,7 +3,8 @@ string, a YAML mapping, or a policy's `policy.json`, parsed without `eval` (docs
 "nothing loaded from a file executes code").
 
 Allowed: the keys in `POLICY_KEYS`; numbers, booleans, lists/tuples and dicts of those (for
-`net_arch`); activation functions by name (`nn.Tanh`, `th.nn.Tanh`, `"Tanh"`) from
+`net_arch`: at most `MAX_LAYERS` layers of at most `MAX_UNITS` units, checked before any
+network is allocated); activation functions by name (`nn.Tanh`, `th.nn.Tanh`, `"Tanh"`) from
 `ACTIVATIONS`. Anything else is a `ValueError` naming the offending key or expression.
 Hand-written because `ast.literal_eval` does not accept `dict(...)` calls or `nn.Tanh` names.
 """
@@ -24,6 +25,9 @@ ACTIVATIONS = (
     "Softplus",
     "Identity",
 )
+MAX_LAYERS = 16  # hidden layers of one net_arch list
+MAX_UNITS = 4096  # units of one hidden layer (the shipped configs use 64 to 400)
+MAX_WEIGHTS = 16_000_000  # weights of one policy's networks (64 MB of float32)
 POLICY_KEYS = (
     "net_arch",
     "activation_fn",
@@ -81,7 +85,9 @@ def _check_key(key: Any, value: Any) -> Any:
         name = value if isinstance(value, str) else getattr(value, "__name__", repr(value))
         return activation_name(name.rpartition(".")[2])
     if key == "net_arch":
-        return _check_arch(value)
+        arch = _check_arch(value)
+        check_arch_size(arch)
+        return arch
     if isinstance(value, bool) or (
         isinstance(value, int | float) and key in ("log_std_init", "clip_mean")
     ):
@@ -91,12 +97,37 @@ def _check_key(key: Any, value: Any) -> Any:
     return _bad(key, value)
 
 
+def arch_weights(arch: Any, n_in: int = 1, n_out: int = 1) -> int:
+    """Weights (matrix entries) of the MLPs a checked `net_arch` describes between `n_in`
+    inputs and `n_out` outputs: a list counts once per network (actor, critic), a dict once per
+    list."""
+    lists = list(arch.values()) if isinstance(arch, dict) else [arch, arch]
+    total = 0
+    for units in lists:
+        sizes = [n_in, *units, n_out]
+        total += sum(a * b for a, b in zip(sizes, sizes[1:]))
+    return total
+
+
+def check_arch_size(arch: Any, n_in: int = 1, n_out: int = 1, where: str = "policy_kwargs") -> None:
+    """ValueError naming `where` if `arch_weights` exceeds MAX_WEIGHTS (before allocating)."""
+    n = arch_weights(arch, n_in, n_out)
+    if n > MAX_WEIGHTS:
+        raise ValueError(f"{where}: net_arch needs {n} weights, more than {MAX_WEIGHTS}")
+
+
 def _check_arch(value: Any) -> Any:
-    if isinstance(value, list | tuple):
+    if isinstance(value, list | tuple) and len(value) <= MAX_LAYERS:
         if all(isinstance(n, int) and not isinstance(n, bool) and n > 0 for n in value):
-            return [int(n) for n in value]
+            if all(n <= MAX_UNITS for n in value):
+                return [int(n) for n in value]
+            raise ValueError(
+                f"policy_kwargs: net_arch={value!r}: a layer has more than {MAX_UNITS} units"
+            )
     if isinstance(value, dict) and set(value) <= {"pi", "vf", "qf"}:  # qf: SAC/TD3 critics
         return {k: _check_arch(v) for k, v in value.items()}
+    if isinstance(value, list | tuple) and len(value) > MAX_LAYERS:
+        raise ValueError(f"policy_kwargs: net_arch has more than {MAX_LAYERS} layers")
     return _bad("net_arch", value)
 
 

@@ -19,15 +19,21 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from mf_envs._files import safe_name
+from mf_envs._files import atomic_path, check_depth, read_regular, safe_name, write_atomic
 from mf_envs._validate import check_finite, check_nonnegative, check_range
-from mf_envs.train.kwargs import activation_name, parse_policy_kwargs, resolve_activation
+from mf_envs.train.kwargs import (
+    activation_name,
+    check_arch_size,
+    parse_policy_kwargs,
+    resolve_activation,
+)
 
 POLICY_ROOT = Path(__file__).parent / "policies"
 POLICY_FILE = "policy.json"
@@ -43,6 +49,7 @@ ALGOS = {
     "TD3": ("stable_baselines3", "TD3", "stable_baselines3.td3.policies", "TD3Policy"),
 }
 MAX_JSON_BYTES = 8 << 20  # a policy folder's JSON files are a few KB
+MAX_INPUTS = 65_536  # observation entries of a policy (the envs have fewer than 200)
 
 
 @dataclass(frozen=True)
@@ -197,7 +204,7 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     if folder.name == POLICY_FILE:
         folder = folder.parent
     _refuse_pickles(folder, path)
-    if not (folder / POLICY_FILE).is_file():
+    if not os.path.lexists(folder / POLICY_FILE):
         where = "no shipped policy" if path is None else "no policy"
         raise ValueError(f"policy: {where} for {env_id} at {str(folder / POLICY_FILE)!r}")
     meta = read_meta(folder)
@@ -206,10 +213,11 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     desc = read_description(folder)
     norm_path = folder / NORM_FILE
     norm = None
-    if norm_path.is_file():
+    if os.path.lexists(norm_path):  # a FIFO or a folder there is an error, not "absent"
         obs_dim = math.prod(desc["observation_space"]["shape"])
+        stats = _read_json(norm_path)  # a FIFO, a deep or malformed file: named by it
         try:
-            norm = ObsNormalization.from_json(_read_json(norm_path), obs_dim)
+            norm = ObsNormalization.from_json(stats, obs_dim)
         except ValueError as exc:
             raise ValueError(f"policy: {norm_path}: {exc}") from exc
     policy = PPOPolicy(_rebuild(folder, desc), norm, meta, desc["policy_kwargs"], desc["algo"])
@@ -254,7 +262,7 @@ def read_description(folder: Path) -> dict[str, Any]:
     if desc.get("format") != FORMAT or desc.get("policy") != "MlpPolicy":
         raise ValueError(f"policy: {p} is not an {FORMAT} MlpPolicy file")
     desc.setdefault("algo", "PPO")
-    if desc["algo"] not in ALGOS:
+    if not isinstance(desc["algo"], str) or desc["algo"] not in ALGOS:
         raise ValueError(f"policy: {p}: algo {desc['algo']!r} is not one of {sorted(ALGOS)}")
     for key in ("observation_space", "action_space"):
         space = desc.get(key)
@@ -274,12 +282,18 @@ def read_description(folder: Path) -> dict[str, Any]:
             bad = [v for v in b if not _finite_number(v)]
             if bad:
                 raise ValueError(f"policy: {p}: {key}.{bound} holds {bad[0]!r}, not a number")
+    n = math.prod(desc["observation_space"]["shape"])
+    if n > MAX_INPUTS:
+        raise ValueError(f"policy: {p}: observation_space has {n} entries, more than {MAX_INPUTS}")
     if not isinstance(desc.get("use_sde", False), bool):
         raise ValueError(f"policy: {p}: use_sde must be true or false")
     try:
         desc["policy_kwargs"] = parse_policy_kwargs(desc.get("policy_kwargs", {}))
-    except ValueError as exc:
-        raise ValueError(f"policy: {p}: policy_kwargs: {exc}") from exc
+        n_act = math.prod(desc["action_space"]["shape"])
+        arch = desc["policy_kwargs"].get("net_arch", [64, 64])
+        check_arch_size(arch, n, n_act)  # before the network is allocated
+    except ValueError as exc:  # its message starts with the key (policy_kwargs, activation_fn)
+        raise ValueError(f"policy: {p}: {exc}") from exc
     return desc
 
 
@@ -309,6 +323,9 @@ def _rebuild(folder: Path, desc: dict[str, Any]) -> Any:
         state = load_file(weights, device="cpu")
     except Exception as exc:  # noqa: BLE001 - safetensors raises its own SafetensorError
         raise ValueError(f"policy: {weights} is not a safetensors file ({exc})") from exc
+    for key, t in state.items():  # NaN weights are named here, not at the first predict
+        if t.is_floating_point() and not bool(t.isfinite().all()):
+            raise ValueError(f"policy: {weights}: tensor {key!r} holds NaN or inf values")
     try:
         pol.load_state_dict(state, strict=True)
     except (RuntimeError, OSError) as exc:
@@ -344,11 +361,13 @@ def _space_json(space: Any) -> dict[str, Any]:
 
 
 def _read_json(p: Path) -> dict[str, Any]:
+    """The JSON object in `p`: a regular file (a FIFO is refused, not opened for reading) of at
+    most MAX_JSON_BYTES nesting at most `_files.MAX_DEPTH` deep; ValueError naming the file."""
+    data = read_regular(p, MAX_JSON_BYTES, "policy")
+    check_depth(data, f"policy: {p}")
     try:
-        if p.stat().st_size > MAX_JSON_BYTES:
-            raise ValueError(f"larger than {MAX_JSON_BYTES} bytes")
-        d = json.loads(p.read_text())
-    except (OSError, ValueError) as exc:  # JSONDecodeError and UnicodeDecodeError are ValueErrors
+        d = json.loads(data)
+    except ValueError as exc:  # JSONDecodeError and UnicodeDecodeError are ValueErrors
         raise ValueError(f"policy: cannot read {p} ({exc})") from exc
     if not isinstance(d, dict):
         raise ValueError(f"policy: {p} must hold a JSON object")
@@ -376,13 +395,14 @@ def save_policy_files(folder: Path, model: Any, vecnorm: Any | None = None) -> l
     if desc["algo"] not in ALGOS:
         raise ValueError(f"algo: {desc['algo']} policies are not saved; use one of {sorted(ALGOS)}")
     folder.mkdir(parents=True, exist_ok=True)
-    (folder / POLICY_FILE).write_text(json.dumps(desc, indent=1) + "\n")
+    write_atomic(folder / POLICY_FILE, json.dumps(desc, indent=1) + "\n", "policy")
     state = {k: v.detach().cpu().contiguous() for k, v in model.policy.state_dict().items()}
-    save_file(state, folder / WEIGHTS_FILE)
+    with atomic_path(folder / WEIGHTS_FILE, "policy") as tmp:
+        save_file(state, tmp)
     written = [folder / POLICY_FILE, folder / WEIGHTS_FILE]
     norm = ObsNormalization.from_vecnormalize(vecnorm) if vecnorm is not None else None
     if norm is not None:
-        (folder / NORM_FILE).write_text(json.dumps(norm.to_json(), indent=1))
+        write_atomic(folder / NORM_FILE, json.dumps(norm.to_json(), indent=1), "policy")
         written.append(folder / NORM_FILE)
     return written
 
@@ -391,7 +411,7 @@ def read_meta(folder: Path) -> dict[str, Any]:
     """`folder/meta.json` as a dict ({} if absent); ValueError naming the file if it is not a
     JSON object or its `env_id` is not a plain name (it names folders when a run is shipped)."""
     p = Path(folder) / META_FILE
-    if not p.is_file():
+    if not os.path.lexists(p):
         return {}
     meta = _read_json(p)
     if "env_id" in meta:
@@ -406,7 +426,7 @@ def save_policy(folder: Path, model: Any, vecnorm: Any | None, meta: dict[str, A
 
 def write_meta(folder: Path, meta: dict[str, Any]) -> Path:
     p = folder / META_FILE
-    p.write_text(json.dumps(meta, indent=2, default=_jsonable) + "\n")
+    write_atomic(p, json.dumps(meta, indent=2, default=_jsonable) + "\n", "policy")
     return p
 
 

@@ -37,6 +37,8 @@ from typing import Any
 import gymnasium as gym
 
 from mf_envs import _ray
+from mf_envs._files import make_dirs
+from mf_envs.train.kwargs import MAX_LAYERS, MAX_UNITS
 
 _BASE: dict[str, Any] = {
     "timesteps": 200_000,
@@ -106,12 +108,44 @@ def register_rllib_envs() -> list[str]:
     return ids
 
 
+def _checks() -> dict[str, Any]:
+    """The type and range of each `_BASE` key (the SB3 config's checkers)."""
+    from mf_envs.train.config import _FLAG, _int, _num
+
+    def hiddens(v: Any) -> str | None:
+        ok = isinstance(v, list) and 0 < len(v) <= MAX_LAYERS
+        ok = ok and all(_int(1, MAX_UNITS)(n) is None for n in v)
+        return None if ok else f"a list of 1..{MAX_LAYERS} layer sizes in [1, {MAX_UNITS}]"
+
+    def mapping(v: Any) -> str | None:
+        ok = isinstance(v, dict) and all(isinstance(k, str) for k in v)
+        return None if ok else "a mapping of env kwargs"
+
+    return {
+        "timesteps": _int(1, 10**10), "num_env_runners": _int(0, 256),
+        "num_envs_per_env_runner": _int(1, 1024),
+        "train_batch_size_per_learner": _int(1, 10**7), "minibatch_size": _int(1, 10**7),
+        "num_epochs": _int(1, 1000), "lr": _num(0.0, 1.0, lo_open=True),
+        "gamma": _num(0.0, 1.0), "lambda_": _num(0.0, 1.0),
+        "clip_param": _num(0.0, 1e6, lo_open=True), "entropy_coeff": _num(0.0, 1e6),
+        "vf_clip_param": _num(0.0, 1e300, lo_open=True), "fcnet_hiddens": hiddens,
+        "mean_std_filter": _FLAG, "env_kwargs": mapping,
+        "sample_timeout_s": _num(0.0, 1e6, lo_open=True),
+    }  # fmt: skip
+
+
 def ppo_settings(env_id: str, overrides: dict[str, Any] | None = None) -> dict[str, Any]:
-    """`_BASE | env_overrides(env_id) | overrides` (ValueError on an unknown key)."""
+    """`_BASE | env_overrides(env_id) | overrides`; ValueError naming an unknown key or a value
+    of the wrong type or range."""
     out = {**_BASE, **env_overrides(env_id)}
-    bad = sorted(set(overrides or {}) - set(_BASE))
+    bad = sorted(str(k) for k in set(overrides or {}) - set(_BASE))
     if bad:
         raise ValueError(f"config: unknown RLlib PPO key(s) {bad}; known: {sorted(_BASE)}")
+    checks = _checks()
+    for key, value in (overrides or {}).items():
+        expected = checks[key](value)
+        if expected is not None:
+            raise ValueError(f"config: {env_id}: {key} must be {expected}, got {value!r}"[:300])
     return {**out, **(overrides or {})}
 
 
@@ -222,8 +256,7 @@ def train(
                     "wall_s": time.perf_counter() - t0,
                 }
             )
-        run_dir = Path(out) / f"{env_id}_rllib_seed{seed}"
-        run_dir.mkdir(parents=True, exist_ok=True)
+        run_dir = make_dirs(out, Path(out) / f"{env_id}_rllib_seed{seed}")  # no planted link
         algo.save_to_path(str((run_dir / "checkpoint").resolve()))
         meta = {"env_id": env_id, "backend": "rllib", "ray": ray.__version__, "seed": seed}
         meta |= {"timesteps_asked": budget, "settings": settings, "history": history}

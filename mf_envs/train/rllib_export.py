@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from mf_envs._files import atomic_path, write_atomic
 from mf_envs.train.policy import (
     FORMAT,
     META_FILE,
@@ -76,8 +77,9 @@ def export_policy(algo: Any, env: Any, folder: Path, meta: dict[str, Any]) -> li
         "use_sde": False,
         "source": "rllib",
     }
-    (folder / POLICY_FILE).write_text(json.dumps(desc, indent=1) + "\n")
-    save_file({k: v.contiguous() for k, v in state.items()}, folder / WEIGHTS_FILE)
+    write_atomic(folder / POLICY_FILE, json.dumps(desc, indent=1) + "\n", "policy")
+    with atomic_path(folder / WEIGHTS_FILE, "policy") as tmp:
+        save_file({k: v.contiguous() for k, v in state.items()}, tmp)
     files = [folder / POLICY_FILE, folder / WEIGHTS_FILE]
     stats = filter_statistics(algo)
     if stats is not None:
@@ -88,9 +90,9 @@ def export_policy(algo: Any, env: Any, folder: Path, meta: dict[str, Any]) -> li
             "epsilon": 1e-300,
             "clip_obs": clip if np.isfinite(clip) else 1e300,
         }
-        (folder / NORM_FILE).write_text(json.dumps(norm, indent=1))
+        write_atomic(folder / NORM_FILE, json.dumps(norm, indent=1), "policy")
         files.append(folder / NORM_FILE)
-    (folder / META_FILE).write_text(json.dumps(meta, indent=1, default=str) + "\n")
+    write_atomic(folder / META_FILE, json.dumps(meta, indent=1, default=str) + "\n", "policy")
     return [*files, folder / META_FILE]
 
 

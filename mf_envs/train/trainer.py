@@ -20,7 +20,7 @@ from typing import Any
 
 import gymnasium as gym
 
-from mf_envs._files import inside
+from mf_envs._files import atomic_path, inside, make_dirs
 from mf_envs._staging import moved, staged_dir
 from mf_envs.train.config import (
     ALGOS,
@@ -109,7 +109,7 @@ def train(
     final = Path(out) / env_id / ("" if algo == "ppo" else algo) / f"seed{seed}"
     if progress_bar and importlib.util.find_spec("rich") is None:
         progress_bar = False  # SB3's bar needs tqdm and rich; train without it
-    with staged_dir(final, replace=True, force=force) as run_dir:
+    with staged_dir(final, replace=True, force=force, root=Path(out)) as run_dir:
         torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
         venv, vec_kind, eval_env = _make_envs(hp, seed, prefer_native=vec_env == "auto")
@@ -248,11 +248,13 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
     if "env_id" not in meta:
         raise ValueError(f"run_dir: {run_dir} has no meta.json with an env_id")
     dest = inside(root, Path(root) / meta["env_id"], f"{run_dir}/meta.json: env_id")
-    dest.mkdir(parents=True, exist_ok=True)
+    make_dirs(root, Path(root) / meta["env_id"])  # a link in place of the folder is refused
     out = []
     for name in SHIP_FILES:
         if (run_dir / name).is_file():
-            out.append(Path(shutil.copy2(run_dir / name, dest / name)))
+            with atomic_path(dest / name) as tmp:  # never copied through a link at dest
+                shutil.copy2(run_dir / name, tmp)
+            out.append(dest / name)
     return out
 
 
@@ -347,7 +349,7 @@ def _tensorboard_dir(out: str | Path, env_id: str) -> str:
             "tensorboard: the package is not installed (pip install tensorboard, or the "
             'extra: pip install "mf-envs[tensorboard]"), or run without --tensorboard'
         ) from None
-    return str(Path(out) / env_id / "tensorboard")
+    return str(make_dirs(out, Path(out) / env_id / "tensorboard"))
 
 
 def _command(

@@ -216,7 +216,13 @@ def randomization_only(wrappers: Sequence[Wrapper]) -> dict[str, Any] | None:
 
 
 def _make_wrapped(env_id: str, wrappers: tuple[Wrapper, ...], **kwargs: Any) -> gym.Env:
+    """`gym.make(env_id, **kwargs)` in `wrappers`; a wrapper refusing its config kwargs (a
+    TypeError or assertion in its constructor) is a ValueError naming env_wrapper and it."""
     env = gym.make(env_id, **kwargs)
     for w in wrappers:
-        env = w(env)
+        try:
+            env = w(env)
+        except (TypeError, AssertionError) as exc:
+            name = getattr(getattr(w, "func", w), "__name__", repr(w))
+            raise ValueError(f"env_wrapper: {name}: {' '.join(str(exc).split())}") from None
     return env

@@ -36,7 +36,7 @@ from typing import Any
 
 from mf_envs._validate import check_choice, check_int, check_range, check_shape
 from mf_envs.effects import resolve_effects
-from mf_envs.envs.base import MAX_SUBSTEPS
+from mf_envs.envs.base import MAX_SUBSTEPS, MIN_DT
 from mf_envs.physics.ship import unit as U
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.drive import DriveParams, drive_machine
@@ -299,6 +299,11 @@ def default_physics_dt(machine: Any, tau_s: float, control_dt: Any, dt_max: floa
     cdt = check_range("control_dt", control_dt, 1e-9, 60.0)
     if machine is None:
         return min(0.05, tau_s)
+    if cdt < 2 * MIN_DT:  # the default step, control_dt / 2, would be below MIN_DT
+        raise ValueError(
+            f"control_dt: must be >= {2 * MIN_DT:g} s with a torque drive (its default "
+            f"physics_dt is control_dt / 2, at least {MIN_DT:g} s), got {control_dt!r}"
+        )
     if dt_max < 2e-6 or cdt / (0.5 * min(cdt, dt_max)) > MAX_SUBSTEPS:
         raise ValueError(
             f"gimbal_damping, gimbal_stiffness, gimbal_loop_gain, drive_bandwidth, ship_inertia, "

@@ -201,8 +201,9 @@ class InchwormEnv(MFEnv):
             self.driven = make_driven(**self._drive)
         except SOLVER_ERRORS as exc:
             raise ValueError(
-                "length, youngs_modulus, mass_per_length, height: the body finds no static "
-                f"equilibrium under its own weight ({exc}); stiffen or shorten it"
+                "length, youngs_modulus, shear_modulus, mass_per_length, height: the body finds "
+                f"no static equilibrium under its own weight ({exc}); stiffen or shorten it, or "
+                "bring shear_modulus nearer youngs_modulus / 3"
             ) from None
         self.sim = self.driven.sim
         self.S_ctrl = self.driven.S_ctrl

@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs._files import check_npz
 from mf_envs.physics.constants import RHO_SEAWATER, G
 
 # the converged mesh's coefficients (the seed buoy's hull, `devices`)
@@ -104,6 +105,7 @@ class CylinderHull:
         )
 
 
+MAX_MEMBER_BYTES = 16 << 20  # one array of a hull file (a 1,000-frequency table is 8 KB)
 MAX_COEFFICIENT = 1e20  # SI; the largest ships' pitch stiffness and inertia are ~1e11-1e12
 
 
@@ -152,6 +154,7 @@ class HullCoefficients:
         if not p.is_file():
             raise ValueError(f"hull: file {str(p)!r} not found")
         try:
+            check_npz(p, MAX_MEMBER_BYTES)  # headers first: a declared (1e12,) is refused
             z = np.load(p, allow_pickle=False)
             if not isinstance(z, np.lib.npyio.NpzFile):
                 raise ValueError("an .npy array, not an .npz archive of named arrays")

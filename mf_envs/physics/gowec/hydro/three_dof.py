@@ -37,6 +37,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs._files import check_npz
+
+MAX_MEMBER_BYTES = 16 << 20  # one array of a hull file (the shipped one: a few KB)
 ISWEC_HULL_FILE = Path(__file__).with_name("iswec_cylinder_3dof.npz")
 # the file's mesh, (n_theta, n_side, n_bottom, ratio) of `meshes.cylinder_mesh` (docs/gowec_v1.md,
 # "ISWEC-class hull"): 192 x (24 + 48) panels graded 1.04 towards the keel edge
@@ -88,6 +91,7 @@ class ThreeDofCoefficients:
         if not p.is_file():
             raise ValueError(f"hull: file {str(p)!r} not found")
         try:
+            check_npz(p, MAX_MEMBER_BYTES)  # headers first: a declared (1e12,) is refused
             z = np.load(p, allow_pickle=False)
             if not isinstance(z, np.lib.npyio.NpzFile):
                 raise ValueError("an .npy array, not an .npz archive of named arrays")
