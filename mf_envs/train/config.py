@@ -41,6 +41,14 @@ from pathlib import Path
 from typing import Any
 
 from mf_envs._files import load_yaml
+from mf_envs.train.config_check import (
+    FLAG,
+    MAX_ENVS,
+    MAX_TIMESTEPS,
+    check_algo_values,
+    number,
+    short,
+)
 from mf_envs.train.kwargs import parse_policy_kwargs as whitelist_policy_kwargs
 from mf_envs.train.kwargs import resolve_activation
 
@@ -96,161 +104,6 @@ def read_config(path: str | Path | None = None) -> dict[str, dict[str, Any]]:
     return data
 
 
-MAX_ENVS = 256  # n_envs: parallel envs of one run (the shipped configs use 1 or 2)
-MAX_TIMESTEPS = 10**10
-_RESERVED = {"seed": "--seed", "device": "(always cpu)", "tensorboard_log": "--tensorboard",
-             "env": "ENV_ID", "verbose": "(set by mf-envs train)"}  # fmt: skip
-
-
-def _num(lo: float, hi: float, *, lo_open: bool = False) -> Any:
-    """A checker of a finite real number in [lo, hi] ((lo, hi] with `lo_open`)."""
-
-    def check(v: Any) -> str | None:
-        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-            return "a finite number"
-        if v < lo or v > hi or (lo_open and v == lo):
-            return f"a number in {'(' if lo_open else '['}{lo:g}, {hi:g}]"
-        return None
-
-    return check
-
-
-def _int(lo: int, hi: int) -> Any:
-    """A checker of a whole number in [lo, hi] (`!!float 2e3` included)."""
-
-    def check(v: Any) -> str | None:
-        ok = isinstance(v, int | float) and not isinstance(v, bool)
-        if not ok or not math.isfinite(v) or v != int(v) or not lo <= v <= hi:
-            return f"a whole number in [{lo}, {hi}]"
-        return None
-
-    return check
-
-
-def _schedule(lo: float, hi: float) -> Any:
-    """A checker of a number in (lo, hi] or the zoo's linear schedule `lin_<number>`."""
-    number = _num(lo, hi, lo_open=True)
-
-    def check(v: Any) -> str | None:
-        if isinstance(v, str) and v.startswith("lin_"):
-            try:
-                v = float(v[4:])
-            except ValueError:
-                return f"a number in ({lo:g}, {hi:g}] or 'lin_<number>'"
-        return None if number(v) is None else f"a number in ({lo:g}, {hi:g}] or 'lin_<number>'"
-
-    return check
-
-
-def _one_of(*choices: Any) -> Any:
-    """A checker of one of `choices` (by type and value: 1 is not True)."""
-
-    def check(v: Any) -> str | None:
-        if any(v is c or (type(v) is type(c) and v == c) for c in choices):
-            return None
-        return f"one of {list(choices)}"
-
-    return check
-
-
-def _either(*checks: Any) -> Any:
-    def check(v: Any) -> str | None:
-        errors = [c(v) for c in checks]
-        return None if None in errors else " or ".join(errors)
-
-    return check
-
-
-def _entropy(v: Any) -> str | None:
-    """ent_coef: a number >= 0; SAC also 'auto' or 'auto_<initial value>'."""
-    if isinstance(v, str):
-        tail = v[5:] if v.startswith("auto_") else None
-        if v == "auto" or (tail and _float_ok(tail) and 0 < float(tail) <= 1e6):
-            return None
-        return "a number >= 0, 'auto' or 'auto_<number>'"
-    return _num(0.0, 1e6)(v)
-
-
-def _float_ok(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
-
-
-def _train_freq(v: Any) -> str | None:
-    """SAC/TD3 train_freq: a whole number >= 1, or [n, 'step' | 'episode']."""
-    if isinstance(v, list) and len(v) == 2 and v[1] in ("step", "episode"):
-        v = v[0]
-    return None if _int(1, 10**6)(v) is None else "a whole number >= 1 or [n, 'step'|'episode']"
-
-
-_FLAG = _one_of(True, False)
-# every algorithm key a config may hold, with its check (None: valid; else what is expected)
-ALGO_KEYS: dict[str, Any] = {
-    "learning_rate": _schedule(0.0, 1.0),
-    "clip_range": _schedule(0.0, 10.0),
-    "clip_range_vf": _either(_one_of(None), _schedule(0.0, 10.0)),
-    "n_steps": _int(1, 10**6),
-    "batch_size": _int(1, 10**7),
-    "n_epochs": _int(1, 1000),
-    "gamma": _num(0.0, 1.0),
-    "gae_lambda": _num(0.0, 1.0),
-    "ent_coef": _entropy,
-    "vf_coef": _num(0.0, 1e6),
-    "max_grad_norm": _num(0.0, 1e6, lo_open=True),
-    "use_sde": _FLAG,
-    "sde_sample_freq": _int(-1, 10**6),
-    "target_kl": _either(_one_of(None), _num(0.0, 1e6, lo_open=True)),
-    "normalize_advantage": _FLAG,
-    "stats_window_size": _int(1, 10**6),
-    "policy_kwargs": lambda v: None,  # the whitelist of train.kwargs (parse_policy_kwargs)
-    "buffer_size": _int(1, 10**7),
-    "learning_starts": _int(0, 10**9),
-    "tau": _num(0.0, 1.0),
-    "train_freq": _train_freq,
-    "gradient_steps": _either(_one_of(-1), _int(1, 10**4)),
-    "target_update_interval": _int(1, 10**9),
-    "target_entropy": _either(_one_of("auto"), _num(-1e6, 1e6)),
-    "use_sde_at_warmup": _FLAG,
-    "optimize_memory_usage": _FLAG,
-    "policy_delay": _int(1, 10**6),
-    "target_policy_noise": _num(0.0, 1e6),
-    "target_noise_clip": _num(0.0, 1e6),
-}
-
-
-def check_algo_values(env_id: str, ppo: dict[str, Any], n_envs: int) -> None:
-    """ValueError naming the first algorithm key of a config entry that is unknown, reserved
-    for a command-line option, or of the wrong type or range (`ALGO_KEYS`)."""
-    for key, value in ppo.items():
-        if not isinstance(key, str):
-            raise ValueError(f"config: {env_id}: key {key!r} is not a name")
-        if key in _RESERVED:
-            raise ValueError(
-                f"config: {env_id}: {key} is set by mf-envs train ({_RESERVED[key]}); remove it"
-            )
-        check = ALGO_KEYS.get(key)
-        if check is None:
-            close = difflib.get_close_matches(key, sorted(ALGO_KEYS), n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise ValueError(
-                f"config: {env_id}: {key!r} is not a parameter mf-envs train passes to "
-                f"stable-baselines3{hint}"
-            )
-        expected = check(value)
-        if expected is not None:
-            raise ValueError(f"config: {env_id}: {key} must be {expected}, got {_short(value)}")
-    if "n_steps" in ppo and int(ppo["n_steps"]) * n_envs < 2:
-        raise ValueError(f"config: {env_id}: n_steps x n_envs must be >= 2 (a PPO rollout)")
-
-
-def _short(value: Any) -> str:
-    text = repr(value)
-    return text if len(text) <= 80 else f"{text[:60]}... ({len(text)} characters)"
-
-
 def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams:
     """Hyperparameters of `env_id` from `path` (default `mf_envs/train/configs/ppo.yml`; the
     other algorithms' files: `default_config(algo)`). An env the shipped file has no entry for
@@ -274,7 +127,7 @@ def load_hyperparams(env_id: str, path: str | Path | None = None) -> Hyperparams
         ppo["policy_kwargs"] = parse_policy_kwargs(ppo["policy_kwargs"])
     policy = raw.get("policy", "MlpPolicy")
     if policy != "MlpPolicy":
-        raise ValueError(f"config: {env_id}: policy must be 'MlpPolicy', got {_short(policy)}")
+        raise ValueError(f"config: {env_id}: policy must be 'MlpPolicy', got {short(policy)}")
     return Hyperparams(
         env_id=env_id,
         n_timesteps=_count(env_id, "n_timesteps", raw["n_timesteps"], MAX_TIMESTEPS)
@@ -323,7 +176,7 @@ def _count(env_id: str, key: str, value: Any, high: int) -> int:
     x = float(value) if isinstance(value, int | float) and not isinstance(value, bool) else math.nan
     if not (math.isfinite(x) and 1 <= x <= high and x.is_integer()):
         raise ValueError(
-            f"config: {env_id}: {key} must be a whole number in [1, {high}], got {_short(value)}"
+            f"config: {env_id}: {key} must be a whole number in [1, {high}], got {short(value)}"
         )
     return int(x)
 
@@ -428,12 +281,12 @@ def _parse_noise(env_id: str, kind: Any, std: Any) -> tuple[str, float] | None:
 
 # VecNormalize's kwargs a config's `normalize` may set, with their checks
 _NORMALIZE_KEYS = {
-    "norm_obs": _FLAG,
-    "norm_reward": _FLAG,
-    "clip_obs": _num(0.0, 1e9, lo_open=True),
-    "clip_reward": _num(0.0, 1e9, lo_open=True),
-    "gamma": _num(0.0, 1.0),
-    "epsilon": _num(0.0, 1.0, lo_open=True),
+    "norm_obs": FLAG,
+    "norm_reward": FLAG,
+    "clip_obs": number(0.0, 1e9, lo_open=True),
+    "clip_reward": number(0.0, 1e9, lo_open=True),
+    "gamma": number(0.0, 1.0),
+    "epsilon": number(0.0, 1.0, lo_open=True),
 }
 
 
@@ -445,7 +298,7 @@ def _parse_normalize(value: Any) -> dict[str, Any] | None:
             value = ast.literal_eval(value)
         except (SyntaxError, ValueError, TypeError, MemoryError, RecursionError):
             raise ValueError(
-                f"normalize: {_short(value)} is not a literal bool or dict of VecNormalize kwargs"
+                f"normalize: {short(value)} is not a literal bool or dict of VecNormalize kwargs"
             ) from None
     if value is True:
         return {}
@@ -453,7 +306,7 @@ def _parse_normalize(value: Any) -> dict[str, Any] | None:
         return None
     if not isinstance(value, dict):
         raise ValueError(
-            f"normalize: expected a bool or a dict of VecNormalize kwargs, got {_short(value)}"
+            f"normalize: expected a bool or a dict of VecNormalize kwargs, got {short(value)}"
         )
     for key, v in value.items():
         check = _NORMALIZE_KEYS.get(key) if isinstance(key, str) else None
@@ -461,7 +314,7 @@ def _parse_normalize(value: Any) -> dict[str, Any] | None:
             raise ValueError(f"normalize: unknown key {key!r}; known: {sorted(_NORMALIZE_KEYS)}")
         expected = check(v)
         if expected is not None:
-            raise ValueError(f"normalize: {key} must be {expected}, got {_short(v)}")
+            raise ValueError(f"normalize: {key} must be {expected}, got {short(v)}")
     return dict(value)
 
 

@@ -110,11 +110,11 @@ def register_rllib_envs() -> list[str]:
 
 def _checks() -> dict[str, Any]:
     """The type and range of each `_BASE` key (the SB3 config's checkers)."""
-    from mf_envs.train.config import _FLAG, _int, _num
+    from mf_envs.train.config_check import FLAG, number, whole
 
     def hiddens(v: Any) -> str | None:
         ok = isinstance(v, list) and 0 < len(v) <= MAX_LAYERS
-        ok = ok and all(_int(1, MAX_UNITS)(n) is None for n in v)
+        ok = ok and all(whole(1, MAX_UNITS)(n) is None for n in v)
         return None if ok else f"a list of 1..{MAX_LAYERS} layer sizes in [1, {MAX_UNITS}]"
 
     def mapping(v: Any) -> str | None:
@@ -122,15 +122,15 @@ def _checks() -> dict[str, Any]:
         return None if ok else "a mapping of env kwargs"
 
     return {
-        "timesteps": _int(1, 10**10), "num_env_runners": _int(0, 256),
-        "num_envs_per_env_runner": _int(1, 1024),
-        "train_batch_size_per_learner": _int(1, 10**7), "minibatch_size": _int(1, 10**7),
-        "num_epochs": _int(1, 1000), "lr": _num(0.0, 1.0, lo_open=True),
-        "gamma": _num(0.0, 1.0), "lambda_": _num(0.0, 1.0),
-        "clip_param": _num(0.0, 1e6, lo_open=True), "entropy_coeff": _num(0.0, 1e6),
-        "vf_clip_param": _num(0.0, 1e300, lo_open=True), "fcnet_hiddens": hiddens,
-        "mean_std_filter": _FLAG, "env_kwargs": mapping,
-        "sample_timeout_s": _num(0.0, 1e6, lo_open=True),
+        "timesteps": whole(1, 10**10), "num_env_runners": whole(0, 256),
+        "num_envs_per_env_runner": whole(1, 1024),
+        "train_batch_size_per_learner": whole(1, 10**7), "minibatch_size": whole(1, 10**7),
+        "num_epochs": whole(1, 1000), "lr": number(0.0, 1.0, lo_open=True),
+        "gamma": number(0.0, 1.0), "lambda_": number(0.0, 1.0),
+        "clip_param": number(0.0, 1e6, lo_open=True), "entropy_coeff": number(0.0, 1e6),
+        "vf_clip_param": number(0.0, 1e300, lo_open=True), "fcnet_hiddens": hiddens,
+        "mean_std_filter": FLAG, "env_kwargs": mapping,
+        "sample_timeout_s": number(0.0, 1e6, lo_open=True),
     }  # fmt: skip
 
 
