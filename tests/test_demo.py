@@ -69,12 +69,13 @@ def test_a_bug_in_the_demo_is_not_reported_as_the_users_mistake(capsys, monkeypa
 
 
 def test_a_validation_error_of_the_library_stays_a_one_line_mistake(capsys, tmp_path):
-    """A ValueError that the package raises on purpose (an env kwarg out of range) is the
-    user's: one line naming the parameter, status 2."""
-    code = main(["render", "GOWEC-v0", "--out", str(tmp_path / "a.gif"), "--seed", "-1"])
+    """A ValueError that the package raises on purpose (a baseline kind the env does not have)
+    is the user's: one line naming the parameter, status 2."""
+    code = main(["render", "GOWEC-v0", "--out", str(tmp_path / "a.gif"),
+                 "--policy", "baseline:no_such_kind"])  # fmt: skip
     err = capsys.readouterr().err
     assert code == 2 and "Traceback" not in err and len(err.strip().splitlines()) == 1
-    assert "seed" in err
+    assert "kind" in err and "no_such_kind" in err
 
 
 def test_an_unexpected_exception_is_a_bug_with_its_traceback(capsys, monkeypatch):

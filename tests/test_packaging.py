@@ -80,13 +80,17 @@ def test_wheel_carries_py_typed_and_the_license(tmp_path):
 
 @pytest.mark.parametrize("env_id", list(ENV_SPECS))
 def test_readme_and_api_list_every_baseline(env_id):
-    """The README's env table (default baseline column) and docs/api.md name every registered
-    baseline kind of each env (the stabilizer's "rate" was missing from both)."""
+    """The README's env table names each env's default baseline, and docs/api.md's env table and
+    its baseline list name every registered kind, the default first (the stabilizer's "rate"
+    was once missing from both)."""
     from mf_envs import controllers
 
     kinds = controllers.baseline_kinds(env_id)
     readme = (ROOT / "README.md").read_text().splitlines()
-    row = next(ln for ln in readme if ln.startswith(f"| `{env_id}` | "))  # the env table's
+    row = next(ln for ln in readme if ln.startswith(f"| `{env_id}` | "))
+    assert f"| `{kinds[0]}` |" in row
+    api_lines = (ROOT / "docs" / "api.md").read_text().splitlines()
+    row = next(ln for ln in api_lines if ln.startswith(f"| `{env_id}` | ") and ln.count(" | ") >= 6)
     baselines = row.rstrip(" |").rsplit(" | ", 1)[1]
     assert baselines.startswith(f'`"{kinds[0]}"`')  # the default first
     assert [k for k in kinds if f'`"{k}"`' not in baselines] == []

@@ -84,19 +84,21 @@ def test_degenerate_strategies_never_beat_the_default_baseline(decl):
 
 
 # --------------------------------------------------------------------------- documented terms
-def _readme_reward_cell(env_id: str) -> str:
+def _api_reward_cell(env_id: str) -> str:
+    """The reward cell of docs/api.md's env table (id | system | observation | action | reward)."""
     from pathlib import Path
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text().splitlines()
-    row = next(ln for ln in readme if ln.startswith(f"| `{env_id}` | "))
-    return row.split(" | ")[4]  # id | system | observation | action | reward | ...
+    api = (Path(__file__).resolve().parents[1] / "docs" / "api.md").read_text()
+    lines = api[api.index("## Environments (registered") :].splitlines()
+    row = next(ln for ln in lines if ln.startswith(f"| `{env_id}` | "))
+    return row.split(" | ")[4]
 
 
 @pytest.mark.parametrize("decl", SHIPPED, ids=[d.env_id for d in SHIPPED])
 def test_documented_reward_terms_are_the_codes(decl):
-    """The env docstring's Rewards section and the README's reward column name exactly the terms
-    the env reports in `info["reward_terms"]` (issue 32: the README had the stabilizer's reward
-    as "-0.01 action^2" while the code charged the drive energy)."""
+    """The env docstring's Rewards section and docs/api.md's reward column name exactly the terms
+    the env reports in `info["reward_terms"]` (the README once had the stabilizer's reward as
+    "-0.01 action^2" while the code charged the drive energy)."""
     import re
 
     env = gym.make(decl.env_id)
@@ -116,5 +118,5 @@ def test_documented_reward_terms_are_the_codes(decl):
     assert keys <= named, f"{decl.env_id}: docstring's Rewards section lacks {keys - named}"
     if formula:
         assert set(formula.group(1).split(" + ")) == keys
-    readme = set(re.findall(r"`([a-z_]+)`", _readme_reward_cell(decl.env_id)))
-    assert readme == keys, f"{decl.env_id}: README names {readme}, the code reports {keys}"
+    api = set(re.findall(r"`([a-z_]+)`", _api_reward_cell(decl.env_id)))
+    assert api == keys, f"{decl.env_id}: docs/api.md names {api}, the code reports {keys}"

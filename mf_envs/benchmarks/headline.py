@@ -158,14 +158,14 @@ def run(out: Path = RESULTS, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
     """Measure every row and write the results file (atomically)."""
     from tqdm import tqdm
 
-    from mf_envs.cli import package_version
+    from mf_envs import __version__
 
     rows = []
     for row in tqdm(ROWS, desc="headline", unit="id"):
         rows.append(measure(row, seeds))
     result = {
         "command": f"python -m mf_envs.benchmarks.headline --out {out}",
-        "version": package_version(),
+        "version": __version__,
         "machine": f"{platform.machine()}, {platform.system()}, Python {platform.python_version()}",
         "date": time.strftime("%Y-%m-%d", time.gmtime()),
         "rows": rows,
