@@ -36,7 +36,6 @@ from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.integrate import quad
 from scipy.special import j1
 
 from mf_envs._validate import (
@@ -169,6 +168,8 @@ def pierson_moskowitz_spectrum(omega: ArrayLike, hs: float, tp: float) -> NDArra
 @lru_cache(maxsize=64)
 def _jonswap_norm(gamma: float) -> float:
     """1 / integral of the unit-Hs, unit-wp JONSWAP shape (so that m0 = Hs^2/16 exactly)."""
+
+    from scipy.integrate import quad  # here: importing scipy.integrate costs every env ~0.5 s
 
     def shape(x: float) -> float:
         return float(_jonswap_shape(np.array([x]), 1.0, gamma)[0])

@@ -21,7 +21,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import signal
 
 
 @dataclass(frozen=True)
@@ -94,6 +93,8 @@ def fit_radiation(
     K = np.asarray(damping) + 1j * w * (np.asarray(added_mass) - added_mass_inf)
     scale_w = float(w[-1])
     scale_k = float(np.max(np.abs(K)))
+    from scipy import signal  # here: importing scipy.signal costs every process ~0.5 s
+
     best = None
     for n in range(2, max_order + 1):
         num, den = _fit_order(w / scale_w, K / scale_k, n)
