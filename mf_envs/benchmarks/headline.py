@@ -55,8 +55,8 @@ ROWS = (
     Row("GOWEC-v0", "one gyroscope of a gyroscopic wave energy converter on a buoy rocked by a "
         "regular wave (§3.2)", "gimbal angle and rate, buoy rates",
         "generator torque on the gimbal", "power_ratio"),
-    Row("FloatingGOWEC-v0", "the GOWEC afloat: ISWEC-class hull (BEM, Cummins equation) with two "
-        "gyro units, regular sea", "gimbal angle and rate, hull rates, pitch, roll, wave "
+    Row("FloatingGOWEC-v0", "the GOWEC afloat: a 290 t cylinder of ISWEC's footprint (BEM, "
+        "Cummins equation) with two gyro units, regular sea", "gimbal angle and rate, hull rates, pitch, roll, wave "
         "elevation", "generator torque (power-limited)", "net_power_of_ceiling"),
     Row("FloatingGOWEC-JONSWAP-v0", "the same, JONSWAP Hs 1.5 m, Tp 6 s, a new sea per seed "
         "(headline)", "as above", "as above", "net_power_of_ceiling"),
