@@ -56,8 +56,9 @@ ROWS = (
         "regular wave (§3.2)", "gimbal angle and rate, buoy rates",
         "generator torque on the gimbal", "power_ratio"),
     Row("FloatingGOWEC-v0", "the GOWEC afloat: a 290 t cylinder of ISWEC's footprint (BEM, "
-        "Cummins equation) with two gyro units, regular sea", "gimbal angle and rate, hull rates, pitch, roll, wave "
-        "elevation", "generator torque (power-limited)", "net_power_of_ceiling"),
+        "Cummins equation) with two gyro units, regular sea",
+        "gimbal angle and rate, hull rates, pitch, roll, wave elevation",
+        "generator torque (power-limited)", "net_power_of_ceiling"),
     Row("FloatingGOWEC-JONSWAP-v0", "the same, JONSWAP Hs 1.5 m, Tp 6 s, a new sea per seed "
         "(headline)", "as above", "as above", "net_power_of_ceiling"),
     Row("Inchworm-v0", "60 mm PDMS inchworm robot: planar active C¹ beam, SMA wires, gripping "
