@@ -31,7 +31,9 @@ DECLARATION = replace(
     headroom=(
         "no ceiling stated: the speed of this model grows with the undulation frequency until "
         "the period bound and the muscles' rate limit stop it, and no bound over every command "
-        "sequence is derived. The best baseline (`heading`, 0.827 m/s) rides the speed-tuned "
-        "wave; PPO's return is 24 % above it at 19 % less energy per metre (docs/eel.md)"
+        "sequence is derived. The best baseline (`heading`) rides the speed-tuned wave; a PPO "
+        "policy (on an earlier version of this env) had a 24 % higher return at 19 % less "
+        "energy per metre (docs/eel.md); the default baseline's speed today: "
+        "docs/results/headline.json"
     ),
 )

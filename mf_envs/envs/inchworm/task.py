@@ -61,7 +61,8 @@ DECLARATION = EnvDeclaration(
     headroom=(
         "no ceiling stated: a speed bound over every command sequence (partial strokes, the "
         "wires' heating and cooling, the feet's grip) is not derived. Evidence of headroom: "
-        "the tuned gait (4.97 mm/s, 0.083 L/s) comes from a 96-point grid and Nelder-Mead over "
-        "a two-level square wave only; PPO (60k-225k steps) found no gait (docs/inchworm.md)"
+        "the tuned gait comes from a 96-point grid and Nelder-Mead over a two-level square "
+        "wave only (its speed today: docs/results/headline.json); PPO (60k-225k steps) found "
+        "no gait (docs/inchworm.md)"
     ),
 )
