@@ -274,7 +274,7 @@ def _run(
     return 0
 
 
-_PACKAGE_DIR = str(Path(__file__).resolve().parents[1])
+_PACKAGE_DIR = Path(__file__).resolve().parents[1]
 _RAISE = dis.opmap["RAISE_VARARGS"]
 
 
@@ -288,7 +288,7 @@ def raised_by_package(exc: BaseException) -> bool:
     while tb.tb_next is not None:
         tb = tb.tb_next
     code = tb.tb_frame.f_code
-    if not str(Path(code.co_filename).resolve()).startswith(_PACKAGE_DIR):
+    if not Path(code.co_filename).resolve().is_relative_to(_PACKAGE_DIR):
         return False
     return 0 <= tb.tb_lasti < len(code.co_code) and code.co_code[tb.tb_lasti] == _RAISE
 
