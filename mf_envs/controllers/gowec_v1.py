@@ -56,7 +56,7 @@ def matched_pto(env: Any, period: float | None = None) -> tuple[float, float]:
 
 def _drag_k(raw: Any) -> float:
     """Still-water quadratic pitch damping K (N m s^2/rad^2) of the keel plate,
-    1/2 rho C_d 8 R^5 / 15 (`floating.drag_geometry`), 0 with the drag off."""
+    1/2 rho C_d 8 R^5 / 15 (`sea.drag_geometry`), 0 with the drag off."""
     sp = raw.model.sp
     if sp[0] == 0.0:
         return 0.0

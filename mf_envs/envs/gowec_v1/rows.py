@@ -19,7 +19,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     step_views,
     step_work,
 )
-from mf_envs.physics.gowec.hydro.floating import ramp
+from mf_envs.physics.gowec.hydro.sea import ramp
 
 
 # a kernel (`mf_envs._jit`): as a plain njit function, called for every row, its array

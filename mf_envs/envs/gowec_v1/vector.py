@@ -57,7 +57,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ENERGY,
     state_values,
 )
-from mf_envs.physics.gowec.hydro.floating import (
+from mf_envs.physics.gowec.hydro.sea import (
     N_LOADS,
     drag_velocity_coefficients,
     excitation_coefficients,

@@ -18,13 +18,8 @@ import numpy as np
 
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
-from mf_envs.physics.gowec.hydro.floating import (
-    energy_index,
-    mechanics,
-    ramp,
-    rk4_steps_into,
-    sea_inputs,
-)
+from mf_envs.physics.gowec.hydro.floating import energy_index, mechanics, rk4_steps_into
+from mf_envs.physics.gowec.hydro.sea import ramp, sea_inputs
 
 # step_row's value slots (its docstring), by name: the one layout the env and the vector env read
 (

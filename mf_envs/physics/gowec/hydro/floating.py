@@ -58,6 +58,17 @@ from numpy.typing import NDArray
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
 from mf_envs.frames.steppers import make_rk4_given, rk4_work
+from mf_envs.physics.gowec.hydro.radiation import block_rates, dot_block, radiation_rates4
+from mf_envs.physics.gowec.hydro.sea import (
+    N_KEEL,
+    N_SIDE,
+    SP_DIR,
+    advance_phasors,
+    drag_loads,
+    ramp,
+    sea_inputs,
+    sea_sum,
+)
 
 N_MECH = 6
 N_ENERGY = 6
@@ -86,133 +97,12 @@ class FloatingParams:
         return N_MECH + 2 * self.Ar.shape[0] + N_ENERGY
 
 
-def excitation_coefficients(
-    X: NDArray[np.complex128], amplitudes: NDArray, phases: NDArray, direction: float
-) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """Complex moment coefficients (N m) c_i such that M(t) = sum Re(c_i e^{-i w_i t}) about e1
-    (pitch) and e2 (roll) for components eta = a_i cos(k x.n - w_i t + eps_i) travelling in
-    `direction` (rad from x1). X (n,) is the hull's pitch excitation (about y, wave along +x) at
-    w_i; by axisymmetry the moment about e2 is X cos(direction) and about e1 -X sin(direction)."""
-    c = np.asarray(X) * np.asarray(amplitudes) * np.exp(1j * np.asarray(phases))
-    return -math.sin(direction) * c, math.cos(direction) * c
-
-
-# quadratic drag: N_KEEL nodes on the keel plate, N_SIDE on the side, and the sea's
-# per-node water velocities; the sea parameters `sp` (SP_LEN,) = [drag on (0/1), ramp time (s),
-# c_keel (N_KEEL) = 1/2 rho C_d area (kg/m), x_keel, y_keel (N_KEEL, m from the axis),
-# c_side (N_SIDE) = 1/2 rho C_d D dz (kg/m), lever z - z_G of the side nodes (N_SIDE, m),
-# cos(direction), sin(direction)] (`drag_geometry`)
-N_KEEL = 6
-N_SIDE = 2
-SP_CK = 2
-SP_XK = SP_CK + N_KEEL
-SP_YK = SP_XK + N_KEEL
-SP_CS = SP_YK + N_KEEL
-SP_ZS = SP_CS + N_SIDE
-SP_DIR = SP_ZS + N_SIDE
-SP_TRANS = SP_DIR + 2  # 1 when surge and heave are free (`sea_inputs` adds their forces)
-SP_LEN = SP_TRANS + 1
-N_LOADS = N_KEEL + N_SIDE + 2  # dk's columns: node velocities, then surge and heave forces
 # the translation parameters `tp` (TP_LEN,) (`translation_params`): on, M1 = m + A11_inf (kg),
 # A15_inf (kg m, about G, symmetrised), mooring stiffness (N/m), M3 = m + A33_inf (kg), C33 (N/m),
 # then the start of each radiation block in the stacked state (11 from s', 15 from alpha' to
 # the surge force, 51 from s' to the moment, 33 from z') and the stacked order nt
 TP_ON, TP_M1, TP_A15, TP_K, TP_M3, TP_C33, TP_O11, TP_O15, TP_O51, TP_O33, TP_NT = range(11)
 TP_LEN = 11
-
-
-@kernel(forceinline=True)
-def ramp(t, tr):
-    """Start-up ramp of the incident wave: 1/2 (1 - cos(pi t / tr)) for t < tr, else 1."""
-    if t >= tr:
-        return 1.0
-    return 0.5 * (1.0 - math.cos(math.pi * t / tr))
-
-
-@numba.njit(cache=True)
-def sea_inputs(t, om, cp, cr, dk, sp):
-    """The sea at time t (s), ramped (`ramp`): `sea_sum` of the components' phasors at t (for
-    resets and the Python side; the RK4 step forms its stage phasors by rotation instead,
-    `rk4_steps_into`)."""
-    ph = np.empty((2, om.shape[0]))
-    for i in range(om.shape[0]):
-        ph[0, i], ph[1, i] = math.cos(om[i] * t), math.sin(om[i] * t)
-    return sea_sum(ph, ramp(t, sp[1]), cp, cr, dk, sp)
-
-
-@kernel(forceinline=True)
-def sea_sum(ph, r, cp, cr, dk, sp):
-    """The sea from the components' phasors ph (2, M) = (cos w_i t, sin w_i t) at a time t and
-    the ramp factor r there: (M_x, M_y) (N m), sum Re(c e^{-i w t}) of the excitation
-    coefficients cp (pitch) and cr (roll) (`excitation_coefficients`), then the water's
-    vertical velocity at the N_KEEL keel nodes and its horizontal speed along the wave
-    direction at the N_SIDE side nodes (m/s), then the surge force along the wave and the heave
-    force (N), each sum Re(dk[i, j] e^{-i w_i t}) (zeros, and no work, when neither the drag
-    nor the translation is on), all times r."""
-    mx, my = 0.0, 0.0
-    v0, v1, v2, v3, v4, v5, v6, v7 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    fs, fz = 0.0, 0.0
-    drag, trans = sp[0] != 0.0, sp[SP_TRANS] != 0.0
-    for i in range(ph.shape[1]):
-        c, s = ph[0, i], ph[1, i]
-        mx += cp[i].real * c + cp[i].imag * s
-        my += cr[i].real * c + cr[i].imag * s
-        if drag or trans:
-            d = dk[i]
-            v0 += d[0].real * c + d[0].imag * s
-            v1 += d[1].real * c + d[1].imag * s
-            v2 += d[2].real * c + d[2].imag * s
-            v3 += d[3].real * c + d[3].imag * s
-            v4 += d[4].real * c + d[4].imag * s
-            v5 += d[5].real * c + d[5].imag * s
-            v6 += d[6].real * c + d[6].imag * s
-            v7 += d[7].real * c + d[7].imag * s
-            fs += d[8].real * c + d[8].imag * s
-            fz += d[9].real * c + d[9].imag * s
-    return (r * mx, r * my, r * v0, r * v1, r * v2, r * v3, r * v4, r * v5, r * v6, r * v7,
-            r * fs, r * fz)  # fmt: skip
-
-
-@kernel(forceinline=True)
-def _advance_phasors(ph):
-    """ph[0:2] (cos w_i t, sin w_i t) -> their values at t + h, by the rotation ph[2:4] =
-    (cos w_i h, sin w_i h): the angle-addition formulas (a few ulp per rotation, against the
-    ~20 ns of a sin/cos pair)."""
-    for i in range(ph.shape[1]):
-        c, s, rc, rs = ph[0, i], ph[1, i], ph[2, i], ph[3, i]
-        ph[0, i] = c * rc - s * rs
-        ph[1, i] = s * rc + c * rs
-
-
-@kernel(forceinline=True)
-def drag_loads(th_d, ro_d, s_d, z_d, inp, sp):
-    """Quadratic (Morison) drag on the hull rotating at (theta', rho'), surging at s' along
-    the wave and heaving at z' in the water of `sea_inputs` inp: keel nodes -c |v_rel| v_rel on
-    the vertical velocity relative to the water (body: theta' y - rho' x + z'), side nodes on
-    the horizontal one (body: (rho' z, -theta' z) + s' (cos, sin) of the wave direction).
-    Returns (M_x, M_y) (N m, moments r x F about G), the surge force along the wave and the
-    heave force (N); zeros when the drag is off."""
-    if sp[0] == 0.0:
-        return 0.0, 0.0, 0.0, 0.0
-    mx, my, fz = 0.0, 0.0, 0.0
-    for j in range(N_KEEL):
-        x, yk = sp[SP_XK + j], sp[SP_YK + j]
-        rel = th_d * yk - ro_d * x + z_d - inp[2 + j]
-        f = -sp[SP_CK + j] * abs(rel) * rel
-        mx += yk * f
-        my -= x * f
-        fz += f
-    cb, sb = sp[SP_DIR], sp[SP_DIR + 1]
-    fs = 0.0
-    for j in range(N_SIDE):
-        z = sp[SP_ZS + j]
-        u = inp[2 + N_KEEL + j] - s_d
-        rx, ry = ro_d * z - u * cb, -th_d * z - u * sb
-        c = -sp[SP_CS + j] * math.sqrt(rx * rx + ry * ry)
-        mx -= z * c * ry
-        my += z * c * rx
-        fs += c * (rx * cb + ry * sb)
-    return mx, my, fs, fz
 
 
 @kernel(forceinline=True)
@@ -341,9 +231,9 @@ def mechanics(t, y, tau, args, inp, near=None):
     Cs = args[17]
     m1, a15 = tp[TP_M1], tp[TP_A15]
     o11, o51, o33 = int(tp[TP_O11]), int(tp[TP_O51]), int(tp[TP_O33])
-    mu_s = _dot_block(Cs, y, b + 4, o11, o51)  # the 11 and 15 blocks (adjacent)
-    mu_n = _dot_block(Cs, y, b + 4, o51, o33)
-    mu_z = _dot_block(Cs, y, b + 4, o33, int(tp[TP_NT]))
+    mu_s = dot_block(Cs, y, b + 4, o11, o51)  # the 11 and 15 blocks (adjacent)
+    mu_n = dot_block(Cs, y, b + 4, o51, o33)
+    mu_z = dot_block(Cs, y, b + 4, o33, int(tp[TP_NT]))
     # surge along the wave couples with alpha = -(g . u), g = (sin, -cos) of the direction
     gt, gr = sp[SP_DIR + 1], -sp[SP_DIR]
     fs, fz = inp[2 + N_KEEL + N_SIDE], inp[3 + N_KEEL + N_SIDE]
@@ -378,8 +268,8 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
         dy[i] = y[3 + i]
         dy[3 + i] = ud[i]
     th_d, ro_d, ph_d = y[3], y[4], y[5]
-    if nr == 4:  # the fit's order: `_radiation4`, the same sums unrolled
-        _radiation4(y, dy, Ar, Br, th_d, ro_d)
+    if nr == 4:  # the fit's order: `radiation_rates4`, the same sums unrolled
+        radiation_rates4(y, dy, Ar, Br, th_d, ro_d)
     for i in range(nr if nr != 4 else 0):  # radiation states: x' = A x + B u (no BLAS call)
         at, ar = 0.0, 0.0
         for j in range(nr):
@@ -417,46 +307,6 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
 
 
 @kernel(forceinline=True)
-def _radiation4(y, dy, Ar, Br, th_d, ro_d):
-    """`deriv_into`'s radiation states of a 4th-order fit (pitch at y[6:10], roll at y[10:14]),
-    its loop's sums in its order, unrolled: 0.0 + sum_j A[i, j] x_j, then + B[i] u."""
-    t0, t1, t2, t3 = y[6], y[7], y[8], y[9]
-    r0, r1, r2, r3 = y[10], y[11], y[12], y[13]
-    for i in range(4):
-        a0, a1, a2, a3 = Ar[i, 0], Ar[i, 1], Ar[i, 2], Ar[i, 3]
-        dy[6 + i] = (0.0 + a0 * t0 + a1 * t1 + a2 * t2 + a3 * t3) + Br[i] * th_d
-        dy[10 + i] = (0.0 + a0 * r0 + a1 * r1 + a2 * r2 + a3 * r3) + Br[i] * ro_d
-
-
-@kernel(forceinline=True)
-def _block_rates(y, dy, o, As, Bs, lo, hi, v):
-    """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi
-    (on views from 0: indices the compiler sees are >= 0, so no negative-index wraparound per
-    element, which the offsets lo, o cost on every access)."""
-    A, B, ys, ds = As[lo:hi, lo:hi], Bs[lo:hi], y[o + lo : o + hi], dy[o + lo : o + hi]
-    if B.shape[0] == 4:  # the fits' order: the same sums, unrolled (no loop per 4 terms)
-        y0, y1, y2, y3 = ys[0], ys[1], ys[2], ys[3]
-        for i in range(4):
-            ds[i] = B[i] * v + A[i, 0] * y0 + A[i, 1] * y1 + A[i, 2] * y2 + A[i, 3] * y3
-        return
-    for i in range(B.shape[0]):
-        acc = B[i] * v
-        for j in range(B.shape[0]):
-            acc += A[i, j] * ys[j]
-        ds[i] = acc
-
-
-@kernel(forceinline=True)
-def _dot_block(c, y, o, lo, hi):
-    """sum_i c[i] y[o + i] over lo <= i < hi, in order from 0.0 (views, as `_block_rates`)."""
-    cs, ys = c[lo:hi], y[o + lo : o + hi]
-    acc = 0.0
-    for i in range(cs.shape[0]):
-        acc += cs[i] * ys[i]
-    return acc
-
-
-@kernel(forceinline=True)
 def _translation_rates(y, dy, k, ud, tr, args):
     """The translation block's rates into dy (block at k = N_MECH + 2 nr: s, z, s', z', then
     the stacked radiation states x' = As x + Bs v with v = s' (11 and 51 blocks), alpha' (15)
@@ -468,10 +318,10 @@ def _translation_rates(y, dy, k, ud, tr, args):
     al_d = -(sp[SP_DIR + 1] * y[3] - sp[SP_DIR] * y[4])
     nt = int(tp[TP_NT])
     o15, o51, o33 = int(tp[TP_O15]), int(tp[TP_O51]), int(tp[TP_O33])
-    _block_rates(y, dy, b + 4, As, Bs, 0, o15, s_d)  # K11: surge force from s'
-    _block_rates(y, dy, b + 4, As, Bs, o15, o51, al_d)  # K15: surge force from alpha'
-    _block_rates(y, dy, b + 4, As, Bs, o51, o33, s_d)  # K51: moment from s'
-    _block_rates(y, dy, b + 4, As, Bs, o33, nt, z_d)  # K33: heave force from z'
+    block_rates(y, dy, b + 4, As, Bs, 0, o15, s_d)  # K11: surge force from s'
+    block_rates(y, dy, b + 4, As, Bs, o15, o51, al_d)  # K15: surge force from alpha'
+    block_rates(y, dy, b + 4, As, Bs, o51, o33, s_d)  # K51: moment from s'
+    block_rates(y, dy, b + 4, As, Bs, o33, nt, z_d)  # K33: heave force from z'
     return b + 4 + nt
 
 
@@ -501,7 +351,7 @@ def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
     """`rk4_steps` in place on y with caller-owned temporaries work = `rk4_work(n_state)` and
     ph (4, M) (M wave components; no allocation: the env's step calls it every control step).
     The sea is evaluated at t, t + dt/2, t + dt of every substep (as `make_rk4` does) from the
-    components' phasors: cos/sin of w_i t once, then rotated by w_i dt/2 (`_advance_phasors`).
+    components' phasors: cos/sin of w_i t once, then rotated by w_i dt/2 (`advance_phasors`).
     Returns the sea (`sea_sum`) at the end time t + n dt and the last substep's start angles
     `near` of `_mass_terms` (NaNs if n = 0: libm), from which the end state's are near."""
     om, cp, cr, dk, sp = args[9], args[10], args[11], args[12], args[13]
@@ -517,9 +367,9 @@ def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
         ro, phi = y[1], y[2]
         near = (ro, math.cos(ro), math.sin(ro), phi, math.cos(phi), math.sin(phi))
         full = (tau, args, near)
-        _advance_phasors(ph)
+        advance_phasors(ph)
         ih = sea_sum(ph, ramp(t + h, sp[1]), cp, cr, dk, sp)
-        _advance_phasors(ph)
+        advance_phasors(ph)
         i1 = sea_sum(ph, ramp(t + dt, sp[1]), cp, cr, dk, sp)
         _rk4(t, y, dt, full, work, i0, ih, i1)
         dy = work[0]
@@ -538,75 +388,6 @@ def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray,
             p.Cr, p.pto, om, cp, cr, dk, sp, *tr)  # fmt: skip
 
 
-def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction: float) -> NDArray:
-    """The sea parameters `sp` (SP_LEN,) of `sea_inputs` / `drag_loads` for a vertical
-    cylinder hull (radius R, draft d, z_G from `hull`) and drag coefficient C_d (0 = off):
-    - keel plate: N_KEEL nodes on a ring of radius r* = R (32 / (25 pi))^(1/3) at angles
-      direction + j pi/3, each of area pi R^2 / N_KEEL, so that for a rigid rotation the ring
-      reproduces the plate's integral of |x|^3 over the disc, 8 R^5 / 15 (the quadratic pitch
-      damping K = 1/2 rho C_d 8 R^5 / 15 exactly in still water about the axis across the
-      wave direction; about the other axis the ring gives 2.598 / 2.5, 3.9 % more);
-    - side: N_SIDE Gauss-Legendre nodes over the draft on the axis, projected width 2R;
-    - ramp time (s) of the incident wave, and the wave direction's cosine and sine."""
-    sp = np.zeros(SP_LEN)
-    sp[1] = ramp_seconds
-    c, s = math.cos(direction), math.sin(direction)
-    sp[SP_DIR], sp[SP_DIR + 1] = c, s
-    if drag_coefficient <= 0.0:
-        return sp
-    R, d, zg, rho = float(hull.radius), float(hull.draft), float(hull.zg), float(hull.rho)
-    if not (math.isfinite(R) and math.isfinite(d) and math.isfinite(zg)):
-        raise ValueError("drag_coefficient: the hull has no radius/draft/zg (a user table "
-                         "without geometry); quadratic drag needs them")  # fmt: skip
-    sp[0] = 1.0
-    ang = direction + np.arange(N_KEEL) * (2.0 * math.pi / N_KEEL)
-    r = R * (32.0 / (25.0 * math.pi)) ** (1.0 / 3.0)
-    sp[SP_CK : SP_CK + N_KEEL] = 0.5 * rho * drag_coefficient * math.pi * R * R / N_KEEL
-    sp[SP_XK : SP_XK + N_KEEL] = r * np.cos(ang)
-    sp[SP_YK : SP_YK + N_KEEL] = r * np.sin(ang)
-    gl = np.array([-1.0, 1.0]) / math.sqrt(3.0)  # 2-point Gauss-Legendre on [-1, 1]
-    sp[SP_CS : SP_CS + N_SIDE] = 0.5 * rho * drag_coefficient * 2.0 * R * d / N_SIDE
-    sp[SP_ZS : SP_ZS + N_SIDE] = -0.5 * d * (1.0 + gl) - zg
-    return sp
-
-
-def drag_velocity_coefficients(sp: NDArray, hull, om: NDArray, amp: NDArray,
-                               eps: NDArray) -> NDArray[np.complex128]:  # fmt: skip
-    """dk (n, N_LOADS), its first N_KEEL + N_SIDE columns (the last two, the surge and heave
-    forces, are `translation_loads`'): the incident wave's water velocity at the drag nodes is
-    sum_i Re(dk[i, j] e^{-i w_i t}), linear deep-water kinematics (k = w^2 / g) of
-    eta = sum a_i cos(k s - w_i t + eps_i): vertical w = a w e^{kz} sin(.) at the keel nodes
-    (z = -draft), horizontal speed along the wave u = a w e^{kz} cos(.) at the side nodes
-    (s = 0). Zeros when the drag is off."""
-    om = np.asarray(om, dtype=float)
-    dk = np.zeros((om.size, N_LOADS), dtype=complex)
-    if sp[0] == 0.0 or om.size == 0:
-        return dk
-    k = om * om / float(hull.g)
-    c = np.asarray(amp, dtype=float) * np.exp(1j * np.asarray(eps, dtype=float))
-    cb, sb = sp[SP_DIR], sp[SP_DIR + 1]
-    s = sp[SP_XK : SP_XK + N_KEEL] * cb + sp[SP_YK : SP_YK + N_KEEL] * sb
-    zk = -float(hull.draft)
-    dk[:, :N_KEEL] = (-1j * om * np.exp(k * zk) * c)[:, None] * np.exp(1j * k[:, None] * s)
-    zs = sp[SP_ZS : SP_ZS + N_SIDE] + float(hull.zg)  # absolute depth of the side nodes
-    dk[:, N_KEEL : N_KEEL + N_SIDE] = (om * c)[:, None] * np.exp(k[:, None] * zs)
-    return dk
-
-
-def translation_loads(dk: NDArray, three, om: NDArray, amp: NDArray, eps: NDArray) -> None:
-    """dk's last two columns (in place): the surge force along the wave and the heave force
-    per component, X_1(w) a e^{i eps} and X_3(w) a e^{i eps} (N), from the 3-dof table `three`
-    (linear interpolation, 0 outside it)."""
-    om = np.asarray(om, dtype=float)
-    c = np.asarray(amp, dtype=float) * np.exp(1j * np.asarray(eps, dtype=float))
-    for col, mode in ((N_KEEL + N_SIDE, 0), (N_KEEL + N_SIDE + 1, 1)):
-        X = three.excitation[:, mode]
-        Xi = np.interp(om, three.omega, X.real, 0.0, 0.0) + 1j * np.interp(
-            om, three.omega, X.imag, 0.0, 0.0
-        )
-        dk[:, col] = Xi * c
-
-
 @numba.njit(cache=True, inline="always")
 def energy_index(args):
     """Index of the integrated energies in the state: after the mechanical state, the two
@@ -616,33 +397,3 @@ def energy_index(args):
     if tp[TP_ON] != 0.0:
         k += 4 + int(tp[TP_NT])
     return k
-
-
-def mechanical_energy(p: FloatingParams, y: NDArray[np.float64], tp: NDArray | None = None,
-                      direction: float = 0.0) -> float:  # fmt: skip
-    """Kinetic + hydrostatic energy (J) of the mechanical state, with the rotor spin's constant
-    1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor); with the translation
-    parameters tp (surge and heave free) also 1/2 M1 s'^2 + A15 s' alpha' + 1/2 M3 z'^2 and
-    the mooring's and heave's springs."""
-    M, _, spin, _ = mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
-    u = y[3:6]
-    kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * spin
-    e = kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
-    if tp is not None and tp[TP_ON] != 0.0:
-        b = N_MECH + 2 * p.Ar.shape[0]
-        s, z, sd, zd = y[b : b + 4]
-        al_d = -(math.sin(direction) * y[3] - math.cos(direction) * y[4])
-        e += 0.5 * tp[TP_M1] * sd * sd + tp[TP_A15] * sd * al_d + 0.5 * tp[TP_M3] * zd * zd
-        e += 0.5 * tp[TP_K] * s * s + 0.5 * tp[TP_C33] * z * z
-    return e
-
-
-def gyro_moment(p: FloatingParams, y: NDArray[np.float64], accel: NDArray) -> NDArray:
-    """Moment of the gyro unit on the hull along the (theta, rho) coordinates (N m, (2,)):
-    minus the gimbal+rotor's B^T (J B u' + J B' u + w x h) rows of theta and rho, with the
-    generator torque's reaction included through the rho row (the gimbal axis is e2)."""
-    q, u = y[0:3], y[3:6]
-    Mfull, v, _, gy = mass_and_rhs(q, u, p.inertia, p.gyro, p.psid)
-    Mh, vh, _, _ = mass_and_rhs(q, u, p.inertia, np.zeros(6), 0.0)
-    Mg_part = (Mfull - Mh) @ accel + gy
-    return -Mg_part[:2]

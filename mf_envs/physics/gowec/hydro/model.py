@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs.physics.gowec import GOWECParams
-from mf_envs.physics.gowec.hydro import HullCoefficients
+from mf_envs.physics.gowec.hydro import HullCoefficients, sea
 from mf_envs.physics.gowec.hydro import floating as fl
 from mf_envs.physics.gowec.hydro.radiation import RadiationFit, fit_radiation
 from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
@@ -53,7 +53,7 @@ class FloatingModel:
             [gyro.rotor_inertia, gyro.transverse, *gyro.gimbal_inertia, units], dtype=float
         )
         self._packed: tuple | None = None  # `_args`' cache
-        self.sp = np.zeros(fl.SP_LEN)  # drag off, no ramp (`set_drag`, `set_ramp`)
+        self.sp = np.zeros(sea.SP_LEN)  # drag off, no ramp (`set_drag`, `set_ramp`)
         self.drag_coefficient = 0.0
         self.mooring_stiffness = 0.0  # N/m (`set_translation`)
         self.p = fl.FloatingParams(
@@ -95,21 +95,21 @@ class FloatingModel:
         if wave is None:
             self._om = np.zeros(0)
             self._cp = self._cr = np.zeros(0, dtype=complex)
-            self._dk = np.zeros((0, fl.N_LOADS), dtype=complex)
+            self._dk = np.zeros((0, sea.N_LOADS), dtype=complex)
             return
         X = self.hull_excitation(wave.omegas)
         self._om = np.asarray(wave.omegas, dtype=float)
-        self._cp, self._cr = fl.excitation_coefficients(
+        self._cp, self._cr = sea.excitation_coefficients(
             X, wave.amplitudes, wave.phases, wave.direction
         )
-        self.sp = fl.drag_geometry(self.hull, self.drag_coefficient, float(self.sp[1]),
+        self.sp = sea.drag_geometry(self.hull, self.drag_coefficient, float(self.sp[1]),
                                    wave.direction)  # fmt: skip
-        self.sp[fl.SP_TRANS] = self._tr[0][fl.TP_ON]
-        self._dk = fl.drag_velocity_coefficients(
+        self.sp[sea.SP_TRANS] = self._tr[0][fl.TP_ON]
+        self._dk = sea.drag_velocity_coefficients(
             self.sp, self.hull, self._om, wave.amplitudes, wave.phases
         )
         if self.translating:
-            fl.translation_loads(self._dk, self.three, self._om, wave.amplitudes, wave.phases)
+            sea.translation_loads(self._dk, self.three, self._om, wave.amplitudes, wave.phases)
 
     @property
     def translating(self) -> bool:
@@ -186,7 +186,7 @@ class FloatingModel:
     def excitation(self, t: float) -> tuple[float, float]:
         """(M_x, M_y) wave excitation moments (N m) about e1 (pitch) and e2 (roll), ramped."""
         a = self._args()
-        return fl.sea_inputs(t, a[9], a[10], a[11], a[12], a[13])[:2]
+        return sea.sea_inputs(t, a[9], a[10], a[11], a[12], a[13])[:2]
 
     def generator_torque(self, y: NDArray, tau: float) -> float:
         """M_g (N m) the PTO applies at state y for the command tau."""
@@ -199,7 +199,7 @@ class FloatingModel:
 
     def gyro_moment(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
         """(2,) moment of the gyro unit on the hull about the pitch and roll axes (N m)."""
-        return fl.gyro_moment(self.p, y, self.accelerations(t, y, tau))
+        return gyro_moment(self.p, y, self.accelerations(t, y, tau))
 
     def energies(self, y: NDArray) -> dict[str, float]:
         """Integrated energies (J) and the stored mechanical energy (`floating` module doc)."""
@@ -207,7 +207,7 @@ class FloatingModel:
         names = ("excitation", "radiated", "viscous", "pto_mechanical", "pto_electrical", "motor")
         out = {n: float(y[k + i]) for i, n in enumerate(names)}
         d = self.wave.direction if self.wave is not None else 0.0
-        out["stored"] = fl.mechanical_energy(self.p, y, self._tr[0], d)
+        out["stored"] = mechanical_energy(self.p, y, self._tr[0], d)
         return out
 
     # ------------------------------------------------------------------ engine twin
@@ -310,3 +310,33 @@ def motion_limited_bound(hull: HullCoefficients, wave: WaveField, theta_max: flo
 def wave_power_flux(wave: WaveField, rho: float, g: float) -> float:
     """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest), deep water (Eqs. 15, 18)."""
     return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * g / (2.0 * wave.omegas)))
+
+
+def mechanical_energy(p: fl.FloatingParams, y: NDArray[np.float64], tp: NDArray | None = None,
+                      direction: float = 0.0) -> float:  # fmt: skip
+    """Kinetic + hydrostatic energy (J) of the mechanical state, with the rotor spin's constant
+    1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor); with the translation
+    parameters tp (surge and heave free) also 1/2 M1 s'^2 + A15 s' alpha' + 1/2 M3 z'^2 and
+    the mooring's and heave's springs."""
+    M, _, spin, _ = fl.mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
+    u = y[3:6]
+    kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * spin
+    e = kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
+    if tp is not None and tp[fl.TP_ON] != 0.0:
+        b = fl.N_MECH + 2 * p.Ar.shape[0]
+        s, z, sd, zd = y[b : b + 4]
+        al_d = -(math.sin(direction) * y[3] - math.cos(direction) * y[4])
+        e += 0.5 * tp[fl.TP_M1] * sd * sd + tp[fl.TP_A15] * sd * al_d + 0.5 * tp[fl.TP_M3] * zd * zd
+        e += 0.5 * tp[fl.TP_K] * s * s + 0.5 * tp[fl.TP_C33] * z * z
+    return e
+
+
+def gyro_moment(p: fl.FloatingParams, y: NDArray[np.float64], accel: NDArray) -> NDArray:
+    """Moment of the gyro unit on the hull along the (theta, rho) coordinates (N m, (2,)):
+    minus the gimbal+rotor's B^T (J B u' + J B' u + w x h) rows of theta and rho, with the
+    generator torque's reaction included through the rho row (the gimbal axis is e2)."""
+    q, u = y[0:3], y[3:6]
+    Mfull, v, _, gy = fl.mass_and_rhs(q, u, p.inertia, p.gyro, p.psid)
+    Mh, vh, _, _ = fl.mass_and_rhs(q, u, p.inertia, np.zeros(6), 0.0)
+    Mg_part = (Mfull - Mh) @ accel + gy
+    return -Mg_part[:2]

@@ -22,6 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs._jit import kernel
+
 
 @dataclass(frozen=True)
 class RadiationFit:
@@ -112,3 +114,44 @@ def fit_radiation(
     if best is None:
         raise ValueError("hull: no stable radiation fit found (check the damping table)")
     return best
+
+
+# the radiation memory's state-space rates, inlined by `floating`'s RK4 stages
+@kernel(forceinline=True)
+def radiation_rates4(y, dy, Ar, Br, th_d, ro_d):
+    """`floating.deriv_into`'s radiation states of a 4th-order fit (pitch at y[6:10], roll at
+    y[10:14]), its loop's sums in its order, unrolled: 0.0 + sum_j A[i, j] x_j, then + B[i] u."""
+    t0, t1, t2, t3 = y[6], y[7], y[8], y[9]
+    r0, r1, r2, r3 = y[10], y[11], y[12], y[13]
+    for i in range(4):
+        a0, a1, a2, a3 = Ar[i, 0], Ar[i, 1], Ar[i, 2], Ar[i, 3]
+        dy[6 + i] = (0.0 + a0 * t0 + a1 * t1 + a2 * t2 + a3 * t3) + Br[i] * th_d
+        dy[10 + i] = (0.0 + a0 * r0 + a1 * r1 + a2 * r2 + a3 * r3) + Br[i] * ro_d
+
+
+@kernel(forceinline=True)
+def block_rates(y, dy, o, As, Bs, lo, hi, v):
+    """dy[o + i] = sum_j As[i, j] y[o + j] + Bs[i] v for the diagonal block lo <= i, j < hi
+    (on views from 0: indices the compiler sees are >= 0, so no negative-index wraparound per
+    element, which the offsets lo, o cost on every access)."""
+    A, B, ys, ds = As[lo:hi, lo:hi], Bs[lo:hi], y[o + lo : o + hi], dy[o + lo : o + hi]
+    if B.shape[0] == 4:  # the fits' order: the same sums, unrolled (no loop per 4 terms)
+        y0, y1, y2, y3 = ys[0], ys[1], ys[2], ys[3]
+        for i in range(4):
+            ds[i] = B[i] * v + A[i, 0] * y0 + A[i, 1] * y1 + A[i, 2] * y2 + A[i, 3] * y3
+        return
+    for i in range(B.shape[0]):
+        acc = B[i] * v
+        for j in range(B.shape[0]):
+            acc += A[i, j] * ys[j]
+        ds[i] = acc
+
+
+@kernel(forceinline=True)
+def dot_block(c, y, o, lo, hi):
+    """sum_i c[i] y[o + i] over lo <= i < hi, in order from 0.0 (views, as `block_rates`)."""
+    cs, ys = c[lo:hi], y[o + lo : o + hi]
+    acc = 0.0
+    for i in range(cs.shape[0]):
+        acc += cs[i] * ys[i]
+    return acc
