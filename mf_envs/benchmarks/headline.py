@@ -73,31 +73,6 @@ ROWS = (
 )  # fmt: skip
 
 
-def _episode(env: Any, ctrl: Any, seed: int) -> tuple[list[float], list[dict[str, Any]]]:
-    obs, info = env.reset(seed=seed)
-    ctrl.reset()
-    rewards, infos, done = [], [info], False
-    while not done:
-        obs, r, term, trunc, info = env.step(ctrl.predict(obs, deterministic=True)[0])
-        rewards.append(float(r))
-        infos.append(info)
-        done = term or trunc
-    return rewards, infos
-
-
-class _Zero:
-    """The zero action (the stabilizer's rotor-off reference runs with the rotor off instead)."""
-
-    def __init__(self, env: Any) -> None:
-        self.shape, self.dtype = env.action_space.shape, env.action_space.dtype
-
-    def reset(self) -> None:
-        return None
-
-    def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
-        return np.zeros(self.shape, self.dtype), None
-
-
 def measure(row: Row, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
     """The default baseline's per-episode scores of `row` on `seeds`, with its name and the
     ceiling's value per episode (nan without one)."""
@@ -105,17 +80,15 @@ def measure(row: Row, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
 
     from mf_envs.controllers import baseline_kinds, make_baseline
     from mf_envs.envs import declaration
-    from mf_envs.train.evaluate import episode_metrics
+    from mf_envs.train.evaluate import run_episode
 
     decl = declaration(row.env_id)
     env = gym.make(row.env_id)
     kind = baseline_kinds(row.env_id)[0]
     ctrl = make_baseline(env, kind)
-    scores, ceilings, ends = [], [], []
+    scores, ceilings = [], []
     for s in seeds:
-        rewards, infos = _episode(env, ctrl, s)
-        m = episode_metrics(row.env_id, env, rewards, infos)
-        ends.append(float(infos[-1].get("time", math.nan)))
+        m = run_episode(row.env_id, env, ctrl, s)
         if row.score == "rms_roll_reduction":
             scores.append(1.0 - m["rms_roll"] / _rotor_off_rms(row.env_id, s))
             ceilings.append(1.0)
@@ -131,21 +104,21 @@ def measure(row: Row, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
             ceilings.append(math.nan)
     env.close()
     return {"env_id": row.env_id, "baseline": kind, "score": row.score, "seeds": list(seeds),
-            "scores": scores, "ceilings": ceilings, "episode_end_s": ends}  # fmt: skip
+            "scores": scores, "ceilings": ceilings}  # fmt: skip
 
 
 def _rotor_off_rms(env_id: str, seed: int) -> float:
     """RMS roll of the same seed's sea with the rotor off (the stabilizer's reference)."""
     import gymnasium as gym
 
+    from mf_envs.benchmarks.rl_benchmark import ZeroAction, rotor_off
     from mf_envs.envs import declaration
     from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
-    from mf_envs.train.evaluate import episode_metrics
+    from mf_envs.train.evaluate import run_episode
 
     effects = declaration(env_id).kwargs.get("effects", DEFAULT_EFFECTS)
-    env = gym.make(env_id, effects=tuple(e for e in effects if e != "gyroscopic"))
-    rewards, infos = _episode(env, _Zero(env), seed)
-    rms = episode_metrics(env_id, env, rewards, infos)["rms_roll"]
+    env = gym.make(env_id, **rotor_off({"effects": effects}))
+    rms = run_episode(env_id, env, ZeroAction(env.action_space, seed), seed)["rms_roll"]
     env.close()
     return float(rms)
 

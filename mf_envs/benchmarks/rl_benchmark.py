@@ -67,7 +67,7 @@ class Task:
     metric: str | None = None  # the episode metric scored (None: the env's primary metric)
 
 
-def _rotor_off(kwargs: dict[str, Any]) -> dict[str, Any]:
+def rotor_off(kwargs: dict[str, Any]) -> dict[str, Any]:
     """The stabilizer's reference scene: the same sea with the rotor off."""
     return {**kwargs, "effects": tuple(e for e in kwargs["effects"] if e != "gyroscopic")}
 
@@ -90,7 +90,7 @@ def _stabilizer_irregular() -> Task:
         ceiling=float(decl.ceiling.value),
         ceiling_note="RMS roll reduction 1 (no roll left); no causal bound computed",
         score_name="rms_roll_reduction",
-        reference_kwargs=_rotor_off,
+        reference_kwargs=rotor_off,
     )
 
 
@@ -111,7 +111,7 @@ def _stabilizer_resonance() -> Task:
         ceiling=1.0,
         ceiling_note=irregular.ceiling_note,
         score_name=irregular.score_name,
-        reference_kwargs=_rotor_off,
+        reference_kwargs=rotor_off,
     )
 
 
@@ -157,7 +157,7 @@ TASKS: dict[str, Callable[[], Task]] = {
 
 
 # ------------------------------------------------------------------------------- evaluation
-class _Random:
+class RandomAction:
     """Uniform random actions from a seeded generator (one per episode)."""
 
     def __init__(self, space: Any, seed: int) -> None:
@@ -170,7 +170,7 @@ class _Random:
         return self.rng.uniform(self.space.low, self.space.high).astype(self.space.dtype), None
 
 
-class _Zero(_Random):
+class ZeroAction(RandomAction):
     def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
         return np.zeros(self.space.shape, self.space.dtype), None
 
@@ -193,7 +193,7 @@ def _metric(
         if run is not None:
             ctrl: Any = load_policy(task.env_id, run)
         elif kind in ("random", "zero"):
-            ctrl = (_Random if kind == "random" else _Zero)(env.action_space, seed)
+            ctrl = (RandomAction if kind == "random" else ZeroAction)(env.action_space, seed)
         else:
             ctrl = make_baseline(env, kind)
         name = task.metric or primary_metric(task.env_id).name

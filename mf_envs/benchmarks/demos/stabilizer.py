@@ -236,8 +236,8 @@ def env_episode(kind: str | None, frames: bool = False, seed: int = 0, seconds: 
         render_mode="rgb_array" if frames else None,
     )
     obs, info = env.reset(seed=seed)
-    u = env.unwrapped
-    title = f"{u.scene.unit_name or 'gyro'} (capacity {build_capacity(u):.2f})"
+    u = env.unwrapped  # the unit and its capacity (rotor off: H = 0, no capacity)
+    title = f"{u.scene.unit_name or 'gyro'} (capacity {u.capacity():.2f})" if kind else ""
     ctrl = make_baseline(env, kind) if kind else None
     t, roll, gim, imgs = [0.0], [info["roll"]], [info["gimbal_angle"]], []
     done = False
@@ -252,14 +252,6 @@ def env_episode(kind: str | None, frames: bool = False, seed: int = 0, seconds: 
             imgs.append(env.render())
     env.close()
     return np.array(t), np.array(roll), np.array(gim), imgs, title
-
-
-def build_capacity(u) -> float:
-    """The unit's capacity M0 / (n H w sin(max gimbal angle)) on the default wave, computed with
-    the rotor on (the rotor-off episode's own scene has H = 0)."""
-    from mf_envs.envs.gyro_stabilizer import build
-
-    return build.capacity(u.scene) if "gyroscopic" in u.effects else float("nan")
 
 
 def fig_yacht(out: Path, quick: bool) -> tuple[list[Path], str]:

@@ -205,27 +205,25 @@ def _gauss_point(de, ve, nz, npsi):
 
 
 @numba.njit(cache=True, nogil=True)
-def _end_into(d, v, base, sign, law, f, ab, cd, cv):
+def _end_into(d, v, base, sign, law, f, ab, cd, cv, pf):
     """The trailing-edge term at the node whose dofs start at `base` (sign +1: the tail, -1:
     the head), weighted by sigma(sign u) (module docstring), added to f and, with its tangent
-    (cd dF/dd + cv dF/dv), to the band ab. Returns its power [W]."""
-    pf = np.empty(8)
+    (cd dF/dd + cv dF/dv), to the band ab; pf (8,) is scratch. Returns its power [W]."""
     v1, v2, psi = v[base], v[base + 2], d[base + 4]
     tail_force(v1, v2, psi, law[W_MA], pf)
     c, s = math.cos(psi), math.sin(psi)
     u = c * v1 + s * v2
     x, eps = sign * u, law[W_END_SPEED]
     r = math.sqrt(x * x + eps * eps)
-    weight = 0.5 * (1.0 + x / r)
-    dweight = 0.5 * eps * eps / (r * r * r) * sign  # d weight / d u
-    g = sign * weight  # the head's term is the tail's formula with the opposite sign
+    g = sign * 0.5 * (1.0 + x / r)  # the head's term: the tail's formula, opposite sign
+    dg_du = 0.5 * eps * eps / (r * r * r)  # sign * sigma'(x) * dx/du, with dx/du = sign
     f[base] += g * pf[0]
     f[base + 2] += g * pf[1]
     if cd != 0.0 or cv != 0.0:
         du_dv = (c, s)
         du_dpsi = -s * v1 + c * v2
         for ci in range(2):
-            fi = sign * dweight * pf[ci]  # d(sign weight)/du times the force's component
+            fi = dg_du * pf[ci]
             for cj in range(2):
                 dfdv = g * pf[2 + 2 * ci + cj] + fi * du_dv[cj]
                 ab[HALF_BW + 2 * ci - 2 * cj, base + 2 * cj] += cv * dfdv
@@ -240,9 +238,10 @@ def tail_into(d, v, law, f, ab, cd, cv):
     Returns its power [W]."""
     if law[W_TAIL] <= 0.0:
         return 0.0
-    power = _end_into(d, v, 0, 1.0, law, f, ab, cd, cv)  # node 0: z1, z2, psi = d[0], d[2], d[4]
+    pf = np.empty(8)
+    power = _end_into(d, v, 0, 1.0, law, f, ab, cd, cv, pf)  # node 0: z1, z2, psi = d[0, 2, 4]
     # the last node (n_dof = 6 n_el + 5): z1, z2, psi = d[6 n_el], d[6 n_el + 2], d[6 n_el + 4]
-    return power + _end_into(d, v, d.shape[0] - 5, -1.0, law, f, ab, cd, cv)
+    return power + _end_into(d, v, d.shape[0] - 5, -1.0, law, f, ab, cd, cv, pf)
 
 
 @numba.njit(cache=True, nogil=True)
