@@ -12,11 +12,10 @@ from gymnasium import spaces
 from mf_envs._validate import check_range
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gyro_stabilizer import build, render, rows, spec
-from mf_envs.physics.ship import kernels as K
 from mf_envs.physics.ship.coupling import SwayRollYaw
 from mf_envs.physics.ship.hulls import Hull
 from mf_envs.physics.ship.layout import Slot
-from mf_envs.physics.ship.model import SHIP_EFFECTS, initial_state
+from mf_envs.physics.ship.model import SHIP_EFFECTS
 
 AVAILABLE_EFFECTS = SHIP_EFFECTS
 DEFAULT_EFFECTS = (
@@ -31,7 +30,7 @@ DEFAULT_EFFECTS = (
 )
 OBS_HIGH = spec.OBS.high()
 EPISODE_SECONDS = 30.0  # s, the default episode (600 steps of the default 0.05 s)
-_ROLL = spec.OBS.index("roll")
+_ONE = np.ones(1, dtype=bool)  # the active mask of the batch of one
 
 
 class GyroStabilizerEnv(MFEnv):
@@ -211,13 +210,11 @@ class GyroStabilizerEnv(MFEnv):
         self.rotor_speed = self.gyro.rotor_speed
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
-        self._P = rows.pack(self.scene, 0.0)
-        self._tab = np.zeros((1, 2))
-        self._out = np.zeros(K.N_OUT)
+        # the env is row 0 of a batch of one: the vector env's kernels step and reset it
+        self.rows = rows.alloc_rows(1, (1, 2), self.physics_dt, self.n_substeps)
+        self.rows.P[0] = rows.pack(self.scene, 0.0)
+        self._task = rows.Task(self.roll_scale, self.effort_weight, self.control_dt)
         self._energy = 0.0
-        self._obs = np.zeros(spec.OBS.size, dtype=np.float32)
-        self._y, self._R = initial_state()
-        self._t, self._steps = 0.0, 0
         # what the controller sees: opt-in effects, nothing to do per step when both are off
         scale = check_range("sensor_noise_scale", sensor_noise_scale, 0.0, 1e3)
         delay = check_range("sensor_delay_time", sensor_delay_time, 0.0, 60.0)
@@ -241,33 +238,29 @@ class GyroStabilizerEnv(MFEnv):
         return build.capacity(self.scene)
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        a0 = self._scalar_action(action)
-        u = spec.precession_command(a0, self.max_precession_rate)
-        y, R = self._y, self._R
-        e0 = y[K.E_STATE]
-        self._t = K.advance(
-            self._t, y, R, u, self.physics_dt, self.n_substeps, self._P, self._tab, self._out
-        )
-        self._steps += 1
-        roll = K.roll_of(R)
-        ok = rows.observe(roll, y, R, self._obs)
-        obs = self._obs.copy()  # clipped to the observation bounds
-        self._energy = float(y[K.E_STATE] - e0)
-        terms = spec.reward_terms(
-            float(obs[_ROLL]), self._energy, self.roll_scale, self.effort_weight
-        )
-        reward = terms["roll"] + terms["effort"]
-        info = spec.step_info(
-            roll, y, self._out, self._steps * self.control_dt, terms, self._energy
-        )
-        truncated = self._steps >= self.max_steps
+        b = self.rows
+        b.u[0] = spec.precession_command(self._scalar_action(action), self.max_precession_rate)
+        rows.step_rows(0, 1, _ONE, b, self._task)
+        obs = b.obs[0].copy()  # clipped to the observation bounds
+        info = rows.info_of(b.cols[:, 0])
+        self._energy = info["drive_energy"]
+        reward, ok = float(b.reward[0]), bool(b.ok[0])
+        truncated = bool(b.steps[0] >= self.max_steps)
         if self._sensed and ok:
             obs = self._sense(obs)
-        if not (ok and math.isfinite(reward)):
+        if not ok:
             return self._finish_step(obs, reward, False, truncated, info, False)
         if self.render_mode is not None:  # what render() draws if the state later blows up
-            self._frame_state = (R.copy(), float(y[3]), self._t)
+            self._frame_state = (b.R[0].copy(), float(b.y[0, 3]), float(b.t[0]))
         return self._step_ok(obs, reward, False, truncated, info)
+
+    # the state of row 0 (views: tests and baselines read and perturb them)
+    _y = property(lambda self: self.rows.y[0])
+    _R = property(lambda self: self.rows.R[0])
+    _P = property(lambda self: self.rows.P[0])
+    _tab = property(lambda self: self.rows.tab[0])
+    _out = property(lambda self: self.rows.out[0])
+    _t = property(lambda self: float(self.rows.t[0]))
 
     def _sense(self, obs: np.ndarray) -> np.ndarray:
         """The observation as the controller sees it (`sensor_noise`, `sensor_delay`): noise
@@ -301,38 +294,30 @@ class GyroStabilizerEnv(MFEnv):
         roll_rate = float(opts.get("roll_rate", rng.uniform(*rows.RATE0)))
         gimbal = float(opts.get("gimbal_angle", 0.0))
         phase = float(opts.get("wave_phase", rng.uniform(*rows.PHASE0)))
-        self._P = rows.pack(self.scene, phase)
+        P = rows.pack(self.scene, phase)
         self._spool = float(opts.get("spool_up", 1.0))
         if self._spool < 1.0:  # the rotor spooling up: slower, drawing its spool-up power
-            self._P[Slot.PSID] *= self._spool
-            self._P[Slot.PROTOR] = self.spool_up_power
-        self._tab = (
+            P[Slot.PSID] *= self._spool
+            P[Slot.PROTOR] = self.spool_up_power
+        tab = (
             rows.irregular_table(self.scene, self.np_random, self.episode_seconds)
             if "irregular_waves" in self.effects
             else np.zeros((1, 2))
         )
-        self._y, self._R = initial_state(roll, (roll_rate, 0.0, 0.0), gimbal)
-        self._t, self._energy = 0.0, 0.0
-        mw = K.external_moment(0.0, self._y, self._R, self._P, self._tab)[3]
-        tau0, pow0 = K.drive_output(0.0, self._y, self._R, 0.0, self._P, math.nan, math.nan)
-        mount0 = K.mount_moment(self._y, tau0, self._P)
-        self._out[:] = (0.0, mw, tau0, pow0, mount0, self._P[Slot.PROTOR])
-        roll0 = K.roll_of(self._R)
-        rows.observe(roll0, self._y, self._R, self._obs)
-        terms0 = {"roll": 0.0, "effort": 0.0}
-        info = spec.step_info(roll0, self._y, self._out, 0.0, terms0, 0.0)
-        self._frame_state = (self._R.copy(), float(self._y[3]), self._t)
-        obs = self._obs.copy()
+        if self.rows.tab.shape[1:] != tab.shape:
+            self.rows = self.rows._replace(tab=np.zeros((1, *tab.shape)))
+        b = self.rows
+        b.P[0], b.tab[0], b.dt[0], b.n_sub[0] = P, tab, self.physics_dt, self.n_substeps
+        self._task = rows.Task(self.roll_scale, self.effort_weight, self.control_dt)
+        rows.reset_row(0, roll, roll_rate, gimbal, b)
+        self._energy = 0.0
+        info = rows.info_of(b.cols[:, 0])
+        self._frame_state = (b.R[0].copy(), float(b.y[0, 3]), 0.0)
+        obs = b.obs[0].copy()
         if self._sensed:
             self._buf[:] = obs  # the sensors read the initial state until the delay has passed
             obs = self._sense(obs)
         return obs, info
-
-    def batch_row(self) -> dict[str, Any]:
-        """What the native vector env copies into its row after a reset (names of
-        `physics.ship.batch`): time, state, attitude, packed parameters, wave table, moments."""
-        return {"t": self._t, "y": self._y, "R": self._R, "P": self._P, "tab": self._tab,
-                "out": self._out}  # fmt: skip
 
     def _draw_frame(self) -> np.ndarray:
         R, phi, t = self._R, float(self._y[3]), self._t

@@ -6,6 +6,7 @@ table (`irregular_table`)."""
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numba
 import numpy as np
@@ -15,6 +16,7 @@ from mf_envs.envs.gyro_stabilizer import spec
 from mf_envs.envs.gyro_stabilizer.build import Scene
 from mf_envs.frames.steppers import rk4_work, rkmk4_rwork
 from mf_envs.physics.ship import kernels as K
+from mf_envs.physics.ship.batch import alloc_batch
 from mf_envs.physics.ship.layout import Slot
 from mf_envs.physics.ship.model import WaveLoad, pack_params
 from mf_envs.physics.ship.seas import (
@@ -73,79 +75,129 @@ def _info_row(c, roll, y, out, energy):
     c[C_ENERGY] = energy
 
 
-@numba.njit(cache=True, nogil=True)
-def step_rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols,
-              ok_out, reward, roll_scale, effort_weight, control_dt):  # fmt: skip
-    """One control step of the active rows lo <= i < hi (GyroStabilizerEnv.step without Python;
-    the GIL is released, so threads can step disjoint blocks of rows at once).
+Rows = namedtuple("Rows", "t y R P tab out u dt n_sub steps last obs cols ok reward")
+Rows.__doc__ = """The arrays of N stepped rows (the single env is a batch of one, row 0): t (N,) s;
+y (N, N_STATE), R (N, 3, 3), P (N, N_PARAMS), tab (N, L, 2), out (N, N_OUT) as
+`physics.ship.batch.alloc_batch`; u (N,) rad/s the precession command; dt (N,) s and n_sub (N,)
+int64 each row's physics step and substeps; steps (N,) int64; last (N, 6) float32 the last
+returned observations; obs (N, 6) float32 the new ones; cols (N_COLS, N) info columns, reward
+terms and time; ok (N,) False on a numerical failure; reward (N,)."""
+Task = namedtuple("Task", "roll_scale effort_weight control_dt")
+Task.__doc__ = "The reward's scales (`spec.reward_terms`) and the control step (s) of a scene."
 
-    t (N,) s, y (N, N_STATE), R (N, 3, 3), P, tab, out as `physics.ship.batch.alloc_batch`;
-    u (N,) rad/s; dt (N,) s and n_sub (N,) int64 each row's physics step and substeps; steps
-    (N,) int64; last (N, 6) float32 the last returned observations; writes obs (N, 6) float32,
-    cols (N_COLS, N) (info columns, reward terms, time), ok_out (N,) False on a numerical
-    failure (the step then scores 0 and keeps the last observation), reward (N,).
-    This task's scratch is allocated here; the rows are stepped by `_rows`.
-    """
-    work, Rwork = rk4_work(y.shape[1]), rkmk4_rwork()
-    ob, c = np.empty(obs.shape[1], dtype=obs.dtype), np.empty(N_COLS)
-    _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c)  # fmt: skip
+
+def alloc_rows(n: int, table_shape: tuple[int, int], dt: float, n_sub: int) -> Rows:
+    """Zeroed `Rows` of n rows (R = identity), each with physics step dt and n_sub substeps."""
+    b = alloc_batch(n, K.N_STATE, K.N_PARAMS, table_shape)
+    return Rows(
+        b["t"], b["y"], b["R"], b["P"], b["tab"], b["out"], np.zeros(n), np.full(n, dt),
+        np.full(n, n_sub, dtype=np.int64), np.zeros(n, dtype=np.int64),
+        np.zeros((n, OBS.size), dtype=np.float32), np.zeros((n, OBS.size), dtype=np.float32),
+        np.zeros((N_COLS, n)), np.ones(n, dtype=bool), np.zeros(n),
+    )  # fmt: skip
+
+
+def info_of(cols: np.ndarray) -> dict:
+    """The info dict of info columns (N_COLS,) (floats) or (N_COLS, N) (arrays, copied):
+    `spec.INFO_KEYS` up to drive_energy, time and the reward terms."""
+    vals = [float(v) for v in cols] if cols.ndim == 1 else list(cols.copy())
+    info = dict(zip(COLS, vals))
+    info["time"] = vals[C_TIME]
+    info["reward_terms"] = {"roll": vals[C_RROLL], "effort": vals[C_REFFORT]}
+    return info
+
+
+@numba.njit(cache=True, nogil=True)
+def step_rows(lo, hi, active, b, task):
+    """One control step of the active rows lo <= i < hi of `Rows` b (GyroStabilizerEnv.step is
+    row 0 of a batch of one; the GIL is released, so threads can step disjoint blocks of rows at
+    once): advances each row by its command b.u, writes b.obs, b.cols, b.ok (False on a numerical
+    failure: the step then scores 0 and keeps the last observation) and b.reward. This task's
+    scratch is allocated here; the rows are stepped by `_rows`."""
+    work, Rwork = rk4_work(b.y.shape[1]), rkmk4_rwork()
+    ob, c = np.empty(b.obs.shape[1], dtype=b.obs.dtype), np.empty(N_COLS)
+    _rows(lo, hi, active, b, task, work, Rwork, ob, c)
 
 
 @kernel
-def _rows(lo, hi, active, t, y, R, u, dt, n_sub, P, tab, out, steps, last, obs, cols, ok_out,
-          reward, roll_scale, effort_weight, control_dt, work, Rwork, ob, c):  # fmt: skip
+def _rows(lo, hi, active, b, task, work, Rwork, ob, c):
     """The row loop of `step_rows` on the batch arrays in place (a `mf_envs._jit.kernel`: its
     row views cost no reference counts, so threads share the arrays freely): each active row
-    by the single env's step (`advance_with`) and `_row_tail`; work, Rwork: the stepper's
+    by the ship's step (`advance_with`) and `_row_tail`; work, Rwork: the stepper's
     scratch, ob (6,) float32 and c (N_COLS,) one row's observation and info columns."""
     for i in range(lo, hi):
         if not active[i]:
             continue
-        e0 = y[i, K.E_STATE]
-        t[i] = K.advance_with(t[i], y[i], R[i], u[i], dt[i], n_sub[i], P[i], tab[i], out[i],
-                               work, Rwork)  # fmt: skip
-        _row_tail(i, e0, y, R, out, steps, last, obs, cols, ok_out, reward, roll_scale,
-                  effort_weight, control_dt, ob, c)  # fmt: skip
+        e0 = b.y[i, K.E_STATE]
+        b.t[i] = K.advance_with(b.t[i], b.y[i], b.R[i], b.u[i], b.dt[i], b.n_sub[i], b.P[i],
+                                b.tab[i], b.out[i], work, Rwork)  # fmt: skip
+        _row_tail(i, e0, b, task, ob, c)
 
 
 @kernel(forceinline=True)
-def _row_tail(i, e0, y, R, out, steps, last, obs, cols, ok_out, reward, roll_scale,
-              effort_weight, control_dt, ob, c):  # fmt: skip
+def _row_tail(i, e0, b, task, ob, c):
     """Row i after its physics step (drive energy e0 in J before it): its step count,
     observation, reward terms and info columns (`step_rows`)."""
-    yi, Ri, oi = y[i], R[i], out[i]
-    steps[i] += 1
+    yi, Ri, oi = b.y[i], b.R[i], b.out[i]
+    b.steps[i] += 1
     roll = K.roll_of(Ri)
     ok = observe(roll, yi, Ri, ob)
     if not ok:  # the last finite observation stays (and is scored)
         for k in range(ob.shape[0]):
-            ob[k] = last[i, k]
+            ob[k] = b.last[i, k]
     energy = yi[K.E_STATE] - e0
-    q = np.float64(ob[_ROLL]) / roll_scale
-    c[C_RROLL], c[C_REFFORT] = -(q * q), -effort_weight * energy
+    q = np.float64(ob[_ROLL]) / task.roll_scale
+    c[C_RROLL], c[C_REFFORT] = -(q * q), -task.effort_weight * energy
     rew = c[C_RROLL] + c[C_REFFORT]
     _info_row(c, roll, yi, oi, energy)
-    c[C_TIME] = steps[i] * control_dt
-    ok_out[i] = ok and math.isfinite(rew)
-    if not ok_out[i]:  # MFEnv._finish_step: last finite obs, reward 0, terminated
+    c[C_TIME] = b.steps[i] * task.control_dt
+    b.ok[i] = ok and math.isfinite(rew)
+    if not b.ok[i]:  # MFEnv._finish_step: last finite obs, reward 0, terminated
         for k in range(ob.shape[0]):
-            ob[k] = last[i, k]
+            ob[k] = b.last[i, k]
         rew = 0.0
-    reward[i] = rew
+    b.reward[i] = rew
     for k in range(ob.shape[0]):
-        obs[i, k] = ob[k]
+        b.obs[i, k] = ob[k]
     for k in range(c.shape[0]):
-        cols[k, i] = c[k]
+        b.cols[k, i] = c[k]
 
 
 @numba.njit(cache=True)
-def reset_rows(idx, draws, ptr, p_sign, t, y, R, P, tab, out, steps, obs, cols):
-    """GyroStabilizerEnv.reset() (regular seas, no options) for the rows idx from pre-drawn
+def reset_row(i, roll, rate, gimbal, b):
+    """Row i of `Rows` b at its start (GyroStabilizerEnv.reset, the vector env's `reset_rows`):
+    roll angle (rad; R = rot_x(roll)), roll rate (rad/s), gimbal angle (rad), t = 0, the rest of
+    y zero; the moments and drive output at t = 0 (out), the observation (b.obs and b.last) and
+    the info columns (b.cols[:, i], zero reward terms)."""
+    b.y[i, :] = 0.0
+    b.y[i, 0] = rate
+    b.y[i, 3] = gimbal
+    c, s = math.cos(roll), math.sin(roll)
+    Ri, yi, oi, Pi = b.R[i], b.y[i], b.out[i], b.P[i]
+    Ri[0, 0], Ri[0, 1], Ri[0, 2] = 1.0, 0.0, 0.0
+    Ri[1, 0], Ri[1, 1], Ri[1, 2] = 0.0, c, -s
+    Ri[2, 0], Ri[2, 1], Ri[2, 2] = 0.0, s, c
+    b.t[i], b.steps[i] = 0.0, 0
+    oi[0] = 0.0
+    oi[1] = K.external_moment(0.0, yi, Ri, Pi, b.tab[i])[3]
+    oi[2], oi[3] = K.drive_output(0.0, yi, Ri, 0.0, Pi, math.nan, math.nan)
+    oi[4] = K.mount_moment(yi, oi[2], Pi)
+    oi[5] = Pi[Slot.PROTOR]
+    roll0 = K.roll_of(Ri)
+    observe(roll0, yi, Ri, b.obs[i])
+    b.last[i, :] = b.obs[i]
+    c0 = np.empty(N_COLS)
+    _info_row(c0, roll0, yi, oi, 0.0)
+    c0[C_RROLL], c0[C_REFFORT], c0[C_TIME] = 0.0, 0.0, 0.0
+    b.cols[:, i] = c0
+
+
+@numba.njit(cache=True)
+def reset_rows(idx, draws, ptr, p_sign, b):
+    """The vector env's resets (regular seas, no options) of the rows idx from pre-drawn
     doubles: draws (N, 3 K) next_double()s of each row's generator, ptr (N,) the next unused one.
-    Writes roll ~ U(-0.05, 0.05) rad (R = rot_x(roll)), roll rate ~ U(-0.02, 0.02) rad/s, the
-    wave phase ~ U(0, 2 pi) into P[WPHASE] (times p_sign), t = 0, the rest of y zero, the
-    moments and drive output at t = 0 (out), the observation and the info columns."""
+    roll ~ U(ROLL0), roll rate ~ U(RATE0), the wave phase ~ U(PHASE0) into P[WPHASE] (times
+    p_sign; 0: the scene has no regular wave), then `reset_row` with the gimbal at 0."""
     for j in range(idx.shape[0]):
         i = idx[j]
         p = ptr[i]
@@ -153,25 +205,9 @@ def reset_rows(idx, draws, ptr, p_sign, t, y, R, P, tab, out, steps, obs, cols):
         rate = RATE0[0] + (RATE0[1] - RATE0[0]) * draws[i, p + 1]
         phase = PHASE0[0] + (PHASE0[1] - PHASE0[0]) * draws[i, p + 2]
         ptr[i] = p + 3
-        if p_sign != 0.0:  # 0: the scene has no regular wave (the phase is unused)
-            P[i, Slot.WPHASE] = phase if p_sign > 0.0 else -phase
-        y[i, :] = 0.0
-        y[i, 0] = rate
-        c, s = math.cos(roll), math.sin(roll)
-        Ri = R[i]
-        Ri[0, 0], Ri[0, 1], Ri[0, 2] = 1.0, 0.0, 0.0
-        Ri[1, 0], Ri[1, 1], Ri[1, 2] = 0.0, c, -s
-        Ri[2, 0], Ri[2, 1], Ri[2, 2] = 0.0, s, c
-        t[i], steps[i] = 0.0, 0
-        out[i, 0] = 0.0
-        out[i, 1] = K.external_moment(0.0, y[i], Ri, P[i], tab[i])[3]
-        out[i, 2], out[i, 3] = K.drive_output(0.0, y[i], Ri, 0.0, P[i], math.nan, math.nan)
-        out[i, 4] = K.mount_moment(y[i], out[i, 2], P[i])
-        out[i, 5] = P[i, Slot.PROTOR]
-        roll0 = K.roll_of(Ri)
-        observe(roll0, y[i], Ri, obs[i])
-        _info_row(cols[i], roll0, y[i], out[i], 0.0)
-        cols[i, C_RROLL], cols[i, C_REFFORT], cols[i, C_TIME] = 0.0, 0.0, 0.0
+        if p_sign != 0.0:
+            b.P[i, Slot.WPHASE] = phase if p_sign > 0.0 else -phase
+        reset_row(i, roll, rate, 0.0, b)
 
 
 def pack(scene: Scene, phase: float) -> np.ndarray:

@@ -1,13 +1,13 @@
 """GyroStabilizer-v0's env concerns, declared once: observation layout, reward terms, info keys,
-failure contract. Used by `GyroStabilizerEnv` (env.py) and the native vector env (vector.py);
-the observation and the finiteness check are one numba function, `observe`, which the vector
-env's row loop (`vector._rows`) calls for each row, so the two agree bit for bit.
+failure contract. The step itself (physics, observation, reward terms, info columns) is one
+compiled function, `rows.step_rows`, and the reset one more, `rows.reset_row`: the single env
+(`GyroStabilizerEnv`, env.py) is row 0 of a batch of one, the native vector env (vector.py) runs
+the same functions on N rows.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
@@ -82,28 +82,3 @@ def precession_command(action, max_precession_rate: float):
     """The precession-rate command (rad/s) of an action in [-1, 1] (scalar or (N,) array): the
     one scaling, for the single and the vector env."""
     return action * max_precession_rate
-
-
-def reward_terms(roll_obs, energy, roll_scale: float, effort_weight: float) -> dict[str, Any]:
-    """roll = -(roll / roll_scale)^2 on the observed (float32) roll, effort = -w E with E the
-    drive energy of the step (J); scalars or (N,) arrays. q * q, not q ** 2: libm pow, which
-    numpy would not match."""
-    q = roll_obs / roll_scale
-    return {"roll": -(q * q), "effort": -effort_weight * energy}
-
-
-def step_info(roll, y, out, time, terms, energy) -> dict[str, Any]:
-    """The info of a state: y (N_STATE,) ship state, out (6,) (gyro, wave moment N m, drive
-    torque N m, drive power W, mount moment N m, rotor power W; `physics.ship.kernels.N_OUT`)
-    and the step's drive energy (J), or batched (N, N_STATE), (N, 6) with roll (N,), time (N,),
-    energy (N,) (columns copied)."""
-    if y.ndim == 1:
-        cols = [float(y[j]) for j in range(5)] + [float(out[j]) for j in range(N_OUT)]
-        cols.append(float(energy))
-    else:
-        cols = [y[:, j].copy() for j in range(5)] + [out[:, j].copy() for j in range(N_OUT)]
-        cols.append(np.asarray(energy, dtype=np.float64).copy())
-    info = {"roll": roll, **dict(zip(INFO_KEYS[1 : 7 + N_OUT], cols))}
-    info["time"] = time
-    info["reward_terms"] = terms
-    return info

@@ -41,16 +41,10 @@ from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gyro_stabilizer import rows, spec
 from mf_envs.envs.gyro_stabilizer.env import GyroStabilizerEnv
 from mf_envs.envs.gyro_stabilizer.rows import (
-    C_REFFORT,
-    C_RROLL,
-    C_TIME,
-    COLS,
     N_COLS,
     reset_rows,
     step_rows,
 )
-from mf_envs.physics.ship import kernels as K
-from mf_envs.physics.ship.batch import alloc_batch
 from mf_envs.physics.ship.layout import Slot
 
 
@@ -106,14 +100,8 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
                 "effects: the native GyroStabilizer-v0 vector env has no sensor model; use "
                 "vectorization_mode='sync' for sensor_noise / sensor_delay"
             )
-        self.b = alloc_batch(n, K.N_STATE, K.N_PARAMS, (1, 2))
-        self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
-        self._cols = np.zeros((n, N_COLS))
-        self._ok = np.ones(n, dtype=bool)
-        self._reward = np.zeros(n)
-        self._steps = np.zeros(n, dtype=np.int64)
-        self._dt = np.full(n, env.physics_dt)  # each row's physics step and substeps
-        self._nsub = np.full(n, env.n_substeps, dtype=np.int64)
+        self.b = rows.alloc_rows(n, (1, 2), env.physics_dt, env.n_substeps)._replace(last=self._obs)
+        self.task = rows.Task(env.roll_scale, env.effort_weight, env.control_dt)
         # the phase is the only reset-dependent parameter of a regular sea (module doc)
         p1, p2 = rows.pack(env.scene, 1.0), rows.pack(env.scene, 2.0)
         same = set(np.flatnonzero(p1 != p2).tolist()) <= {int(Slot.WPHASE)}
@@ -121,34 +109,25 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         self._predraw_alloc(n, same and "irregular_waves" not in env.effects)
 
     def _load(self, i: int) -> None:
-        row, b = self.template.batch_row(), self.b
-        if b["tab"].shape[1:] != row["tab"].shape:  # irregular seas: a table per env
-            b["tab"] = np.zeros((self.num_envs, *row["tab"].shape))
-        for key in ("t", "y", "R", "P", "tab", "out"):
-            b[key][i] = row[key]
-        self._dt[i], self._nsub[i] = self.template.physics_dt, self.template.n_substeps
-        self._steps[i] = 0
+        env, b = self.template, self.b
+        if b.tab.shape[1:] != env.rows.tab.shape[1:]:  # irregular seas: a table per env
+            self.b = b = b._replace(tab=np.zeros((self.num_envs, *env.rows.tab.shape[1:])))
+        for key in ("t", "y", "R", "P", "tab", "out", "dt", "n_sub", "steps"):
+            getattr(b, key)[i] = getattr(env.rows, key)[0]
 
     def state_nbytes(self) -> int:
         """Bytes of the per-env batch state (physics arrays, observations, info columns)."""
-        arrays = [*self.b.values(), self._obs, self._fresh, self._cols, self._ok, self._steps]
-        return int(sum(a.nbytes for a in arrays)) + self._reward.nbytes + self._draws.nbytes
+        return int(sum(a.nbytes for a in self.b)) + self._draws.nbytes
 
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
         if not self._predrawn(idx):
             return None
-        b = self.b
-        reset_rows(
-            idx, self._draws, self._ptr, self._p_sign, b["t"], b["y"], b["R"], b["P"],
-            b["tab"], b["out"], self._steps, self._obs, self._cols,
-        )  # fmt: skip
+        reset_rows(idx, self._draws, self._ptr, self._p_sign, self.b)
         mask = np.zeros(self.num_envs, dtype=bool)
         mask[idx] = True
         cols = np.zeros((N_COLS, self.num_envs))
-        cols[:, idx] = self._cols[idx].T
-        info: dict[str, Any] = dict(zip(COLS, cols))
-        info["time"] = cols[C_TIME]
-        info["reward_terms"] = {"roll": cols[C_RROLL], "effort": cols[C_REFFORT]}
+        cols[:, idx] = self.b.cols[:, idx]
+        info = rows.info_of(cols)
         info["reward_terms"].update({"_roll": mask.copy(), "_effort": mask.copy()})
         for key in spec.INFO_KEYS[:-1]:
             info[f"_{key}"] = mask.copy()
@@ -156,23 +135,14 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         b, env = self.b, self.template
-        u = spec.precession_command(actions[:, 0], env.max_precession_rate)
-        # fresh info columns (N_COLS, N), written by the kernel (rows not stepped: reset infos)
-        cols = np.empty((N_COLS, self.num_envs))
-        args = (
-            active, b["t"], b["y"], b["R"], u, self._dt, self._nsub, b["P"], b["tab"],
-            b["out"], self._steps, self._obs, self._fresh, cols, self._ok, self._reward,
-            env.roll_scale, env.effort_weight, env.control_dt,
-        )  # fmt: skip
-        self.blocks.run(step_rows, *args)
-        info: dict[str, Any] = dict(zip(COLS, cols))
-        info["time"] = cols[C_TIME]
-        info["reward_terms"] = {"roll": cols[C_RROLL], "effort": cols[C_REFFORT]}
-        fail = active & ~self._ok
+        b.u[:] = spec.precession_command(actions[:, 0], env.max_precession_rate)
+        self.blocks.run(step_rows, active, b, self.task)
+        info = rows.info_of(b.cols)
+        fail = active & ~b.ok
         info["numerical_failure"] = fail
         masks = np.ones((len(spec.INFO_KEYS) + 2, self.num_envs), dtype=bool)  # one per key
         info["reward_terms"]["_roll"], info["reward_terms"]["_effort"] = masks[-2], masks[-1]
         for j, key in enumerate(spec.INFO_KEYS):
             info[f"_{key}"] = masks[j]
-        trunc = self._steps >= env.max_steps
-        return self._fresh, self._reward.copy(), fail.copy(), trunc, info
+        trunc = b.steps >= env.max_steps
+        return b.obs, b.reward.copy(), fail.copy(), trunc, info
