@@ -11,6 +11,9 @@ import threading
 import time
 from typing import Any
 
+import numpy as np
+
+ONE_ROW = np.ones(1, dtype=bool)  # the active mask of a single env, row 0 of a batch of one
 _POOL: dict[str, Any] = {"pid": None, "workers": [], "lock": None}  # `_workers`
 
 

@@ -11,10 +11,10 @@ rewards, flags and batched infos, bit for bit) for the same seeds:
   batch arrays (`_load`), so reset semantics cannot drift from the single env's; a subclass may
   add a compiled path for the hot case (autoresets and seedless resets without options,
   `_batch_reset`) that draws the same numbers from the same generators (GOWEC-v0);
-- steps (hot) call a batched numba kernel that calls the single env's scalar physics kernel for
-  every active row (`physics.gowec.batch.batch_fast_step`, `gyro_stabilizer.vector.step_rows`,
-  `gowec_v1.rows.step_rows`, `inchworm.rows.step_rows`), in blocks on threads
-  (`_rows.RowBlocks`);
+- steps (hot) call a batched numba kernel over the active rows, in blocks on threads
+  (`_rows.RowBlocks`): the single env's own step, the single env being row 0 of a batch of one
+  (`gowec.rows.step_rows`, `gyro_stabilizer.rows.step_rows`, `gowec_v1.rows.step_rows`), or a
+  row loop around the single env's scalar physics kernel (`inchworm.rows.step_rows`);
 - autoreset: `AutoresetMode.NEXT_STEP` (Gymnasium's default: the step after a done one resets that
   sub-env, ignores its action, returns reward 0 and flags False), `SAME_STEP` (reset in the same
   step; `final_obs`/`final_info` in the info) and `DISABLED` (reset with `options={"reset_mask":

@@ -11,6 +11,7 @@ from gymnasium import spaces
 from mf_envs._validate import (
     check_range,
 )
+from mf_envs.envs._rows import ONE_ROW
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec import build, rows, spec
 from mf_envs.envs.gowec.render import wave_frame
@@ -170,14 +171,16 @@ class GOWECEnv(MFEnv):
             self.buoy_radius,
         )
         self.reward_scale = 1.0 / (self.reference_power * self.control_dt)  # 1 / (J per step)
-        self.state = np.zeros(2)  # (phi rad, phi' rad/s)
-        self._t, self._steps, self._w, self._eta = 0.0, 0, (0.0, 0.0, 0.0), 0.0
-        self._obs = np.zeros(spec.OBS.size, dtype=np.float32)
         self.wave: waves.WaveField = waves.regular_wave(
             self.wave_amplitude, self.wave_period, self.wave_direction, buoy_radius=self.buoy_radius
         )
         self.model = gw.GimbalModel(self.params, self.wave, self.effects)
         self._model0 = self.model  # phase 0; reset() shifts the phase
+        # the env is row 0 of a batch of one: the vector env's kernels step and reset it
+        m = self.n_components if "irregular_waves" in self.effects else 1
+        self.rows = rows.alloc_rows(1, m)
+        self.site = rows.Site(self.model.inert, self.model._cth, self.model._sth,
+                              self.model._two_d, self.max_gimbal_rate)  # fmt: skip
         self._last_power = 0.0
 
     def analytic_max_power(self) -> float:
@@ -202,24 +205,27 @@ class GOWECEnv(MFEnv):
         )
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        Mg = self._scalar_action(action) * self.max_generator_torque
-        phi, phid, energy, w1, w2, w3, eta = self.model.step(
-            self._t, self.state[0], self.state[1], Mg, self.physics_dt, self.n_substeps
-        )
-        self.state[0], self.state[1] = phi, phid
-        self._steps += 1
-        self._t = self._steps * self.control_dt
-        self._w, self._eta = (w1, w2, w3), eta
-        reward = energy * self.reward_scale
-        truncated = self._steps >= self.max_steps
-        ok, overspeed = rows.observe(phi, phid, energy, w1, w2, w3, self.max_gimbal_rate, self._obs)
-        if not ok:
+        b = self.rows
+        b.Mg[0] = self._scalar_action(action) * self.max_generator_torque
+        rows.step_rows(0, 1, ONE_ROW, b, self.site)
+        reward, obs = float(b.reward[0]), b.obs[0].copy()
+        truncated = bool(b.steps[0] >= self.max_steps)
+        if not b.ok[0]:
             info = {"power": 0.0, "reward_terms": {"energy": reward}, "overspeed": False}
-            return self._finish_step(self._obs, reward, False, truncated, info, False)
-        self._last_power = power = energy / self.control_dt
-        info = spec.step_info(power, phi, phid, w1, eta, self._t, reward)
-        info["overspeed"] = overspeed
-        return self._step_ok(self._obs.copy(), float(reward), overspeed, truncated, info)
+            return self._finish_step(obs, reward, False, truncated, info, False)
+        self._last_power = power = float(b.energy[0]) / self.control_dt
+        info = spec.step_info(power, *self._info_state(), self._t, reward)
+        info["overspeed"] = overspeed = bool(b.overspeed[0])
+        return self._step_ok(obs, reward, overspeed, truncated, info)
+
+    # the state of row 0 (views: tests perturb them)
+    state = property(lambda self: self.rows.x[0], doc="(phi rad, phi' rad/s), row 0's view")
+    _t = property(lambda self: float(self.rows.t[0]))
+
+    def _info_state(self) -> tuple[float, float, float, float]:
+        """(phi, phi', w1, eta) of row 0 as floats (`spec.step_info`)."""
+        b = self.rows
+        return float(b.x[0, 0]), float(b.x[0, 1]), float(b.w[0, 0]), float(b.eta[0])
 
     def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         angle = 4.0 * math.pi
@@ -252,31 +258,19 @@ class GOWECEnv(MFEnv):
         else:  # the regular wave of __init__ with this episode's phase
             self.model = self._model0.with_phases([phase])
         self.wave = self.model.wave
-        self.state = np.array([phi, phid])
-        self._t = 0.0
-        w = self.model.rates(0.0)[0]
-        self._w = tuple(w)
-        self._eta = float(self.wave.elevation(0.0))
+        b, m = self.rows, self.model
+        b.amp[0], b.om[0], b.eps[0], b.k[0] = self.wave.amplitudes, self.wave.omegas, m._eps, m._k
+        b.psid[0], b.dt[0], b.n_sub[0] = m.psid, self.physics_dt, self.n_substeps
+        b.cdt[0], b.scale[0] = self.control_dt, self.reward_scale
+        rows.reset_row(0, phi, phid, float(self.wave.elevation(0.0)), b, self.site)
         self._last_power = 0.0
-        rows.observe(phi, phid, 0.0, w[0], w[1], w[2], self.max_gimbal_rate, self._obs)
-        info = spec.step_info(0.0, phi, phid, float(w[0]), self._eta, 0.0, 0.0)
+        info = spec.step_info(0.0, *self._info_state(), 0.0, 0.0)
         info["overspeed"] = False
-        return self._obs.copy(), info
-
-    def batch_row(self) -> dict[str, Any]:
-        """The state the native vector env copies into its row after a reset: gimbal state,
-        wave components and the kernel's wave projections (names of `physics.gowec.batch`)."""
-        m = self.model
-        return {
-            "phi": self.state[0], "phid": self.state[1], "amp": self.wave.amplitudes,
-            "om": self.wave.omegas, "eps": self.wave.phases, "k": m._k, "w": self._w,
-            "eta": self._eta, "inert": m.inert, "psid": m.psid, "cth": m._cth, "sth": m._sth,
-            "two_d": m._two_d,
-        }  # fmt: skip
+        return b.obs[0].copy(), info
 
     def _draw_frame(self) -> np.ndarray:
         R = self.wave.buoy_motion(self._t)[0] if "buoy_rocking" in self.effects else np.eye(3)
-        phi, P = float(self.state[0]), self._last_power
+        phi, P = float(self.rows.x[0, 0]), self._last_power
         text = f"t = {self._t:5.1f} s   phi = {math.remainder(phi, 2 * math.pi):+.2f} rad"
         text += f"   P = {P / 1e3:.2f} kW"
         return wave_frame(

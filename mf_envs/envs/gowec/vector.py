@@ -4,13 +4,13 @@
 it; `kwargs` are those of `gym.make("GOWEC-v0", ...)` plus `autoreset_mode`
 (`gymnasium.vector.AutoresetMode`, default NEXT_STEP). Trajectories are identical, bit for bit,
 to `SyncVectorEnv` over N single `GOWECEnv`s with the same seeds (`tests/test_vector_envs.py`):
-seeded resets and resets with options go through a template single env (its public
-`batch_row()`), steps through `physics.gowec.batch.batch_fast_step`, which calls the single env's
-scalar kernel for every row, and the observation, reward, info and failure contract come from
-`gowec.spec`, as in the single env. See `mf_envs.envs._vector`.
+seeded resets and resets with options go through a template single env (its row 0, `rows`,
+copied into the batch), steps through `rows.step_rows`, the single env's own step (the single env
+is row 0 of a batch of one), and the info and failure contract come from `gowec.spec`, as in the
+single env. See `mf_envs.envs._vector`.
 
 Compiled resets (regular waves): autoresets and seedless resets without options run in one
-numba call (`reset_rows`). `GOWECEnv.reset()` draws exactly two doubles from its generator,
+numba call (`rows.reset_rows`). `GOWECEnv.reset()` draws exactly two doubles from its generator,
 phi = U(-0.1, 0.1) then the wave phase U(0, 2 pi) (numpy: low + (high - low) * next_double),
 so each row pre-draws future resets' doubles (`mf_envs.envs._predraw.PredrawnResets`: same
 stream, same order as the single env's calls, the generator rewound before any template reset)
@@ -34,7 +34,6 @@ from mf_envs.envs._predraw import PredrawnResets
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec import rows, spec
 from mf_envs.envs.gowec.env import GOWECEnv
-from mf_envs.physics.gowec.batch import alloc_batch, batch_fast_step
 
 
 class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
@@ -62,29 +61,15 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
 
     def _alloc(self, n: int) -> None:
         env = self.template
-        m = env.n_components if "irregular_waves" in env.effects else 1
-        self.b = alloc_batch(n, m)
-        self._steps = np.zeros(n, dtype=np.int64)
-        self._scale = np.full(n, env.reward_scale)  # each row's 1 / (J per step)
-        # each row's control step, physics substep and count, rotor speed, episode steps
-        self._cdt, self._dt = np.full(n, env.control_dt), np.full(n, env.physics_dt)
-        self._nsub = np.full(n, env.n_substeps, dtype=np.int64)
-        self._psid = np.full(n, env.model.psid)
-        self._max_steps = np.full(n, env.max_steps, dtype=np.int64)
-        self._fresh = np.zeros((n, spec.OBS.size), dtype=np.float32)
-        self._ok = np.ones(n, dtype=bool)
-        self._overspeed = np.zeros(n, dtype=bool)
+        self.b = rows.alloc_rows(n, env.rows.amp.shape[1])
+        self._max_steps = np.full(n, env.max_steps, dtype=np.int64)  # each row's episode
         self._predraw_alloc(n, "irregular_waves" not in env.effects)
 
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
         if not self._predrawn(idx):
             return None
-        b, kn, env = self.b, self._kernel, self.template
-        rows.reset_rows(
-            idx, self._draws, self._ptr, b["phi"], b["phid"], b["t"], self._steps, b["amp"],
-            b["om"], b["eps"], b["k"], kn["cth"], kn["sth"], kn["two_d"], b["w"], b["eta"],
-            env.max_gimbal_rate, self._obs,
-        )  # fmt: skip
+        rows.reset_rows(idx, self._draws, self._ptr, self.b, self.template.site)
+        self._obs[idx] = self.b.obs[idx]
         return self._reset_infos(idx)
 
     def _reset_infos(self, idx: np.ndarray) -> dict[str, Any]:
@@ -93,7 +78,7 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         zero, mask = np.zeros(n), np.zeros(n, dtype=bool)
         mask[idx] = True
         phi, w1, eta = zero.copy(), zero.copy(), zero.copy()
-        phi[idx], w1[idx], eta[idx] = b["phi"][idx], b["w"][idx, 0], b["eta"][idx]
+        phi[idx], w1[idx], eta[idx] = b.x[idx, 0], b.w[idx, 0], b.eta[idx]
         info = spec.step_info(zero.copy(), phi, zero.copy(), w1, eta, zero.copy(), zero.copy())
         info["reward_terms"]["_energy"] = mask.copy()
         info["overspeed"] = np.zeros(n, dtype=bool)
@@ -102,56 +87,33 @@ class GOWECVectorEnv(PredrawnResets, BatchedVectorEnv):
         return info
 
     def _load(self, i: int) -> None:
-        row, b = self.template.batch_row(), self.b
-        self._kernel = {key: row[key] for key in ("inert", "cth", "sth", "two_d")}
-        for key in ("phi", "phid", "amp", "om", "eps", "k", "w", "eta"):
-            b[key][i] = row[key]
-        b["t"][i] = 0.0
-        env = self.template
-        self._scale[i], self._cdt[i], self._dt[i] = env.reward_scale, env.control_dt, env.physics_dt
-        self._nsub[i], self._psid[i] = env.n_substeps, row["psid"]
-        self._max_steps[i] = env.max_steps
-        self._steps[i] = 0
+        b, row = self.b, self.template.rows
+        for key, dst in zip(rows.Rows._fields, b):
+            dst[i] = getattr(row, key)[0]
+        self._max_steps[i] = self.template.max_steps
 
     def state_nbytes(self) -> int:
         """Bytes of the per-env batch state (physics arrays, step counters, observations)."""
-        arrays = [*self.b.values(), self._steps, self._obs, self._fresh, self._ok]
-        return int(sum(a.nbytes for a in arrays)) + self._overspeed.nbytes
+        return int(sum(a.nbytes for a in self.b)) + self._obs.nbytes + self._max_steps.nbytes
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
-        b, env, kn = self.b, self.template, self._kernel
-        Mg = actions[:, 0] * env.max_generator_torque
-        b["t"][:] = self._steps * self._cdt
-        self.blocks.run(
-            batch_fast_step, active, b["t"], b["phi"], b["phid"], Mg, self._dt, self._nsub,
-            kn["inert"], self._psid, b["amp"], b["om"], b["eps"], b["k"],
-            kn["cth"], kn["sth"], kn["two_d"], b["energy"], b["w"], b["eta"],
-        )  # fmt: skip
-        self._steps[active] += 1
-        energy = b["energy"]
-        reward = energy * self._scale
-        trunc = self._steps >= self._max_steps
-        obs, ok, overspeed = self._fresh, self._ok, self._overspeed
+        b, env = self.b, self.template
+        b.Mg[:] = actions[:, 0] * env.max_generator_torque
+        self.blocks.run(rows.step_rows, active, b, env.site)
+        reward, ok, overspeed = b.reward.copy(), b.ok, b.overspeed
         ok[~active], overspeed[~active] = True, False
-        rows.observe_rows(
-            active, b["phi"], b["phid"], energy, b["w"], env.max_gimbal_rate, obs, ok, overspeed
-        )
         info = spec.step_info(
-            energy / self._cdt,
-            b["phi"].copy(),
-            b["phid"].copy(),
-            b["w"][:, 0].copy(),
-            b["eta"].copy(),
-            self._steps * self._cdt,
-            reward.copy(),
-        )
+            b.energy / b.cdt, b.x[:, 0].copy(), b.x[:, 1].copy(), b.w[:, 0].copy(),
+            b.eta.copy(), b.t.copy(), reward.copy(),
+        )  # fmt: skip
         info["numerical_failure"] = ~ok
         info["overspeed"] = overspeed.copy()
         masks = np.ones((len(spec.INFO_KEYS) + 1, self.num_envs), dtype=bool)  # one per key
         info["reward_terms"]["_energy"] = masks[-1]
         for j, key in enumerate(spec.INFO_KEYS):
             info[f"_{key}"] = masks[j]
-        term = overspeed.copy()
+        term, trunc = overspeed.copy(), b.steps >= self._max_steps
+        obs = b.obs
         if not ok[active].all():  # MFEnv._finish_step: last finite obs, reward 0, terminated
             bad = ~ok & active
             obs[bad] = self._obs[bad]

@@ -10,6 +10,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs._rows import ONE_ROW
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gyro_stabilizer import build, render, rows, spec
 from mf_envs.physics.ship.coupling import SwayRollYaw
@@ -30,7 +31,6 @@ DEFAULT_EFFECTS = (
 )
 OBS_HIGH = spec.OBS.high()
 EPISODE_SECONDS = 30.0  # s, the default episode (600 steps of the default 0.05 s)
-_ONE = np.ones(1, dtype=bool)  # the active mask of the batch of one
 
 
 class GyroStabilizerEnv(MFEnv):
@@ -240,7 +240,7 @@ class GyroStabilizerEnv(MFEnv):
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         b = self.rows
         b.u[0] = spec.precession_command(self._scalar_action(action), self.max_precession_rate)
-        rows.step_rows(0, 1, _ONE, b, self._task)
+        rows.step_rows(0, 1, ONE_ROW, b, self._task)
         obs = b.obs[0].copy()  # clipped to the observation bounds
         info = rows.info_of(b.cols[:, 0])
         self._energy = info["drive_energy"]

@@ -4,17 +4,19 @@
 builds it; `kw` are those of `gym.make("GyroStabilizer-v0", ...)` plus `autoreset_mode`
 (`gymnasium.vector.AutoresetMode`, default NEXT_STEP). Trajectories are identical, bit for bit,
 to `SyncVectorEnv` over N single `GyroStabilizerEnv`s with the same seeds
-(`tests/test_vector_envs.py`): a step is ONE numba call (`rows.step_rows`) that advances every row
-with the single env's scalar kernel (`physics.ship.kernels.advance_with`) and forms its
-observation (`rows.observe`), reward terms and info columns with the single env's expressions;
-seeded resets and resets with options go through a template single env (its public
-`batch_row()`); the contract (observation, reward, info keys, failure) is `gyro_stabilizer.spec`.
+(`tests/test_vector_envs.py`): a step is ONE numba call (`rows.step_rows`), the single env's own
+step (the single env is row 0 of a batch of one): the ship's step (`physics.ship.kernels.
+advance_with`), the observation (`rows.observe`), reward terms and info columns of every row;
+seeded resets and resets with options go through a template single env (its row 0, `rows`,
+copied into the batch); the contract (observation, reward, info keys, failure) is
+`gyro_stabilizer.spec`.
 
 Compiled resets (regular seas): `GyroStabilizerEnv.reset()` without options draws three doubles,
 roll U(-0.05, 0.05), roll rate U(-0.02, 0.02) and the wave phase U(0, 2 pi), and the phase
 enters the packed parameters only in the slot WPHASE (sign flipped for a negative encounter
 frequency). Autoresets and seedless resets without options therefore run in one numba call
-(`reset_rows`) from doubles pre-drawn from each row's generator (`mf_envs.envs._predraw`).
+(`rows.reset_rows`, each row by the single env's `rows.reset_row`) from doubles
+pre-drawn from each row's generator (`mf_envs.envs._predraw`).
 Irregular seas (a new sea of many draws per reset) keep the template path. See
 `mf_envs.envs._vector`.
 

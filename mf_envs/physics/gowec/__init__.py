@@ -29,7 +29,13 @@ motions is 4/pi times that (a square-wave sin(phi)).
 """
 
 from mf_envs.physics.constants import RPM
-from mf_envs.physics.gowec.kernels import buoy_rates, buoy_rates_into, fast_step, gimbal_accel
+from mf_envs.physics.gowec.kernels import (
+    Waves,
+    buoy_rates,
+    buoy_rates_into,
+    fast_step,
+    gimbal_accel,
+)
 from mf_envs.physics.gowec.model import GimbalModel
 from mf_envs.physics.gowec.params import GOWECParams
 from mf_envs.physics.gowec.power import (
@@ -50,6 +56,7 @@ __all__ = [
     "RPM",
     "SEAKEEPER",
     "SQUARE_WAVE_GAIN",
+    "Waves",
     "analytic_max_power",
     "analytic_max_power_from_angle",
     "buoy_rates",

@@ -4,6 +4,7 @@ the gimbal equation (module doc of `mf_envs.physics.gowec`), stepped by the fram
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numba
 import numpy as np
@@ -92,22 +93,28 @@ def _stage_rhs(t, x, inp, args, out):
 _rk4 = make_rk4(_stage_rhs, _stage_inputs)
 
 
+Waves = namedtuple("Waves", "amp om eps k cth sth two_d")
+Waves.__doc__ = """The wave components a buoy meets: amp (M,) m, om (M,) rad/s, eps (M,) rad and
+k (M,) rad/m (the slope wavenumbers k F(k r), `WaveField.slope_wavenumbers`); cth, sth the wave
+direction's projections (0 for a still buoy); two_d: both slope angles (`buoy_rates`)."""
+
+
 @numba.njit(cache=True)
-def fast_step(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, two_d):
-    """n RK4 substeps (the frames stepper) of length dt with the generator torque Mg (N m) held.
+def fast_step(t, phi, phid, Mg, dt, n, inert, psid, waves):
+    """n RK4 substeps (the frames stepper) of length dt with the generator torque Mg (N m) held,
+    on the `Waves` waves.
 
     inert = (Ja, Jt, Jg1, Jg2, Jg3). Returns (phi, phi', harvested energy int M_g phi' dt (J),
     buoy rates w1, w2, w3 (rad/s) and the wave elevation at the origin (m) at the end).
     """
-    work = np.empty((6, 2))
-    return fast_step_into(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth,
-                          two_d, work)  # fmt: skip
+    return fast_step_into(t, phi, phid, Mg, dt, n, inert, psid, waves, np.empty((6, 2)))
 
 
 @numba.njit(cache=True)
-def fast_step_into(t, phi, phid, Mg, dt, n, inert, psid, amp, om, eps, k, cth, sth, two_d, work):
+def fast_step_into(t, phi, phid, Mg, dt, n, inert, psid, waves, work):
     """`fast_step` with the caller's scratch work (6, 2) (rows 0-4: the RK4 stages, row 5: the
     state): no allocation, so a batch can reuse one scratch for all its rows."""
+    amp, om, eps, k, cth, sth, two_d = waves
     energy = 0.0
     args = (Mg, inert, psid, amp, om, eps, k, cth, sth, two_d)
     x = work[5]

@@ -8,7 +8,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from mf_envs.physics.gowec.kernels import buoy_rates, fast_step, gimbal_accel
+from mf_envs.physics.gowec.kernels import Waves, buoy_rates, fast_step, gimbal_accel
 from mf_envs.physics.gowec.params import GOWECParams
 from mf_envs.physics.waves import WaveField
 
@@ -52,23 +52,8 @@ class GimbalModel:
     ) -> tuple[float, ...]:
         """(phi, phi', energy J, w1, w2, w3, eta) after n substeps of dt (s) with the generator
         torque Mg (N m); w (rad/s) buoy rates and eta (m) the elevation (0 without rocking)."""
-        return fast_step(
-            t,
-            phi,
-            phid,
-            Mg,
-            dt,
-            n,
-            self.inert,
-            self.psid,
-            self._amp,
-            self._om,
-            self._eps,
-            self._k,
-            self._cth,
-            self._sth,
-            self._two_d,
-        )
+        waves = Waves(self._amp, self._om, self._eps, self._k, self._cth, self._sth, self._two_d)
+        return fast_step(t, phi, phid, Mg, dt, n, self.inert, self.psid, waves)
 
     def rates(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Buoy body rates w (3,) rad/s and w' (3,) rad/s^2 at time t."""
