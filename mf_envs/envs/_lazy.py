@@ -1,18 +1,20 @@
-"""Lazy public names of an env package: `__getattr__, __all__ = lazy(__name__, {name: module})`
-in the package's `__init__.py` imports `<package>.<module>` on first use, so reading the
-declarations (`import mf_envs`) loads no physics."""
+"""Lazy public names of an env package: `__getattr__, __all__ = lazy(__name__, env="EnvClass",
+spec="OBS")` in the package's `__init__.py` imports `<package>.<module>` on first use, so reading
+the declarations (`import mf_envs`) loads no physics. Every env module also gives its effects
+(AVAILABLE_EFFECTS, DEFAULT_EFFECTS)."""
 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from typing import Any
 
 
-def lazy(package: str, names: Mapping[str, str]) -> tuple[Callable[[str], Any], list[str]]:
-    """(the package's module `__getattr__`, its `__all__`) for `names`: public name -> the
-    package's module that defines it."""
-    table = dict(names)
+def lazy(package: str, **modules: str) -> tuple[Callable[[str], Any], list[str]]:
+    """(the package's module `__getattr__`, its `__all__`) for `modules`: the package's module
+    -> the space-separated public names it defines."""
+    table = {"AVAILABLE_EFFECTS": "env", "DEFAULT_EFFECTS": "env"}
+    table.update({name: mod for mod, names in modules.items() for name in names.split()})
 
     def __getattr__(name: str) -> Any:
         if name not in table:

@@ -1,15 +1,5 @@
-"""Eel-v0: `env.py` the Gymnasium class, `task.py` its declaration (`DECLARATION`), the package's
-other modules as docs/adding_an_env.md lists them. Names below import on first use, so reading
-the declaration (`import mf_envs`) does not load the physics."""
+"""Eel-v0: its Gymnasium class in `env.py`, declared in `task.py` (docs/adding_an_env.md)."""
 
 from mf_envs.envs._lazy import lazy
 
-__getattr__, __all__ = lazy(
-    __name__,
-    {
-        "AVAILABLE_EFFECTS": "env",
-        "DEFAULT_EFFECTS": "env",
-        "EelEnv": "env",
-        "observation_layout": "spec",
-    },
-)
+__getattr__, __all__ = lazy(__name__, env="EelEnv", spec="observation_layout")
