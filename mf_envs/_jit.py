@@ -30,6 +30,7 @@ depend on call order).
 
 from __future__ import annotations
 
+import types as pytypes
 from collections.abc import Callable
 from typing import Any
 
@@ -65,3 +66,27 @@ def array_returns() -> list[str]:
             if _holds_array(sig.return_type):
                 bad.append(f"{disp.py_func.__module__}.{disp.py_func.__qualname__}{sig}")
     return bad
+
+
+def specialise(template: Callable, anchor: Any, prefix: str, inline: bool | None = False,
+               **bindings: Any) -> Any:  # fmt: skip
+    """`template` compiled with the names in `bindings` (jitted functions, as the template's
+    globals) bound: numba cannot cache a function that receives another jitted function as an
+    argument, so the template's code object is re-bound to them and compiled with `cache=True`
+    under the name `<prefix>_<anchor's name>`, cached beside `anchor`'s module (the model's:
+    `mf_envs._cache` stamps that cache with the module's source and the sources it imports, the
+    template's among them, so editing either invalidates it). inline: False a plain
+    `numba.njit`, True a `kernel` LLVM inlines into its callers, None numba's IR inlining
+    (`inline="always"`, for a small piece with one caller)."""
+    py = anchor.py_func
+    name = f"{prefix}_{py.__name__}"
+    code = template.__code__.replace(
+        co_filename=py.__code__.co_filename, co_name=name, co_qualname=name
+    )
+    fn = pytypes.FunctionType(code, dict(template.__globals__, **bindings), name)
+    fn.__module__, fn.__doc__ = py.__module__, template.__doc__
+    if inline:
+        return kernel(fn, forceinline=True)
+    if inline is None:
+        return numba.njit(cache=True, inline="always")(fn)
+    return numba.njit(cache=True)(fn)

@@ -314,7 +314,7 @@ def test_fused_newton_residual_equals_the_beam_and_ground_assemblies(viscous):
     quad = kernels.quad_tables(m)
     ground = (s.normal_load, m.params.mass_per_length, law.packed())
     sc = kernels.make_scratch(nd, ne)
-    work, piv, buf, e11, ab, pre, ke = sc[0], sc[1], sc[8], sc[9], sc[10], sc[11], sc[12]
+    work, piv, buf, ab, pre = sc[0], sc[1], sc[8], sc[10], sc[11]
     rng = np.random.default_rng(3)
     for dt, th, tau in ((0.025, 1.0, 0.01), (0.01, 0.5, 0.0), (0.005, 0.75, 0.002)):
         d0 = m.straight() + 0.03 * rng.standard_normal(nd)
@@ -338,8 +338,9 @@ def test_fused_newton_residual_equals_the_beam_and_ground_assemblies(viscous):
         k_dense += band_to_dense(ab_g)
         fused.start_strains(d0, m.le, k0, quad[4], pre)
         v_out = np.empty(nd)
-        kernels._residual(d0, v0, d, dt, th, 0.5 + rate, rate, m.le, 2.0 / dt**2 * m.mass, k0, k1,
-                          quad, ground, pre, buf, v_out, ab, e11, ke)  # fmt: skip
+        body = kernels.Body(m.mass, m.le, quad, ground, th, 1e-10, 12, 6, m.params.EI, tau)
+        sc[15][:] = 2.0 / dt**2 * m.mass  # the scratch's inertia band (`newton_step` forms it)
+        kernels._residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v_out)
         assert np.max(np.abs(buf[0] - r0)) <= 1e-12 * np.max(np.abs(r0))
         assert np.max(np.abs(band_to_dense(ab) - k_dense)) <= 1e-13 * np.max(np.abs(k_dense))
         np.testing.assert_allclose(v_out, v, rtol=1e-15, atol=1e-15)

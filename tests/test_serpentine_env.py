@@ -88,7 +88,7 @@ def test_actuation_energy_closes_the_discrete_energy_balance():
         w = qw[None, :] * m.le[:, None]
         return tau / u.physics_dt * float(np.einsum("eg,gr,egr->", w, stiff, de**2))
 
-    interp = u.cfg[8]
+    interp = u.cfg.interp
     model = Serpentine(u.scene.params, u.scene.ground)
     env.reset(seed=1)
     ctrl = make_baseline(env, "serpenoid")

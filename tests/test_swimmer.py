@@ -12,6 +12,7 @@ import pytest
 from mf_envs.physics.beam.banded import band_to_dense
 from mf_envs.physics.beam.solver import BeamModel
 from mf_envs.physics.serpentine import rod_params, serpenoid
+from mf_envs.physics.serpentine.stepping import Body
 from mf_envs.physics.swimmer import Swimmer, Water
 from mf_envs.physics.swimmer.fluid import added_momentum, assemble_water
 from mf_envs.physics.swimmer.theory import (
@@ -268,13 +269,13 @@ def test_fused_newton_residual_equals_the_beam_and_water_assemblies(linear):
         assemble_water(d0 + th * (d - d0), (1 - th) * v0 + th * v, m.le, nzt, npt, law, r0, ab0,
                        -th, -2.0 * th / dt)  # fmt: skip
         k_dense = band_to_dense(ab0) + 2.0 / dt**2 * mass
-        pre = np.empty((ne, tab.shape[1], fused.N_START))
-        fused.start_strains(d0, m.le, k0, tab, pre)
+        sc = kernels.make_scratch(nd, ne)  # `newton_step` forms the start strains, M, p0 there
+        fused.start_strains(d0, m.le, k0, tab, sc[15])
+        sc[10][:], sc[16][:] = 2.0 / dt**2 * m.mass, p0
         buf, ab = np.empty((5, nd)), np.empty((21, nd))
-        e11, ke = np.empty((5, 11)), np.empty((11, 11))
         v_out = np.empty(nd)
-        kernels._residual(d0, v0, d, dt, th, th_s, m.le, 2.0 / dt**2 * m.mass, k0, k1, sw.quad,
-                          sw.packed, p0, pre, buf, v_out, ab, e11, ke)  # fmt: skip
+        body = Body(m.mass, m.le, sw.quad, sw.packed, (th, th_s), 1e-10, 12, 6, m.params.EI, 0.0)
+        kernels._residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v_out)
         tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
         assert np.max(np.abs(buf[0] - r0)) <= 1e-12 * np.max(np.abs(r0))
         assert np.max(np.abs(band_to_dense(ab) - k_dense)) <= 1e-13 * np.max(np.abs(k_dense))

@@ -13,13 +13,12 @@ classical RK4 one, the Munthe-Kaas form is Iserles et al., Acta Numerica 9 (2000
 
 from __future__ import annotations
 
-import types
 from collections.abc import Callable
 
 import numba
 import numpy as np
 
-from mf_envs._jit import kernel
+from mf_envs._jit import specialise
 from mf_envs.frames.kernels import _rodrigues_entries, dexpinv_right3, rodrigues_coeffs
 
 # ---- the steppers (templates; see the module doc and `make_rk4` / `make_rkmk4`) ----
@@ -175,26 +174,11 @@ def rkmk4_rwork() -> np.ndarray:
 def _specialise(
     template: Callable, rhs, inputs, prefix: str, inline: bool = False, **extra: Callable
 ):
-    """Compile `template` with `_rhs`/`_inputs` bound to the model's jitted functions (module doc);
-    inline=True makes it a `mf_envs._jit.kernel` that LLVM inlines into its callers
-    (`forceinline`; numba's IR inlining, `inline="always"`, cost minutes of compilation here).
-
-    The result is cached beside the model's module (the module that defines `rhs` and calls
-    `make_rk4` / `make_rkmk4`): `mf_envs._cache` stamps that cache with the module's source and
-    the sources it imports, this file among them, so editing either invalidates it."""
-    py = rhs.py_func
-    name = f"{prefix}_{py.__name__}"
-    code = template.__code__.replace(
-        co_filename=py.__code__.co_filename, co_name=name, co_qualname=name
-    )
-    glb = dict(template.__globals__, _rhs=rhs, _inputs=inputs, **extra)
-    fn = types.FunctionType(code, glb, name)
-    fn.__module__, fn.__doc__ = py.__module__, template.__doc__
-    if inline:
-        return kernel(fn, forceinline=True)
-    if inline is None:  # a small piece spliced into its one caller (numba IR inlining)
-        return numba.njit(cache=True, inline="always")(fn)
-    return numba.njit(cache=True)(fn)
+    """Compile `template` with `_rhs`/`_inputs` bound to the model's jitted functions (module doc;
+    `mf_envs._jit.specialise`); inline=True makes it a kernel that LLVM inlines into its callers
+    (`forceinline`; numba's IR inlining, `inline="always"`, cost minutes of compilation here),
+    None a small piece spliced into its one caller (numba IR inlining)."""
+    return specialise(template, rhs, prefix, inline, _rhs=rhs, _inputs=inputs, **extra)
 
 
 def make_rk4(rhs, inputs, inline: bool = False):

@@ -144,8 +144,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
                              self.control_dt, self.target_direction)  # fmt: skip
         self._make_state(self.n_ctrl if self.scene.action_mode == "curvature" else 3)
         self.phase = np.zeros(1)  # the wave's phase [rad] (action_mode "wave")
-        self._sc = rows.scratch(self.model)
-        self._newton = rows.newton_scratch(self.model.n_dof, self.model.n_elements)  # Newton's
+        self._sc = rows.scratch(self.model, self.n_ctrl)
 
     # ------------------------------------------------------------------ API
     def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
@@ -155,7 +154,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     # ------------------------------------------------------------------ helpers
     def _advance(self, action: np.ndarray, rep: np.ndarray) -> None:
         rows.step_row(self.state[0], self.state[1], self.cmd, self.phase, action, self.cfg,
-                      self._sc, self._body, self._obs, rep, self._newton)  # fmt: skip
+                      self._sc, self._body, self._obs, rep)  # fmt: skip
 
     def _heading(self) -> float:
         return float(self._body[4])
@@ -164,7 +163,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
         """(n_el * 4, 4) rows (x, y, f_x, f_y) [m, N/m]: Taylor's resistive line force at the
         Gauss points in the present state."""
         out = np.zeros((4 * self.model.n_elements, 4))
-        nzt, npt, law = self.cfg[3]
+        nzt, npt, law = self.cfg.body.load
         point_forces(self.state[0], self.state[1], self.model.le, nzt, npt, law, out)
         return out
 

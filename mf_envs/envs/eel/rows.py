@@ -2,8 +2,8 @@
 same bits.
 
 - `observe_row`: the observation (`spec.observation_layout`) in one compiled function; the
-  centre of mass, its velocity and the mean frame angle come from the serpentine's
-  `body_state` (4-point Gauss, uniform m_A);
+  centre of mass, its velocity and the mean frame angle come from the beam robots'
+  `body_state` (`envs._beam_rows`, with the configuration `Cfg`);
 - `step_row`: one control step of one eel: the action scaled to a target curvature at the
   control points (or, with action_mode "wave", the anguilliform wave of the action's amplitude,
   wavelength and frequency, `target_row`); the command moves towards it at most
@@ -19,69 +19,71 @@ same bits.
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numba
 import numpy as np
 
 from mf_envs.envs._beam_robot import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
-from mf_envs.envs.serpentine.rows import body_state
+from mf_envs.envs._beam_rows import N_REPORT, body_state, pack_cfg, to_gauss  # noqa: F401
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.swimmer.fluid import shape_tables
-from mf_envs.physics.swimmer.kernels import advance_linear, make_scratch, newton_scratch
+from mf_envs.physics.swimmer.kernels import _scratch as _kernel_scratch
+from mf_envs.physics.swimmer.kernels import advance_linear
 
-# report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
-# the muscles' signed (net) work [J]
-N_REPORT = 6
-# the Newton settings: the step test |dd| / u_scale < 1e-6 (or the next correction predicted
-# below 1e-9 in the quadratic phase) leaves ~1e-9
-TOLERANCE, MAX_ITER, MAX_HALVINGS = 1e-6, 12, 6
-THETA = (0.5, 0.5)  # (water force, stresses) theta points (`physics.swimmer.kernels`)
+THETA = 0.5  # the water force at the step's midpoint (`physics.swimmer.kernels`)
+Wave = namedtuple("Wave", "max_change wave_mode envelope u ranges control_dt")
+Wave.__doc__ = """`Cfg.robot` of the eel: max_change [1/m] the command's largest change per
+control step (max_curvature_rate x control_dt); wave_mode 1 with action_mode "wave" (0:
+"curvature"); envelope (n,) the wave's amplitude envelope and u (n,) the distance from the head
+/ L at the control points; ranges (wavelength min, max [L], frequency min, max [Hz]);
+control_dt [s]."""
 
 
 def pack(scene, model, n_substeps: int, physics_dt: float, control_dt: float,
-         target: float) -> tuple:  # fmt: skip
-    """The kernels' configuration of a `build.Scene` on its `BeamModel` (module docstring)."""
+         target: float):  # fmt: skip
+    """The rows' `Cfg` of a `build.Scene` on its `BeamModel` (module docstring)."""
     from mf_envs.envs.eel.build import HEAD_RATIO, WAVE_FREQUENCY, WAVE_WAVELENGTH
-    from mf_envs.envs.serpentine.build import control_points, interpolation
 
-    p, ne = scene.params, model.n_elements
     le = model.le
-    nz = np.array([el.shape_functions(x, le[0])[0] for x in el.GAUSS_XI])
-    npsi = np.array([el.shape_functions(x, le[0])[2] for x in el.GAUSS_XI])
-    ce, cxi = control_points(p.length, scene.n_ctrl, ne)
     s_ctrl = np.linspace(0.0, 1.0, scene.n_ctrl)  # S / L of the control points
     water = (*shape_tables(le), scene.water.packed())
-    theta = (THETA[0], scene.stress_theta)
     qxi, qw, stiff = model.quad
     quad = (qw, stiff, model.u_scale, quadrature_tables(le, qxi))
-    return (
-        le, model.mass, quad, water, theta, TOLERANCE, MAX_ITER,
-        MAX_HALVINGS, interpolation(model.gauss_S, p.length, scene.n_ctrl), nz, npsi, ce, cxi,
-        scene.max_curvature, int(n_substeps), p.length, p.EI, float(target), float(physics_dt),
+    wave = Wave(
         scene.max_curvature_rate * float(control_dt), 1 if scene.action_mode == "wave" else 0,
         HEAD_RATIO + (1.0 - HEAD_RATIO) * (1.0 - s_ctrl), 1.0 - s_ctrl,
         np.array([*WAVE_WAVELENGTH, *WAVE_FREQUENCY]), float(control_dt),
     )  # fmt: skip
+    body = (quad, water, (THETA, scene.stress_theta), 0.0)
+    return pack_cfg(scene, model, (n_substeps, physics_dt), target, body, wave)
 
 
-def scratch(model) -> tuple:
-    """A row's scratch: the Newton solver's, four (n_el, 4) kappa# tables and the work sums."""
-    ne = model.n_elements
-    return (*make_scratch(model.n_dof, ne), *(np.empty((ne, 4)) for _ in range(4)), np.zeros(2))
+@numba.njit(cache=True, nogil=True)
+def _scratch(n_dof, n_el, n_ctrl):
+    ks = _kernel_scratch(n_dof, n_el)
+    return (ks, np.empty((n_el, 4)), np.empty((n_el, 4)), np.empty((n_el, 4)),
+            np.empty((n_el, 4)), np.zeros(2), np.empty(n_ctrl))  # fmt: skip
+
+
+def scratch(model, n_ctrl: int) -> tuple:
+    """An eel's scratch (no state: every entry is written before it is read): the Newton
+    solver's (`swimmer.kernels.make_scratch`), four kappa# tables at the Gauss points (n_el, 4),
+    the work sums and the new command at the control points (n_ctrl,)."""
+    return _scratch(model.n_dof, model.n_elements, n_ctrl)
 
 
 @numba.njit(cache=True, nogil=True)
 def observe_row(d, v, cmd, cfg, body, out):
     """The observation into out (float32, 2 n + 6) and the body state into body (5,)."""
-    le, nz, npsi, ce, cxi = cfg[0], cfg[9], cfg[10], cfg[11], cfg[12]
-    max_curvature, length, target = cfg[13], cfg[15], cfg[17]
+    le, ce, cxi, length = cfg.body.le, cfg.ce, cfg.cxi, cfg.length
     n = cmd.shape[0]
     for j in range(n):
         out[j] = el.kappa_at(d, 6 * ce[j], le[ce[j]], cxi[j]) * length
-        out[n + 6 + j] = cmd[j] / max_curvature
-    body_state(d, v, le, nz, npsi, body)
-    rel = body[4] - target
+        out[n + 6 + j] = cmd[j] / cfg.max_curvature
+    body_state(d, v, le, cfg.nz, cfg.npsi, body)
+    rel = body[4] - cfg.target
     out[n] = math.sin(rel)
     out[n + 1] = math.cos(rel)
     c, s = math.cos(body[4]), math.sin(body[4])
@@ -97,12 +99,12 @@ def target_row(cmd, phase, action, cfg, out):
     """The target kappa# [1/m] at the control points into out (n,): max_curvature x action
     (action_mode "curvature"), or the anguilliform wave of the action's (amplitude, wavelength,
     frequency) at the step's end, advancing phase[0] by 2 pi f control_dt ("wave")."""
-    max_curvature = cfg[13]
-    if cfg[20] == 0:
+    max_curvature, wave = cfg.max_curvature, cfg.robot
+    if wave.wave_mode == 0:
         for j in range(cmd.shape[0]):
             out[j] = max_curvature * action[j]
         return
-    envelope, u, ranges, dt = cfg[21], cfg[22], cfg[23], cfg[24]
+    envelope, u, ranges, dt = wave.envelope, wave.u, wave.ranges, wave.control_dt
     amp = 0.5 * (action[0] + 1.0) * max_curvature
     lam = ranges[0] + 0.5 * (action[1] + 1.0) * (ranges[1] - ranges[0])
     freq = ranges[2] + 0.5 * (action[2] + 1.0) * (ranges[3] - ranges[2])
@@ -112,44 +114,33 @@ def target_row(cmd, phase, action, cfg, out):
 
 
 @numba.njit(cache=True, nogil=True)
-def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep, newton):
+def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
     """One control step of one eel in place (module docstring): d, v (n_dof,), cmd (n,) [1/m]
     the previous command, phase (1,) the wave's phase [rad] (action_mode "wave"), action in
     [-1, 1] ((n,) or (3,)); obs (2 n + 6) float32, body (5,), rep (N_REPORT,) the report; sc
-    the row's `scratch`, newton the Newton step's (`swimmer.kernels.newton_scratch`, no state).
-    A failed substep stops the step (rep[REP_OK] = 0)."""
-    le, mass, quad, water, th, tol, max_iter, max_halvings, interp = cfg[:9]
-    n_sub, ei, h, max_change = cfg[14], cfg[16], cfg[18], cfg[19]
-    k_old, k_new, ka, kb = sc[8], sc[9], sc[10], sc[11]
-    ne, n = le.shape[0], cmd.shape[0]
-    new = np.empty(n)
+    `scratch` (no state). A failed substep stops the step (rep[REP_OK] = 0)."""
+    n_sub, h, max_change = cfg.n_sub, cfg.h, cfg.robot.max_change
+    ks, k_old, k_new, ka, kb, acc, new = sc
+    ne, n = cfg.body.le.shape[0], cmd.shape[0]
     target_row(cmd, phase, action, cfg, new)
     for j in range(n):
         change = new[j] - cmd[j]
         new[j] = cmd[j] + min(max(change, -max_change), max_change)
-    for e in range(ne):
-        for g in range(4):
-            o, w = 0.0, 0.0
-            for j in range(n):
-                o += interp[4 * e + g, j] * cmd[j]
-                w += interp[4 * e + g, j] * new[j]
-            k_old[e, g], k_new[e, g] = o, w
-    body_state(d, v, le, cfg[9], cfg[10], body)
+    to_gauss(cfg.interp, cmd, new, k_old, k_new)
+    body_state(d, v, cfg.body.le, cfg.nz, cfg.npsi, body)
     rep[REP_X0], rep[REP_Y0] = body[0], body[1]
     total, ok = 0, 1.0
-    acc = sc[12]
     acc[0], acc[1] = 0.0, 0.0
     for s in range(n_sub):
         for e in range(ne):
             for g in range(4):
                 ka[e, g] = k_old[e, g] + s / n_sub * (k_new[e, g] - k_old[e, g])
                 kb[e, g] = k_old[e, g] + (s + 1) / n_sub * (k_new[e, g] - k_old[e, g])
-        its = advance_linear(d, v, ka, kb, h, mass, le, quad, water, th, tol, max_iter,
-                             max_halvings, sc[:8], ei, acc, newton)  # fmt: skip
+        its = advance_linear(d, v, ka, kb, h, cfg.body, ks, acc)
+        total += abs(its)
         if its < 0:
             ok = 0.0
             break
-        total += its
     for j in range(n):
         cmd[j] = new[j]
     rep[REP_OK], rep[REP_ENERGY], rep[REP_ITER], rep[REP_NET] = ok, acc[0], total, acc[1]
@@ -157,15 +148,12 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep, newton):
 
 
 @numba.njit(cache=True, nogil=True)
-def step_rows(lo, hi, active, actions, state, cmd, phase, cfg, work, body, obs, rep):
+def step_rows(lo, hi, active, actions, state, cmd, phase, cfg, body, obs, rep):
     """`step_row` for the active rows lo <= i < hi: state (N, 2, n_dof) (d, v), cmd (N, n),
-    phase (N, 1), actions (N, n or 3), work the rows' scratch (tuple of (N, ...) arrays),
-    body (N, 5), obs (N, 2 n + 6) float32, rep (N, N_REPORT)."""
-    newton = newton_scratch(state.shape[2], cfg[0].shape[0])  # one set for the block's rows
+    phase (N, 1), actions (N, n or 3), body (N, 5), obs (N, 2 n + 6) float32, rep
+    (N, N_REPORT). One scratch serves the block (it holds no state)."""
+    sc = _scratch(state.shape[2], cfg.body.le.shape[0], cmd.shape[1])
     for i in range(lo, hi):
         if active[i]:
-            sc = (work[0][i], work[1][i], work[2][i], work[3][i], work[4][i], work[5][i],
-                  work[6][i], work[7][i], work[8][i], work[9][i], work[10][i],
-                  work[11][i], work[12][i])  # fmt: skip
             step_row(state[i, 0], state[i, 1], cmd[i], phase[i], actions[i], cfg, sc, body[i],
-                     obs[i], rep[i], newton)  # fmt: skip
+                     obs[i], rep[i])  # fmt: skip

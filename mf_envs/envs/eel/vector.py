@@ -29,7 +29,7 @@ class EelVectorEnv(SerpentineVectorEnv):
     Observations (N, 2 n + 6) float32, actions (N, n) in [-1, 1], rewards (N,) float64, infos
     batched as Gymnasium does with the single env's keys (`spec.INFO_KEYS`). The batch loop,
     rewards, infos and failure contract are the serpentine's (`SerpentineVectorEnv`); the rows
-    also carry the wave phase and their own scratch."""
+    also carry the wave phase."""
 
     single_env_cls = EelEnv
     row_cost = "heavy"  # a Newton solve per row: one block per CPU from N = 2
@@ -39,20 +39,18 @@ class EelVectorEnv(SerpentineVectorEnv):
     def _alloc(self, n: int) -> None:
         super()._alloc(n)
         self._phase = np.zeros((n, 1))
-        one = rows.scratch(self.template.model)
-        self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in one)
 
     def _load(self, i: int) -> None:
         super()._load(i)
         self._phase[i] = self.template.phase
 
     def _row_arrays(self) -> list[np.ndarray]:
-        return [self._phase, *self._work]
+        return [self._phase]
 
     def _run_rows(self, actions: np.ndarray, active: np.ndarray) -> None:
         self._run_rows_of(
             rows.step_rows, 5, active, actions, self._state, self._cmd, self._phase,
-            self.template.cfg, self._work, self._body, self._fresh, self._rep,
+            self.template.cfg, self._body, self._fresh, self._rep,
         )  # fmt: skip
 
     def _headings(self) -> np.ndarray:

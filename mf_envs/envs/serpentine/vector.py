@@ -76,7 +76,7 @@ class SerpentineVectorEnv(BatchedVectorEnv):
         return int(sum(a.nbytes for a in arrays)) + self._steps.nbytes + self._obs.nbytes
 
     def _row_arrays(self) -> list[np.ndarray]:
-        """Per-row arrays beyond the state and command (Eel-v0: its wave phase and scratch)."""
+        """Per-row arrays beyond the state and command (Eel-v0: its wave phase)."""
         return []
 
     def _run_rows(self, actions: np.ndarray, active: np.ndarray) -> None:

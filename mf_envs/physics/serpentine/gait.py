@@ -56,6 +56,22 @@ class WaveGait:
         return out
 
 
+def gait_for(gait: WaveGait | None, shape: tuple[int, int]) -> WaveGait:
+    """The gait of a beam whose Gauss points are `shape` (n_el, 4): a passive one (zero
+    amplitude) for None; ValueError naming `gait` if it is tabulated on another shape."""
+    if gait is None:
+        return WaveGait(np.zeros(shape), np.zeros(shape), 0.0)
+    if np.shape(gait.amplitude) != shape:
+        raise ValueError(f"gait: tabulated on {np.shape(gait.amplitude)}, the beam needs {shape}")
+    return gait
+
+
+def gait_tables(gait: WaveGait) -> tuple:
+    """(a, phi, w, t_ramp) contiguous, the compiled run's `gait` (`stepping`)."""
+    a, phi = (np.ascontiguousarray(x, float) for x in (gait.amplitude, gait.phase))
+    return a, phi, float(gait.omega), float(gait.ramp_time)
+
+
 @numba.njit(cache=True)
 def gait_kappa_into(a, phi, w, t_ramp, t, out):
     """out = r(t) a sin(phi - w t) (module docstring)."""

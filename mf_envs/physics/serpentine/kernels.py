@@ -51,8 +51,8 @@ point flipping its slip direction every iteration, a 2-cycle on the Coulomb law)
 never accepted as the converged one; no progress over two iterations (stagnation) gives up early.
 Converged: a correction below tol, or, in the quadratic phase, the next correction predicted
 below tol / 1000 (e_k+1 ~ K e_k^2 with K from the last two corrections).
-A step whose Newton fails is retried as 2, 4, ... sub-steps (actuation interpolated exactly:
-kappa# is a function of t), at most 2^max_halvings.
+A step whose Newton fails is retried as 2, 4, ... sub-steps (kappa# linear in time over the
+step), at most 2^max_halvings (`stepping`, the loop shared with the swimmer).
 """
 
 from __future__ import annotations
@@ -61,17 +61,16 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam import fused
 from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
 from mf_envs.physics.serpentine.friction import ground_point
-from mf_envs.physics.serpentine.gait import gait_kappa_into
 from mf_envs.physics.serpentine.scratch import (  # noqa: F401 (re-exported)
     MAX_QUAD,
     _scratch,
     make_scratch,
     quad_tables,
 )
+from mf_envs.physics.serpentine.stepping import Body, make_stepping  # noqa: F401
 
 # the predictor d_n replaces d_n + dt v_n when its residual is below this fraction of the
 # latter's (module docstring)
@@ -79,14 +78,17 @@ PREDICTOR_RATIO = 0.2
 
 
 @kernel
-def _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf, v, ab,
-              e11, ke):  # fmt: skip
-    """buf[0] = -R(d), ab = dR/dd (module docstring) at the iterate d: the algorithmic force
-    (`beam.fused.element_internal`, the start's strains in pre) and the ground's at
-    (d_th, v_th) element by element, the inertia from cm = (2 / dt^2) M (`fused.scale_band`);
-    buf[1] = d - d0 - dt v0, v = v_{n+1}, buf[2:4] = d_th, v_th."""
+def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
+    """buf[0] = -R(d), ab = dR/dd (module docstring) at the iterate d of `Body` body: the
+    algorithmic force (`beam.fused.element_internal`, the start's strains in sc's pre) and the
+    ground's at (d_th, v_th) element by element, the inertia from sc's cm = (2 / dt^2) M
+    (`fused.scale_band`); buf[1] = d - d0 - dt v0, v = v_{n+1}, buf[2:4] = d_th, v_th."""
+    quad, le, th = body.quad, body.le, body.th
+    cm, pre, e11, ke = sc[15], sc[11], sc[9], sc[12]
+    rate = body.damping / dt
+    theta_s = 0.5 + rate
     qw, stiff, tab, nzt, npt = quad[1], quad[2], quad[4], quad[5], quad[6]
-    p, m_a, law = ground
+    p, m_a, law = body.load
     r, x, dth, vth = buf[0], buf[1], buf[2], buf[3]
     db, de, ve, fe = e11[0], e11[1], e11[2], e11[3]
     fused.trapezoid_points(d, d0, v0, dt, th, x, v, dth, vth)
@@ -125,33 +127,27 @@ def _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pr
 
 
 @numba.njit(cache=True)
-def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, d, v, sc, damping):
-    """One step from (d0, v0) with kappa# k0 -> k1 (module docstring). d, v receive the result,
-    from the predictor of the module docstring; sc: the `make_scratch` tuple (no allocation
-    here). damping: the Kelvin-Voigt retardation time tau [s] (module docstring). Returns the
-    Newton iterations, or minus the iterations spent on failure (no convergence in max_iter,
-    stagnation, a singular or non-finite correction)."""
-    work, piv, buf, ab, e11, pre, ke = sc[0], sc[1], sc[8], sc[10], sc[9], sc[11], sc[12]
+def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
+    """One step from (d0, v0) with kappa# k0 -> k1 of `stepping.Body` body on the ground
+    (module docstring; body.damping the Kelvin-Voigt retardation time tau [s]). d, v receive
+    the result, from the predictor of the module docstring; sc: the `make_scratch` tuple (no
+    allocation here). Returns the Newton iterations, or minus the iterations spent on failure
+    (no convergence in max_iter, stagnation, a singular or non-finite correction)."""
+    work, piv, buf, ab, pre = sc[0], sc[1], sc[8], sc[10], sc[11]
     buf2, ab2, cm = sc[13], sc[14], sc[15]
-    u_scale = quad[3]
+    u_scale, tol = body.quad[3], body.tol
     nd = d0.shape[0]
-    rate = damping / dt
-    # Kelvin-Voigt: sigma = D (eps_mid + tau (eps_b - eps_a) / dt), the damper on the total
-    # curvature rate (strain shift -rate (kappa#_b - kappa#_a) in the bending stress)
-    theta_s = 0.5 + rate
-    fused.start_strains(d0, le, k0, quad[4], pre)
-    fused.scale_band(mass, 2.0 / (dt * dt), cm)
+    fused.start_strains(d0, body.le, k0, body.quad[4], pre)
+    fused.scale_band(body.mass, 2.0 / (dt * dt), cm)
     # predictor (module docstring): the start d0 if its residual is below PREDICTOR_RATIO
     # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
     # iteration's
     for i in range(nd):
         d[i] = d0[i]
-    _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf, v, ab,
-              e11, ke)  # fmt: skip
+    _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v)
     for i in range(nd):
         d[i] = d0[i] + dt * v0[i]
-    _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf2, v,
-              ab2, e11, ke)  # fmt: skip
+    _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v)
     n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
     if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
         buf, buf2, ab, ab2 = buf2, buf, ab2, ab
@@ -160,10 +156,9 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
             d[i] = d0[i]
     x, prev = buf[1], buf[4]
     back2, back1 = np.inf, np.inf
-    for it in range(1, max_iter + 1):
+    for it in range(1, body.max_iter + 1):
         if it > 1:
-            _residual(d0, v0, d, dt, th, theta_s, rate, le, cm, k0, k1, quad, ground, pre, buf,
-                      v, ab, e11, ke)  # fmt: skip
+            _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v)
         if fused.solve(ab, buf[0], work, piv, x) != 0:
             return -it
         halved = False
@@ -200,173 +195,8 @@ def _newton_step(d0, v0, k0, k1, dt, mass, le, quad, ground, th, tol, max_iter, 
         if it >= 5 and step > back2:
             return -it
         back2, back1 = back1, step
-    return -max_iter
+    return -body.max_iter
 
 
-@numba.njit(cache=True)
-def advance(
-    d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_halvings, scratch,
-    damping=0.0,
-):  # fmt: skip
-    """d, v at t -> t + dt in place, splitting the step on Newton failure. Returns the Newton
-    iterations spent (failed attempts included), or -1 if even 2^max_halvings sub-steps
-    failed. damping: Kelvin-Voigt retardation time [s] (module docstring); scratch:
-    `make_scratch`."""
-    a_gp, phi_gp, w, t_ramp = gait
-    k0, k1, d0, v0, d1, v1 = scratch[2:8]
-    total = 0
-    for level in range(max_halvings + 1):
-        n_sub = 2**level
-        h = dt / n_sub
-        for i in range(d.shape[0]):
-            d0[i] = d[i]
-            v0[i] = v[i]
-        ok = True
-        for k in range(n_sub):
-            gait_kappa_into(a_gp, phi_gp, w, t_ramp, t + k * h, k0)
-            gait_kappa_into(a_gp, phi_gp, w, t_ramp, t + (k + 1) * h, k1)
-            its = _newton_step(
-                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, scratch,
-                damping,
-            )  # fmt: skip
-            total += abs(its)
-            if its < 0:
-                ok = False
-                break
-            for i in range(d.shape[0]):
-                d0[i] = d1[i]
-                v0[i] = v1[i]
-        if ok:
-            for i in range(d.shape[0]):
-                d[i] = d0[i]
-                v[i] = v0[i]
-            return total
-    return -1
-
-
-@numba.njit(cache=True)
-def run(
-    d,
-    v,
-    t0,
-    dt,
-    n_steps,
-    every,
-    mass,
-    le,
-    quad,
-    ground,
-    gait,
-    th,
-    tol,
-    max_iter,
-    max_halvings,
-    d_out,
-    v_out,
-    t_out,
-    damping=0.0,
-):
-    """n_steps steps of dt from (d, v) at t0 (in place); every `every` steps (and at the start)
-    the state goes to row j of d_out, v_out (rows, n_dof) and t_out. Returns (total Newton
-    iterations, index of the failed step or -1). damping: Kelvin-Voigt retardation time [s]."""
-    nd = d.shape[0]
-    scratch = _scratch(nd, le.shape[0])
-    total = 0
-    j = 0
-    for i in range(nd):
-        d_out[0, i] = d[i]
-        v_out[0, i] = v[i]
-    t_out[0] = t0
-    for n in range(n_steps):
-        t = t0 + n * dt
-        its = advance(
-            d, v, t, dt, mass, le, quad, ground, gait, th, tol, max_iter, max_halvings, scratch,
-            damping,
-        )  # fmt: skip
-        if its < 0:
-            return total, n
-        total += its
-        if (n + 1) % every == 0 and j + 1 < t_out.shape[0]:
-            j += 1
-            for i in range(nd):
-                d_out[j, i] = d[i]
-                v_out[j, i] = v[i]
-            t_out[j] = t0 + (n + 1) * dt
-    return total, -1
-
-
-@numba.njit(cache=True)
-def bending_work(d, k, ka, kb, le, ei):
-    """int EI (kappa(d) - k) (kb - ka) dS at the 4 Gauss points [J]: M3 at d with kappa# = k
-    times a change kb - ka of kappa#."""
-    acc = 0.0
-    for e in range(le.shape[0]):
-        for g in range(4):
-            kap = el.kappa_at(d, 6 * e, le[e], el.GAUSS_XI[g])
-            acc += el.GAUSS_W[g] * le[e] * (kap - k[e, g]) * (kb[e, g] - ka[e, g])
-    return ei * acc
-
-
-@numba.njit(cache=True)
-def muscle_work(d0, d1, k0, k1, le, ei):
-    """The muscles' signed work [J] over a step from d0 (kappa# k0) to d1 (kappa# k1):
-    -int M_el (k1 - k0) dS with the step's elastic moment M_el = EI ((kappa_0 - k0) + (kappa_1
-    - k1)) / 2 (the algorithmic moment of `_newton_step` less its Kelvin-Voigt part: the damper
-    acts on the total curvature rate, in parallel with the active spring, and does no work
-    against kappa#)."""
-    return -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
-
-
-@numba.njit(cache=True)
-def advance_linear(
-    d, v, ka, kb, dt, mass, le, quad, ground, th, tol, max_iter, max_halvings, scratch, ei, out,
-    damping=0.0,
-):  # fmt: skip
-    """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4) (a
-    commanded actuation held by a first-order hold), splitting the step on Newton failure as
-    `advance`. Returns the Newton iterations spent (failed attempts included), or -1 (d, v
-    untouched) on failure.
-
-    out[0] += the muscles' positive work [J] summed over the (sub)steps, out[1] += their signed
-    work (`muscle_work`), the exact discrete balance dKE + dU + D = W_muscles + F_ground . dd of
-    the scheme (EI: the bending stiffness [N m^2]; D >= 0 the Kelvin-Voigt dissipation,
-    (damping / h) int Deps^T C Deps dS per sub-step)."""
-    k0, k1, d0, v0, d1, v1 = scratch[2:8]
-    ne, ng = ka.shape
-    total = 0
-    for level in range(max_halvings + 1):
-        n_sub = 2**level
-        h = dt / n_sub
-        for i in range(d.shape[0]):
-            d0[i] = d[i]
-            v0[i] = v[i]
-        pos, signed = 0.0, 0.0
-        ok = True
-        for k in range(n_sub):
-            s0, s1 = k / n_sub, (k + 1) / n_sub
-            for e in range(ne):
-                for g in range(ng):
-                    k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
-                    k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
-            its = _newton_step(
-                d0, v0, k0, k1, h, mass, le, quad, ground, th, tol, max_iter, d1, v1, scratch,
-                damping,
-            )  # fmt: skip
-            total += abs(its)
-            if its < 0:
-                ok = False
-                break
-            w = muscle_work(d0, d1, k0, k1, le, ei)
-            pos += max(w, 0.0)
-            signed += w
-            for i in range(d.shape[0]):
-                d0[i] = d1[i]
-                v0[i] = v1[i]
-        if ok:
-            for i in range(d.shape[0]):
-                d[i] = d0[i]
-                v[i] = v0[i]
-            out[0] += pos
-            out[1] += signed
-            return total
-    return -1
+# the step split on Newton failure (with the muscles' work) and the run under a wave gait
+advance_linear, run = make_stepping(newton_step)

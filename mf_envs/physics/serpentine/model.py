@@ -27,7 +27,7 @@ from mf_envs.physics.beam.solver import BeamModel, BeamParams, NewtonDivergence
 from mf_envs.physics.constants import G
 from mf_envs.physics.serpentine import kernels
 from mf_envs.physics.serpentine.friction import BellyFriction, assemble_ground
-from mf_envs.physics.serpentine.gait import WaveGait
+from mf_envs.physics.serpentine.gait import WaveGait, gait_for, gait_tables
 
 
 def rod_params(
@@ -135,14 +135,7 @@ class Serpentine:
         self.ground = ground if ground is not None else BellyFriction()
         self.gravity = float(check_range("gravity", gravity, 0.0, 1e3))
         self.material_damping = float(check_range("material_damping", material_damping, 0.0, 10.0))
-        shape = self.model.gauss_S.shape
-        if gait is None:
-            gait = WaveGait(np.zeros(shape), np.zeros(shape), 0.0)
-        if np.shape(gait.amplitude) != shape:
-            raise ValueError(
-                f"gait: tabulated on {np.shape(gait.amplitude)}, the beam needs {shape}"
-            )
-        self.gait = gait
+        self.gait = gait_for(gait, self.model.gauss_S.shape)
 
     @property
     def normal_load(self) -> float:
@@ -190,36 +183,19 @@ class Serpentine:
         d, v = self._start(d0, v0)
         n_steps = int(round(t_end / dt))
         rows = n_steps // every + 1
-        d_out, v_out, t_out = np.zeros((rows, m.n_dof)), np.zeros((rows, m.n_dof)), np.zeros(rows)
-        quad = kernels.quad_tables(m)
+        d_out, v_out = np.zeros((rows, m.n_dof)), np.zeros((rows, m.n_dof))
+        work_out = np.zeros((rows, 2))
         ground = (self.normal_load, m.params.mass_per_length, self.ground.packed())
-        g = self.gait
-        a_gp, phi_gp = (np.ascontiguousarray(x, float) for x in (g.amplitude, g.phase))
-        gait = (a_gp, phi_gp, float(g.omega), float(g.ramp_time))
-        its, failed = kernels.run(
-            d,
-            v,
-            0.0,
-            float(dt),
-            n_steps,
-            every,
-            m.mass,
-            m.le,
-            quad,
-            ground,
-            gait,
-            float(theta),
-            float(tol),
-            int(max_iter),
-            int(max_halvings),
-            d_out,
-            v_out,
-            t_out,
-            self.material_damping,
-        )
+        body = kernels.Body(m.mass, m.le, kernels.quad_tables(m), ground, float(theta), float(tol),
+                            int(max_iter), int(max_halvings), m.params.EI,
+                            self.material_damping)  # fmt: skip
+        its, failed = kernels.run(d, v, float(dt), n_steps, every, body, gait_tables(self.gait),
+                                  kernels.make_scratch(m.n_dof, m.n_elements), d_out, v_out,
+                                  work_out)  # fmt: skip
         if failed >= 0:
             raise NewtonDivergence(
                 f"dt: Newton failed at step {failed} (t = {failed * dt:.6g} s) even after "
                 f"{2**max_halvings} sub-steps"
             )
-        return SnakeHistory(t_out, d_out, v_out, m, int(its))
+        t_out = np.arange(rows) * every * float(dt)
+        return SnakeHistory(t_out, d_out, v_out, m, int(its), {"muscle_work": work_out})

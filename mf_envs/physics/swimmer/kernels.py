@@ -23,10 +23,11 @@ the stored energy exactly, theta_s > 1/2 dissipates the strain increments' energ
 (theta_s - 1/2) int de^T D de dS per step (the generalised energy-momentum method, Kuhl & Ramm
 1999): it damps the stiff axial, shear and high bending modes that a command jump excites and
 the energy-conserving scheme would keep ringing (first order in the internal force then).
-Why this is a generalisation of `serpentine.kernels._newton_step` rather than a call to it: that
-step hard-wires the ground law and has no configuration-dependent mass; the actuation work and
-the step splitting (`advance_linear`) are the serpentine's, on this step. The internal force is
-`beam.fused` (the beam's `assemble_algorithmic` fused with the water's loads, element by element).
+Why this is a generalisation of `serpentine.kernels.newton_step` rather than a call to it: that
+step hard-wires the ground law and has no configuration-dependent mass; the actuation work, the
+step splitting (`advance_linear`) and the run are the serpentine's (`serpentine.stepping`), on
+this step. The internal force is `beam.fused` (the beam's `assemble_algorithmic` fused with the
+water's loads, element by element).
 """
 
 from __future__ import annotations
@@ -38,8 +39,8 @@ from mf_envs._jit import kernel
 from mf_envs.physics.beam import fused
 from mf_envs.physics.beam.banded import HALF_BW, N_BAND
 from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
-from mf_envs.physics.serpentine.gait import gait_kappa_into
-from mf_envs.physics.serpentine.kernels import MAX_QUAD, PREDICTOR_RATIO, bending_work
+from mf_envs.physics.serpentine.kernels import MAX_QUAD, PREDICTOR_RATIO
+from mf_envs.physics.serpentine.stepping import make_stepping
 from mf_envs.physics.swimmer.fluid import (
     W_MA,
     W_RESISTIVE,
@@ -51,15 +52,17 @@ from mf_envs.physics.swimmer.fluid import (
 
 
 @kernel
-def _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
-              ke):  # fmt: skip
-    """buf[0] = -R(d) and ab = dR/dd (module docstring) at the iterate d but for the tail force:
-    the algorithmic force (`beam.fused.element_internal`, the start's strains in pre), the
-    water's momentum at (d, v) and Taylor's force at (d_th, v_th) element by element; p0 the
-    water's nodal momentum at the step's start; buf[1] = d - d0 - dt v0, v = v_{n+1},
-    buf[2:4] = d_th, v_th."""
+def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
+    """buf[0] = -R(d) and ab = dR/dd (module docstring) at the iterate d of `Body` body but for
+    the tail force: the algorithmic force (`beam.fused.element_internal`, the start's strains in
+    sc's pre), the water's momentum at (d, v) and Taylor's force at (d_th, v_th) element by
+    element; sc's p0 the water's nodal momentum at the step's start; buf[1] = d - d0 - dt v0,
+    v = v_{n+1}, buf[2:4] = d_th, v_th."""
+    quad, le = body.quad, body.le
+    th, th_s = body.th
+    nzt, npt, law = body.load
+    cm, e11, ke, pre, p0 = sc[10], sc[13], sc[14], sc[15], sc[16]
     qw, stiff, tab = quad[0], quad[1], quad[3]
-    nzt, npt, law = water
     r, x, dth, vth = buf[0], buf[1], buf[2], buf[3]
     db, dv, de, ve = e11[0], e11[1], e11[2], e11[3]
     fe = e11[4]
@@ -97,38 +100,35 @@ def _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf
 
 
 @numba.njit(cache=True, nogil=True)
-def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d, v, work, piv,
-                sc):  # fmt: skip
-    """One step from (d0, v0) with kappa# k0 -> k1 (module docstring); quad = (weights,
-    rigidities, dof scales, `beam.fused.quadrature_tables`); water = (nzt, npt, law)
-    (`fluid.shape_tables`, `Water.packed()`). d, v receive the result, from the predictor of
+def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
+    """One step from (d0, v0) with kappa# k0 -> k1 of `stepping.Body` body in the water (module
+    docstring); body.quad = (weights, rigidities, dof scales, `beam.fused.quadrature_tables`),
+    body.load = (nzt, npt, law) (`fluid.shape_tables`, `Water.packed()`), body.th = (theta of
+    the water force, theta of the stresses). d, v receive the result, from the predictor of
     `serpentine.kernels` (the constant-velocity configuration, or the start if its residual is
-    far smaller); th = (theta of the water force, theta of the stresses). Converged as the
-    serpentine's: a correction below tol, or, in the quadratic phase, the next one predicted
-    below tol / 1000 from the last two. work, piv: the band solver's scratch; sc: the Newton
-    arrays of `make_scratch` (no allocation here). Returns the Newton iterations, or -1 on
-    failure."""
-    nzt, npt, law = water
-    th, th_s = th
+    far smaller). Converged as the serpentine's: a correction below tol, or, in the quadratic
+    phase, the next one predicted below tol / 1000 from the last two. sc: `make_scratch` (no
+    allocation here). Returns the Newton iterations, or minus the iterations spent on failure."""
+    nzt, npt, law = body.load
+    th = body.th[0]
     m_a = law[W_MA]
     nd = d0.shape[0]
-    u_scale, tab = quad[2], quad[3]
-    ab, ab2, cm, buf, buf2, e11, ke, pre, p0 = sc
-    added_momentum(d0, v0, le, nzt, npt, m_a, p0, work, 0.0, 0.0)
-    fused.start_strains(d0, le, k0, tab, pre)
-    fused.scale_band(mass, 2.0 / (dt * dt), cm)
+    u_scale, tab, tol = body.quad[2], body.quad[3], body.tol
+    work, piv = sc[0], sc[1]
+    ab, ab2, cm, buf, buf2, pre, p0 = sc[8], sc[9], sc[10], sc[11], sc[12], sc[15], sc[16]
+    added_momentum(d0, v0, body.le, nzt, npt, m_a, p0, work, 0.0, 0.0)
+    fused.start_strains(d0, body.le, k0, tab, pre)
+    fused.scale_band(body.mass, 2.0 / (dt * dt), cm)
     # predictor (`serpentine.kernels`): the start d0 if its residual is below PREDICTOR_RATIO
     # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
     # iteration's
     for i in range(nd):
         d[i] = d0[i]
-    _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab, e11,
-              ke)  # fmt: skip
+    _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v)
     tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
     for i in range(nd):
         d[i] = d0[i] + dt * v0[i]
-    _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf2, v, ab2, e11,
-              ke)  # fmt: skip
+    _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v)
     tail_into(buf2[2], buf2[3], law, buf2[0], ab2, -th, -2.0 * th / dt)
     n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
     if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
@@ -138,17 +138,16 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
             d[i] = d0[i]
     r, x = buf[0], buf[1]
     back1 = np.inf
-    for it in range(1, max_iter + 1):
+    for it in range(1, body.max_iter + 1):
         if it > 1:
-            _residual(d0, v0, d, dt, th, th_s, le, cm, k0, k1, quad, water, p0, pre, buf, v, ab,
-                      e11, ke)  # fmt: skip
+            _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v)
             tail_into(buf[2], buf[3], law, r, ab, -th, -2.0 * th / dt)
         if fused.solve(ab, r, work, piv, x) != 0:
-            return -1
+            return -it
         step = 0.0
         for i in range(nd):
             if not np.isfinite(x[i]):
-                return -1
+                return -it
             d[i] += x[i]
             step = max(step, abs(x[i]) / u_scale[i])
         # converged: this correction below tol, or (quadratic phase) the next one predicted
@@ -159,23 +158,26 @@ def newton_step(d0, v0, k0, k1, dt, mass, le, quad, water, th, tol, max_iter, d,
                 v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
             return it
         back1 = step
-    return -1
+    return -body.max_iter
 
 
 def make_scratch(n_dof: int, n_elements: int) -> tuple:
-    """The scratch of `advance_linear` / `run` (with `newton_scratch`, the step allocates
-    nothing): the band solver's (work, pivots), kappa# at the sub-step ends (n_el, 4) x 2, the
-    states at the sub-step ends (n_dof) x 4, in the order `advance_linear` unpacks them."""
-    n_dof, n_elements = int(n_dof), int(n_elements)
-    return (
-        np.empty((n_dof, 3 * HALF_BW + 1)),
-        np.empty(n_dof, np.int64),
-        *(np.empty((n_elements, 4)) for _ in range(2)),
-        *(np.empty(n_dof) for _ in range(4)),
-    )
+    """The scratch of `advance_linear` / `run` (the step allocates nothing): the band solver's
+    (work, pivots), kappa# at the sub-step ends (n_el, 4) x 2, the states at the sub-step ends
+    (n_dof) x 4 (the order `serpentine.stepping` unpacks), then `newton_scratch`'s."""
+    return _scratch(int(n_dof), int(n_elements))
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
+def _scratch(n_dof, n_elements):
+    ab, ab2, cm, buf, buf2, e11, ke, pre, p0 = newton_scratch(n_dof, n_elements)
+    return (np.empty((n_dof, 3 * HALF_BW + 1)), np.empty(n_dof, np.int64),
+            np.empty((n_elements, 4)), np.empty((n_elements, 4)), np.empty(n_dof),
+            np.empty(n_dof), np.empty(n_dof), np.empty(n_dof), ab, ab2, cm, buf, buf2, e11,
+            ke, pre, p0)  # fmt: skip
+
+
+@numba.njit(cache=True, nogil=True)
 def newton_scratch(n_dof, n_elements):
     """`newton_step`'s arrays (no state: one set serves every row and step): two tangent bands
     and the inertia's, two sets of Newton vectors, the element vectors and matrix, the start's
@@ -193,97 +195,5 @@ def newton_scratch(n_dof, n_elements):
     )
 
 
-@numba.njit(cache=True, nogil=True)
-def advance_linear(
-    d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter, max_halvings, scratch, ei, out,
-    newton,
-):  # fmt: skip
-    """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4),
-    splitting the step into 2, 4, ... sub-steps on Newton failure. Returns the Newton iterations,
-    or -1 (d, v untouched). out[0] += the muscles' positive work [J], out[1] += their signed
-    work (`serpentine.kernels.advance_linear`: -int sigma_3 (k1 - k0) dS per sub-step;
-    ei = EI [N m^2]); newton: `newton_scratch`."""
-    work, piv, k0, k1, d0, v0, d1, v1 = scratch
-    ne, ng = ka.shape
-    for level in range(max_halvings + 1):
-        n_sub = 2**level
-        h = dt / n_sub
-        for i in range(d.shape[0]):
-            d0[i] = d[i]
-            v0[i] = v[i]
-        total, pos, signed = 0, 0.0, 0.0
-        ok = True
-        for k in range(n_sub):
-            s0, s1 = k / n_sub, (k + 1) / n_sub
-            for e in range(ne):
-                for g in range(ng):
-                    k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
-                    k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
-            its = newton_step(
-                d0,
-                v0,
-                k0,
-                k1,
-                h,
-                mass,
-                le,
-                quad,
-                water,
-                th,
-                tol,
-                max_iter,
-                d1,
-                v1,
-                work,
-                piv,
-                newton,
-            )
-            if its < 0:
-                ok = False
-                break
-            total += its
-            w = -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
-            pos += max(w, 0.0)
-            signed += w
-            for i in range(d.shape[0]):
-                d0[i] = d1[i]
-                v0[i] = v1[i]
-        if ok:
-            for i in range(d.shape[0]):
-                d[i] = d0[i]
-                v[i] = v0[i]
-            out[0] += pos
-            out[1] += signed
-            return total
-    return -1
-
-
-@numba.njit(cache=True)
-def run(d, v, dt, n_steps, every, mass, le, quad, water, gait, th, tol, max_iter, max_halvings,
-        scratch, ei, d_out, v_out, work_out):  # fmt: skip
-    """n_steps steps of dt from (d, v) at t = 0 in place under the wave gait (a, phi, w, t_ramp)
-    (`serpentine.gait`, kappa# exact at each step's ends, linear between); every `every` steps
-    (and at the start) the state goes to rows of d_out, v_out, the muscles' (positive, signed)
-    work so far to work_out. Returns (Newton iterations, index of the failed step or -1)."""
-    a_gp, phi_gp, w, t_ramp = gait
-    ka = np.empty(a_gp.shape)
-    kb = np.empty(a_gp.shape)
-    acc = np.zeros(2)
-    newton = newton_scratch(d.shape[0], le.shape[0])
-    total, j = 0, 0
-    d_out[0] = d
-    v_out[0] = v
-    for n in range(n_steps):
-        gait_kappa_into(a_gp, phi_gp, w, t_ramp, n * dt, ka)
-        gait_kappa_into(a_gp, phi_gp, w, t_ramp, (n + 1) * dt, kb)
-        its = advance_linear(d, v, ka, kb, dt, mass, le, quad, water, th, tol, max_iter,
-                             max_halvings, scratch, ei, acc, newton)  # fmt: skip
-        if its < 0:
-            return total, n
-        total += its
-        if (n + 1) % every == 0 and j + 1 < d_out.shape[0]:
-            j += 1
-            d_out[j] = d
-            v_out[j] = v
-            work_out[j] = acc
-    return total, -1
+# the step split on Newton failure (with the muscles' work) and the run under a wave gait
+advance_linear, run = make_stepping(newton_step)

@@ -21,8 +21,9 @@ from mf_envs._validate import check_int, check_positive, check_range
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.beam.solver import BeamModel, BeamParams, NewtonDivergence
-from mf_envs.physics.serpentine.gait import WaveGait
+from mf_envs.physics.serpentine.gait import WaveGait, gait_for, gait_tables
 from mf_envs.physics.serpentine.model import SnakeHistory
+from mf_envs.physics.serpentine.stepping import Body
 from mf_envs.physics.swimmer import kernels
 from mf_envs.physics.swimmer.fluid import Water, added_momentum, assemble_water, shape_tables
 
@@ -36,14 +37,7 @@ class Swimmer:
             raise ValueError("mass_per_length: a swimming body needs mass, got 0")
         self.model = BeamModel(params)
         self.water = water if water is not None else Water()
-        shape = self.model.gauss_S.shape
-        if gait is None:
-            gait = WaveGait(np.zeros(shape), np.zeros(shape), 0.0)
-        if np.shape(gait.amplitude) != shape:
-            raise ValueError(
-                f"gait: tabulated on {np.shape(gait.amplitude)}, the beam needs {shape}"
-            )
-        self.gait = gait
+        self.gait = gait_for(gait, self.model.gauss_S.shape)
         self.tables = shape_tables(self.model.le)
         qxi, qw, stiff = self.model.quad
         tab = quadrature_tables(self.model.le, qxi)
@@ -94,14 +88,11 @@ class Swimmer:
         rows = n_steps // every + 1
         d_out, v_out = np.zeros((rows, m.n_dof)), np.zeros((rows, m.n_dof))
         work_out = np.zeros((rows, 2))
-        g = self.gait
-        gait = (np.ascontiguousarray(g.amplitude, float), np.ascontiguousarray(g.phase, float),
-                float(g.omega), float(g.ramp_time))  # fmt: skip
-        its, failed = kernels.run(
-            d, v, float(dt), n_steps, every, m.mass, m.le, self.quad, self.packed,
-            gait, (float(theta), float(stress_theta)), float(tol), int(max_iter), int(max_halvings),
-            kernels.make_scratch(m.n_dof, m.n_elements), m.params.EI, d_out, v_out, work_out,
-        )  # fmt: skip
+        body = Body(m.mass, m.le, self.quad, self.packed, (float(theta), float(stress_theta)),
+                    float(tol), int(max_iter), int(max_halvings), m.params.EI, 0.0)  # fmt: skip
+        its, failed = kernels.run(d, v, float(dt), n_steps, every, body, gait_tables(self.gait),
+                                  kernels.make_scratch(m.n_dof, m.n_elements), d_out, v_out,
+                                  work_out)  # fmt: skip
         if failed >= 0:
             raise NewtonDivergence(
                 f"dt: Newton failed at step {failed} (t = {failed * dt:.6g} s) even after "
