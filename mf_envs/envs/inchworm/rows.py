@@ -78,6 +78,47 @@ def observe_row(
 
 
 @numba.njit(cache=True, nogil=True)
+def _command(action, n, max_curv, switching, cmd, duty, grip):
+    """Row action (n [+ 1]) in [-1, 1] as `InchwormEnv.step` scales it: duty (n,) in [0, 1],
+    the commanded kappa# cmd = -max_curv x duty [1/m] and the feet's grip (2,) (both unless the
+    anchor switches: then the head grips if the last action is positive); returns that."""
+    for k in range(n):
+        duty[k] = 0.5 * (action[k] + 1.0)
+        cmd[k] = -max_curv * 0.5 * (action[k] + 1.0)
+    grip[0], grip[1] = 1.0, 1.0
+    if not switching:
+        return True
+    grips_head = action[n] > 0.0
+    grip[0] = 0.0 if grips_head else 1.0
+    grip[1] = 1.0 if grips_head else 0.0
+    return grips_head
+
+
+@numba.njit(cache=True, nogil=True)
+def _recenter(d, xo, i, length):
+    """`Inchworm._recenter`: row i's local origin follows the tail once it is a body length
+    away (the x dofs shifted, xo[i] moved by as much)."""
+    shift = d[0]
+    if abs(shift) > length:
+        for j in range(0, d.shape[0], 6):
+            d[j] -= shift
+        xo[i] += shift
+
+
+@numba.njit(cache=True, nogil=True)
+def _finish_row(i, d, xo, kc_i, second, head_i, cfg, vec_i, ab_i, out):
+    """Row i after its step (cfg, out as `step_rows`): kappa# at the Gauss points from the
+    realised kc_i, the elastic energy, the observation (`second`: the block after the
+    curvatures, the command or the wires' temperatures) and the centreline."""
+    s_ctrl, gauss_s, f_ext, bc, geo, scales, xis = cfg[6:13]
+    energy, line, kg, obs = out[4], out[5], out[6], out[3]
+    kg[i] = np.interp(gauss_s.ravel(), s_ctrl, kc_i).reshape(gauss_s.shape)
+    energy[i] = el.assemble_into(d, bc[0], kg[i], bc[1], bc[2], bc[3], False, vec_i[0], ab_i)
+    observe_row(d, xo[i], kg[i], second, head_i, np.zeros(2), True, geo, f_ext, scales, obs[i])
+    fields.centerline_into(d, xo[i], bc[0], xis, line[i])
+
+
+@numba.njit(cache=True, nogil=True)
 def step_rows(lo, hi, active, actions, state, work, cfg, out):
     """Advance the active rows among lo..hi - 1 one control step (releases the GIL: blocks of
     rows run on threads, `envs._rows.RowBlocks`).
@@ -92,23 +133,14 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
     kappa# at the Gauss points (N, n_el, 4))."""
     d_all, xo, lag, kc, g, slip, cmd_all, head = state
     vec, ab, wk, piv, kap = work
-    switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc, geo, scales, xis = cfg
-    status, rep, before, obs, energy, line, kg = out
+    switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc = cfg[:10]
+    status, rep, before = out[0], out[1], out[2]
     n = cmd_all.shape[1]
-    nd = d_all.shape[1]
-    length = scales[0]
+    cmd, duty, grip = np.empty(n), np.empty(n), np.empty(2)
     for i in range(lo, hi):
         if not active[i]:
             continue
-        cmd = np.empty(n)
-        for k in range(n):
-            cmd[k] = -max_curv * 0.5 * (actions[i, k] + 1.0)
-        grip = np.ones(2)
-        grips_head = True
-        if switching:
-            grips_head = actions[i, n] > 0.0
-            grip[0] = 0.0 if grips_head else 1.0
-            grip[1] = 1.0 if grips_head else 0.0
+        grips_head = _command(actions[i], n, max_curv, switching, cmd, duty, grip)
         d = d_all[i]
         before[i, 0] = xo[i]
         before[i, 1] = d[0]
@@ -121,18 +153,8 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
         if st == ss.OK:
             cmd_all[i] = cmd
             head[i] = grips_head
-            shift = d[0]
-            if abs(shift) > length:
-                for j in range(0, nd, 6):
-                    d[j] -= shift
-                xo[i] += shift
-        kg[i] = np.interp(gauss_s.ravel(), s_ctrl, kc[i]).reshape(gauss_s.shape)
-        le = bc[0]
-        energy[i] = el.assemble_into(d, le, kg[i], bc[1], bc[2], bc[3], False, vec[i][0], ab[i])
-        observe_row(
-            d, xo[i], kg[i], cmd_all[i], head[i], np.zeros(2), True, geo, f_ext, scales, obs[i],
-        )  # fmt: skip
-        fields.centerline_into(d, xo[i], le, xis, line[i])
+            _recenter(d, xo, i, cfg[11][0])
+        _finish_row(i, d, xo, kc[i], cmd_all[i], head[i], cfg, vec[i], ab[i], out)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -149,26 +171,16 @@ def step_rows_grip(lo, hi, active, actions, state, work, cfg, out):
     tail, local x of the head), obs, elastic energy, centerline, kappa# at the Gauss points)."""
     d_all, xo, lag, kc, ft, sma, cmd_all, head, duty_all = state
     vec, ab, wk, piv, kap = work
-    (switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc, geo, scales, xis,
-     is_sma, tobs) = cfg  # fmt: skip
-    status, rep, before, obs, energy, line, kg = out
+    switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc = cfg[:10]
+    is_sma, tobs = cfg[13], cfg[14]
+    status, rep, before = out[0], out[1], out[2]
     n = cmd_all.shape[1]
     nd = d_all.shape[1]
-    length = scales[0]
+    cmd, duty, grip, second = np.empty(n), np.empty(n), np.empty(2), np.empty(n)
     for i in range(lo, hi):
         if not active[i]:
             continue
-        cmd = np.empty(n)
-        duty = np.empty(n)
-        for k in range(n):
-            duty[k] = 0.5 * (actions[i, k] + 1.0)
-            cmd[k] = -max_curv * 0.5 * (actions[i, k] + 1.0)
-        grip = np.ones(2)
-        grips_head = True
-        if switching:
-            grips_head = actions[i, n] > 0.0
-            grip[0] = 0.0 if grips_head else 1.0
-            grip[1] = 1.0 if grips_head else 0.0
+        grips_head = _command(actions[i], n, max_curv, switching, cmd, duty, grip)
         d = d_all[i]
         before[i, 0] = xo[i]
         before[i, 1] = d[0]
@@ -183,21 +195,10 @@ def step_rows_grip(lo, hi, active, actions, state, work, cfg, out):
             cmd_all[i] = cmd
             duty_all[i] = duty
             head[i] = grips_head
-            shift = d[0]
-            if abs(shift) > length:
-                for j in range(0, nd, 6):
-                    d[j] -= shift
-                xo[i] += shift
-        kg[i] = np.interp(gauss_s.ravel(), s_ctrl, kc[i]).reshape(gauss_s.shape)
-        le = bc[0]
-        energy[i] = el.assemble_into(d, le, kg[i], bc[1], bc[2], bc[3], False, vec[i][0], ab[i])
-        second = np.empty(n)
+            _recenter(d, xo, i, cfg[11][0])
         for k in range(n):
             if is_sma:
                 second[k] = min(max((sma[i, 0, k] - tobs[0]) / tobs[1], -tobs[2]), tobs[2])
             else:
                 second[k] = cmd_all[i, k]
-        observe_row(
-            d, xo[i], kg[i], second, head[i], np.zeros(2), True, geo, f_ext, scales, obs[i],
-        )  # fmt: skip
-        fields.centerline_into(d, xo[i], le, xis, line[i])
+        _finish_row(i, d, xo, kc[i], second, head[i], cfg, vec[i], ab[i], out)

@@ -56,7 +56,7 @@ class InchwormVectorEnv(BatchedVectorEnv):
         return self._cfg_of(env)
 
     def _shared(self, env: Any) -> tuple[Any, ...]:
-        """The step's template values (`_step_batch`, `_step_grip`, `_finish_info`; the feet's
+        """The step's template values (`_step_batch`, `_step_grip`, `_finish`; the feet's
         friction is each row's: `_cfg_of`, `_mu_of`)."""
         d = env.driven
         return (*super()._shared(env), env.n_ctrl, env.sma, env.switching, env.params.length,
@@ -122,45 +122,23 @@ class InchwormVectorEnv(BatchedVectorEnv):
         # each row's mass per length (N, 1), for `spec.quasi_static_error`
         self._qs = SimpleNamespace(mass_per_length=np.full((n, 1), env.params.mass_per_length),
                                    length=env.params.length)  # fmt: skip
-        if self._grip:
-            self._alloc_grip(n)
-            return
         driven, model = env.driven, env.sim.model
         nd, nc, ne = model.n_dof, env.n_ctrl, model.n_elements
-        self._state = (
-            np.zeros((n, nd)), np.zeros(n), np.zeros((n, nc)), np.zeros((n, nc)),
-            np.zeros((n, 2)), np.zeros((n, 2), np.int64), np.zeros((n, nc)), np.ones(n, bool),
-        )  # fmt: skip
-        sc = driven.feet.scratch
-        self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in sc)
+        z = np.zeros
+        if self._grip:  # feet (N, 4), SMA state (N, 5, n), ..., duty (N, n)
+            feet, extra = (z((n, 4)), z((n, 5, nc))), (z((n, nc)),)
+            sc, n_rep, n_before = driven.grip_scratch, qs.N_GRIP_REPORT, 3
+        else:  # engagement (N, 2), slipping (N, 2)
+            feet, extra = (z((n, 2)), z((n, 2), np.int64)), ()
+            sc, n_rep, n_before = driven.feet.scratch, ss.N_REPORT, 2
+        self._state = (z((n, nd)), z(n), z((n, nc)), z((n, nc)), *feet, z((n, nc)),
+                       np.ones(n, bool), *extra)  # fmt: skip
+        self._work = tuple(z((n, *a.shape), a.dtype) for a in sc)
         self._cfg = self._cfg_of(env)
         n_pts = CENTERLINE_PER_ELEMENT * ne + 1
         self._out = (
-            np.zeros(n, np.int64), np.zeros((n, ss.N_REPORT)), np.zeros((n, 2)),
-            np.zeros((n, 2 * nc + 6), np.float32), np.zeros(n), np.zeros((n, n_pts, 2)),
-            np.zeros((n, ne, 4)),
-        )  # fmt: skip
-        self._steps = np.zeros(n, np.int64)
-        self._lo = self.single_observation_space.low
-        self._hi = self.single_observation_space.high
-
-    def _alloc_grip(self, n: int) -> None:
-        env = self.template
-        driven, model = env.driven, env.sim.model
-        nd, nc, ne = model.n_dof, env.n_ctrl, model.n_elements
-        self._state = (
-            np.zeros((n, nd)), np.zeros(n), np.zeros((n, nc)), np.zeros((n, nc)),
-            np.zeros((n, 4)), np.zeros((n, 5, nc)), np.zeros((n, nc)), np.ones(n, bool),
-            np.zeros((n, nc)),
-        )  # fmt: skip
-        sc = driven.grip_scratch
-        self._work = tuple(np.zeros((n, *a.shape), a.dtype) for a in sc)
-        self._cfg = self._cfg_of(env)
-        n_pts = CENTERLINE_PER_ELEMENT * ne + 1
-        self._out = (
-            np.zeros(n, np.int64), np.zeros((n, qs.N_GRIP_REPORT)), np.zeros((n, 3)),
-            np.zeros((n, 2 * nc + 6), np.float32), np.zeros(n), np.zeros((n, n_pts, 2)),
-            np.zeros((n, ne, 4)),
+            z(n, np.int64), z((n, n_rep)), z((n, n_before)), z((n, 2 * nc + 6), np.float32),
+            z(n), z((n, n_pts, 2)), z((n, ne, 4)),
         )  # fmt: skip
         self._steps = np.zeros(n, np.int64)
         self._lo = self.single_observation_space.low
@@ -196,80 +174,103 @@ class InchwormVectorEnv(BatchedVectorEnv):
         return int(sum(a.nbytes for a in arrays))
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
-        if self._grip:
-            return self._step_grip(actions, active)
         env = self.template
-        status, rep, before, obs, energy_el, line, _ = self._out
-        status[~active] = ss.OK
-        d, xo, _, kc, g, _, cmd, head = self._state
+        status, rep = self._out[0], self._out[1]
+        status[~active] = ss.OK  # = gf.OK
+        d, xo = self._state[0], self._state[1]
         nd = d.shape[1]
         feet_old = np.stack([xo + d[:, 0], xo + d[:, nd - 5]], axis=1)
-        self._run_rows_of(step_rows, 4, active, actions, self._state, self._work, self._cfg,
+        kernel = step_rows_grip if self._grip else step_rows
+        self._run_rows_of(kernel, 4, active, actions, self._state, self._work, self._cfg,
                           self._out)  # fmt: skip
         self._steps[active] += 1
         ok = status == ss.OK
+        if self._grip:
+            return self._step_grip(ok, active, feet_old)
         upd = ok & active
         self._duty[upd] = 0.5 * (actions[upd, : env.n_ctrl] + 1.0)
-        eff = env.driven.meter.efficiency
-        energy = np.where(ok, rep[:, ss.REP_POS] / eff, 0.0)
-        advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
-        progress = advance / env.params.length
-        effort = -self._effort * energy
-        reward = progress + effort
+        energy = np.where(ok, rep[:, ss.REP_POS] / env.driven.meter.efficiency, 0.0)
+        grip = self._state[4]
+        slip = rep[:, ss.REP_SLIP : ss.REP_SLIP + 2]
+        info = self._step_info(ok, energy, rep[:, ss.REP_NET], grip, slip, rep[:, ss.REP_ITER],
+                               rep[:, ss.REP_INC])  # fmt: skip
+        mu4 = self._mu.T[:, :, None]  # (4, N, 1): each row's coefficients
+        normal = rep[:, ss.REP_N : ss.REP_N + 2]
+        limit = spec.holding_capacity(mu4, grip, rep[:, ss.REP_GX : ss.REP_GX + 2], normal)
+        mech = np.where(ok, rep[:, ss.REP_POS], 0.0)
+        return self._finish(info, np.zeros(self.num_envs), mech, None, feet_old, limit, ok,
+                            active)  # fmt: skip
+
+    def _step_grip(self, ok: np.ndarray, active: np.ndarray, feet_old: np.ndarray) -> tuple:
+        """`_step_batch`'s end on gripping feet (`rows.step_rows_grip`)."""
+        env, rep = self.template, self._out[1]
+        ft, sma = self._state[4], self._state[5]
+        if env.sma:
+            energy = np.where(ok, rep[:, qs.REP_ELEC], 0.0)
+        else:
+            energy = np.where(ok, rep[:, qs.REP_A2POS] / env.driven.meter.efficiency, 0.0)
+        info = self._step_info(ok, energy, rep[:, qs.REP_A2NET], ft[:, :2],
+                               rep[:, gf.REP_SLIP : gf.REP_SLIP + 2], rep[:, gf.REP_ITER],
+                               rep[:, qs.REP_SUBSTEPS])  # fmt: skip
+        normal = rep[:, gf.REP_N : gf.REP_N + 2]
+        limit = spec.grip_capacity(self._law, ft[:, :2], normal)
+        temperature = sma[:, 0, :].copy() if env.sma else None
+        electrical = energy if env.sma else np.zeros(self.num_envs)
+        mechanical = np.where(ok, rep[:, qs.REP_WIRE], 0.0)
+        return self._finish(info, electrical, mechanical, temperature, feet_old, limit, ok,
+                            active)  # fmt: skip
+
+    def _step_info(self, ok, energy, net, grip, slip, its, incs) -> dict[str, Any]:
+        """The info keys both feet share (`spec.INFO_KEYS`; ok (N,) the rows that stepped):
+        energy (N,) J the actuation energy, net the actuators' net work [J], grip (N, 2),
+        slip (N, 2) m, its and incs the Newton iterations and increments of each row."""
+        env = self.template
+        d, xo, kc, cmd, head = (self._state[k] for k in (0, 1, 3, 6, 7))
         nd = d.shape[1]
-        info: dict[str, Any] = {
+        return {
             "x_head": xo + d[:, nd - 5],
             "x_tail": xo + d[:, 0],
-            "centerline": line.copy(),
+            "centerline": self._out[5].copy(),
             "anchor": np.array(["head" if h else "tail" for h in head], dtype=object),
             "kappa_sharp": kc.copy(),
             "kappa_command": cmd.copy(),
-            "actuation_power": np.where(ok, rep[:, ss.REP_NET] / env.control_dt, 0.0),
+            "actuation_power": np.where(ok, net / env.control_dt, 0.0),
             "actuation_energy": energy,
-            "grip": g.copy(),
-            "foot_slip": np.where(ok[:, None], rep[:, ss.REP_SLIP : ss.REP_SLIP + 2], 0.0),
-            "elastic_energy": energy_el.copy(),
-            "newton_iterations": np.where(ok, rep[:, ss.REP_ITER], 0).astype(np.int64),
-            "increments": np.where(ok, rep[:, ss.REP_INC], 0).astype(np.int64),
+            "grip": grip.copy(),
+            "foot_slip": np.where(ok[:, None], slip, 0.0),
+            "elastic_energy": self._out[4].copy(),
+            "newton_iterations": np.where(ok, its, 0).astype(np.int64),
+            "increments": np.where(ok, incs, 0).astype(np.int64),
             "time": self._steps * env.control_dt,
         }
-        mu4 = self._mu.T[:, :, None]  # (4, N, 1): each row's coefficients
-        normal = rep[:, ss.REP_N : ss.REP_N + 2]
-        limit = spec.holding_capacity(mu4, g, rep[:, ss.REP_GX : ss.REP_GX + 2], normal)
-        mech = np.where(ok, rep[:, ss.REP_POS], 0.0)
-        self._finish_info(info, np.zeros(self.num_envs), mech, None,
-                          cmd, feet_old, limit, ok, active, progress, effort)  # fmt: skip
-        return self._finish_batch(obs, reward, info, ok, active)
 
-    def _finish_info(self, info, electrical, mechanical, temperature, cmd, feet_old, limit, ok,
-                     active, progress, effort) -> None:  # fmt: skip
-        """The SMA robot's info keys (`spec.INFO_KEYS`) and the reward terms."""
-        env = self.template
-        n = self.num_envs
+    def _finish(self, info, electrical, mechanical, temperature, feet_old, limit, ok,
+                active) -> tuple[Any, ...]:  # fmt: skip
+        """The step's rewards, the SMA robot's info keys (`spec.INFO_KEYS`), the reward terms
+        and the failure contract."""
+        env, n = self.template, self.num_envs
+        d, xo, before = self._state[0], self._state[1], self._out[2]
+        advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
+        progress = advance / env.params.length
+        effort = -self._effort * info["actuation_energy"]
+        reward = progress + effort
         info["electrical_energy"] = electrical
         info["mechanical_work"] = mechanical
         if temperature is None:
             temperature = np.full((n, env.n_ctrl), env.scene.ambient)
         info["wire_temperature"] = temperature
-        info["duty"] = self._duty_now(cmd)
+        info["duty"] = self._state[8].copy() if self._grip else self._duty.copy()
         feet_new = np.stack([info["x_tail"], info["x_head"]], axis=1)
         dx = np.where(ok[:, None], feet_new - feet_old, 0.0)
         qse = spec.quasi_static_error(dx, self._foot_dx, env.control_dt, self._qs, limit)
         info["quasi_static_error"] = np.where(ok, qse, 0.0)
         self._foot_dx = np.where(active[:, None], dx, self._foot_dx)
         info["reward_terms"] = {"progress": progress, "effort": effort}
-
-    def _duty_now(self, cmd: np.ndarray) -> np.ndarray:
-        if self._grip:
-            return self._state[8].copy()
-        return self._duty.copy()
-
-    def _finish_batch(self, obs, reward, info, ok, active) -> tuple[Any, ...]:
-        env = self.template
+        obs = self._out[3]
         finite = ok & np.isfinite(obs).all(axis=1) & np.isfinite(reward)
         info["numerical_failure"] = ~finite
         for key in list(info):
-            info[f"_{key}"] = np.ones(self.num_envs, bool)
+            info[f"_{key}"] = np.ones(n, bool)
         info["reward_terms"].update(_progress=np.ones_like(ok), _effort=np.ones_like(ok))
         obs_out = np.clip(obs, self._lo, self._hi)
         term = ~finite & active
@@ -277,49 +278,3 @@ class InchwormVectorEnv(BatchedVectorEnv):
         reward[term] = 0.0
         trunc = self._steps >= env.max_steps
         return obs_out, reward, term, trunc, info
-
-    def _step_grip(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
-        """`_step_batch` on gripping feet (`rows.step_rows_grip`)."""
-        env = self.template
-        status, rep, before, obs, energy_el, line, _ = self._out
-        status[~active] = gf.OK
-        d, xo, _, kc, ft, sma, cmd, head, duty = self._state
-        nd = d.shape[1]
-        feet_old = np.stack([xo + d[:, 0], xo + d[:, nd - 5]], axis=1)
-        self._run_rows_of(
-            step_rows_grip, 4, active, actions, self._state, self._work, self._cfg, self._out
-        )
-        self._steps[active] += 1
-        ok = status == gf.OK
-        if env.sma:
-            energy = np.where(ok, rep[:, qs.REP_ELEC], 0.0)
-        else:
-            energy = np.where(ok, rep[:, qs.REP_A2POS] / env.driven.meter.efficiency, 0.0)
-        advance = (d[:, 0] - before[:, 1]) + (xo - before[:, 0])
-        progress = advance / env.params.length
-        effort = -self._effort * energy
-        reward = progress + effort
-        info: dict[str, Any] = {
-            "x_head": xo + d[:, nd - 5],
-            "x_tail": xo + d[:, 0],
-            "centerline": line.copy(),
-            "anchor": np.array(["head" if h else "tail" for h in head], dtype=object),
-            "kappa_sharp": kc.copy(),
-            "kappa_command": cmd.copy(),
-            "actuation_power": np.where(ok, rep[:, qs.REP_A2NET] / env.control_dt, 0.0),
-            "actuation_energy": energy,
-            "grip": ft[:, :2].copy(),
-            "foot_slip": np.where(ok[:, None], rep[:, gf.REP_SLIP : gf.REP_SLIP + 2], 0.0),
-            "elastic_energy": energy_el.copy(),
-            "newton_iterations": np.where(ok, rep[:, gf.REP_ITER], 0).astype(np.int64),
-            "increments": np.where(ok, rep[:, qs.REP_SUBSTEPS], 0).astype(np.int64),
-            "time": self._steps * env.control_dt,
-        }
-        normal = rep[:, gf.REP_N : gf.REP_N + 2]
-        limit = spec.grip_capacity(self._law, ft[:, :2], normal)
-        temperature = sma[:, 0, :].copy() if env.sma else None
-        electrical = energy if env.sma else np.zeros(self.num_envs)
-        mechanical = np.where(ok, rep[:, qs.REP_WIRE], 0.0)
-        self._finish_info(info, electrical, mechanical, temperature, cmd, feet_old, limit, ok,
-                          active, progress, effort)  # fmt: skip
-        return self._finish_batch(obs, reward, info, ok, active)
