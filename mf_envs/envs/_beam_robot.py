@@ -15,12 +15,12 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs._beam_rows import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
 from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.serpentine import spec
 from mf_envs.envs.serpentine.build import initial_dofs
 from mf_envs.physics.beam.solver import BeamModel
 
-REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
 MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 

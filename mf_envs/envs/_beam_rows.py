@@ -15,7 +15,8 @@ from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.stepping import Body
 
 # report of a step: ok (1/0), actuation energy [J], Newton iterations, com before (x, y) [m],
-# the muscles' signed (net) work [J] (`_beam_robot.REP_*`)
+# the muscles' signed (net) work [J]
+REP_OK, REP_ENERGY, REP_ITER, REP_X0, REP_Y0, REP_NET = range(6)
 N_REPORT = 6
 # the Newton settings: the step test |dd| / u_scale < 1e-6 (or the next correction predicted
 # below 1e-9 in the quadratic phase) leaves ~1e-9; at most 2^6 sub-steps
@@ -85,3 +86,19 @@ def to_gauss(interp, c0, c1, k0, k1):
                 a += interp[4 * e + g, j] * c0[j]
                 b += interp[4 * e + g, j] * c1[j]
             k0[e, g], k1[e, g] = a, b
+
+
+@numba.njit(cache=True, nogil=True)
+def open_report(d, v, cfg, body, rep, acc):
+    """The start of a control step: the body state (`body_state`) into body (5,), the centre of
+    mass before it into the report, the work sums acc (2,) zeroed."""
+    body_state(d, v, cfg.body.le, cfg.nz, cfg.npsi, body)
+    rep[REP_X0], rep[REP_Y0] = body[0], body[1]
+    acc[0], acc[1] = 0.0, 0.0
+
+
+@numba.njit(cache=True, nogil=True)
+def close_report(rep, ok, acc, total):
+    """The end of a control step: ok (1/0), the muscles' positive and signed work acc (2,) [J]
+    and the Newton iterations into the report."""
+    rep[REP_OK], rep[REP_ENERGY], rep[REP_ITER], rep[REP_NET] = ok, acc[0], total, acc[1]

@@ -152,6 +152,24 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         """Advance the active rows: (obs, reward, terminated, truncated, info)."""
 
+    def _close_rows(self, obs, reward, finite, active, info, max_steps) -> tuple[Any, ...]:
+        """The end of `_step_batch` for envs whose rows report finiteness (the beam robots):
+        `MFEnv._finish_step`'s contract row by row (a row not finite, of the active ones, keeps
+        its last observation, scores 0 and terminates; the others' observations are clipped to
+        the bounds), every info key present in every row, truncation after max_steps steps."""
+        n = self.num_envs
+        info["numerical_failure"] = ~finite
+        for key in list(info):
+            info[f"_{key}"] = np.ones(n, bool)
+        terms = info["reward_terms"]
+        terms.update({f"_{key}": np.ones(n, bool) for key in list(terms)})
+        space = self.single_observation_space
+        obs_out = np.clip(obs, space.low, space.high)
+        term = ~finite & active
+        obs_out[term] = self._obs[term]  # last finite obs, reward 0, terminated
+        reward[term] = 0.0
+        return obs_out, reward, term, self._steps >= max_steps, info
+
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
         """Optional fast path: reset rows `idx` (no seed, no options) in one compiled call and
         return their batched reset infos (masks True on idx only), drawing from each row's

@@ -24,8 +24,14 @@ from collections import namedtuple
 import numba
 import numpy as np
 
-from mf_envs.envs._beam_robot import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
-from mf_envs.envs._beam_rows import N_REPORT, body_state, pack_cfg, to_gauss  # noqa: F401
+from mf_envs.envs._beam_rows import (  # noqa: F401 (N_REPORT re-exported)
+    N_REPORT,
+    body_state,
+    close_report,
+    open_report,
+    pack_cfg,
+    to_gauss,
+)
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.swimmer.fluid import shape_tables
@@ -127,10 +133,8 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
         change = new[j] - cmd[j]
         new[j] = cmd[j] + min(max(change, -max_change), max_change)
     to_gauss(cfg.interp, cmd, new, k_old, k_new)
-    body_state(d, v, cfg.body.le, cfg.nz, cfg.npsi, body)
-    rep[REP_X0], rep[REP_Y0] = body[0], body[1]
+    open_report(d, v, cfg, body, rep, acc)
     total, ok = 0, 1.0
-    acc[0], acc[1] = 0.0, 0.0
     for s in range(n_sub):
         for e in range(ne):
             for g in range(4):
@@ -143,7 +147,7 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
             break
     for j in range(n):
         cmd[j] = new[j]
-    rep[REP_OK], rep[REP_ENERGY], rep[REP_ITER], rep[REP_NET] = ok, acc[0], total, acc[1]
+    close_report(rep, ok, acc, total)
     observe_row(d, v, cmd, cfg, body, obs)
 
 

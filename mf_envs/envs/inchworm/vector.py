@@ -141,8 +141,6 @@ class InchwormVectorEnv(BatchedVectorEnv):
             z(n), z((n, n_pts, 2)), z((n, ne, 4)),
         )  # fmt: skip
         self._steps = np.zeros(n, np.int64)
-        self._lo = self.single_observation_space.low
-        self._hi = self.single_observation_space.high
 
     def _load(self, i: int) -> None:
         env = self.template
@@ -268,13 +266,4 @@ class InchwormVectorEnv(BatchedVectorEnv):
         info["reward_terms"] = {"progress": progress, "effort": effort}
         obs = self._out[3]
         finite = ok & np.isfinite(obs).all(axis=1) & np.isfinite(reward)
-        info["numerical_failure"] = ~finite
-        for key in list(info):
-            info[f"_{key}"] = np.ones(n, bool)
-        info["reward_terms"].update(_progress=np.ones_like(ok), _effort=np.ones_like(ok))
-        obs_out = np.clip(obs, self._lo, self._hi)
-        term = ~finite & active
-        obs_out[term] = self._obs[term]  # last finite obs, reward 0, terminated
-        reward[term] = 0.0
-        trunc = self._steps >= env.max_steps
-        return obs_out, reward, term, trunc, info
+        return self._close_rows(obs, reward, finite, active, info, env.max_steps)

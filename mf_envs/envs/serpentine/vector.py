@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from mf_envs.envs import _beam_rows as br
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.serpentine import rows, spec
 from mf_envs.envs.serpentine.env import SerpentineEnv
@@ -59,10 +60,8 @@ class SerpentineVectorEnv(BatchedVectorEnv):
         self._cmd = np.zeros((n, nc))
         self._body = np.zeros((n, 5))
         self._fresh = np.zeros((n, env.obs_layout.size), np.float32)
-        self._rep = np.zeros((n, rows.N_REPORT))
+        self._rep = np.zeros((n, br.N_REPORT))
         self._steps = np.zeros(n, np.int64)
-        self._lo = self.single_observation_space.low
-        self._hi = self.single_observation_space.high
 
     def _load(self, i: int) -> None:
         env = self.template
@@ -92,32 +91,22 @@ class SerpentineVectorEnv(BatchedVectorEnv):
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
         env, rep, body, obs = self.template, self._rep, self._body, self._fresh
-        rep[~active, rows.REP_OK] = 1.0
+        rep[~active, br.REP_OK] = 1.0
         self._run_rows(actions, active)
         self._steps[active] += 1
         c, s = math.cos(env.target_direction), math.sin(env.target_direction)
-        along = c * (body[:, 0] - rep[:, rows.REP_X0]) + s * (body[:, 1] - rep[:, rows.REP_Y0])
-        energy = rep[:, rows.REP_ENERGY].copy()
+        along = c * (body[:, 0] - rep[:, br.REP_X0]) + s * (body[:, 1] - rep[:, br.REP_Y0])
+        energy = rep[:, br.REP_ENERGY].copy()
         progress = along / env.scene.length
         effort = -env.effort_weight * energy
         reward = progress + effort
         info = spec.step_info(
             body[:, 0].copy(), body[:, 1].copy(), self._headings(),
-            along / env.control_dt, self._cmd.copy(), energy, rep[:, rows.REP_NET].copy(),
+            along / env.control_dt, self._cmd.copy(), energy, rep[:, br.REP_NET].copy(),
             env.control_dt,
-            rep[:, rows.REP_ITER].astype(np.int64), self._steps * env.control_dt,
+            rep[:, br.REP_ITER].astype(np.int64), self._steps * env.control_dt,
             {"progress": progress, "effort": effort},
         )  # fmt: skip
-        finite = (rep[:, rows.REP_OK] > 0.0) & np.isfinite(self._state).all(axis=(1, 2))
+        finite = (rep[:, br.REP_OK] > 0.0) & np.isfinite(self._state).all(axis=(1, 2))
         finite &= np.isfinite(obs).all(axis=1) & np.isfinite(reward)
-        info["numerical_failure"] = ~finite
-        for key in list(info):
-            info[f"_{key}"] = np.ones(self.num_envs, bool)
-        ones = np.ones(self.num_envs, bool)
-        info["reward_terms"].update(_progress=ones, _effort=ones.copy())
-        obs_out = np.clip(obs, self._lo, self._hi)
-        term = ~finite & active
-        obs_out[term] = self._obs[term]  # last finite obs, reward 0, terminated
-        reward[term] = 0.0
-        trunc = self._steps >= env.max_steps
-        return obs_out, reward, term, trunc, info
+        return self._close_rows(obs, reward, finite, active, info, env.max_steps)

@@ -70,7 +70,13 @@ from mf_envs.physics.serpentine.scratch import (  # noqa: F401 (re-exported)
     make_scratch,
     quad_tables,
 )
-from mf_envs.physics.serpentine.stepping import Body, make_stepping  # noqa: F401
+from mf_envs.physics.serpentine.stepping import (  # noqa: F401 (Body re-exported)
+    Body,
+    converged,
+    correct,
+    end_velocity,
+    make_stepping,
+)
 
 # the predictor d_n replaces d_n + dt v_n when its residual is below this fraction of the
 # latter's (module docstring)
@@ -177,18 +183,11 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
                     x[i] *= 0.5
         for i in range(nd):
             prev[i] = x[i]
-        step = 0.0
-        for i in range(nd):
-            if not np.isfinite(x[i]):
-                return -it
-            d[i] += x[i]
-            step = max(step, abs(x[i]) / u_scale[i])
-        # converged: this correction below tol, or (quadratic phase, e_k+1 ~ K e_k^2 with K from
-        # the last two corrections) the next one predicted below tol / 1000
-        quad_next = it > 1 and step < back1 and step * step * step < 1e-3 * tol * back1 * back1
-        if (step < tol or quad_next) and not halved:
-            for i in range(nd):
-                v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
+        step = correct(d, x, u_scale)
+        if step < 0.0:
+            return -it
+        if converged(it, step, back1, tol) and not halved:
+            end_velocity(d, d0, v0, dt, v)
             return it
         # stagnation (friction states cycling): a correction not below the one two iterations
         # back will not converge within max_iter; give up, the caller splits

@@ -16,6 +16,7 @@ mass, linear and angular momentum and the energies computed from the discrete fi
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -151,15 +152,6 @@ class Serpentine:
         power = assemble_ground(d, v, *args, f, ab, 0.0, 0.0)
         return f, float(power)
 
-    def _start(self, d0: np.ndarray | None, v0: np.ndarray | None):
-        m = self.model
-        d = m.straight() if d0 is None else np.array(d0, float)
-        v = np.zeros(m.n_dof) if v0 is None else np.array(v0, float)
-        for name, arr in (("d0", d), ("v0", v)):
-            if arr.shape != (m.n_dof,) or not np.all(np.isfinite(arr)):
-                raise ValueError(f"{name}: need {m.n_dof} finite values")
-        return d, v
-
     def simulate(
         self,
         t_end: float,
@@ -174,28 +166,42 @@ class Serpentine:
     ) -> SnakeHistory:
         """Step from (d0, v0) (default: straight along +x at rest) at t = 0 to t_end [s] with
         steps dt [s]; theta in [1/2, 1] is where the ground force is taken (kernels docstring)."""
-        check_positive("t_end", t_end)
-        check_positive("dt", dt)
-        every = check_int("every", every, low=1)
         check_range("theta", theta, 0.5, 1.0)
-        check_positive("tol", tol)
         m = self.model
-        d, v = self._start(d0, v0)
-        n_steps = int(round(t_end / dt))
-        rows = n_steps // every + 1
-        d_out, v_out = np.zeros((rows, m.n_dof)), np.zeros((rows, m.n_dof))
-        work_out = np.zeros((rows, 2))
         ground = (self.normal_load, m.params.mass_per_length, self.ground.packed())
-        body = kernels.Body(m.mass, m.le, kernels.quad_tables(m), ground, float(theta), float(tol),
-                            int(max_iter), int(max_halvings), m.params.EI,
-                            self.material_damping)  # fmt: skip
-        its, failed = kernels.run(d, v, float(dt), n_steps, every, body, gait_tables(self.gait),
-                                  kernels.make_scratch(m.n_dof, m.n_elements), d_out, v_out,
-                                  work_out)  # fmt: skip
-        if failed >= 0:
-            raise NewtonDivergence(
-                f"dt: Newton failed at step {failed} (t = {failed * dt:.6g} s) even after "
-                f"{2**max_halvings} sub-steps"
-            )
-        t_out = np.arange(rows) * every * float(dt)
-        return SnakeHistory(t_out, d_out, v_out, m, int(its), {"muscle_work": work_out})
+        body = kernels.Body(m.mass, m.le, kernels.quad_tables(m), ground, float(theta),
+                            float(check_positive("tol", tol)), int(max_iter), int(max_halvings),
+                            m.params.EI, self.material_damping)  # fmt: skip
+        return run_history(kernels, m, body, self.gait, (d0, v0), (t_end, dt, every))
+
+
+def run_history(kernels: Any, model: BeamModel, body: Any, gait: WaveGait, start: tuple,
+                steps: tuple) -> SnakeHistory:  # fmt: skip
+    """`kernels.run` (the serpentine's or the swimmer's compiled run) of the `stepping.Body` body
+    under the gait from start = (d0, v0) (None: straight along +x, at rest), steps = (t_end [s],
+    dt [s], every): the states and the muscles' work every `every` steps; NewtonDivergence
+    naming dt if even 2^max_halvings sub-steps fail."""
+    t_end, dt, every = steps
+    check_positive("t_end", t_end)
+    check_positive("dt", dt)
+    every = check_int("every", every, low=1)
+    d0, v0 = start
+    d = model.straight() if d0 is None else np.array(d0, float)
+    v = np.zeros(model.n_dof) if v0 is None else np.array(v0, float)
+    for name, arr in (("d0", d), ("v0", v)):
+        if arr.shape != (model.n_dof,) or not np.all(np.isfinite(arr)):
+            raise ValueError(f"{name}: need {model.n_dof} finite values")
+    n_steps = int(round(t_end / dt))
+    rows = n_steps // every + 1
+    d_out, v_out = np.zeros((rows, model.n_dof)), np.zeros((rows, model.n_dof))
+    work_out = np.zeros((rows, 2))
+    its, failed = kernels.run(d, v, float(dt), n_steps, every, body, gait_tables(gait),
+                              kernels.make_scratch(model.n_dof, model.n_elements), d_out, v_out,
+                              work_out)  # fmt: skip
+    if failed >= 0:
+        raise NewtonDivergence(
+            f"dt: Newton failed at step {failed} (t = {failed * dt:.6g} s) even after "
+            f"{2**body.max_halvings} sub-steps"
+        )
+    t_out = np.arange(rows) * every * float(dt)
+    return SnakeHistory(t_out, d_out, v_out, model, int(its), {"muscle_work": work_out})

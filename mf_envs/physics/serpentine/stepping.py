@@ -52,6 +52,34 @@ def muscle_work(d0, d1, k0, k1, le, ei):
     return -0.5 * (bending_work(d0, k0, k0, k1, le, ei) + bending_work(d1, k1, k0, k1, le, ei))
 
 
+@numba.njit(cache=True, inline="always")
+def correct(d, x, u_scale):
+    """d += x (a Newton correction); returns max |x_i| / u_scale_i, or -1 if x is not finite
+    (d then partly corrected: the step has failed)."""
+    step = 0.0
+    for i in range(d.shape[0]):
+        if not np.isfinite(x[i]):
+            return -1.0
+        d[i] += x[i]
+        step = max(step, abs(x[i]) / u_scale[i])
+    return step
+
+
+@numba.njit(cache=True, inline="always")
+def converged(it, step, back1, tol):
+    """Newton's convergence test: this correction below tol, or (quadratic phase, e_k+1 ~
+    K e_k^2 with K from the last two corrections) the next one predicted below tol / 1000."""
+    quad_next = it > 1 and step < back1 and step * step * step < 1e-3 * tol * back1 * back1
+    return step < tol or quad_next
+
+
+@numba.njit(cache=True, inline="always")
+def end_velocity(d, d0, v0, dt, v):
+    """v = v_{n+1} = 2 (d - d0) / dt - v0, the trapezoidal kinematics of the step."""
+    for i in range(d.shape[0]):
+        v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
+
+
 def _advance_linear(d, v, ka, kb, dt, body, sc, out):
     """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4) (a
     commanded actuation held by a first-order hold), split into 2, 4, ... sub-steps on Newton

@@ -40,7 +40,12 @@ from mf_envs.physics.beam import fused
 from mf_envs.physics.beam.banded import HALF_BW, N_BAND
 from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
 from mf_envs.physics.serpentine.kernels import MAX_QUAD, PREDICTOR_RATIO
-from mf_envs.physics.serpentine.stepping import make_stepping
+from mf_envs.physics.serpentine.stepping import (
+    converged,
+    correct,
+    end_velocity,
+    make_stepping,
+)
 from mf_envs.physics.swimmer.fluid import (
     W_MA,
     W_RESISTIVE,
@@ -144,18 +149,11 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
             tail_into(buf[2], buf[3], law, r, ab, -th, -2.0 * th / dt)
         if fused.solve(ab, r, work, piv, x) != 0:
             return -it
-        step = 0.0
-        for i in range(nd):
-            if not np.isfinite(x[i]):
-                return -it
-            d[i] += x[i]
-            step = max(step, abs(x[i]) / u_scale[i])
-        # converged: this correction below tol, or (quadratic phase) the next one predicted
-        # below tol / 1000 from the last two (`serpentine.kernels`' test)
-        quad_next = it > 1 and step < back1 and step * step * step < 1e-3 * tol * back1 * back1
-        if step < tol or quad_next:
-            for i in range(nd):
-                v[i] = 2.0 * (d[i] - d0[i]) / dt - v0[i]
+        step = correct(d, x, u_scale)
+        if step < 0.0:
+            return -it
+        if converged(it, step, back1, tol):  # the serpentine's test
+            end_velocity(d, d0, v0, dt, v)
             return it
         back1 = step
     return -body.max_iter

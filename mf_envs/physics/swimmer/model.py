@@ -17,12 +17,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from mf_envs._validate import check_int, check_positive, check_range
+from mf_envs._validate import check_positive, check_range
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.fused import quadrature_tables
-from mf_envs.physics.beam.solver import BeamModel, BeamParams, NewtonDivergence
-from mf_envs.physics.serpentine.gait import WaveGait, gait_for, gait_tables
-from mf_envs.physics.serpentine.model import SnakeHistory
+from mf_envs.physics.beam.solver import BeamModel, BeamParams
+from mf_envs.physics.serpentine.gait import WaveGait, gait_for
+from mf_envs.physics.serpentine.model import SnakeHistory, run_history
 from mf_envs.physics.serpentine.stepping import Body
 from mf_envs.physics.swimmer import kernels
 from mf_envs.physics.swimmer.fluid import Water, added_momentum, assemble_water, shape_tables
@@ -72,31 +72,11 @@ class Swimmer:
         """Step from (d0, v0) (default: straight along +x at rest) at t = 0 to t_end [s] with
         steps dt [s]; theta in [1/2, 1] is where the resistive force is taken, stress_theta in
         [1/2, 1] where the stresses are (`kernels`)."""
-        check_positive("t_end", t_end)
-        check_positive("dt", dt)
-        every = check_int("every", every, low=1)
-        check_range("theta", theta, 0.5, 1.0)
-        check_range("stress_theta", stress_theta, 0.5, 1.0)
-        check_positive("tol", tol)
-        m = self.model
-        d = m.straight() if d0 is None else np.array(d0, float)
-        v = np.zeros(m.n_dof) if v0 is None else np.array(v0, float)
-        for name, arr in (("d0", d), ("v0", v)):
-            if arr.shape != (m.n_dof,) or not np.all(np.isfinite(arr)):
-                raise ValueError(f"{name}: need {m.n_dof} finite values")
-        n_steps = int(round(t_end / dt))
-        rows = n_steps // every + 1
-        d_out, v_out = np.zeros((rows, m.n_dof)), np.zeros((rows, m.n_dof))
-        work_out = np.zeros((rows, 2))
-        body = Body(m.mass, m.le, self.quad, self.packed, (float(theta), float(stress_theta)),
-                    float(tol), int(max_iter), int(max_halvings), m.params.EI, 0.0)  # fmt: skip
-        its, failed = kernels.run(d, v, float(dt), n_steps, every, body, gait_tables(self.gait),
-                                  kernels.make_scratch(m.n_dof, m.n_elements), d_out, v_out,
-                                  work_out)  # fmt: skip
-        if failed >= 0:
-            raise NewtonDivergence(
-                f"dt: Newton failed at step {failed} (t = {failed * dt:.6g} s) even after "
-                f"{2**max_halvings} sub-steps"
-            )
-        t_out = np.arange(rows) * every * float(dt)
-        return SnakeHistory(t_out, d_out, v_out, m, int(its), {"muscle_work": work_out})
+        th = (
+            check_range("theta", theta, 0.5, 1.0),
+            check_range("stress_theta", stress_theta, 0.5, 1.0),
+        )
+        m, tol = self.model, float(check_positive("tol", tol))
+        body = Body(m.mass, m.le, self.quad, self.packed, tuple(map(float, th)), tol,
+                    int(max_iter), int(max_halvings), m.params.EI, 0.0)  # fmt: skip
+        return run_history(kernels, m, body, self.gait, (d0, v0), (t_end, dt, every))
