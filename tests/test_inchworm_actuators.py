@@ -246,7 +246,8 @@ def test_bordered_onset_agrees_with_the_bracketing_search():
     g = feet.g.copy()
     e1 = -FORWARD * rx[0] - feet.params.holding_limit(g[0], FORWARD, nz[0])
     assert e1 > 0.0  # the released tail, pulled forward, exceeds its limit at the end
-    args = (d0, d1, k0, k1, f, g, g, 0, FORWARD, e1, 0, both, xd, zd, mu4, bc, sc)
+    inc = ss.Increment(k0, k1, f, g, g, xd, zd, mu4, bc, sc)
+    args = (d0, d1, 0, FORWARD, e1, 0, both, inc)
     lam_r, ok_r, it_r = ss._onset(*args, True)
     d_r = sc.vec[ss.ROW_STAR].copy()
     lam_b, ok_b, it_b = ss._onset(*args)
@@ -256,8 +257,7 @@ def test_bordered_onset_agrees_with_the_bracketing_search():
     assert np.max(np.abs(d_b - d_r)) < 1e-10  # m, rad
     assert it_b < it_r
     guess = d0 + lam_r * (d1 - d0)  # the bordered Newton alone, from near the answer
-    lam_d, ok_d, _ = ss._onset_bordered(lam_r, guess, k0, k1, f, g, g, 0, FORWARD, both,
-                                        xd, zd, mu4, bc, sc)  # fmt: skip
+    lam_d, ok_d, _ = ss._onset_bordered(lam_r, guess, 0, FORWARD, both, inc)
     assert ok_d and lam_d == pytest.approx(lam_r, abs=1e-8)
     ss._ground(d_b, k0 + lam_b * (k1 - k0), f, xd, zd, bc, sc, rx, nz)
     assert -rx[0] == pytest.approx(0.2 * nz[0], rel=1e-8)

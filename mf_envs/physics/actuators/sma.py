@@ -367,7 +367,7 @@ class SMAWireGroup:
         t0, xi0 = self.temperature, self.xi
         t1, xi1, self.direction, self.t_rev, self.xi_rev, q = sk.sma_step(
             t0, xi0, self.direction, self.t_rev, self.xi_rev, power / scale, hp, cap, t_amb,
-            dt, a_s, a_f, m_s, m_f, lat,
+            dt, (a_s, a_f, m_s, m_f), lat,
         )  # fmt: skip
         self.temperature, self.xi = t1, xi1
         return SMAStepReport(

@@ -106,12 +106,13 @@ def latent_correction(t0, t1s, xi0, direction, t_r, xi_r, a_s, a_f, m_s, m_f, la
 
 
 @kernel
-def sma_step(t0, xi0, direction, t_r, xi_r, power, hp, cap, t_amb, dt, a_s, a_f, m_s, m_f, lat):
+def sma_step(t0, xi0, direction, t_r, xi_r, power, hp, cap, t_amb, dt, alloy, lat):
     """One step of a wire under the held Joule power `power` [W/m] (S1 exact; then xi on its
     branch; latent heat lat = L / c [K] by `latent_correction`, 0 for none). A step that moves T
     against the branch direction starts a new branch at (t0, xi0). Returns (T1, xi1, direction,
     t_r, xi_r, q_conv [J/m]); the energy per length balances exactly:
     power dt = cap (T1 - t0) + cap lat (xi0 - xi1) + q_conv."""
+    a_s, a_f, m_s, m_f = alloy  # the transformation temperatures [C]
     t1s, q_conv = thermal_exact(t0, power, hp, cap, t_amb, dt)
     if t1s != t0:
         new_dir = HEATING if t1s > t0 else COOLING
@@ -136,7 +137,7 @@ def contraction_time(power, hp, cap, t_amb, dt, a_s, a_f, m_s, m_f, lat, done, t
     while time < t_max:
         xi_old = xi
         t, xi, direction, t_r, xi_r, _q = sma_step(
-            t, xi, direction, t_r, xi_r, power, hp, cap, t_amb, dt, a_s, a_f, m_s, m_f, lat
+            t, xi, direction, t_r, xi_r, power, hp, cap, t_amb, dt, (a_s, a_f, m_s, m_f), lat
         )
         time += dt
         if xi <= 1.0 - done:
@@ -154,7 +155,7 @@ def relaxation_time(t0, xi0, hp, cap, t_amb, dt, a_s, a_f, m_s, m_f, lat, done, 
     while time < t_max:
         xi_old = xi
         t, xi, direction, t_r, xi_r, _q = sma_step(
-            t, xi, direction, t_r, xi_r, 0.0, hp, cap, t_amb, dt, a_s, a_f, m_s, m_f, lat
+            t, xi, direction, t_r, xi_r, 0.0, hp, cap, t_amb, dt, (a_s, a_f, m_s, m_f), lat
         )
         time += dt
         if xi >= done:

@@ -121,7 +121,7 @@ def assemble_algorithmic(da, db, le, ksh_a, ksh_b, qxi, qw, stiff, theta, shift,
     ab = np.zeros((N_BAND, nd))
     de = np.empty((le.shape[0], qxi.shape[0], 3))
     assemble_algorithmic_into(
-        da, db, le, ksh_a, ksh_b, qxi, qw, stiff, theta, shift, tangent, geo, p, ab, de,
+        da, db, le, ksh_a, ksh_b, (qxi, qw, stiff), theta, shift, tangent, geo, p, ab, de,
         algorithmic_scratch(),
     )  # fmt: skip
     return p, ab, de
@@ -140,11 +140,12 @@ def algorithmic_scratch():
 
 @numba.njit(cache=True)
 def assemble_algorithmic_into(
-    da, db, le, ksh_a, ksh_b, qxi, qw, stiff, theta, shift, tangent, geo, p, ab, de, scr
+    da, db, le, ksh_a, ksh_b, quad, theta, shift, tangent, geo, p, ab, de, scr
 ):
     """`assemble_algorithmic` into p (n_dof,), ab (21, n_dof) (overwritten; ab untouched
     without tangent) and de (n_el, >= nq, 3), with the scratch `algorithmic_scratch()`: no
-    allocation, the same arithmetic (hence the same bits)."""
+    allocation, the same arithmetic (hence the same bits); quad = (qxi, qw, stiff)."""
+    qxi, qw, stiff = quad
     ne, nq = le.shape[0], qxi.shape[0]
     nd = da.shape[0]
     dea, deb, fe, ke, sig, bb, bt, dh, nz, dnz, npsi, dnpsi = scr

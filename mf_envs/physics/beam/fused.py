@@ -170,10 +170,12 @@ def element_internal(e, deb, le_e, ksh_a, ksh_b, qw, stiff, theta, rate, tab, pr
 
 
 @kernel(forceinline=True)
-def point_load(fe, ke, w, nz, npsi, f1, f2, d11, d12, d21, d22, p1, p2, cd, cv):
+def point_load(fe, ke, w, nz, npsi, law, cd, cv):
     """fe -= the nodal force of a line force (f1, f2) at a point (weight w, shape functions nz,
-    npsi), ke += cd dF/dd + cv dF/dv of it (df/dv = ((d11, d12), (d21, d22)), df/dpsi =
-    (p1, p2)): `serpentine.friction._add_tangent` without the couple."""
+    npsi), ke += cd dF/dd + cv dF/dv of it, law = (f1, f2, d11, d12, d21, d22, p1, p2) the
+    force and its derivatives (df/dv = ((d11, d12), (d21, d22)), df/dpsi = (p1, p2)), as a
+    point law returns them: `serpentine.friction._add_tangent` without the couple."""
+    f1, f2, d11, d12, d21, d22, p1, p2 = law
     for i in range(4):
         wi = w * nz[i]
         fe[i] -= wi * f1

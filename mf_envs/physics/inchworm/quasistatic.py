@@ -111,7 +111,7 @@ def sma_advance(sma, duty, dt, thermal, tt, power_full, kappa_full, out_kappa):
     for k in range(duty.shape[0]):
         t1, xi1, dr, t_r, xi_r, _q = sk.sma_step(
             sma[SMA_T, k], sma[SMA_XI, k], sma[SMA_DIR, k], sma[SMA_TR, k], sma[SMA_XIR, k],
-            duty[k] * power_full, hp, cap, t_amb, dt, a_s, a_f, m_s, m_f, lat,
+            duty[k] * power_full, hp, cap, t_amb, dt, (a_s, a_f, m_s, m_f), lat,
         )  # fmt: skip
         sma[SMA_T, k], sma[SMA_XI, k], sma[SMA_DIR, k] = t1, xi1, dr
         sma[SMA_TR, k], sma[SMA_XIR, k] = t_r, xi_r
@@ -175,7 +175,7 @@ def grip_step(
         kgb = np.interp(gauss_flat, s_ctrl, kb).reshape(gauss_s.shape)
         grip_response(g, grip_cmd, t, engage, release, gb)
         status = gf.increment(
-            d_prev, kga, kgb, f_ext, ga, gb, h, v_feet, xd, zd, law, bc, sc, rep, d_cur
+            d_prev, kga, kgb, f_ext, ga, gb, h, v_feet, (xd, zd), law, bc, sc, rep, d_cur
         )
         if status != gf.OK:
             return status

@@ -123,7 +123,8 @@ def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
                 f2 -= nu_v * m_a * v2
                 d11 -= nu_v * m_a
                 d22 -= nu_v * m_a
-                fused.point_load(fe, ke, w, nz, npsi, f1, f2, d11, d12, d21, d22, p1, p2, cd, cv)
+                law_p = (f1, f2, d11, d12, d21, d22, p1, p2)
+                fused.point_load(fe, ke, w, nz, npsi, law_p, cd, cv)
                 mc = -c_w * w3
                 for i in range(3):
                     fe[8 + i] -= w * npsi[i] * mc

@@ -91,9 +91,9 @@ from mf_envs.physics.ship.outputs import (  # noqa: F401 (re-exported: the kerne
 
 
 @kernel(forceinline=True, error_model="numpy")
-def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v, roll):
+def ship_accel(w1, w2, w3, c, s, phid, phidd, moments, P, free_gimbal, tau, v, roll):
     """Body angular acceleration w' (rad/s^2) from the angular-momentum balance (module doc)
-    at body rates (w1, w2, w3) (rad/s) and moments (m1, m2, m3) (N m, ship frame), gimbal
+    at body rates (w1, w2, w3) (rad/s) and moments = (m1, m2, m3) (N m, ship frame), gimbal
     angle phi given by c = cos(phi), s = sin(phi) (computed once per stage by the caller).
 
     With `free_gimbal` the gimbal is a degree of freedom driven by the torque tau (N m, per
@@ -106,6 +106,7 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
     Division by zero gives inf/NaN (numpy's error model: no exception path to inline).
     Returns (w1', w2', w3', gyro roll moment -n H phi' cos(phi) in N m, phi'', v' in m/s^2).
     """
+    m1, m2, m3 = moments
     n = int(P[S.NGYRO])
     s2 = 2.0 * s * c
     c2 = c * c - s * s
@@ -166,15 +167,17 @@ def ship_accel(w1, w2, w3, c, s, phid, phidd, m1, m2, m3, P, free_gimbal, tau, v
 
 
 @kernel(forceinline=True)
-def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
-    """(w1', w2', w3', phi', phi'', z', drive power n |tau phi'|, v') of the rotational state, the
-    drive-loop integral z and the sway velocity v (`ship.coupling`) at attitude third row
-    (r20, r21, r22).
+def ang_rates(y, r20, r21, r22, u, mw, pg, P, near):
+    """(w1', w2', w3', phi', phi'', z', drive power n |tau phi'|, v') of the rotational state
+    (w1, w2, w3, phi, phi') = y[:5], the drive-loop integral z = y[Z_STATE] and the sway
+    velocity v = y[V_STATE] (`ship.coupling`) at attitude third row (r20, r21, r22).
 
     mw: wave roll moment (N m) at the stage time; pg: (phi, phi', phi'') of a prescribed gimbal
     at that time (`gimbal_motion`, ignored for the servo and torque drives); near = (phi0,
     cos phi0, sin phi0) at the step's start (`frames.kernels.sincos_near`).
     """
+    w1, w2, w3, phi, phid = y[0], y[1], y[2], y[3], y[4]
+    z, v = y[Z_STATE], y[V_STATE]
     mode = int(P[S.GMODE])
     free = mode == GIMBAL_TORQUE
     tau = 0.0
@@ -198,7 +201,7 @@ def ang_rates(w1, w2, w3, phi, phid, z, v, r20, r21, r22, u, mw, pg, P, near):
     coupled = P[S.CPLON] > 0.5
     roll = math.atan2(r21, r22) if coupled else 0.0
     a1, a2, a3, _, phidd, dv = ship_accel(
-        w1, w2, w3, c, s, phid, phidd, m1 + mw, m2, m3, P, free, tg, v, roll
+        w1, w2, w3, c, s, phid, phidd, (m1 + mw, m2, m3), P, free, tg, v, roll
     )
     return a1, a2, a3, phid, phidd, dz, P[S.NGYRO] * abs(tau * phid), dv
 
@@ -231,9 +234,7 @@ def stage_rhs(t, y, R, inp, args, dy):
     u, P, tab, near = args
     mw, fw, pg = inp
     r20, r21, r22 = R[2, 0], R[2, 1], R[2, 2]
-    a = ang_rates(
-        y[0], y[1], y[2], y[3], y[4], y[Z_STATE], y[V_STATE], r20, r21, r22, u, mw, pg, P, near
-    )
+    a = ang_rates(y, r20, r21, r22, u, mw, pg, P, near)
     for i in range(5):
         dy[i] = a[i]
     for i in range(5, y.shape[0]):

@@ -93,14 +93,13 @@ def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
                 v2 = nz[0] * dv[4] + nz[1] * dv[5] + nz[2] * dv[6] + nz[3] * dv[7]
                 psi = npsi[0] * db[8] + npsi[1] * db[9] + npsi[2] * db[10]
                 q1, q2, d11, d12, d21, d22, p1, p2 = added_scalars(v1, v2, psi, m_a)
-                fused.point_load(fe, ke, w, nz, npsi, -q1 / dt, -q2 / dt, d11, d12, d21, d22,
-                                 p1, p2, 1.0 / dt, 2.0 / (dt * dt))  # fmt: skip
+                law_p = (-q1 / dt, -q2 / dt, d11, d12, d21, d22, p1, p2)
+                fused.point_load(fe, ke, w, nz, npsi, law_p, 1.0 / dt, 2.0 / (dt * dt))
             if resist:  # r += F_w(d_th, v_th), ab += -th dF_w/dd - 2 th / dt dF_w/dv
                 v1 = nz[0] * ve[0] + nz[1] * ve[1] + nz[2] * ve[2] + nz[3] * ve[3]
                 v2 = nz[0] * ve[4] + nz[1] * ve[5] + nz[2] * ve[6] + nz[3] * ve[7]
                 psi = npsi[0] * de[8] + npsi[1] * de[9] + npsi[2] * de[10]
-                f1, f2, d11, d12, d21, d22, p1, p2 = resistive_scalars(v1, v2, psi, law)
-                fused.point_load(fe, ke, w, nz, npsi, f1, f2, d11, d12, d21, d22, p1, p2, cd, cv)
+                fused.point_load(fe, ke, w, nz, npsi, resistive_scalars(v1, v2, psi, law), cd, cv)
         fused.scatter(e, fe, ke, r, ab)
 
 

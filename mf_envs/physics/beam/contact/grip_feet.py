@@ -161,7 +161,7 @@ def _newton(d, d0, kap, f_ext, g, h, xd, zd, law, fixed, bc, sc):
 
 
 @numba.njit(cache=True)
-def increment(d, k0, k1, f_ext, g0, g1, h, v_feet, xd, zd, law, bc, sc, rep, out):
+def increment(d, k0, k1, f_ext, g0, g1, h, v_feet, dofs, law, bc, sc, rep, out):
     """One actuation increment kappa# k0 -> k1 (n_el, 4) [1/m] of duration h [s], engagements
     g0 -> g1 (2,), from d converged at k0 (feet's z on the ground): the configuration at k1
     into out; v_feet (2,) [m/s]: the feet's velocities in the last increment, the predictor of
@@ -169,6 +169,7 @@ def increment(d, k0, k1, f_ext, g0, g1, h, v_feet, xd, zd, law, bc, sc, rep, out
     ground x force (2) [N] and normal load (2) [N] at the end, Newton iterations). Halves the
     increment (up to the settings' max_halvings) when Newton fails. Returns OK or
     NEWTON_FAILED."""
+    xd, zd = dofs  # the feet's x and z dofs (2,) each
     max_halvings = bc[11]
     vec, kap = sc[0], sc[4][0]
     start, trial = vec[ROW_START], vec[ROW_TRIAL]

@@ -16,6 +16,8 @@ increments), then the lambda* of the slip onsets.
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numba
 import numpy as np
 
@@ -68,11 +70,14 @@ def _excess(mu4, rx, nz, g, i):
     return abs(rx[i]) - holding_limit(mu4, g[i], s, nz[i])
 
 
+Increment = namedtuple("Increment", "k0 k1 f_ext g0 g1 xd zd mu4 bc sc")
+Increment.__doc__ = """What the onset and slip searches of one `increment` share: kappa# k0 -> k1
+(n_el, 4), the external load f_ext, engagements g0 -> g1 (2,), the feet's x and z dofs xd, zd,
+the friction coefficients mu4, the beam constants bc and the scratch sc (as `increment`)."""
+
+
 @numba.njit(cache=True)
-def _onset(
-    d, d_end, k0, k1, f_ext, g0, g1, i, s, e1, slipping_i, fixed, xd, zd, mu4, bc, sc,
-    bracket_only=False,
-):  # fmt: skip
+def _onset(d, d_end, i, s, e1, slipping_i, fixed, inc, bracket_only=False):
     """lambda* in [0, 1] where foot i, pulled towards s, reaches its holding limit on the stuck
     path from d (lambda = 0) to d_end (lambda = 1), e1 > 0 the excess at d_end. Newton on
     (d, lambda) together (`_onset_bordered`) from regula falsi's first point on the chord of
@@ -80,6 +85,7 @@ def _onset(
     modification on stuck solves (the algorithm of `feet`; each solve starts on the chord of
     the bracket's solutions). The configuration there goes to the ROW_STAR + i row. Returns
     (lambda*, ok, iterations)."""
+    k0, k1, f_ext, g0, g1, xd, zd, mu4, bc, sc = inc
     vec, kap = sc[0], sc[4][1]
     zero, d_lo, dl, best_d = vec[ROW_ZERO], vec[ROW_DLO], vec[ROW_DL], vec[ROW_BEST]
     d_hi, guess1 = vec[ROW_DHI], vec[ROW_GUESS1]
@@ -95,9 +101,7 @@ def _onset(
         dl[k] = d[k] + lam * (d_end[k] - d[k])
     ok, iterations = False, 0
     if not bracket_only:
-        lam, ok, iterations = _onset_bordered(
-            lam, dl, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc, sc
-        )
+        lam, ok, iterations = _onset_bordered(lam, dl, i, s, fixed, inc)
     if ok:
         vec[ROW_STAR + i][:] = dl
         return lam, True, iterations
@@ -141,7 +145,7 @@ def _onset(
 
 
 @numba.njit(cache=True)
-def _onset_bordered(lam, d, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc, sc):
+def _onset_bordered(lam, d, i, s, fixed, inc):
     """Newton on the stuck configuration d and the onset lambda together: the equilibrium on
     the free dofs, P(d, kappa#(lambda)) = F, bordered by the onset condition e(d, lambda) =
     -s R_x,i - mu(g_i(lambda)) max(N_i, 0) = 0. Per iteration one tangent K, one LDL^T and two
@@ -152,6 +156,7 @@ def _onset_bordered(lam, d, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc,
     solve per trial lambda. d (the start) is updated in place. Returns (lambda, ok,
     iterations); not ok when it fails to converge inside (0, 1) within max_iter iterations or
     the tangent is not positive definite (the caller brackets instead)."""
+    k0, k1, f_ext, g0, g1, xd, zd, mu4, bc, sc = inc
     le, qxi, qw, stiff, u_scale, dtol, max_iter = bc[0], bc[1], bc[2], bc[3], bc[4], bc[9], bc[10]
     vec, ab, work, kap, dk = sc[0], sc[1], sc[2], sc[4][1], sc[4][2]
     p, r = vec[static.ROW_P], vec[static.ROW_R]
@@ -217,11 +222,12 @@ def _onset_bordered(lam, d, k0, k1, f_ext, g0, g1, i, s, fixed, xd, zd, mu4, bc,
 
 
 @numba.njit(cache=True)
-def _slip(i, s, lam, k0, k1, f_ext, g0, g1, n_trial, xd, zd, mu4, bc, sc, rx1, n1):
+def _slip(i, s, lam, n_trial, inc, rx1, n1):
     """Foot i slips towards s from lambda to 1 from the ROW_STAR + i configuration, the other
     stuck (the algorithm of `feet`): d1 into ROW_D1 + i, friction loads into ROW_FA + i and
     ROW_FB + i, ground forces into rx1, n1. Returns (violation of the other foot's limit [N],
     ok, iterations)."""
+    k0, k1, f_ext, g0, g1, xd, zd, mu4, bc, sc = inc
     vec, kap = sc[0], sc[4][1]
     d_star, d1 = vec[ROW_STAR + i], vec[ROW_D1 + i]
     fa, fb, fext = vec[ROW_FA + i], vec[ROW_FB + i], vec[ROW_FEXT]
@@ -267,6 +273,7 @@ def increment(d, k0, k1, f_ext, g0, g1, slipping, xd, zd, mu4, bc, sc, rep, out)
     converged at k0 (the algorithm of `feet`): the configuration at k1 into out, slipping (2,)
     int updated, rep (>= N_REPORT,) accumulated (the lambda* of each slip onset after the
     N_REPORT slots while rep has room). Returns a status code."""
+    inc = Increment(k0, k1, f_ext, g0, g1, xd, zd, mu4, bc, sc)
     vec = sc[0]
     nd = d.shape[0]
     zero, trial = vec[ROW_ZERO], vec[ROW_TRIAL]
@@ -291,10 +298,7 @@ def increment(d, k0, k1, f_ext, g0, g1, slipping, xd, zd, mu4, bc, sc, rep, out)
     lams = np.full(2, np.inf)
     for i in range(2):
         if e[i] > 0.0:
-            lam, ok, it = _onset(
-                d, trial, k0, k1, f_ext, g0, g1, i, pulls[i], e[i], slipping[i], both, xd, zd,
-                mu4, bc, sc,
-            )  # fmt: skip
+            lam, ok, it = _onset(d, trial, i, pulls[i], e[i], slipping[i], both, inc)
             rep[REP_ITER] += it
             if not ok:
                 return NEWTON_FAILED
@@ -306,9 +310,7 @@ def increment(d, k0, k1, f_ext, g0, g1, slipping, xd, zd, mu4, bc, sc, rep, out)
     for i in order:
         if not np.isfinite(lams[i]):
             continue
-        viol, ok, it = _slip(
-            i, pulls[i], lams[i], k0, k1, f_ext, g0, g1, n[i], xd, zd, mu4, bc, sc, rx1, n1
-        )
+        viol, ok, it = _slip(i, pulls[i], lams[i], n[i], inc, rx1, n1)
         rep[REP_ITER] += it
         if not ok:
             return NEWTON_FAILED
