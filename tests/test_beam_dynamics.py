@@ -213,20 +213,17 @@ def test_simulate_cantilever_bad_input_names_parameter(kwargs, name):
         "t_end": 0.1,
         "dt": 0.01,
     }
+    args = {**args, **kwargs}
+    beam = ("length", "EA", "GAs", "EI", "n_elements", "mass_per_length", "rotary_inertia")
     with pytest.raises(ValueError, match=name):
-        simulate_cantilever(**{**args, **kwargs})
+        params = BeamParams(**{k: args.pop(k) for k in beam})
+        simulate_cantilever(params, **args)
 
 
 def test_simulate_cantilever_newton_failure_names_time_and_residual():
     with pytest.raises(NewtonDivergence, match=r"t = 0 s .*residual"):
         simulate_cantilever(
-            1.0,
-            1e4,
-            1e4,
-            1.0,
-            1.0,
-            1e-4,
-            4,
+            BeamParams(1.0, 1e4, 1e4, 1.0, 4, 1.0, 1e-4),
             1.0,
             0.1,
             tip_force=(0.0, -5.0),
@@ -237,7 +234,9 @@ def test_simulate_cantilever_newton_failure_names_time_and_residual():
 def test_simulate_cantilever_history_shapes_and_units():
     """Released from rest: t starts at 0, kinetic energy 0 at t = 0, tip at the static
     deflection of the initial load (solve_cantilever)."""
-    hist = simulate_cantilever(1.0, 1e4, 1e4, 1.0, 1.0, 1e-4, 4, 0.05, 0.01, (0.0, -0.1))
+    hist = simulate_cantilever(
+        BeamParams(1.0, 1e4, 1e4, 1.0, 4, 1.0, 1e-4), 0.05, 0.01, (0.0, -0.1)
+    )
     assert hist.t.shape == (6,) and hist.tip_position.shape == (6, 2)
     assert hist.kinetic_energy.shape == hist.strain_energy.shape == (6,)
     assert hist.kinetic_energy[0] == 0.0 and hist.kinetic_energy[-1] > 0.0

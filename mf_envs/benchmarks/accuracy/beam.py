@@ -278,9 +278,9 @@ def strip_release(n_periods: float, steps: int, scheme: str, rho_inf: float = 1.
     """The slender strip (10 elements) released from its alpha = 0.5 tip-load shape, dt = T1 /
     steps, for n_periods first periods T1 (simulate_cantilever)."""
     L, ea, gas, ei, m, j, t1 = strip()
-    load = (0.0, -0.5 * ei / L**2)
+    params, load = BeamParams(L, ea, gas, ei, 10, m, j), (0.0, -0.5 * ei / L**2)
     return simulate_cantilever(
-        L, ea, gas, ei, m, j, 10, n_periods * t1, t1 / steps, load, scheme=scheme, rho_inf=rho_inf
+        params, n_periods * t1, t1 / steps, load, scheme=scheme, rho_inf=rho_inf
     )
 
 

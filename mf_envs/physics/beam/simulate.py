@@ -18,9 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import eigh
 
-from mf_envs._validate import check_choice, check_int, check_positive, check_shape
+from mf_envs._validate import check_choice, check_positive, check_shape
 from mf_envs.physics.beam import banded
-from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.dynamics import (
     SCHEMES,
     NewmarkState,
@@ -62,13 +61,7 @@ def _tip_load(model: BeamModel, force: np.ndarray) -> np.ndarray:
 
 
 def simulate_cantilever(
-    length: float,
-    EA: float,
-    GAs: float,
-    EI: float,
-    mass_per_length: float,
-    rotary_inertia: float,
-    n_elements: int,
+    params: BeamParams,
     t_end: float,
     dt: float,
     initial_tip_force: tuple[float, float] = (0.0, 0.0),
@@ -76,35 +69,33 @@ def simulate_cantilever(
     scheme: str = DEFAULT_SCHEME,
     rho_inf: float = 1.0,
     *,
-    element: str = "sri",
     settings: NewtonSettings | None = None,
 ) -> CantileverHistory:
-    """Clamped beam (root at the origin, along +x) released at t = 0 [s] from its static shape
-    under the dead tip force `initial_tip_force` (2,) [N], with the dead `tip_force` (2,) [N]
-    for t > 0, stepped with dt [s] up to t_end [s] (ceil(t_end / dt) steps).
+    """Clamped beam of `params` (a `BeamParams` with mass: root at the origin, along +x)
+    released at t = 0 [s] from its static shape under the dead tip force `initial_tip_force`
+    (2,) [N], with the dead `tip_force` (2,) [N] for t > 0, stepped with dt [s] up to t_end [s]
+    (ceil(t_end / dt) steps).
 
-    length [m]; EA, GAs [N]; EI [N m^2]; mass_per_length [kg/m]; rotary_inertia J_3C [kg m];
-    scheme in SCHEMES with rho_inf in [0, 1] (dynamics.py); element "sri" or "seed".
+    scheme in SCHEMES with rho_inf in [0, 1] (dynamics.py); the element is the params'.
     Raises ValueError naming a bad input, NewtonDivergence (naming the time and the residual)
     if Newton fails at a step (no step halving here: a failure is reported, not hidden).
     """
-    for name, val in (("length", length), ("EA", EA), ("GAs", GAs), ("EI", EI)):
-        check_positive(name, val)
-    for name, val in (("mass_per_length", mass_per_length), ("rotary_inertia", rotary_inertia)):
-        check_positive(name, val)
-    check_int("n_elements", n_elements, low=1, high=10_000)
+    if not isinstance(params, BeamParams):
+        raise ValueError(f"params: expected a BeamParams, got {type(params).__name__}")
+    check_positive("mass_per_length", params.mass_per_length)
+    check_positive("rotary_inertia", params.rotary_inertia)
     check_positive("t_end", t_end)
     check_positive("dt", dt)
     check_choice("scheme", scheme, SCHEMES)
-    check_choice("element", element, el.ELEMENTS)
     f0 = check_shape("initial_tip_force", initial_tip_force, (2,))
     f1 = check_shape("tip_force", tip_force, (2,))
     ts = TimeScheme(scheme, float(rho_inf))
     from mf_envs.physics.beam import solve_cantilever  # the package imports this module
 
-    p = BeamParams(length, EA, GAs, EI, n_elements, mass_per_length, rotary_inertia, element)
+    p = params
     model = BeamModel(p)
-    d0 = solve_cantilever(length, EA, GAs, EI, n_elements, tuple(f0), element=element).d
+    d0 = solve_cantilever(p.length, p.EA, p.GAs, p.EI, p.n_elements, tuple(f0),
+                          element=p.element).d  # fmt: skip
     return simulate_clamped(model, d0, t_end, dt, tuple(f1), ts, settings)
 
 
