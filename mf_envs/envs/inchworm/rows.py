@@ -95,6 +95,16 @@ def _command(action, n, max_curv, switching, cmd, duty, grip):
 
 
 @numba.njit(cache=True, nogil=True)
+def _before(before, i, xo, d):
+    """Row i's position before its step: the local origin x, the tail's local x and, if
+    `before` has a third column (gripping feet), the head's."""
+    before[i, 0] = xo[i]
+    before[i, 1] = d[0]
+    if before.shape[1] > 2:
+        before[i, 2] = d[d.shape[0] - 5]
+
+
+@numba.njit(cache=True, nogil=True)
 def _recenter(d, xo, i, length):
     """`Inchworm._recenter`: row i's local origin follows the tail once it is a body length
     away (the x dofs shifted, xo[i] moved by as much)."""
@@ -142,8 +152,7 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
             continue
         grips_head = _command(actions[i], n, max_curv, switching, cmd, duty, grip)
         d = d_all[i]
-        before[i, 0] = xo[i]
-        before[i, 1] = d[0]
+        _before(before, i, xo, d)
         sc = (vec[i], ab[i], wk[i], piv[i], kap[i])
         st = qs.drive_step(
             (d, lag[i], kc[i], g[i], slip[i]), cmd, grip, dt, min_sub, act, feet, s_ctrl,
@@ -175,16 +184,13 @@ def step_rows_grip(lo, hi, active, actions, state, work, cfg, out):
     is_sma, tobs = cfg[13], cfg[14]
     status, rep, before = out[0], out[1], out[2]
     n = cmd_all.shape[1]
-    nd = d_all.shape[1]
     cmd, duty, grip, second = np.empty(n), np.empty(n), np.empty(2), np.empty(n)
     for i in range(lo, hi):
         if not active[i]:
             continue
         grips_head = _command(actions[i], n, max_curv, switching, cmd, duty, grip)
         d = d_all[i]
-        before[i, 0] = xo[i]
-        before[i, 1] = d[0]
-        before[i, 2] = d[nd - 5]
+        _before(before, i, xo, d)
         sc = (vec[i], ab[i], wk[i], piv[i], kap[i])
         st = qs.grip_step(
             (d, lag[i], kc[i], ft[i], sma[i]), duty if is_sma else cmd, grip, dt, min_sub, act,

@@ -31,6 +31,16 @@ def constrain_band(ab, r, fixed):
             ab[HALF_BW, j] = 1.0
 
 
+@numba.njit(cache=True, inline="always")
+def scaled_residual(r, u_scale, f_ref):
+    """max_i |r_i u_scale_i| / f_ref: a residual as a share of the load scale f_ref, each
+    entry weighted by its dof's scale (the static solvers' convergence test)."""
+    res = 0.0
+    for i in range(r.shape[0]):
+        res = max(res, abs(r[i] * u_scale[i]))
+    return res / f_ref
+
+
 def band_to_dense(ab: np.ndarray) -> np.ndarray:
     """Dense (n, n) matrix from the banded storage used here (for tests and small problems)."""
     n = ab.shape[1]

@@ -121,10 +121,7 @@ def newton(d, kap, f, fixed, bc, sc):
         for i in range(nd):
             r[i] = f[i] - p[i]
         banded.constrain_band(ab, r, fixed)
-        res = 0.0
-        for i in range(nd):
-            res = max(res, abs(r[i] * u_scale[i]))
-        res /= f_ref
+        res = banded.scaled_residual(r, u_scale, f_ref)
         if it == 1:
             res_first = res
         if not np.isfinite(res) or (it >= 3 and res > 1e3 * max(res_first, tol_r)):

@@ -110,10 +110,7 @@ def _newton(d, d0, kap, f_ext, g, h, xd, zd, law, fixed, bc, sc):
         if not support > 0.0:  # frictionless feet: nothing holds the body in x (singular)
             return False, it
         banded.constrain_band(ab, r, fixed)
-        res = 0.0
-        for i in range(nd):
-            res = max(res, abs(r[i] * u_scale[i]))
-        res /= f_ref
+        res = banded.scaled_residual(r, u_scale, f_ref)
         if it == 1:
             res_first = res
         if DEBUG:
