@@ -52,7 +52,13 @@ never accepted as the converged one; no progress over two iterations (stagnation
 Converged: a correction below tol, or, in the quadratic phase, the next correction predicted
 below tol / 1000 (e_k+1 ~ K e_k^2 with K from the last two corrections).
 A step whose Newton fails is retried as 2, 4, ... sub-steps (kappa# linear in time over the
-step), at most 2^max_halvings (`stepping`, the loop shared with the swimmer).
+step), at most 2^max_halvings (`stepping`, the loop shared with the swimmer); should every split
+fail, the splits again with Newton globalised by a backtracking line search on the residual
+(`newton_globalised`). The plain Newton alone failed at the first step on a stiff undamped body
+under a slow gait (E = 1e8 Pa, L = 1 m, r = 1 cm, a serpenoid of period 20 s ramped over 20 s,
+dt = 50 ms, slip speed 0.1 mm/s): the trapezoidal velocity of its stiff modes rings after the
+gait's start (v_n+1 = 2 (d_n+1 - d_n) / dt - v_n), the friction points flip their slip
+direction from iterate to iterate and the residual wanders; the line search keeps it falling.
 """
 
 from __future__ import annotations
@@ -81,6 +87,8 @@ from mf_envs.physics.serpentine.stepping import (  # noqa: F401 (Body re-exporte
 # the predictor d_n replaces d_n + dt v_n when its residual is below this fraction of the
 # latter's (module docstring)
 PREDICTOR_RATIO = 0.2
+# the globalised Newton (`newton_globalised`): halvings of a correction, iterations / max_iter
+LINE_HALVINGS, LINE_ITER_FACTOR = 12, 4
 
 
 @kernel
@@ -134,21 +142,16 @@ def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
 
 
 @numba.njit(cache=True)
-def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
-    """One step from (d0, v0) with kappa# k0 -> k1 of `stepping.Body` body on the ground
-    (module docstring; body.damping the Kelvin-Voigt retardation time tau [s]). d, v receive
-    the result, from the predictor of the module docstring; sc: the `make_scratch` tuple (no
-    allocation here). Returns the Newton iterations, or minus the iterations spent on failure
-    (no convergence in max_iter, stagnation, a singular or non-finite correction)."""
-    work, piv, buf, ab, pre = sc[0], sc[1], sc[8], sc[10], sc[11]
-    buf2, ab2, cm = sc[13], sc[14], sc[15]
-    u_scale, tol = body.quad[3], body.tol
-    nd = d0.shape[0]
+def _predict(d0, v0, k0, k1, dt, body, d, v, sc):
+    """The start's strains, the inertia band and the predictor of the module docstring into d
+    (with its residual and tangent: the first iteration's); returns (buf, ab, buf2, ab2) with
+    the chosen start's residual in buf, ab and the other pair free."""
+    buf, ab, pre, buf2, ab2, cm = sc[8], sc[10], sc[11], sc[13], sc[14], sc[15]
+    u_scale, nd = body.quad[3], d0.shape[0]
     fused.start_strains(d0, body.le, k0, body.quad[4], pre)
     fused.scale_band(body.mass, 2.0 / (dt * dt), cm)
-    # predictor (module docstring): the start d0 if its residual is below PREDICTOR_RATIO
-    # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
-    # iteration's
+    # the start d0 if its residual is below PREDICTOR_RATIO times the constant-velocity
+    # d0 + dt v0's
     for i in range(nd):
         d[i] = d0[i]
     _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v)
@@ -157,10 +160,68 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
     _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v)
     n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
     if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
-        buf, buf2, ab, ab2 = buf2, buf, ab2, ab
-    else:
+        return buf2, ab2, buf, ab
+    for i in range(nd):
+        d[i] = d0[i]
+    return buf, ab, buf2, ab2
+
+
+@numba.njit(cache=True)
+def newton_globalised(d0, v0, k0, k1, dt, body, d, v, sc):
+    """Newton with a backtracking line search: a correction x is taken as lam x with lam = 1,
+    1/2, ... down to 1/2^LINE_HALVINGS, the first that lowers the dof-scaled residual norm
+    sum (R_i u_i)^2 (Armijo, sufficient decrease 1e-4 lam); converged as the plain Newton, on
+    the step taken. Where the plain Newton cycles or diverges (an undamped stiff body whose
+    trapezoidal velocity rings on a Coulomb ground, friction points flipping their slip
+    direction), this keeps the residual falling. At most LINE_ITER_FACTOR x max_iter
+    iterations. Returns the iterations, or minus those spent on failure."""
+    work, piv = sc[0], sc[1]
+    u_scale, tol, nd = body.quad[3], body.tol, d0.shape[0]
+    buf, ab, buf2, ab2 = _predict(d0, v0, k0, k1, dt, body, d, v, sc)
+    nrm = fused.scaled_norm2(buf[0], u_scale)
+    x = buf[1]
+    back1 = np.inf
+    for it in range(1, LINE_ITER_FACTOR * body.max_iter + 1):
+        if fused.solve(ab, buf[0], work, piv, x) != 0:
+            return -it
+        lam, accepted = 1.0, False
+        trial = buf2[4]  # _residual does not write row 4
+        for _ in range(LINE_HALVINGS + 1):
+            for i in range(nd):
+                trial[i] = d[i] + lam * x[i]
+            _residual(d0, v0, trial, k0, k1, dt, body, sc, buf2, ab2, v)
+            n2 = fused.scaled_norm2(buf2[0], u_scale)
+            if n2 <= (1.0 - 1e-4 * lam) * nrm:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted or not np.isfinite(n2):
+            return -it
+        step = 0.0
         for i in range(nd):
-            d[i] = d0[i]
+            step = max(step, abs(trial[i] - d[i]) / u_scale[i])
+            d[i] = trial[i]
+        nrm = n2
+        buf, buf2, ab, ab2 = buf2, buf, ab2, ab
+        x = buf[1]
+        if converged(it, step, back1, tol):
+            end_velocity(d, d0, v0, dt, v)
+            return it
+        back1 = step
+    return -LINE_ITER_FACTOR * body.max_iter
+
+
+@numba.njit(cache=True)
+def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
+    """One step from (d0, v0) with kappa# k0 -> k1 of `stepping.Body` body on the ground
+    (module docstring; body.damping the Kelvin-Voigt retardation time tau [s]). d, v receive
+    the result, from the predictor of the module docstring; sc: the `make_scratch` tuple (no
+    allocation here). Returns the Newton iterations, or minus the iterations spent on failure
+    (no convergence in max_iter, stagnation, a singular or non-finite correction)."""
+    work, piv = sc[0], sc[1]
+    u_scale, tol = body.quad[3], body.tol
+    nd = d0.shape[0]
+    buf, ab, _, _ = _predict(d0, v0, k0, k1, dt, body, d, v, sc)  # (module docstring)
     x, prev = buf[1], buf[4]
     back2, back1 = np.inf, np.inf
     for it in range(1, body.max_iter + 1):
@@ -199,4 +260,4 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
 
 
 # the step split on Newton failure (with the muscles' work) and the run under a wave gait
-advance_linear, run = make_stepping(newton_step)
+advance_linear, run = make_stepping(newton_step, newton_globalised)

@@ -83,8 +83,9 @@ def end_velocity(d, d0, v0, dt, v):
 def _advance_linear(d, v, ka, kb, dt, body, sc, out):
     """d, v over one step dt in place with kappa# linear in time from ka to kb (n_el, 4) (a
     commanded actuation held by a first-order hold), split into 2, 4, ... sub-steps on Newton
-    failure. Returns the Newton iterations spent (failed attempts included), or -1 (d, v
-    untouched) on failure.
+    failure; should even 2^max_halvings sub-steps fail, the splits again with the model's
+    globalised Newton (a line search; models that have one). Returns the Newton iterations
+    spent (failed attempts included), or -1 (d, v untouched) on failure.
 
     out[0] += the muscles' positive work [J] summed over the (sub)steps, out[1] += their signed
     work (`muscle_work`): the exact discrete balance dKE + dU + D = W_muscles + F_load . dd of
@@ -92,38 +93,42 @@ def _advance_linear(d, v, ka, kb, dt, body, sc, out):
     k0, k1, d0, v0, d1, v1 = sc[2:8]
     ne, ng = ka.shape
     total = 0
-    for level in range(body.max_halvings + 1):
-        n_sub = 2**level
-        h = dt / n_sub
-        for i in range(d.shape[0]):
-            d0[i] = d[i]
-            v0[i] = v[i]
-        pos, signed = 0.0, 0.0
-        ok = True
-        for k in range(n_sub):
-            s0, s1 = k / n_sub, (k + 1) / n_sub
-            for e in range(ne):
-                for g in range(ng):
-                    k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
-                    k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
-            its = _newton(d0, v0, k0, k1, h, body, d1, v1, sc)  # noqa: F821 (bound)
-            total += abs(its)
-            if its < 0:
-                ok = False
-                break
-            w = muscle_work(d0, d1, k0, k1, body.le, body.ei)
-            pos += max(w, 0.0)
-            signed += w
+    for attempt in range(_ATTEMPTS):  # noqa: F821 (bound)
+        for level in range(body.max_halvings + 1):
+            n_sub = 2**level
+            h = dt / n_sub
             for i in range(d.shape[0]):
-                d0[i] = d1[i]
-                v0[i] = v1[i]
-        if ok:
-            for i in range(d.shape[0]):
-                d[i] = d0[i]
-                v[i] = v0[i]
-            out[0] += pos
-            out[1] += signed
-            return total
+                d0[i] = d[i]
+                v0[i] = v[i]
+            pos, signed = 0.0, 0.0
+            ok = True
+            for k in range(n_sub):
+                s0, s1 = k / n_sub, (k + 1) / n_sub
+                for e in range(ne):
+                    for g in range(ng):
+                        k0[e, g] = ka[e, g] + s0 * (kb[e, g] - ka[e, g])
+                        k1[e, g] = ka[e, g] + s1 * (kb[e, g] - ka[e, g])
+                if attempt == 0:
+                    its = _newton(d0, v0, k0, k1, h, body, d1, v1, sc)  # noqa: F821 (bound)
+                else:
+                    its = _globalised(d0, v0, k0, k1, h, body, d1, v1, sc)  # noqa: F821
+                total += abs(its)
+                if its < 0:
+                    ok = False
+                    break
+                w = muscle_work(d0, d1, k0, k1, body.le, body.ei)
+                pos += max(w, 0.0)
+                signed += w
+                for i in range(d.shape[0]):
+                    d0[i] = d1[i]
+                    v0[i] = v1[i]
+            if ok:
+                for i in range(d.shape[0]):
+                    d[i] = d0[i]
+                    v[i] = v0[i]
+                out[0] += pos
+                out[1] += signed
+                return total
     return -1
 
 
@@ -154,8 +159,12 @@ def _run(d, v, dt, n_steps, every, body, gait, sc, d_out, v_out, work_out):
     return total, -1
 
 
-def make_stepping(newton: Any) -> tuple[Any, Any]:
-    """(advance_linear, run) on the model's Newton step (module doc), compiled and cached
-    beside the model's module."""
-    advance = specialise(_advance_linear, newton, "advance_linear", _newton=newton)
+def make_stepping(newton: Any, globalised: Any = None) -> tuple[Any, Any]:
+    """(advance_linear, run) on the model's Newton step (module doc) and, if it has one, its
+    globalised Newton step (same signature; tried only where every split of the plain one
+    failed), compiled and cached beside the model's module."""
+    attempts = 1 if globalised is None else 2
+    advance = specialise(_advance_linear, newton, "advance_linear", _newton=newton,
+                         _globalised=newton if globalised is None else globalised,
+                         _ATTEMPTS=attempts)  # fmt: skip
     return advance, specialise(_run, newton, "run", _advance=advance)
