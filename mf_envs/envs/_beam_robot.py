@@ -24,6 +24,17 @@ from mf_envs.physics.beam.solver import BeamModel
 MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 
+def step_terms(body, rep, target_direction, length, effort_weight) -> tuple[Any, dict]:
+    """The centre of mass's advance along the target direction in a step [m] and the reward
+    terms (`progress` = advance / L, `effort` = -effort_weight x the actuation energy [J]) of
+    one row (body (5,), rep (N_REPORT,)) or of a batch (body (N, 5), rep (N, N_REPORT)): the
+    single env's and the vector env's one definition."""
+    c, s = math.cos(target_direction), math.sin(target_direction)
+    along = c * (body[..., 0] - rep[..., REP_X0]) + s * (body[..., 1] - rep[..., REP_Y0])
+    energy = rep[..., REP_ENERGY]
+    return along, {"progress": along / length, "effort": -effort_weight * energy}
+
+
 class BeamRobotMixin(metaclass=ABCMeta):
     """`step`, reset, `_info`, `centerline` and `_draw_frame` of a beam robot (put before
     `MFEnv`); an env that lacks one of the three hooks below cannot be instantiated
@@ -106,11 +117,10 @@ class BeamRobotMixin(metaclass=ABCMeta):
         self._advance(a, rep)
         self._steps += 1
         ok = rep[REP_OK] > 0.0 and bool(np.isfinite(self.state).all())
-        dx = self._body[0] - rep[REP_X0], self._body[1] - rep[REP_Y0]
-        c, s = math.cos(self.target_direction), math.sin(self.target_direction)
-        along = c * dx[0] + s * dx[1]
+        along, terms = step_terms(self._body, rep, self.target_direction, self.scene.length,
+                                  self.effort_weight)  # fmt: skip
+        along, terms = float(along), {k: float(v) for k, v in terms.items()}
         energy = float(rep[REP_ENERGY])
-        terms = {"progress": along / self.scene.length, "effort": -self.effort_weight * energy}
         info = self._info(along / self.control_dt, energy, int(rep[REP_ITER]), terms)
         info["actuation_net_work"] = float(rep[REP_NET])
         if ok:

@@ -20,12 +20,12 @@ rows are stepped one by one with their own (`DrawnRows._run_rows_of`).
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
 from mf_envs.envs import _beam_rows as br
+from mf_envs.envs._beam_robot import step_terms
 from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.serpentine import rows, spec
 from mf_envs.envs.serpentine.env import SerpentineEnv
@@ -94,11 +94,10 @@ class SerpentineVectorEnv(BatchedVectorEnv):
         rep[~active, br.REP_OK] = 1.0
         self._run_rows(actions, active)
         self._steps[active] += 1
-        c, s = math.cos(env.target_direction), math.sin(env.target_direction)
-        along = c * (body[:, 0] - rep[:, br.REP_X0]) + s * (body[:, 1] - rep[:, br.REP_Y0])
+        along, terms = step_terms(body, rep, env.target_direction, env.scene.length,
+                                  env.effort_weight)  # fmt: skip
         energy = rep[:, br.REP_ENERGY].copy()
-        progress = along / env.scene.length
-        effort = -env.effort_weight * energy
+        progress, effort = terms["progress"], terms["effort"]
         reward = progress + effort
         info = spec.step_info(
             body[:, 0].copy(), body[:, 1].copy(), self._headings(),
