@@ -20,7 +20,7 @@ import dataclasses
 from typing import Any
 
 from mf_envs._validate import check_int, check_range
-from mf_envs.envs.eel.spec import CURVATURE_OBS_LIMIT
+from mf_envs.envs.serpentine.build import RobotScene, material, robot_fields
 from mf_envs.physics.beam.solver import BeamParams
 from mf_envs.physics.serpentine import rod_params
 from mf_envs.physics.swimmer import Water
@@ -41,23 +41,13 @@ EFFORT_SCALE = 0.02
 
 
 @dataclasses.dataclass(frozen=True)
-class Scene:
+class Scene(RobotScene):
     """What the env's kwargs become (SI units), validated; the env reads its parameters here."""
 
-    params: BeamParams
     water: Water
-    max_curvature: float  # 1/m, action scale
     max_curvature_rate: float  # 1/(m s), muscle rate limit on the command
-    n_ctrl: int
-    effort_weight: float  # 1/J
-    reset_noise_scale: float
-    initial_heading_range: float  # rad
     stress_theta: float  # the stresses' theta point (physics.swimmer.kernels): > 1/2 damps
     action_mode: str  # "curvature" (kappa# at the control points) or "wave" (a, lambda, f)
-
-    @property
-    def length(self) -> float:
-        return self.params.length
 
     @property
     def body_mass(self) -> float:
@@ -71,10 +61,7 @@ def _rod(kw: dict[str, Any]) -> tuple[BeamParams, float]:
     dia = check_range("diameter", dia, 1e-5, 2.0)
     if dia > length / 5:
         raise ValueError(f"diameter: must be <= length / 5 (a slender body), got {dia!r}")
-    e = check_range("youngs_modulus", kw["youngs_modulus"], 1e3, 1e12)
-    g = e / 1.5 if kw["shear_modulus"] is None else kw["shear_modulus"]
-    g = check_range("shear_modulus", g, 1e3, 1e12)
-    rho = check_range("density", kw["density"], 1.0, 1e5)
+    e, g, rho = material(kw)
     rho_w = check_range("water_density", kw["water_density"], 1.0, 1e5)
     if rho < MIN_DENSITY_RATIO * rho_w:
         raise ValueError(
@@ -110,27 +97,12 @@ def build(kw: dict[str, Any], effects: frozenset) -> Scene:
     """The `Scene` of the env's kwargs `kw` under these effects; ValueError names the kwarg."""
     params, dia = _rod(kw)
     L = params.length
-    max_curvature = check_range("max_curvature", kw["max_curvature"], 1e-6)
-    if max_curvature * L > CURVATURE_OBS_LIMIT:
-        raise ValueError(
-            f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
-            f"curvature observation bound), got {max_curvature:g} 1/m x {L:g} m"
-        )
-    rate = check_range("max_curvature_rate", kw["max_curvature_rate"], 1e-6, 1e9)
     mass = params.mass_per_length * L
-    effort = kw["effort_weight"]
-    effort = EFFORT_SCALE / (mass * L**2) if effort is None else effort
     return Scene(
         params=params,
+        **robot_fields(kw, L, EFFORT_SCALE / (mass * L**2)),
         water=water(kw, effects, dia),
-        max_curvature=max_curvature,
-        max_curvature_rate=rate,
-        n_ctrl=check_int("n_control_points", kw["n_control_points"], low=2, high=64),
-        effort_weight=check_range("effort_weight", effort, 0.0, 1e9),
-        reset_noise_scale=check_range("reset_noise_scale", kw["reset_noise_scale"], 0.0, 1.0),
-        initial_heading_range=check_range(
-            "initial_heading_range", kw["initial_heading_range"], 0.0, 3.141592653589793
-        ),
+        max_curvature_rate=check_range("max_curvature_rate", kw["max_curvature_rate"], 1e-6, 1e9),
         stress_theta=check_range("numerical_damping", kw["numerical_damping"], 0.0, 0.5) + 0.5,
         action_mode=action_mode(kw["action_mode"]),
     )

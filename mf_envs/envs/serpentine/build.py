@@ -36,24 +36,30 @@ EFFORT_SCALE = 0.1
 
 
 @dataclasses.dataclass(frozen=True)
-class Scene:
-    """What the env's kwargs become (SI units), validated; the env reads its parameters here."""
+class RobotScene:
+    """What every beam robot's kwargs become (SI units, validated: `robot_fields`)."""
 
     params: BeamParams
-    ground: BellyFriction
     max_curvature: float  # 1/m, action scale
     n_ctrl: int
     effort_weight: float  # 1/J
     reset_noise_scale: float
     initial_heading_range: float  # rad
-    gravity: float  # m/s^2, normal to the ground
-    material_damping: float  # s, Kelvin-Voigt retardation time of the body
-    actuator_time_constant: float  # s, first-order lag of the muscles (0: first-order hold)
-    actuator_rate_limit: float  # 1/(m s), the muscles' largest curvature rate
 
     @property
     def length(self) -> float:
         return self.params.length
+
+
+@dataclasses.dataclass(frozen=True)
+class Scene(RobotScene):
+    """What the env's kwargs become (SI units), validated; the env reads its parameters here."""
+
+    ground: BellyFriction
+    gravity: float  # m/s^2, normal to the ground
+    material_damping: float  # s, Kelvin-Voigt retardation time of the body
+    actuator_time_constant: float  # s, first-order lag of the muscles (0: first-order hold)
+    actuator_rate_limit: float  # 1/(m s), the muscles' largest curvature rate
 
     @property
     def weight(self) -> float:
@@ -66,12 +72,40 @@ def _rod(kw: dict[str, Any]) -> BeamParams:
     radius = check_range("radius", RADIUS if kw["radius"] is None else kw["radius"], 1e-5, 1.0)
     if radius > length / 10:
         raise ValueError(f"radius: must be <= length / 10 (a slender body), got {radius!r}")
+    e, g, rho = material(kw)
+    n_el = check_int("n_elements", kw["n_elements"], low=2, high=64)
+    return rod_params(length, radius, e, g, rho, n_el)
+
+
+def material(kw: dict[str, Any]) -> tuple[float, float, float]:
+    """(E, G, rho) of a beam robot's kwargs (G = E / 1.5 unless given), validated."""
     e = check_range("youngs_modulus", kw["youngs_modulus"], 1e3, 1e12)
     g = e / 1.5 if kw["shear_modulus"] is None else kw["shear_modulus"]
     g = check_range("shear_modulus", g, 1e3, 1e12)
-    rho = check_range("density", kw["density"], 1.0, 1e5)
-    n_el = check_int("n_elements", kw["n_elements"], low=2, high=64)
-    return rod_params(length, radius, e, g, rho, n_el)
+    return e, g, check_range("density", kw["density"], 1.0, 1e5)
+
+
+def robot_fields(kw: dict[str, Any], length: float, effort_scale: float) -> dict[str, Any]:
+    """The `RobotScene` fields of a beam robot's kwargs but its params, validated (ValueError
+    naming the kwarg): max_curvature (max_curvature x length within the curvature observation's
+    bound), n_ctrl, effort_weight (None: effort_scale), reset_noise_scale,
+    initial_heading_range."""
+    max_curvature = check_range("max_curvature", kw["max_curvature"], 1e-6)
+    if max_curvature * length > CURVATURE_OBS_LIMIT:
+        raise ValueError(
+            f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
+            f"curvature observation bound), got {max_curvature:g} 1/m x {length:g} m"
+        )
+    effort = effort_scale if kw["effort_weight"] is None else kw["effort_weight"]
+    return {
+        "max_curvature": max_curvature,
+        "n_ctrl": check_int("n_control_points", kw["n_control_points"], low=2, high=64),
+        "effort_weight": check_range("effort_weight", effort, 0.0, 1e9),
+        "reset_noise_scale": check_range("reset_noise_scale", kw["reset_noise_scale"], 0.0, 1.0),
+        "initial_heading_range": check_range(
+            "initial_heading_range", kw["initial_heading_range"], 0.0, np.pi
+        ),
+    }
 
 
 def ground_law(kw: dict[str, Any], effects: frozenset) -> BellyFriction:
@@ -95,28 +129,14 @@ def build(kw: dict[str, Any], effects: frozenset) -> Scene:
     """The `Scene` of the env's kwargs `kw` under these effects; ValueError names the kwarg."""
     params = _rod(kw)
     L = params.length
-    max_curvature = check_range("max_curvature", kw["max_curvature"], 1e-6)
-    if max_curvature * L > CURVATURE_OBS_LIMIT:
-        raise ValueError(
-            f"max_curvature: max_curvature * length must be <= {CURVATURE_OBS_LIMIT:g} (the "
-            f"curvature observation bound), got {max_curvature:g} 1/m x {L:g} m"
-        )
     weight = params.mass_per_length * G * L
     tau_a = kw["actuator_time_constant"]
     check_range("actuator_time_constant", tau_a, 1e-4, 100.0)  # validated whatever the effects
     rate_a = check_range("actuator_rate_limit", kw["actuator_rate_limit"], 1e-3, 1e6)
-    effort = kw["effort_weight"]
-    effort = EFFORT_SCALE / (weight * L) if effort is None else effort
     return Scene(
         params=params,
+        **robot_fields(kw, L, EFFORT_SCALE / (weight * L)),
         ground=ground_law(kw, effects),
-        max_curvature=max_curvature,
-        n_ctrl=check_int("n_control_points", kw["n_control_points"], low=2, high=64),
-        effort_weight=check_range("effort_weight", effort, 0.0, 1e9),
-        reset_noise_scale=check_range("reset_noise_scale", kw["reset_noise_scale"], 0.0, 1.0),
-        initial_heading_range=check_range(
-            "initial_heading_range", kw["initial_heading_range"], 0.0, np.pi
-        ),
         gravity=G,
         material_damping=check_range("material_damping", kw["material_damping"], 0.0, 10.0),
         actuator_time_constant=(

@@ -27,12 +27,20 @@ INFO_KEYS = (
 
 def observation_layout(n: int) -> ObsLayout:
     """The observation of a serpentine with n control points (2 n + 4 slots)."""
+    return beam_layout(n, "psi_head", VELOCITY_OBS_LIMIT)
+
+
+def beam_layout(n: int, heading: str, velocity_limit: float, extra: tuple = ()) -> ObsLayout:
+    """A beam robot's observation with n control points: the curvatures, the heading (`heading`:
+    the angle it reads) against the target, the centre of mass's velocity (bound
+    `velocity_limit` L/s), the robot's `extra` fields and the commanded curvatures."""
     return ObsLayout(
         Field("curvature", "", CURVATURE_OBS_LIMIT, "measured kappa L at the control points", n),
-        Field("sin_heading", "", 1.0, "sin(psi_head - target direction)"),
-        Field("cos_heading", "", 1.0, "cos(psi_head - target direction)"),
-        Field("velocity", "1/s", VELOCITY_OBS_LIMIT, "v_com / L along, across the mean axis", 2),
-        Field("curvature_command", "", 1.0, "commanded kappa# / max_curvature", n),
+        Field("sin_heading", "", 1.0, f"sin({heading} - target direction)"),
+        Field("cos_heading", "", 1.0, f"cos({heading} - target direction)"),
+        Field("velocity", "1/s", velocity_limit, "v_com / L along, across the mean axis", 2),
+        *extra,
+        Field("curvature_command", "", 1.0, "kappa# / max_curvature at the step's end", n),
     )
 
 
