@@ -159,3 +159,37 @@ def test_a_beam_robot_without_its_row_step_cannot_be_made():
 
     with pytest.raises(TypeError, match="_heading"):
         NoHeading()
+
+
+@pytest.mark.slow
+def test_pyelastica_preset_crawls_at_pyelastica_speed_through_gym_make():
+    """`gym.make("Serpentine-v0", preset="pyelastica")` under its `elastica_muscles` baseline
+    against PyElastica 1.0's continuum snake itself (n = 50, dt = 1e-4, the `compare` extra),
+    side by side in one run: the forward speed over periods 5-11 within 3 %. (The CPU ratio is
+    the speed benchmark's row, `benchmarks.speed.snake_elastica`.)"""
+    pytest.importorskip("elastica")
+    from mf_envs.benchmarks.speed.snake_elastica import forward_speed, run_elastica, run_env_preset
+
+    t, com, _ = run_elastica(50, 1e-4)
+    v_ref = forward_speed(t, com)
+    t, com, _ = run_env_preset()
+    assert forward_speed(t, com) == pytest.approx(v_ref, rel=0.03)
+
+
+def test_preset_sets_its_scene_and_refuses_a_clash():
+    """The preset is the scene of `build.PYELASTICA_SCENE`; a kwarg it sets, given as well, or
+    an unknown preset is a ValueError naming it."""
+    from mf_envs.envs.serpentine import build
+
+    env = gym.make("Serpentine-v0", preset="pyelastica").unwrapped
+    assert env.n_ctrl == 61 and env.model.n_elements == 10 and env.physics_dt == 0.01
+    assert env.scene.material_damping == 0.0 and env.effects == frozenset({"friction"})
+    law = env.scene.ground
+    assert law.drag_rate == build.PYELASTICA_DAMPER
+    assert law.couple_damping == pytest.approx(
+        build.PYELASTICA_DAMPER * env.scene.params.mass_per_length
+    )
+    with pytest.raises(ValueError, match="n_elements"):
+        gym.make("Serpentine-v0", preset="pyelastica", n_elements=8)
+    with pytest.raises(ValueError, match="preset"):
+        gym.make("Serpentine-v0", preset="pyelastic")

@@ -36,6 +36,8 @@ ELASTICA = (20.0, 1.0, 2.0)  # a [1/m], lambda / L, T [s]: PyElastica's snake (~
 # gait_speed 0.05975 m/s re-evaluated (ELASTICA: 0.0305); a and T sit on their bounds.
 TUNED = (25.0, 1.0387002743484175, 1.0)
 BOUNDS = ((5.0, 25.0), (0.5, 2.0), (1.0, 4.0))  # a [1/m], lambda / L, T [s]
+# PyElastica's example's muscle-torque spline coefficients [N m] (`ElasticaMuscles`)
+ELASTICA_COEFFICIENTS = np.array([3.4e-3, 3.3e-3, 4.2e-3, 2.6e-3, 3.6e-3, 3.5e-3])
 
 
 class Serpenoid:
@@ -96,6 +98,36 @@ class HeadingSerpenoid(Serpenoid):
         return float(np.clip(-self.gain * err, -self.max_bias, self.max_bias))
 
 
+class ElasticaMuscles:
+    """PyElastica's continuum snake's muscle torques as the command (`preset="pyelastica"`):
+    kappa#(S_j, t) = beta(s) sin(K s - w t) / EI at the control points (s = 1 - S / L, beta the
+    spline of the example's coefficients, K = 2 pi / (wavelength L), w = 2 pi / period, ramped
+    over one period: `physics.serpentine.gait.elastica_muscles`), the command of step k the
+    muscles at the step's end, t = (k + 1) dt. Open loop; for the preset's scene."""
+
+    def __init__(self, env: Any, wavelength: float = 1.0, period: float = 2.0) -> None:
+        from mf_envs.physics.serpentine.gait import elastica_muscles
+
+        base = env.unwrapped
+        self.base, self.dt = base, float(base.control_dt)
+        s_ctrl = np.linspace(0.0, base.scene.length, base.n_ctrl)[None, :]  # (1, n)
+        wavelength = positive_scalar("wavelength", wavelength)
+        period = positive_scalar("period", period)
+        self.gait = elastica_muscles(s_ctrl, base.scene.length, base.model.params.EI,
+                                     ELASTICA_COEFFICIENTS, wavelength, period, period)  # fmt: skip
+        self.scale = 1.0 / float(base.max_curvature)
+        self.reset()
+
+    def reset(self) -> None:
+        self.k = 0
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        del obs, deterministic
+        self.k += 1
+        a = np.clip(self.gait.kappa(self.k * self.dt)[0] * self.scale, -1.0, 1.0)
+        return a.astype(np.float32), None
+
+
 def gait_speed(env: Any, params: tuple[float, float, float], seconds: float = 8.0,
                warmup: float = 2.0, seed: int = 0) -> float:  # fmt: skip
     """Speed [m/s] of the centre of mass (|displacement| from `warmup` to `seconds`) of the
@@ -127,6 +159,7 @@ def tune(env: Any, x0: tuple = ELASTICA, max_evals: int = 40) -> tuple[tuple, fl
 register(ENV_ID, "heading", HeadingSerpenoid, default=True)
 register(ENV_ID, "serpenoid", Serpenoid)
 register(ENV_ID, "tuned", lambda env, **kw: Serpenoid(env, *TUNED, **kw))
+register(ENV_ID, "elastica_muscles", ElasticaMuscles)
 
 
 def main(argv: list[str] | None = None) -> None:

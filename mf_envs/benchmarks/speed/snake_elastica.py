@@ -17,6 +17,9 @@ coefficients (regularised below `slip_speed`), and optionally the damper's equiv
 (drag nu_v = 2e-3 1/s on every velocity, line couple -c m_A psi_dot: the deprecated protocol
 multiplies omega by exp(-c dt m_e / J_e) per step, a couple -c m_e omega per element).
 
+The env through gym.make (`preset="pyelastica"`, driven by its `elastica_muscles` baseline) is
+a row of its own: CPU seconds of its episode loop against PyElastica's (`time.process_time`).
+
 Figure: mean forward speed over periods 5-11, |com(11 T) - com(4 T)| / 7 T, and PyElastica's own
 post-processing (`compute_projected_velocity`: the centre-of-mass velocity projected on the
 mean heading, averaged from t = 2 T). Wall time: the time loop only, numba warm.
@@ -186,6 +189,35 @@ def run_ours(
     return h.t, h.com(), wall, h.iterations
 
 
+def run_env_preset(t_end: float = N_PERIODS * PERIOD):
+    """`gym.make("Serpentine-v0", preset="pyelastica")` driven by its `elastica_muscles`
+    baseline from rest, straight along +x -> (t, com (N, 2), CPU seconds of the episode's loop:
+    env steps and controller, numba warm)."""
+    import gymnasium as gym
+
+    from mf_envs.controllers.serpentine import ElasticaMuscles
+
+    env = gym.make("Serpentine-v0", preset="pyelastica", episode_seconds=t_end)
+    ctrl = ElasticaMuscles(env)
+
+    def episode():
+        opts = {"heading": 0.0, "kappa": np.zeros(env.unwrapped.n_ctrl)}
+        obs, info = env.reset(seed=0, options=opts)
+        ctrl.reset()
+        t, com, done = [0.0], [(info["x"], info["y"])], False
+        while not done:
+            obs, _, term, trunc, info = env.step(ctrl.predict(obs)[0])
+            t.append(info["time"])
+            com.append((info["x"], info["y"]))
+            done = term or trunc
+        return np.array(t), np.array(com)
+
+    episode()  # compile / warm
+    c0 = time.process_time()
+    t, com = episode()
+    return t, com, time.process_time() - c0
+
+
 def _row(name, t, com, wall):
     v5, vp = forward_speed(t, com), elastica_projected_speed(t, com)
     print(
@@ -220,7 +252,9 @@ def rows(quick: bool) -> list[dict]:
         return []
     t_end = N_PERIODS * PERIOD
     run_elastica(n_elem=50, t_end=0.01)  # numba warm-up
+    c0 = time.process_time()
     t, com, wall_e = run_elastica(50, 1e-4)
+    cpu_e = time.process_time() - c0
     v_e = forward_speed(t, com)
     err_e = float("nan")
     if not quick:
@@ -250,6 +284,25 @@ def rows(quick: bool) -> list[dict]:
                 "newton_per_step": its / (t_end / dt),
             }
         )
+    t, com, cpu = run_env_preset(t_end)
+    v = forward_speed(t, com)
+    out.append(
+        {
+            "case": "continuum_snake_22s",
+            "variant": "gym.make('Serpentine-v0', preset='pyelastica') vs PyElastica n=50 dt=1e-4",
+            "steps_per_s": t_end / cpu,
+            "reference": "PyElastica 1.0 continuum snake",
+            "reference_steps_per_s": t_end / cpu_e,
+            "ratio": cpu_e / cpu,
+            "cpu_s": cpu,
+            "reference_cpu_s": cpu_e,
+            "speed_mm_s": 1e3 * v,
+            "reference_speed_mm_s": 1e3 * v_e,
+            "speed_ratio": v / v_e,
+            "error_vs_own_converged": abs(v - v_conv) / v_conv,
+            "reference_error_vs_own_converged": err_e,
+        }
+    )
     return out
 
 

@@ -108,8 +108,9 @@ def robot_fields(kw: dict[str, Any], length: float, effort_scale: float) -> dict
     }
 
 
-def ground_law(kw: dict[str, Any], effects: frozenset) -> BellyFriction:
-    """The belly law of the effects (every kwarg validated whatever the effects)."""
+def ground_law(kw: dict[str, Any], effects: frozenset, mass_per_length: float) -> BellyFriction:
+    """The belly law of the effects (every kwarg validated whatever the effects); a preset's
+    damper (`apply_preset`) adds its drag on every velocity and its couple on the frame rate."""
     mu = check_range("friction_coefficient", kw["friction_coefficient"], 0.0, 10.0)
     back = check_range("backward_ratio", kw["backward_ratio"], 0.0, 100.0)
     lat = check_range("lateral_ratio", kw["lateral_ratio"], 0.0, 100.0)
@@ -121,7 +122,9 @@ def ground_law(kw: dict[str, Any], effects: frozenset) -> BellyFriction:
     if "viscous_ground" in effects:
         return BellyFriction(0.0, 0.0, 0.0, slip, True, c_t, c_n)
     if "friction" in effects:
-        return BellyFriction(mu, back * mu, lat * mu, slip)
+        damper = kw.get("damper", 0.0)
+        return BellyFriction(mu, back * mu, lat * mu, slip, drag_rate=damper,
+                             couple_damping=damper * mass_per_length)  # fmt: skip
     return BellyFriction(0.0, 0.0, 0.0, slip)  # frictionless: the ground force is 0
 
 
@@ -136,7 +139,7 @@ def build(kw: dict[str, Any], effects: frozenset) -> Scene:
     return Scene(
         params=params,
         **robot_fields(kw, L, EFFORT_SCALE / (weight * L)),
-        ground=ground_law(kw, effects),
+        ground=ground_law(kw, effects, params.mass_per_length),
         gravity=G,
         material_damping=check_range("material_damping", kw["material_damping"], 0.0, 10.0),
         actuator_time_constant=(
@@ -182,3 +185,45 @@ def initial_dofs(params: BeamParams, kappa: np.ndarray, heading: float) -> np.nd
         d[name::6] = arr[nodes]
     d[5::6] = psi[nodes[:-1] + 32]  # mid-node frame angles
     return d
+
+
+# preset="pyelastica": PyElastica 1.0's continuum snake (examples/ContinuumSnakeCase/
+# continuum_snake.py; Gazzola et al. 2018) through gym.make: its rod (L = 0.35 m, r = 0.011 L,
+# E = 1 MPa, G = E / 1.5, rho = 1000 kg/m^3, friction (mu, 1.5 mu, 2 mu) at Fr = 0.1 and T = 2 s:
+# the defaults) on 10 elements at 10 ms with the action every physics step, the muscles as
+# kappa# at 61 control points (its spline envelope sampled finely enough for the linear map to
+# the beam; 7 points left it at 0.90 of PyElastica's speed), no Kelvin-Voigt body and no
+# actuator lag (PyElastica has neither), friction only, and the equivalents of its
+# AnalyticalLinearDamper (damping constant 2e-3: a drag 2e-3 1/s on every velocity and a line
+# couple -2e-3 m_A psi', `benchmarks.speed.snake_elastica`). docs/serpentine.md, "PyElastica
+# side by side".
+PRESETS = ("pyelastica",)
+PYELASTICA_SCENE = {
+    "n_elements": 10,
+    "n_control_points": 61,
+    "control_dt": 0.01,
+    "physics_dt": 0.01,
+    "max_curvature": 30.0,  # the muscles reach 24 1/m: no clipping
+    "slip_speed": 1e-4,
+    "material_damping": 0.0,
+    "effects": ("friction",),
+}
+PYELASTICA_DAMPER = 2e-3  # 1/s
+
+
+def apply_preset(kw: dict[str, Any], defaults: dict[str, Any]) -> dict[str, Any]:
+    """The kwargs `kw` (with `preset`) as the scene sees them: a preset's values in place of the
+    defaults (`defaults`: the env's signature); ValueError naming `preset` if unknown, or a
+    kwarg the preset sets that was given as well."""
+    kw = dict(kw)
+    preset = kw.pop("preset")
+    if preset is None:
+        return kw
+    if preset not in PRESETS:
+        raise ValueError(f"preset: must be one of {PRESETS} or None, got {preset!r}")
+    for key, value in PYELASTICA_SCENE.items():
+        if kw[key] != defaults[key]:
+            raise ValueError(f"{key}: preset='pyelastica' sets it ({value!r}); leave it out")
+        kw[key] = value
+    kw["damper"] = PYELASTICA_DAMPER
+    return kw

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import math
 from typing import Any
 
@@ -98,6 +99,7 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     | actuator_time_constant | 0.1 | muscle lag [s] with `actuator_dynamics`, in [1e-4, 100] |
     | actuator_rate_limit | 1000 | muscle curvature rate limit [1/(m s)], in [1e-3, 1e6] |
     | effects | friction, actuator_dynamics | viscous_ground for friction; () none of them |
+    | preset | None | "pyelastica": PyElastica's continuum snake (`build.PYELASTICA_SCENE`) |
 
     ## Version History
     * v0: initial release.
@@ -136,12 +138,15 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
         actuator_time_constant: float = 0.1,
         actuator_rate_limit: float = 1000.0,
         effects: Any = None,
+        preset: str | None = None,
         max_episode_steps: int | None = None,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
-        super().__init__(effects=effects, control_dt=control_dt, physics_dt=physics_dt,
-                         render_mode=render_mode)  # fmt: skip
+        kw = build.apply_preset(kw, _DEFAULTS)
+        self.preset = preset
+        super().__init__(effects=kw["effects"], control_dt=kw["control_dt"],
+                         physics_dt=kw["physics_dt"], render_mode=render_mode)  # fmt: skip
         self._make_robot(kw, EPISODE_SECONDS)
         self.cfg = rows.pack(
             self.scene, self.model, self.n_substeps, self.physics_dt, self.target_direction
@@ -159,3 +164,6 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
 
     def _draw(self, line: np.ndarray, text: str) -> np.ndarray:
         return render.draw(line, self._track[-400:], self.target_direction, text)
+
+
+_DEFAULTS = {k: p.default for k, p in inspect.signature(SerpentineEnv.__init__).parameters.items()}
