@@ -315,7 +315,9 @@ def main(argv: list[str] | None = None) -> None:
     ref = None
     if not args.no_elastica:
         run_elastica(n_elem=50, t_end=0.01, g=args.gravity)  # numba warm-up
+        c0 = time.process_time()
         ref = _row("pyelastica n=50 dt=1e-4", *run_elastica(50, 1e-4, g=args.gravity))
+        cpu_ref = time.process_time() - c0
         if not args.quick:
             _row("pyelastica n=25 dt=1e-4", *run_elastica(25, 1e-4, g=args.gravity))
     for n_el, dt, v_eps, damper, th in (
@@ -335,6 +337,12 @@ def main(argv: list[str] | None = None) -> None:
                 f"{'':38s} speed / PyElastica {v5 / ref[0]:.4f}  wall ratio {ref[1] / wall:.1f}x"
                 f"  Newton its/step {its / (N_PERIODS * PERIOD / dt):.2f}"
             )
+    if args.gravity == G:  # the env runs at the project's g
+        t, com, cpu = run_env_preset()
+        v5, _ = _row("gym.make Serpentine-v0 preset=pyelastica", t, com, cpu)
+        if ref is not None:
+            print(f"{'':38s} speed / PyElastica {v5 / ref[0]:.4f}  CPU ratio {cpu_ref / cpu:.1f}x "
+                  f"({cpu_ref:.2f} s against {cpu:.2f} s of CPU)")  # fmt: skip
 
 
 if __name__ == "__main__":
