@@ -33,7 +33,7 @@ ELASTICA = (20.0, 1.0, 2.0)  # a [1/m], lambda / L, T [s]: PyElastica's snake (~
 # Nelder-Mead from ELASTICA, 40 evaluations); stored at full precision: the speed is not smooth
 # in the parameters (Newton's step splitting and stick-slip switch discretely), so rounding
 # the optimum to 4 digits once cost 6 % (0.0469 -> 0.0440 m/s on the old env, measured).
-# gait_speed 0.05975 m/s re-evaluated (ELASTICA: 0.0305); a and T sit on their bounds.
+# gait_speed 0.0598 m/s re-evaluated 2026-11-28 (ELASTICA: 0.0235); a and T sit on their bounds.
 TUNED = (25.0, 1.0387002743484175, 1.0)
 BOUNDS = ((5.0, 25.0), (0.5, 2.0), (1.0, 4.0))  # a [1/m], lambda / L, T [s]
 # PyElastica's example's muscle-torque spline coefficients [N m] (`ElasticaMuscles`)
