@@ -28,6 +28,13 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ROLL,
 )
 from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
+from mf_envs.physics.gowec.hydro.gimbal import (
+    PTO_BRAKE,
+    PTO_CS,
+    PTO_KS,
+    PTO_STROKE,
+    SURVIVAL_LATCHED,
+)
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -153,8 +160,14 @@ class GOWECV1Env(MFEnv):
                              else physics_dt, 1e-5, 1.0),
                          default_effects=build.default_effects(self.scene, hull))  # fmt: skip
         self.irregular = self.scene.hs_given or "irregular_waves" in self.effects
-        self._base_substeps = self.n_substeps
         self.hull, self.model = build.floating_model(self.scene, kw, self.effects)
+        self._Ig = self.model.p.gyro[1] + self.model.p.gyro[3]  # gimbal + rotor, kg m^2
+        self._base_substeps = self.n_substeps
+        self._base_rate = 0.0  # the stiffest of the brake and the cushion (`set_pto`)
+        pto = self.model.p.pto
+        self._base_rate = max(pto[PTO_BRAKE] / self._Ig, pto[PTO_CS] / self._Ig,
+                              4.0 * math.sqrt(pto[PTO_KS] / self._Ig))  # fmt: skip
+        self.set_pto(0.0, 0.0)
         self.buoy_radius = self.hull.radius if math.isfinite(self.hull.radius) else 0.0
         self.max_steps, self.episode_seconds = self._seconds_episode(episode_seconds,
             max_episode_steps, build.EPISODE_SECONDS)  # fmt: skip
@@ -201,8 +214,7 @@ class GOWECV1Env(MFEnv):
         k = check_range("stiffness", stiffness, -1e9, 1e9)
         self.model.set_pto(c, k)
         # explicit RK4: keep the damper's rate c dt / I_g <= 2 and w_k dt <= 0.5 (stable, accurate)
-        Ig = self.model.p.gyro[1] + self.model.p.gyro[3]
-        rate = max(c / Ig, 4.0 * math.sqrt(abs(k) / Ig))
+        rate = max(self._base_rate, c / self._Ig, 4.0 * math.sqrt(abs(k) / self._Ig))
         self.n_substeps = max(self._base_substeps, math.ceil(self.control_dt * rate / 2.0))
         self.physics_dt = self.control_dt / self.n_substeps
 
@@ -213,14 +225,14 @@ class GOWECV1Env(MFEnv):
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
         obs = np.empty(self.observation_space.shape[0], np.float32)
-        loss, lo, hi, limits = self._consts
+        loss, lo, hi, limits, sup = self._consts
         ok, y, finite, over, out = step_one(
             t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
             self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals,
             self._work, lo, hi, obs, limits, self.preview_times,
         )  # fmt: skip
         if not ok:
-            info = dict(power=0.0, overspeed=False, out_of_range=False)
+            info = dict(power=0.0, overspeed=False, stroke_end=False, survival=False)
             info["reward_terms"] = {"net_electrical_energy": 0.0, "shutdown_loss": 0.0}
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
         self.state = y
@@ -230,10 +242,19 @@ class GOWECV1Env(MFEnv):
         shut = -self.shutdown_energy(self._steps) * self.energy_scale if over or out else 0.0
         info["reward_terms"] = {"net_electrical_energy": reward, "shutdown_loss": shut}
         reward += shut
-        info["overspeed"], info["out_of_range"] = over, out
+        info["overspeed"], info["stroke_end"], info["survival"] = over, out, bool(y[sup] > 0.0)
         if finite and math.isfinite(reward):  # _finish_step's checks, done in the kernel
             return self._step_ok(obs, reward, over or out, truncated, info)
         return self._finish_step(obs, reward, over or out, truncated, info, True)
+
+    def gimbal_stroke(self) -> float:
+        """The gimbal's stroke (rad): the end stops' angle plus the cushion's travel (inf:
+        none); passing it ends the episode (`stroke_end`)."""
+        return float(self.model.p.pto[PTO_STROKE])
+
+    def survival(self) -> bool:
+        """The supervisor holds the device in survival (`physics.gowec.hydro.gimbal`)."""
+        return bool(self.state[self.model.survival_index()] > 0.0)
 
     def rotor_loss_power(self) -> float:
         """Rotor loss (W) while the rotor spins, else 0."""
@@ -246,19 +267,25 @@ class GOWECV1Env(MFEnv):
         return 0.5 * self.model.units * p.gyro[0] * p.psid**2
 
     def shutdown_energy(self, steps: Any) -> Any:
-        """Rotor running loss (J) of the episode's steps left after `steps` (int or array): what
-        a termination (overspeed, pitch limit) is charged, so that ending early never pays."""
-        return self.rotor_loss_power() * self.control_dt * np.maximum(self.max_steps - steps, 0)
+        """Energy (J) a failure (overspeed, stroke end) is charged for the episode's steps left
+        after `steps` (int or array): the most the device could have drawn over them, the rotor
+        loss plus every drive motoring at its power limit (n P_max / eta_m). The net
+        electrical energy of any step is at least minus this rate (`floating.pto_torque`
+        limits |M_g phi'| <= P_max), so no continuation is worse than the charge: ending early
+        never pays."""
+        rate = self.rotor_loss_power() + self.model.units * self.max_generator_power / self.eta_m
+        return rate * self.control_dt * np.maximum(self.max_steps - steps, 0)
 
     @property
     def _consts(self) -> tuple:
-        """(rotor loss W, obs bounds, (max gimbal rate, max buoy angle)), rebuilt when the public
+        """(rotor loss W, obs bounds, (max gimbal rate, stroke), the survival timer's index in the
+        state), rebuilt when the public
         attributes they come from change (e.g. domain randomisation)."""
         sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
         if self._consts_key != key:
-            lim = (self.max_gimbal_rate, self.pitch_limit)
+            lim = (self.max_gimbal_rate, self.gimbal_stroke())
             self._consts_val, self._consts_key = (
-                (self.rotor_loss_power(), sp.low, sp.high, lim),
+                (self.rotor_loss_power(), sp.low, sp.high, lim, self.model.survival_index()),
                 key,
             )
         return self._consts_val
@@ -307,10 +334,13 @@ class GOWECV1Env(MFEnv):
         )
         self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
+        if self.scene.beyond_range:  # the supervisor meets a sea beyond range in survival
+            self.state[self.model.survival_index()] = SURVIVAL_LATCHED
         info.update(
             reward_terms={"net_electrical_energy": 0.0, "shutdown_loss": 0.0},
             overspeed=False,
-            out_of_range=False,
+            stroke_end=False,
+            survival=bool(self.state[self.model.survival_index()] > 0.0),
         )
         return self._get_obs(), info
 
