@@ -89,19 +89,36 @@ class LinearModel:
         t = np.linspace(0.0, span, 256 if om.size == 1 else 4000, endpoint=False)
         self.e = np.exp(-1j * np.outer(t, om))
         self.q = 1.0 if om.size == 1 else 0.99  # the excursions' peak: the 99th percentile
+        self.Zc, self.Zs = np.zeros(om.size, complex), np.ones(om.size, complex)
+        three = raw.model.three
+        if raw.model.translating and three is not None:  # surge along the wave, coupled
+            w0 = three.omega
+
+            def at(y: np.ndarray) -> np.ndarray:
+                return np.interp(om, w0, y.real) + 1j * np.interp(om, w0, y.imag)
+
+            A, B = three.added_mass, three.damping
+            a15, b15 = 0.5 * (A[:, 0, 2] + A[:, 2, 0]), 0.5 * (B[:, 0, 2] + B[:, 2, 0])
+            m = float(three.mass_matrix[0, 0])
+            self.Zs = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - raw.model.mooring_stiffness / om)
+            self.Zc = at(b15) - 1j * om * at(a15)
+            X1 = at(three.excitation[:, 0]) * amp
+            self.X = self.X - self.Zc * X1 / self.Zs  # the surge's share taken out of pitch
 
     def response(self, c: float, k: float) -> tuple[np.ndarray, np.ndarray]:
         """Complex amplitudes (e^{-i w t}) of the hull's pitch rate and one gimbal's rate
         (rad/s) under the linear PTO (c, k), in the sea's e^{-i w t} convention: hull impedance
         Z_h = B + b - i (w (I + A) - C / w) with b the linear viscous plus the drag's stochastic
         linearisation sqrt(8 / pi) K sigma (regular sea: 8 / (3 pi) K |theta'|), n units of
-        load H^2 / Z_g, Z_g = c - i (w I_g - k / w)."""
+        load H^2 / Z_g, Z_g = c - i (w I_g - k / w); with surge free (the 3-dof table) the
+        surge-pitch coupling Z_c = B15 - i w A15 eliminated through the surge impedance
+        Z_s = B11 - i (w (m + A11) - K_mooring / w): Z_h - Z_c^2 / Z_s and X5 - Z_c X1 / Z_s."""
         raw, om, H = self.raw, self.om, self.H
         Zg = c - 1j * (om * self.Ig - k / om)
         b = 0.0
         Zr = self.B + raw.model.p.viscous - 1j * (
             om * (raw.model.pitch_inertia() + self.A) - raw.hull.stiffness / om
-        )
+        ) - self.Zc * self.Zc / self.Zs  # surge eliminated (zero without surge)
         for _ in range(30):
             th = self.X / (Zr + b + self.n * H * H / Zg)
             if om.size == 1:
@@ -143,7 +160,7 @@ def linear_response(raw: Any, c: float, k: float) -> tuple[np.ndarray, np.ndarra
     return LinearModel(raw).response(c, k)
 
 
-MAX_LINEAR_GIMBAL = 0.8  # rad: gimbal swing the linearisation is trusted to (cos 0.8 = 0.70)
+MAX_LINEAR_GIMBAL = 0.6  # rad: gimbal swing the linearisation is trusted to (cos 0.6 = 0.83)
 PITCH_MARGIN = 0.75  # predicted peak tilt kept below this fraction of the survival tilt
 CENTRING = 0.25  # minimum spring k >= CENTRING I_g w^2: without one a gimbal swinging ~1 rad
 # drifts to +-pi/2, where the gyroscopic torque H theta' cos(phi) vanishes, and stays there
