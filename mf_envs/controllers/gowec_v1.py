@@ -100,7 +100,8 @@ class LinearModel:
             A, B = three.added_mass, three.damping
             a15, b15 = 0.5 * (A[:, 0, 2] + A[:, 2, 0]), 0.5 * (B[:, 0, 2] + B[:, 2, 0])
             m = float(three.mass_matrix[0, 0])
-            self.Zs = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - raw.model.mooring_stiffness / om)
+            k_moor = raw.model.mooring_stiffness
+            self.Zs = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - k_moor / om)
             self.Zc = at(b15) - 1j * om * at(a15)
             X1 = at(three.excitation[:, 0]) * amp
             self.X = self.X - self.Zc * X1 / self.Zs  # the surge's share taken out of pitch
@@ -116,15 +117,19 @@ class LinearModel:
         raw, om, H = self.raw, self.om, self.H
         Zg = c - 1j * (om * self.Ig - k / om)
         b = 0.0
-        Zr = self.B + raw.model.p.viscous - 1j * (
-            om * (raw.model.pitch_inertia() + self.A) - raw.hull.stiffness / om
-        ) - self.Zc * self.Zc / self.Zs  # surge eliminated (zero without surge)
+        Zr = (
+            self.B
+            + raw.model.p.viscous
+            - 1j * (om * (raw.model.pitch_inertia() + self.A) - raw.hull.stiffness / om)
+            - self.Zc * self.Zc / self.Zs
+        )  # surge eliminated (zero without surge)
         for _ in range(30):
             th = self.X / (Zr + b + self.n * H * H / Zg)
             if om.size == 1:
                 b_new = 8.0 / (3.0 * math.pi) * self.K * abs(th[0])
             else:
-                b_new = math.sqrt(8.0 / math.pi) * self.K * math.sqrt(0.5 * float(np.sum(abs(th) ** 2)))
+                sigma = math.sqrt(0.5 * float(np.sum(abs(th) ** 2)))  # RMS pitch rate
+                b_new = math.sqrt(8.0 / math.pi) * self.K * sigma
             if abs(b_new - b) <= 1e-6 * (b + 1.0):
                 break
             b = 0.5 * (b + b_new)
@@ -210,6 +215,7 @@ def pto_search(raw: Any, passive: bool = False) -> dict[str, float]:
 
     def polish(r: dict[str, float]) -> dict[str, float]:
         k = r["k"]
+
         def cost(x: float) -> float:
             q = model.predict(math.exp(x), k)
             return -q["net_W"] + 1e9 * max(q["excess"] - 1.0, 0.0)

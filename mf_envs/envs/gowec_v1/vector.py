@@ -49,7 +49,6 @@ from mf_envs.envs._vector import BatchedVectorEnv
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.envs.gowec_v1.env import GOWECV1Env
 from mf_envs.envs.gowec_v1.rows import observe_one, step_rows
-from mf_envs.physics.gowec.hydro.gimbal import SURVIVAL_LATCHED
 from mf_envs.physics.gowec.hydro.batch import (
     INFO_SLOTS,
     N_VALS,
@@ -58,6 +57,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ENERGY,
     state_values,
 )
+from mf_envs.physics.gowec.hydro.gimbal import SURVIVAL_LATCHED
 from mf_envs.physics.gowec.hydro.sea import (
     N_LOADS,
     drag_velocity_coefficients,

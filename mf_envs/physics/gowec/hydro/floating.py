@@ -58,8 +58,11 @@ from numpy.typing import NDArray
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
 from mf_envs.frames.steppers import make_rk4_given, rk4_work
-from mf_envs.physics.gowec.hydro.gimbal import gimbal_loads, stop_dissipation
-from mf_envs.physics.gowec.hydro.gimbal import pto_torque  # noqa: F401  (importers' name)
+from mf_envs.physics.gowec.hydro.gimbal import (
+    gimbal_loads,
+    pto_torque,  # noqa: F401  (importers' name)
+    stop_dissipation,
+)
 from mf_envs.physics.gowec.hydro.radiation import block_rates, dot_block, radiation_rates4
 from mf_envs.physics.gowec.hydro.sea import (
     N_KEEL,

@@ -15,9 +15,8 @@ from numpy.typing import NDArray
 
 from mf_envs.physics.end_stops import cushion_spring_energy
 from mf_envs.physics.gowec import GOWECParams
-from mf_envs.physics.gowec.hydro import HullCoefficients, sea
+from mf_envs.physics.gowec.hydro import HullCoefficients, gimbal, sea
 from mf_envs.physics.gowec.hydro import floating as fl
-from mf_envs.physics.gowec.hydro import gimbal
 from mf_envs.physics.gowec.hydro.radiation import RadiationFit, fit_radiation
 from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
 from mf_envs.physics.multibody import Body, Multibody, Revolute, constant_rate
