@@ -64,8 +64,17 @@ def test_api_contract():
     assert iswec.natural_period() == pytest.approx(5.800, rel=1e-3)
     # two units of J = 1.2e4 kg m^2 at 250 rpm: 2 x 1/2 J w^2 = 8.22 MJ, reported, not charged
     assert iswec.spool_up_energy() == pytest.approx(2 * 0.5 * 1.2e4 * (250 * math.pi / 30) ** 2)
-    # deep-water flux rho g^2 a^2 T / (8 pi) (Eq. 19 with Hs = 2 a... regular-wave form)
-    assert u.wave_power_flux() == pytest.approx(1025 * 9.81**2 * 6.0 / (8 * math.pi), rel=1e-12)
+    # deep-water flux rho g^2 a^2 T / (8 pi) of the seed buoy's pitch-only table; at the ISWEC
+    # table's 35 m, times c_g / c_g(deep) = tanh(kh) (1 + 2 kh / sinh 2kh) with k from
+    # w^2 = g k tanh(kh) (brentq, independently)
+    from scipy.optimize import brentq
+
+    deep = 1025 * 9.81**2 * 6.0 / (8 * math.pi)
+    assert u.wave_power_flux() == pytest.approx(deep, rel=1e-12)
+    w, h = 2 * math.pi / 6.0, 35.0
+    k = brentq(lambda k: 9.81 * k * math.tanh(k * h) - w * w, 1e-6, 10.0, xtol=1e-15)
+    ratio = math.tanh(k * h) * (1 + 2 * k * h / math.sinh(2 * k * h))
+    assert iswec.wave_power_flux() == pytest.approx(deep * ratio, rel=1e-9)
     a = [env.reset(seed=3)[0] for _ in range(2)]
     assert np.array_equal(a[0], a[1])
 

@@ -198,8 +198,11 @@ class GOWECV1Env(MFEnv):
         return radiation_bound(self.hull, self.wave)
 
     def wave_power_flux(self) -> float:
-        """Wave power per metre of crest of the current sea (W/m), deep water."""
-        return wave_power_flux(self.wave, self.hull.rho, self.hull.g)
+        """Wave power per metre of crest of the current sea (W/m) at the hull table's water
+        depth (35 m on the ISWEC-class device; deep water for a pitch-only table)."""
+        three = self.model.three
+        depth = float(three.water_depth) if three is not None else math.inf
+        return wave_power_flux(self.wave, self.hull.rho, self.hull.g, depth)
 
     def reference_power(self) -> float:
         """P_ref = 1/2 |H| beta0 w^2 (W, Eq. 88) with beta0 = rotor-off RAO x a (Rewards)."""

@@ -20,7 +20,7 @@ from mf_envs.physics.gowec.hydro import floating as fl
 from mf_envs.physics.gowec.hydro.radiation import RadiationFit, fit_radiation
 from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
 from mf_envs.physics.multibody import Body, Multibody, Revolute, constant_rate
-from mf_envs.physics.waves import WaveField
+from mf_envs.physics.waves import WaveField, group_velocity
 
 PTO_FIELDS = gimbal.PTO_NAMES  # the drive, end stops, brake and supervisor (`gimbal`)
 
@@ -313,9 +313,11 @@ def motion_limited_bound(hull: HullCoefficients, wave: WaveField, theta_max: flo
     return min(motion, radiation_bound(hull, wave))
 
 
-def wave_power_flux(wave: WaveField, rho: float, g: float) -> float:
-    """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest), deep water (Eqs. 15, 18)."""
-    return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * g / (2.0 * wave.omegas)))
+def wave_power_flux(wave: WaveField, rho: float, g: float, depth: float = math.inf) -> float:
+    """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest) at the water depth (m; inf:
+    deep water, c_g = g / 2 w) (Eqs. 14, 15, 18)."""
+    cg = group_velocity(np.asarray(wave.omegas, dtype=float), depth, g)
+    return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * cg))
 
 
 def mechanical_energy(p: fl.FloatingParams, y: NDArray[np.float64], tp: NDArray | None = None,
