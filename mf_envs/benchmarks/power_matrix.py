@@ -70,23 +70,29 @@ def energy_flux(hs: float, tp: float, depth: float = WATER_DEPTH) -> float:
 
 
 def cell(hs: float, tp: float, seed: int, seconds: float, kind: str, **kw: Any) -> dict:
-    """One episode: JONSWAP (hs, tp), `kind` controller set at reset; powers over the
-    episode after the ramp (W), the controller's prediction (W), the share of steps in
-    survival, terminated (a failure: overspeed or the stroke's end)."""
+    """One episode: JONSWAP (hs, tp) of N_COMPONENTS components (`episode`)."""
     kw.setdefault("n_components", N_COMPONENTS)
-    env = gym.make(ENV_ID, significant_wave_height=hs, peak_period=tp,
-                   episode_seconds=seconds + 20.0, max_episode_steps=-1, **kw)  # fmt: skip
+    return episode(kind, seed, seconds, significant_wave_height=hs, peak_period=tp, **kw)
+
+
+def episode(kind: str, seed: int, seconds: float, **kw: Any) -> dict:
+    """One episode of the env made with kw, the `kind` controller set at reset: mean net and
+    mechanical power after the ramp (W), the controller's prediction (W), the share of steps
+    in survival, the largest gimbal angle (rad) against the stroke, terminated (a failure:
+    overspeed or the stroke's end)."""
+    env = gym.make(ENV_ID, episode_seconds=seconds + 20.0, max_episode_steps=-1, **kw)
     ctrl = make_baseline(env, kind)
     obs, _ = env.reset(seed=seed)
     ctrl.reset()
     u = env.unwrapped
     skip = int(math.ceil(max(u.wave_ramp, 1.0) * 2.0 / u.control_dt))  # ramp + as long again
-    pe, pm, done, n, term, surv = 0.0, 0.0, False, 0, False, 0
+    pe, pm, done, n, term, surv, phi = 0.0, 0.0, False, 0, False, 0, 0.0
     steps = 0
     while not done:
         a, _ = ctrl.predict(obs)
         obs, _, term, trunc, info = env.step(a)
         steps += 1
+        phi = max(phi, abs(info["gimbal_angle"]))
         if steps > skip:
             pe += info["power"]
             pm += info["power_mechanical"]
@@ -95,7 +101,8 @@ def cell(hs: float, tp: float, seed: int, seconds: float, kind: str, **kw: Any) 
         done = term or trunc
     out = dict(Pe=pe / max(n, 1), Pm=pm / max(n, 1), terminated=bool(term),
                survival=surv / max(n, 1), c=float(getattr(ctrl, "c", 0.0)),
-               k=float(getattr(ctrl, "k", 0.0)),
+               k=float(getattr(ctrl, "k", 0.0)), max_gimbal=phi, stroke=u.gimbal_stroke(),
+               steps=steps, max_steps=u.max_steps,
                predicted=float(getattr(ctrl, "prediction", {}).get("net_W", math.nan)))  # fmt: skip
     env.close()
     return out
