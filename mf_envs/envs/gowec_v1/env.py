@@ -58,7 +58,10 @@ class GOWECV1Env(MFEnv):
     pitch theta (about e1), roll rho (about e2), surge and heave: Cummins equation with Morison
     drag and a mooring spring, two-way coupled to a mirrored pair of gyros (H = 3.14e5 N m s
     each) by the B-matrix equations (`physics.gowec.hydro.floating`); generator torque inside
-    the substeps. `device="seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md has the rest.
+    the substeps. The gimbals swing inside cushioned end stops (+-70 deg, 10 deg of cushion),
+    and a supervisor takes the device into survival (PTO unloaded, gimbals braked, flywheels
+    spinning) beyond its operating range (`physics.gowec.hydro.gimbal`).
+    `device="seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md has the rest.
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: generator torque command / max_generator_torque. The drive adds
@@ -75,7 +78,8 @@ class GOWECV1Env(MFEnv):
     (n/2 H beta0 w^2, the locked-gimbal power) with beta0 the rotor-off pitch amplitude from the
     RAO at the wave (irregular: a = Hs / (2 sqrt 2), T = peak_period): `reference_power()`.
     Terms (`info["reward_terms"]`): `net_electrical_energy`, and `shutdown_loss` (< 0 only on a
-    terminating step: the rotor loss of the steps left, / (P_ref control_dt)).
+    failure's step: `shutdown_energy`, the most the device could draw over the steps left, /
+    (P_ref control_dt)).
 
     ## Starting State
     Buoy at rest, level; gimbal angle uniform in [-0.1, 0.1] rad, at rest; random wave phases;
@@ -84,9 +88,12 @@ class GOWECV1Env(MFEnv):
 
     ## Episode End
     Truncation after `episode_seconds` or `max_episode_steps` (default 6000; docs/api.md,
-    "Episode length"); termination if |phi'| > max_gimbal_rate ("overspeed"), |theta| or |rho|
-    > pitch_limit ("out_of_range"; 20 deg on the ISWEC-class device) or a numerical failure. A
-    termination by overspeed or pitch limit is charged the rotor loss of the steps left.
+    "Episode length"); termination only on a physical failure: |phi'| > max_gimbal_rate
+    ("overspeed") or |phi| past the gimbal's stroke ("stroke_end", its cushion bottomed out),
+    each charged `shutdown_energy` (ending early never pays), or a numerical failure. A tilt
+    above pitch_limit (20 deg on the ISWEC-class device), the gimbal in its cushion, or a sea
+    above the device's operating range (Hs or regular wave height > 2.5 m) puts the device in
+    survival (`info["survival"]`; held 30 s after the trigger, the whole episode for the sea).
 
     ## Arguments
     | argument | default | meaning |
@@ -102,7 +109,7 @@ class GOWECV1Env(MFEnv):
     | rotor_loss | device (3000 W) | running loss of all units while spinning |
     | viscous_damping | device (0; seed buoy 5 % of critical) | linear damping (N m s/rad) |
     | drag_coefficient | device (1) | Morison C_d of keel plate and side |
-    | pitch_limit, wave_ramp | device (20 deg, 10 s) | episode-ending tilt (rad), wave ramp (s) |
+    | pitch_limit, wave_ramp | device (20 deg, 10 s) | survival tilt (rad), wave ramp (s) |
     | wave_preview | 0 | s of incident elevation ahead in 8 more observation slots (0: none) |
     | hull | None (the device's) | `HullCoefficients` or path of an .npz (`from_capytaine`) |
     | episode_seconds, control_dt, physics_dt | 120 s, 0.02 s, device (0.02 s) | timing |
@@ -110,7 +117,8 @@ class GOWECV1Env(MFEnv):
     ## Version History
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency.
     - v0 (0.5): the ISWEC-class device by default, surge and heave, Morison drag, wave ramp,
-      pitch limit, shutdown charge, the wave elevation in the observation.
+      pitch limit, shutdown charge, the wave elevation in the observation; later the gimbal's
+      end stops and the survival supervisor (the pitch limit no longer ends episodes).
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
