@@ -28,13 +28,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ROLL,
 )
 from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
-from mf_envs.physics.gowec.hydro.gimbal import (
-    PTO_BRAKE,
-    PTO_CS,
-    PTO_KS,
-    PTO_STROKE,
-    SURVIVAL_LATCHED,
-)
+from mf_envs.physics.gowec.hydro.gimbal import PTO_STROKE, SURVIVAL_LATCHED, stiffest_rate
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -169,13 +163,8 @@ class GOWECV1Env(MFEnv):
                          default_effects=build.default_effects(self.scene, hull))  # fmt: skip
         self.irregular = self.scene.hs_given or "irregular_waves" in self.effects
         self.hull, self.model = build.floating_model(self.scene, kw, self.effects)
-        self._Ig = self.model.p.gyro[1] + self.model.p.gyro[3]  # gimbal + rotor, kg m^2
         self._base_substeps = self.n_substeps
-        self._base_rate = 0.0  # the stiffest of the brake and the cushion (`set_pto`)
-        pto = self.model.p.pto
-        self._base_rate = max(pto[PTO_BRAKE] / self._Ig, pto[PTO_CS] / self._Ig,
-                              4.0 * math.sqrt(pto[PTO_KS] / self._Ig))  # fmt: skip
-        self.set_pto(0.0, 0.0)
+        self.set_pto(0.0, 0.0)  # the substeps for the brake and the cushions
         self.buoy_radius = self.hull.radius if math.isfinite(self.hull.radius) else 0.0
         self.max_steps, self.episode_seconds = self._seconds_episode(episode_seconds,
             max_episode_steps, build.EPISODE_SECONDS)  # fmt: skip
@@ -224,8 +213,8 @@ class GOWECV1Env(MFEnv):
         c = check_range("damping", damping, 0.0, 1e9)
         k = check_range("stiffness", stiffness, -1e9, 1e9)
         self.model.set_pto(c, k)
-        # explicit RK4: keep the damper's rate c dt / I_g <= 2 and w_k dt <= 0.5 (stable, accurate)
-        rate = max(self._base_rate, c / self._Ig, 4.0 * math.sqrt(abs(k) / self._Ig))
+        p = self.model.p  # explicit RK4: the stiffest gimbal load's rate x dt <= 2
+        rate = stiffest_rate(p.pto, p.gyro[1] + p.gyro[3])
         self.n_substeps = max(self._base_substeps, math.ceil(self.control_dt * rate / 2.0))
         self.physics_dt = self.control_dt / self.n_substeps
 

@@ -76,6 +76,16 @@ def supervise(timer, theta, rho, phi, dtc, pto):
     return max(timer - dtc, 0.0)
 
 
+def stiffest_rate(pto, gimbal_inertia: float) -> float:
+    """The fastest linear rate (1/s) of the gimbal's loads on a gimbal + rotor inertia I_g
+    (kg m^2): the PTO's and the brake's and the cushion's damping c / I_g and 4 x the PTO's
+    and the cushion's sqrt(k / I_g); explicit RK4 stays stable and accurate with rate dt <= 2
+    (the env's substep)."""
+    ig = gimbal_inertia
+    damping = max(pto[PTO_C], pto[PTO_BRAKE], pto[PTO_CS]) / ig
+    return max(damping, 4.0 * math.sqrt(max(abs(pto[PTO_K]), pto[PTO_KS]) / ig))
+
+
 def pto_vector(fields: dict) -> list[float]:
     """The packed PTO vector (N_PTO,) from a dict of `model.PTO_FIELDS` (stops, brake and
     supervisor default to none: no stops, no stroke, survival never triggered)."""
