@@ -3,7 +3,7 @@ stalling or holding an actuator limit on purpose never returns more than the env
 baseline, which is its strongest (`controllers.register(..., default=True)`).
 
 The degenerate strategies: every action at -1, at 0 or at +1 for the whole episode (a constant
-full command trips GOWEC-v0's overspeed and FloatingGOWEC-v0's pitch limit, drives a gimbal onto
+full command trips GOWEC-v0's overspeed, sends FloatingGOWEC-v0 into survival, drives a gimbal onto
 its stops, saturates a wire or a muscle), and a chatter between -1 and +1 every step. Each is
 scored by its undiscounted episode return from `reset(seed=1000)`, the id's scene (every
 registered id, the task variants included).

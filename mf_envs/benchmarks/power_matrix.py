@@ -1,13 +1,17 @@
 """FloatingGOWEC-v0's power matrix: mean net electrical power over significant wave height x
-peak period, as the power matrices published for wave energy converters.
+energy period, binned as IEC TS 62600-100 bins a power matrix (on Te, not Tp).
 
-Each cell is a JONSWAP sea (gamma 3.3) scored over `--seconds` (default 1200 s, 20 min) of
-simulated time per seed after the start-up ramp, on unseen seeds 2000.., with a controller
-from `mf_envs.controllers.gowec_v1` (default: `efficient_pto`, the linear PTO optimised for
-net electrical power in the sea drawn; `passive_damper` beside it). Reported per cell: net
-electrical power (W, mean and spread over seeds), mechanical PTO power, capture width
-P_mech / J (m) with J the drawn sea's deep-water energy flux, capture-width ratio over the
-hull's width (12 m), the share of episodes ended at the pitch limit.
+Each cell is a JONSWAP sea (gamma 3.3) of the cell's Hs and Te (peak period Tp = Te / r, r =
+Te / Tp of the spectrum from MHKiT's `energy_period`, 0.90 at gamma 3.3) drawn with
+N_COMPONENTS components, scored over `--seconds` (default 1200 s, 20 min) of simulated time
+per seed after the start-up ramp, on unseen seeds 2000.., with a controller from
+`mf_envs.controllers.gowec_v1` (default: `efficient_pto`; `passive_damper` beside it).
+Reported per cell: net electrical power (W, mean and spread over seeds), the controller's
+predicted net power (its linear model, `pto_search`), mechanical PTO power, capture width
+P_mech / J (m) with J the sea's energy flux at the hull table's water depth (35 m) by MHKiT
+(`mhkit.wave.resource.energy_flux` of the IEC JONSWAP spectrum, finite depth), capture-width
+ratio over the hull's width (12 m), the share of time in survival and of episodes ended by a
+failure.
 
     python -m mf_envs.benchmarks.power_matrix --out docs/img   # ~10 min on 2 cores
 
@@ -35,71 +39,112 @@ from mf_envs.controllers import make_baseline
 
 ENV_ID = "FloatingGOWEC-v0"
 HS = (1.0, 1.5, 2.0, 2.5)  # m
-TP = (4.0, 5.0, 6.0, 7.0, 8.0)  # s
+TE = (4.0, 5.0, 6.0, 7.0, 8.0)  # s, energy period bins
 SEEDS = (2000, 2001, 2002)
 HULL_WIDTH = 12.0  # m, the ISWEC-class cylinder's diameter (capture-width ratio)
+GAMMA = 3.3
+N_COMPONENTS = 256  # the sea's components (the env's default 64 puts ~10 in the resonance band)
+WATER_DEPTH = 35.0  # m, the hull table's (Pantelleria site)
+
+
+def _spectrum(hs: float, tp: float) -> Any:
+    """MHKiT's IEC JONSWAP spectrum (m^2/Hz) of (hs, tp, GAMMA) on 0.01-1 Hz."""
+    from mhkit.wave import resource
+
+    f = np.linspace(0.01, 1.0, 2000)
+    return resource.jonswap_spectrum(f, tp, hs, gamma=GAMMA)
+
+
+def te_over_tp() -> float:
+    """r = Te / Tp of the JONSWAP spectrum (GAMMA), by MHKiT's `energy_period`."""
+    from mhkit.wave import resource
+
+    return float(np.squeeze(resource.energy_period(_spectrum(1.0, 1.0 / 0.1)))) / 10.0
+
+
+def energy_flux(hs: float, tp: float, depth: float = WATER_DEPTH) -> float:
+    """J (W/m) of the JONSWAP sea (hs, tp) at the water depth (m), MHKiT's finite-depth flux."""
+    from mhkit.wave import resource
+
+    return float(np.squeeze(resource.energy_flux(_spectrum(hs, tp), depth)))
 
 
 def cell(hs: float, tp: float, seed: int, seconds: float, kind: str, **kw: Any) -> dict:
-    """One episode: JONSWAP (hs, tp), `kind` controller set at reset; powers over the
-    episode after the ramp (W), J (W/m), terminated (pitch limit or overspeed)."""
-    env = gym.make(ENV_ID, significant_wave_height=hs, peak_period=tp,
-                   episode_seconds=seconds + 20.0, max_episode_steps=-1, **kw)  # fmt: skip
+    """One episode: JONSWAP (hs, tp) of N_COMPONENTS components (`episode`)."""
+    kw.setdefault("n_components", N_COMPONENTS)
+    return episode(kind, seed, seconds, significant_wave_height=hs, peak_period=tp, **kw)
+
+
+def episode(kind: str, seed: int, seconds: float, **kw: Any) -> dict:
+    """One episode of the env made with kw, the `kind` controller set at reset: mean net and
+    mechanical power after the ramp (W), the controller's prediction (W), the share of steps
+    in survival, the largest gimbal angle (rad) against the stroke, terminated (a failure:
+    overspeed or the stroke's end)."""
+    env = gym.make(ENV_ID, episode_seconds=seconds + 20.0, max_episode_steps=-1, **kw)
     ctrl = make_baseline(env, kind)
     obs, _ = env.reset(seed=seed)
     ctrl.reset()
     u = env.unwrapped
     skip = int(math.ceil(max(u.wave_ramp, 1.0) * 2.0 / u.control_dt))  # ramp + as long again
-    pe, pm, done, n, term = 0.0, 0.0, False, 0, False
+    pe, pm, done, n, term, surv, phi = 0.0, 0.0, False, 0, False, 0, 0.0
     steps = 0
     while not done:
         a, _ = ctrl.predict(obs)
         obs, _, term, trunc, info = env.step(a)
         steps += 1
+        phi = max(phi, abs(info["gimbal_angle"]))
         if steps > skip:
             pe += info["power"]
             pm += info["power_mechanical"]
+            surv += info["survival"]
             n += 1
         done = term or trunc
-    out = dict(Pe=pe / max(n, 1), Pm=pm / max(n, 1), J=float(u.wave_power_flux()),
-               terminated=bool(term), c=float(getattr(ctrl, "c", 0.0)),
-               k=float(getattr(ctrl, "k", 0.0)))  # fmt: skip
+    out = dict(Pe=pe / max(n, 1), Pm=pm / max(n, 1), terminated=bool(term),
+               survival=surv / max(n, 1), c=float(getattr(ctrl, "c", 0.0)),
+               k=float(getattr(ctrl, "k", 0.0)), max_gimbal=phi, stroke=u.gimbal_stroke(),
+               steps=steps, max_steps=u.max_steps,
+               predicted=float(getattr(ctrl, "prediction", {}).get("net_W", math.nan)))  # fmt: skip
     env.close()
     return out
 
 
-def matrix(hs=HS, tp=TP, seeds=SEEDS, seconds: float = 1200.0, kind: str = "efficient_pto",
-           progress: bool = True) -> list[dict]:  # fmt: skip
-    """Rows (one per cell) of mean and std over seeds of `cell`'s figures."""
+def matrix(hs=HS, te=TE, seeds=SEEDS, seconds: float = 1200.0, kind: str = "efficient_pto",
+           progress: bool = True, **kw: Any) -> list[dict]:  # fmt: skip
+    """Rows (one per cell, binned on Te) of mean and std over seeds of `cell`'s figures; kw
+    go to the env (e.g. n_components)."""
     from tqdm import tqdm
 
-    rows = []
-    jobs = [(h, t) for h in hs for t in tp]
-    for h, t in tqdm(jobs, desc=f"power matrix ({kind})", disable=not progress):
-        runs = [cell(h, t, s, seconds, kind) for s in seeds]
-        pe = np.array([r["Pe"] for r in runs])
-        pm = np.array([r["Pm"] for r in runs])
-        J = float(np.mean([r["J"] for r in runs]))
-        rows.append(dict(hs=h, tp=t, kind=kind, net_W=float(pe.mean()), net_std_W=float(pe.std()),
+    rows, r = [], te_over_tp()
+    jobs = [(h, e) for h in hs for e in te]
+    for h, e in tqdm(jobs, desc=f"power matrix ({kind})", disable=not progress):
+        tp = e / r
+        runs = [cell(h, tp, s, seconds, kind, **kw) for s in seeds]
+        pe = np.array([x["Pe"] for x in runs])
+        pm = np.array([x["Pm"] for x in runs])
+        J = energy_flux(h, tp)
+        pred = float(np.mean([x["predicted"] for x in runs]))
+        rows.append(dict(hs=h, te=e, tp=tp, kind=kind, net_W=float(pe.mean()),
+                         net_std_W=float(pe.std()), predicted_W=pred,
                          mech_W=float(pm.mean()), J_W_per_m=J, capture_width_m=float(pm.mean()) / J,
                          cwr=float(pm.mean()) / J / HULL_WIDTH,
-                         terminated=float(np.mean([r["terminated"] for r in runs])),
+                         survival=float(np.mean([x["survival"] for x in runs])),
+                         terminated=float(np.mean([x["terminated"] for x in runs])),
                          seeds=list(seeds), seconds=seconds))  # fmt: skip
     return rows
 
 
 def table(rows: list[dict]) -> str:
-    """Markdown: net electrical power (kW, mean +- std over seeds) by Hs (rows) x Tp (cols)."""
+    """Markdown: net electrical power (kW, mean +- std over seeds) by Hs (rows) x Te (cols)."""
     hs = sorted({r["hs"] for r in rows})
-    tp = sorted({r["tp"] for r in rows})
-    at = {(r["hs"], r["tp"]): r for r in rows}
-    lines = ["| Hs (m) \\ Tp (s) | " + " | ".join(f"{t:g}" for t in tp) + " |",
+    tp = sorted({r["te"] for r in rows})
+    at = {(r["hs"], r["te"]): r for r in rows}
+    lines = ["| Hs (m) \\ Te (s) | " + " | ".join(f"{t:g}" for t in tp) + " |",
              "|---" * (len(tp) + 1) + "|"]  # fmt: skip
     for h in hs:
         cells = []
         for t in tp:
             r = at[(h, t)]
-            mark = " (ends)" if r["terminated"] > 0 else ""
+            mark = " (fails)" if r["terminated"] > 0 else ""
             cells.append(f"{r['net_W'] / 1e3:.1f} ± {r['net_std_W'] / 1e3:.1f}{mark}")
         lines.append(f"| {h:g} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
@@ -113,8 +158,8 @@ def plot(rows: list[dict], path: Path) -> Path:
     import matplotlib.pyplot as plt
 
     hs = sorted({r["hs"] for r in rows})
-    tp = sorted({r["tp"] for r in rows})
-    at = {(r["hs"], r["tp"]): r for r in rows}
+    tp = sorted({r["te"] for r in rows})
+    at = {(r["hs"], r["te"]): r for r in rows}
     z = np.array([[at[(h, t)]["net_W"] / 1e3 for t in tp] for h in hs])
     fig, ax = plt.subplots(figsize=(7, 4))
     lim = float(np.max(np.abs(z))) or 1.0
@@ -125,12 +170,12 @@ def plot(rows: list[dict], path: Path) -> Path:
             ax.text(j, i, f"{z[i, j]:.1f}{end}", ha="center", va="center", fontsize=9)
     ax.set_xticks(range(len(tp)), [f"{t:g}" for t in tp])
     ax.set_yticks(range(len(hs)), [f"{h:g}" for h in hs])
-    ax.set_xlabel("peak period Tp (s)")
+    ax.set_xlabel("energy period Te (s)")
     ax.set_ylabel("significant wave height Hs (m)")
     r0 = rows[0]
     ax.set_title(f"FloatingGOWEC-v0 (ISWEC-class): net electrical power, {r0['kind']}\n"
                  f"JONSWAP, {len(r0['seeds'])} seeds x {r0['seconds']:.0f} s each "
-                 f"(* = pitch limit hit)", fontsize=9)  # fmt: skip
+                 f"(* = a failure ended an episode)", fontsize=9)  # fmt: skip
     fig.colorbar(im, ax=ax, label="net electrical power (kW)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)

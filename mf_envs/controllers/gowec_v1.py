@@ -19,10 +19,13 @@ and the matched linear PTO.
 - `efficient_pto` and `passive_damper`: the linear PTO (c, k) and the damper (c,
   with only the small centring spring k_c that keeps the gimbal from drifting to +-90 deg) that
   maximise the *net electrical* power eta P+ - P- / eta - rotor loss of the
-  linearised device in the sea the env has just drawn (`net_electrical_power`: frequency-domain
+  linearised device in the sea the env has just drawn (`LinearModel`: frequency-domain
   response of hull + gyro units to every wave component, the quadratic drag by stochastic
   (Lorentz) linearisation, the electrical power from the synthesised time signal of
-  M_g phi'), maximised by scipy (Nelder-Mead over (log c, k); bounded scalar search for c).
+  M_g phi'), inside the drive's limits and the swings the model is trusted to: a global grid
+  search over (c, k) polished by a bounded scalar search on c (`pto_search`). The reactive
+  setting is taken only where its prediction is positive and clearly above the damper's;
+  the search's record (predicted power) is the controller's `prediction`.
 """
 
 from __future__ import annotations
@@ -63,70 +66,116 @@ def _drag_k(raw: Any) -> float:
     return float(raw.model.drag_coefficient * 0.5 * raw.hull.rho * 8.0 * raw.hull.radius**5 / 15.0)
 
 
+class LinearModel:
+    """The linearised device in the sea the env has just drawn: frequency-domain response of
+    the hull's pitch and the gyro units to every wave component under a linear PTO (c, k), the
+    synthesised time signals over one period (regular sea) or 20 min (irregular), and the
+    predicted net electrical power and excursions (`predict`). The sea's hydrodynamic
+    coefficients and the synthesis matrix are computed once per sea."""
+
+    def __init__(self, raw: Any) -> None:
+        hull, p, wave = raw.hull, raw.model.p, raw.wave
+        self.raw = raw
+        self.om = om = np.asarray(wave.omegas, dtype=float)
+        amp = np.asarray(wave.amplitudes) * np.exp(1j * wave.phases)
+        self.X = raw.model.hull_excitation(om) * amp
+        coef = np.array([hull.at(float(w))[:2] for w in om])
+        self.A, self.B = coef[:, 0], coef[:, 1]
+        self.H = p.gyro[0] * p.psid
+        self.Ig = p.gyro[1] + p.gyro[3]
+        self.n = raw.model.units
+        self.K = _drag_k(raw)
+        span = 2.0 * math.pi / om[0] if om.size == 1 else 1200.0
+        t = np.linspace(0.0, span, 256 if om.size == 1 else 4000, endpoint=False)
+        self.e = np.exp(-1j * np.outer(t, om))
+        self.q = 1.0 if om.size == 1 else 0.99  # the excursions' peak: the 99th percentile
+        self.Zc, self.Zs = np.zeros(om.size, complex), np.ones(om.size, complex)
+        three = raw.model.three
+        if raw.model.translating and three is not None:  # surge along the wave, coupled
+            w0 = three.omega
+
+            def at(y: np.ndarray) -> np.ndarray:
+                return np.interp(om, w0, y.real) + 1j * np.interp(om, w0, y.imag)
+
+            A, B = three.added_mass, three.damping
+            a15, b15 = 0.5 * (A[:, 0, 2] + A[:, 2, 0]), 0.5 * (B[:, 0, 2] + B[:, 2, 0])
+            m = float(three.mass_matrix[0, 0])
+            k_moor = raw.model.mooring_stiffness
+            self.Zs = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - k_moor / om)
+            self.Zc = at(b15) - 1j * om * at(a15)
+            X1 = at(three.excitation[:, 0]) * amp
+            self.X = self.X - self.Zc * X1 / self.Zs  # the surge's share taken out of pitch
+
+    def response(self, c: float, k: float) -> tuple[np.ndarray, np.ndarray]:
+        """Complex amplitudes (e^{-i w t}) of the hull's pitch rate and one gimbal's rate
+        (rad/s) under the linear PTO (c, k), in the sea's e^{-i w t} convention: hull impedance
+        Z_h = B + b - i (w (I + A) - C / w) with b the linear viscous plus the drag's stochastic
+        linearisation sqrt(8 / pi) K sigma (regular sea: 8 / (3 pi) K |theta'|), n units of
+        load H^2 / Z_g, Z_g = c - i (w I_g - k / w); with surge free (the 3-dof table) the
+        surge-pitch coupling Z_c = B15 - i w A15 eliminated through the surge impedance
+        Z_s = B11 - i (w (m + A11) - K_mooring / w): Z_h - Z_c^2 / Z_s and X5 - Z_c X1 / Z_s."""
+        raw, om, H = self.raw, self.om, self.H
+        Zg = c - 1j * (om * self.Ig - k / om)
+        b = 0.0
+        Zr = (
+            self.B
+            + raw.model.p.viscous
+            - 1j * (om * (raw.model.pitch_inertia() + self.A) - raw.hull.stiffness / om)
+            - self.Zc * self.Zc / self.Zs
+        )  # surge eliminated (zero without surge)
+        for _ in range(30):
+            th = self.X / (Zr + b + self.n * H * H / Zg)
+            if om.size == 1:
+                b_new = 8.0 / (3.0 * math.pi) * self.K * abs(th[0])
+            else:
+                sigma = math.sqrt(0.5 * float(np.sum(abs(th) ** 2)))  # RMS pitch rate
+                b_new = math.sqrt(8.0 / math.pi) * self.K * sigma
+            if abs(b_new - b) <= 1e-6 * (b + 1.0):
+                break
+            b = 0.5 * (b + b_new)
+        return th, H * th / Zg
+
+    def predict(self, c: float, k: float) -> dict[str, float]:
+        """The prediction under (c, k): `net_W`, the mean net electrical power (W) of n units'
+        M_g phi' = (c phi' + k phi) phi' (generator efficiency when positive, 1 / motor
+        efficiency when negative, less the rotor loss), and `excess`, the largest of the peak
+        torque, power, gimbal swing and hull tilt over the drive's limits, MAX_LINEAR_GIMBAL
+        and PITCH_MARGIN x the survival tilt (<= 1: inside them all)."""
+        raw, om = self.raw, self.om
+        th, ph = self.response(c, k)
+        rate = (self.e @ ph).real
+        angle = (self.e @ (ph / (-1j * om))).real
+        pitch = (self.e @ (th / (-1j * om))).real
+        torque = c * rate + k * angle
+        P = self.n * torque * rate
+        el = np.where(P > 0.0, P * raw.eta_g, P / raw.eta_m)
+        q = self.q
+        excess = max(
+            np.quantile(np.abs(torque), q) / raw.max_generator_torque,
+            np.quantile(np.abs(torque * rate), q) / max(raw.max_generator_power, 1e-9),
+            np.quantile(np.abs(angle), q) / MAX_LINEAR_GIMBAL,
+            np.quantile(np.abs(pitch), q) / (PITCH_MARGIN * raw.pitch_limit),
+        )
+        return {"c": c, "k": k, "net_W": float(np.mean(el)) - raw.rotor_loss_power(),
+                "excess": float(excess)}  # fmt: skip
+
+
 def linear_response(raw: Any, c: float, k: float) -> tuple[np.ndarray, np.ndarray]:
-    """Complex amplitudes (e^{-i w t}) of the hull's pitch rate and one gimbal's rate (rad/s)
-    at the env's wave components under the linear PTO (c, k), in the sea's e^{-i w t}
-    convention: hull impedance Z_h = B + b - i (w (I + A) - C / w) with b the linear viscous
-    plus the drag's stochastic linearisation sqrt(8 / pi) K sigma (regular sea:
-    8 / (3 pi) K |theta'|), n units of load H^2 / Z_g, Z_g = c - i (w I_g - k / w)."""
-    hull, p, wave = raw.hull, raw.model.p, raw.wave
-    om = np.asarray(wave.omegas, dtype=float)
-    X = raw.model.hull_excitation(om) * np.asarray(wave.amplitudes) * np.exp(1j * wave.phases)
-    A = np.array([hull.at(float(w))[0] for w in om])
-    B = np.array([hull.at(float(w))[1] for w in om])
-    H = p.gyro[0] * p.psid
-    Ig = p.gyro[1] + p.gyro[3]
-    n = raw.model.units
-    Zg = c - 1j * (om * Ig - k / om)
-    K, b = _drag_k(raw), 0.0
-    for _ in range(30):
-        Zh = B + p.viscous + b - 1j * (om * (raw.model.pitch_inertia() + A) - hull.stiffness / om)
-        th = X / (Zh + n * H * H / Zg)
-        if om.size == 1:
-            b_new = 8.0 / (3.0 * math.pi) * K * abs(th[0])
-        else:
-            b_new = math.sqrt(8.0 / math.pi) * K * math.sqrt(0.5 * float(np.sum(np.abs(th) ** 2)))
-        if abs(b_new - b) <= 1e-6 * (b + 1.0):
-            break
-        b = 0.5 * (b + b_new)
-    return th, H * th / Zg
+    """`LinearModel.response` in the env's current sea."""
+    return LinearModel(raw).response(c, k)
 
 
-MAX_LINEAR_GIMBAL = 0.8  # rad: gimbal swing the linearisation is trusted to (cos 0.8 = 0.70)
-PITCH_MARGIN = 0.6  # predicted pitch kept below this fraction of the device's pitch_limit
+MAX_LINEAR_GIMBAL = 0.6  # rad: gimbal swing the linearisation is trusted to (cos 0.6 = 0.83)
+PITCH_MARGIN = 0.75  # predicted peak tilt kept below this fraction of the survival tilt
 CENTRING = 0.25  # minimum spring k >= CENTRING I_g w^2: without one a gimbal swinging ~1 rad
 # drifts to +-pi/2, where the gyroscopic torque H theta' cos(phi) vanishes, and stays there
+REACTIVE_GAIN = 1.1  # the reactive PTO only where it is predicted > 10 % above the damper
 
 
 def net_electrical_power(raw: Any, c: float, k: float) -> float:
-    """Predicted mean net electrical power (W) of the linearised device under (c, k)
-    (`linear_response`): n units' M_g phi' = (c phi' + k phi) phi' synthesised over one period
-    (regular sea) or 20 min (irregular), generator efficiency when positive, 1 / motor
-    efficiency when negative, less the rotor loss. Gains whose torque, power, gimbal swing or
-    hull pitch would exceed the drive's limits, MAX_LINEAR_GIMBAL or PITCH_MARGIN x the pitch
-    limit (peaks; irregular seas: 99th percentiles) are scored down by the excess."""
-    th, ph = linear_response(raw, c, k)
-    om = np.asarray(raw.wave.omegas, dtype=float)
-    span = 2.0 * math.pi / om[0] if om.size == 1 else 1200.0
-    t = np.linspace(0.0, span, 256 if om.size == 1 else 4000, endpoint=False)
-    e = np.exp(-1j * np.outer(t, om))
-    rate = (e @ ph).real
-    angle = (e @ (ph / (-1j * om))).real
-    pitch = (e @ (th / (-1j * om))).real
-    torque = c * rate + k * angle
-    P = raw.model.units * torque * rate
-    el = np.where(P > 0.0, P * raw.eta_g, P / raw.eta_m)
-    net = float(np.mean(el)) - raw.rotor_loss_power()
-    q = 1.0 if om.size == 1 else 0.99  # irregular: the 99th percentile
-    excess = max(
-        np.quantile(np.abs(torque), q) / raw.max_generator_torque,
-        np.quantile(np.abs(torque * rate), q) / max(raw.max_generator_power, 1e-9),
-        np.quantile(np.abs(angle), q) / MAX_LINEAR_GIMBAL,
-        np.quantile(np.abs(pitch), q) / (PITCH_MARGIN * raw.pitch_limit),
-    )
-    if excess > 1.0:
-        net -= (excess - 1.0) * (abs(net) + raw.rotor_loss_power() + 1.0) * 10.0
-    return net
+    """Predicted mean net electrical power (W) of the linearised device under (c, k) in the
+    env's current sea (`LinearModel.predict`)."""
+    return LinearModel(raw).predict(c, k)["net_W"]
 
 
 def centring_stiffness(raw: Any) -> float:
@@ -136,45 +185,83 @@ def centring_stiffness(raw: Any) -> float:
     return CENTRING * (p.gyro[1] + p.gyro[3]) * w * w
 
 
-def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
-    """(c, k) maximising `net_electrical_power`, started from the mechanical match
-    (`matched_pto`); k >= the centring spring k_c (`centring_stiffness`); `passive`: the damper
-    c alone with k = k_c."""
-    from scipy.optimize import minimize, minimize_scalar
+def _best(cands: list[dict[str, float]]) -> dict[str, float]:
+    """The candidate of the highest predicted net power among those inside the limits
+    (excess <= 1); with none inside, the one of the least excess (the gentlest on the device)."""
+    inside = [r for r in cands if r["excess"] <= 1.0]
+    if inside:
+        return max(inside, key=lambda r: r["net_W"])
+    return min(cands, key=lambda r: r["excess"])
 
+
+def pto_search(raw: Any, passive: bool = False) -> dict[str, float]:
+    """The linear PTO of the highest predicted net electrical power inside the limits
+    (`LinearModel.predict`), by a global grid search over the gains, polished by a bounded
+    scalar search on c around the grid's best: c on 41 log-spaced values over five decades
+    about the mechanical match's c* (`matched_pto`), k = k_c + s (k_c the centring spring,
+    `centring_stiffness`; s on 12 values from 0 to 4 (|k*| + c* w)); `passive`: k = k_c only
+    (the damper). The reactive PTO is kept only where its prediction is positive and
+    REACTIVE_GAIN x above the damper's (the model is linear and the reactive branch the one it
+    predicts least well); otherwise, and wherever the prediction is negative, the damper's
+    setting. Returns the chosen record: c, k, net_W (the prediction), excess, passive_W (the
+    damper's prediction)."""
+    from scipy.optimize import minimize_scalar
+
+    model = LinearModel(raw)
     c0, k0 = matched_pto(raw)
     c0 = max(c0, 1.0)
     kc = centring_stiffness(raw)
-    if passive:
-        r = minimize_scalar(lambda x: -net_electrical_power(raw, math.exp(x), kc),
-                            bounds=(math.log(c0) - 5.0, math.log(c0) + 5.0), method="bounded",
-                            options={"xatol": 1e-3})  # fmt: skip
-        return math.exp(r.x), kc
-    # k = k_c + ks x^2 >= k_c > 0 (a negative gimbal spring destabilises the gimbal)
-    ks = abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period)  # scale of k
-    r = minimize(
-        lambda x: -net_electrical_power(raw, math.exp(x[0]), kc + x[1] ** 2 * ks),
-        np.array([math.log(c0), math.sqrt(max(k0 - kc, 0.0) / ks)]),
-        method="Nelder-Mead",
-        options={"xatol": 1e-3, "fatol": 1.0, "maxiter": 300},
-    )
-    best = (math.exp(r.x[0]), float(kc + r.x[1] ** 2 * ks))
-    cp, _ = efficient_pto(raw, passive=True)  # never worse than the damper
-    if net_electrical_power(raw, cp, kc) > net_electrical_power(raw, *best):
-        return cp, kc
-    return best
+    cs = np.geomspace(c0 / 300.0, c0 * 300.0, 41)
+
+    def polish(r: dict[str, float]) -> dict[str, float]:
+        k = r["k"]
+
+        def cost(x: float) -> float:
+            q = model.predict(math.exp(x), k)
+            return -q["net_W"] + 1e9 * max(q["excess"] - 1.0, 0.0)
+
+        res = minimize_scalar(
+            cost,
+            bounds=(math.log(r["c"]) - 0.2, math.log(r["c"]) + 0.2), method="bounded",
+            options={"xatol": 1e-3},
+        )  # fmt: skip
+        p = model.predict(math.exp(res.x), k)
+        return p if p["excess"] <= max(r["excess"], 1.0) and p["net_W"] >= r["net_W"] else r
+
+    damper = polish(_best([model.predict(float(c), kc) for c in cs]))
+    best = damper
+    if not passive:
+        ks = abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period)
+        grid = [model.predict(float(c), kc + s) for s in np.linspace(0.0, 4.0, 12)[1:] * ks
+                for c in cs]  # fmt: skip
+        reactive = polish(_best(grid + [damper]))
+        gain = reactive["net_W"] - damper["net_W"]
+        if (reactive["excess"] <= 1.0 and reactive["net_W"] > 0.0
+                and gain > (REACTIVE_GAIN - 1.0) * abs(damper["net_W"])):  # fmt: skip
+            best = reactive
+    return dict(best, k=float(best["k"]), passive_W=damper["net_W"])
+
+
+def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
+    """(c, k) of `pto_search` (N m s/rad, N m/rad)."""
+    r = pto_search(raw, passive)
+    return r["c"], r["k"]
 
 
 class EfficientPTOController:
     """The linear PTO optimised for net electrical power in the sea of the last reset
-    (`efficient_pto`); `passive=True` the best pure damper. Gains set on the drive at reset."""
+    (`pto_search`); `passive=True` the best pure damper. Gains set on the drive at reset;
+    `prediction` holds the search's record (predicted net power, W) to set beside the
+    realised one."""
 
     def __init__(self, env: Any, passive: bool = False) -> None:
         self.env, self.passive = env, passive
         self.c, self.k = 0.0, 0.0
+        self.prediction: dict[str, float] = {}
 
     def reset(self) -> None:
-        self.c, self.k = efficient_pto(self.env.unwrapped, self.passive)
+        self.prediction = pto_search(self.env.unwrapped, self.passive)
+        self.c, self.k = self.prediction["c"], self.prediction["k"]
         self.env.unwrapped.set_pto(self.c, self.k)
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
@@ -182,7 +269,8 @@ class EfficientPTOController:
 
 
 class PassiveDamperController(EfficientPTOController):
-    """The best pure damper (k = 0) for net electrical power (`efficient_pto`)."""
+    """The best pure damper (k = the centring spring) for net electrical power
+    (`pto_search`)."""
 
     def __init__(self, env: Any) -> None:
         super().__init__(env, passive=True)

@@ -46,8 +46,14 @@ class Scene:
     max_gimbal_rate: float  # rad/s
     device: str  # `devices.DEVICES` key
     drag_coefficient: float  # quadratic drag C_d (0 = none)
-    pitch_limit: float  # rad: |theta| or |rho| beyond it ends the episode
+    pitch_limit: float  # rad: |theta| or |rho| beyond it puts the device in survival
     wave_ramp: float  # s: the incident wave ramps in over it
+    sea_height: float  # m: Hs of an irregular sea, the wave height 2 a of a regular wave
+
+    @property
+    def beyond_range(self) -> bool:
+        """The sea is higher than the device's operating range (met in survival)."""
+        return self.sea_height > DEVICES[self.device].max_operating_height
 
 
 def device_of(kw: dict[str, Any]) -> FloatingDevice:
@@ -66,9 +72,10 @@ def build(kw: dict[str, Any]) -> Scene:
     amplitude = check_range("wave_amplitude", kw["wave_amplitude"], 1e-6, 30.0)
     direction = check_range("wave_direction", kw["wave_direction"], -10.0, 10.0)
     irregular = kw["significant_wave_height"] is not None
+    height = 2.0 * amplitude
     if irregular:
         hs = check_range("significant_wave_height", kw["significant_wave_height"], 1e-6, 30.0)
-        amplitude = hs / (2.0 * math.sqrt(2.0))
+        amplitude, height = hs / (2.0 * math.sqrt(2.0)), hs
     # both periods are checked whichever sea is used (a bad one is an error either way)
     periods = {n: check_range(n, kw[n], 0.5, 60.0) for n in ("wave_period", "peak_period")}
     spectrum = check_choice("spectrum", kw["spectrum"], SPECTRA)
@@ -86,7 +93,7 @@ def build(kw: dict[str, Any]) -> Scene:
         check_range("max_gimbal_rate", kw["max_gimbal_rate"], 1e-6),
         kw["device"], check_range("drag_coefficient", kw["drag_coefficient"], 0.0, 100.0),
         check_range("pitch_limit", kw["pitch_limit"], 1e-3, 1.0),
-        check_range("wave_ramp", kw["wave_ramp"], 0.0, 1e4),
+        check_range("wave_ramp", kw["wave_ramp"], 0.0, 1e4), height,
     )  # fmt: skip
 
 
@@ -119,7 +126,8 @@ def floating_model(
 ) -> tuple[HullCoefficients, FloatingModel]:
     """The hull (the device's, or `load_hull(kw["hull"])`) and its `FloatingModel`: the
     gyroscope units of rotor_inertia / rotor_speed (the device's gimbal frame), a PTO at zero
-    gains within the scene's limits, radiation, a linear viscous damping (the device's fraction
+    gains within the scene's limits, the device's end stops, survival brake and supervisor
+    (`gimbal`), radiation, a linear viscous damping (the device's fraction
     of critical unless viscous_damping is given), the quadratic drag and the wave ramp, per the
     effects."""
     dev = DEVICES[scene.device]
@@ -132,7 +140,10 @@ def floating_model(
     )
     pto = dict(damping=0.0, stiffness=0.0, max_torque=scene.max_generator_torque,
                max_power=scene.max_generator_power, eta_generator=scene.eta_g,
-               eta_motor=scene.eta_m)  # fmt: skip
+               eta_motor=scene.eta_m, brake_damping=dev.brake_damping,
+               survival_tilt=scene.pitch_limit, survival_hold=dev.survival_hold,
+               **dev.cushion(gyro.transverse + gyro.gimbal_inertia[1],
+                             gyro.rotor_inertia * gyro.rotor_speed))  # fmt: skip
     units = check_int("gyro_units", kw["gyro_units"], low=1, high=2)
     model = FloatingModel(hull, gyro, pto, gyroscopic="gyroscopic" in effects, units=units,
                           three_dof=three)  # fmt: skip

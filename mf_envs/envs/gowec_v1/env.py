@@ -28,6 +28,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ROLL,
 )
 from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
+from mf_envs.physics.gowec.hydro.gimbal import PTO_STROKE, SURVIVAL_LATCHED, stiffest_rate
 from mf_envs.physics.gowec.hydro.model import radiation_bound, wave_power_flux
 
 AVAILABLE_EFFECTS = {
@@ -51,7 +52,10 @@ class GOWECV1Env(MFEnv):
     pitch theta (about e1), roll rho (about e2), surge and heave: Cummins equation with Morison
     drag and a mooring spring, two-way coupled to a mirrored pair of gyros (H = 3.14e5 N m s
     each) by the B-matrix equations (`physics.gowec.hydro.floating`); generator torque inside
-    the substeps. `device="seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md has the rest.
+    the substeps. The gimbals swing inside cushioned end stops (+-70 deg, 10 deg of cushion),
+    and a supervisor takes the device into survival (PTO unloaded, gimbals braked, flywheels
+    spinning) beyond its operating range (`physics.gowec.hydro.gimbal`).
+    `device="seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md has the rest.
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: generator torque command / max_generator_torque. The drive adds
@@ -68,7 +72,8 @@ class GOWECV1Env(MFEnv):
     (n/2 H beta0 w^2, the locked-gimbal power) with beta0 the rotor-off pitch amplitude from the
     RAO at the wave (irregular: a = Hs / (2 sqrt 2), T = peak_period): `reference_power()`.
     Terms (`info["reward_terms"]`): `net_electrical_energy`, and `shutdown_loss` (< 0 only on a
-    terminating step: the rotor loss of the steps left, / (P_ref control_dt)).
+    failure's step: `shutdown_energy`, the most the device could draw over the steps left, /
+    (P_ref control_dt)).
 
     ## Starting State
     Buoy at rest, level; gimbal angle uniform in [-0.1, 0.1] rad, at rest; random wave phases;
@@ -77,9 +82,12 @@ class GOWECV1Env(MFEnv):
 
     ## Episode End
     Truncation after `episode_seconds` or `max_episode_steps` (default 6000; docs/api.md,
-    "Episode length"); termination if |phi'| > max_gimbal_rate ("overspeed"), |theta| or |rho|
-    > pitch_limit ("out_of_range"; 20 deg on the ISWEC-class device) or a numerical failure. A
-    termination by overspeed or pitch limit is charged the rotor loss of the steps left.
+    "Episode length"); termination only on a physical failure: |phi'| > max_gimbal_rate
+    ("overspeed") or |phi| past the gimbal's stroke ("stroke_end", its cushion bottomed out),
+    each charged `shutdown_energy` (ending early never pays), or a numerical failure. A tilt
+    above pitch_limit (20 deg on the ISWEC-class device), the gimbal in its cushion, or a sea
+    above the device's operating range (Hs or regular wave height > 2.5 m) puts the device in
+    survival (`info["survival"]`; held 30 s after the trigger, the whole episode for the sea).
 
     ## Arguments
     | argument | default | meaning |
@@ -95,7 +103,7 @@ class GOWECV1Env(MFEnv):
     | rotor_loss | device (3000 W) | running loss of all units while spinning |
     | viscous_damping | device (0; seed buoy 5 % of critical) | linear damping (N m s/rad) |
     | drag_coefficient | device (1) | Morison C_d of keel plate and side |
-    | pitch_limit, wave_ramp | device (20 deg, 10 s) | episode-ending tilt (rad), wave ramp (s) |
+    | pitch_limit, wave_ramp | device (20 deg, 10 s) | survival tilt (rad), wave ramp (s) |
     | wave_preview | 0 | s of incident elevation ahead in 8 more observation slots (0: none) |
     | hull | None (the device's) | `HullCoefficients` or path of an .npz (`from_capytaine`) |
     | episode_seconds, control_dt, physics_dt | 120 s, 0.02 s, device (0.02 s) | timing |
@@ -103,7 +111,8 @@ class GOWECV1Env(MFEnv):
     ## Version History
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency.
     - v0 (0.5): the ISWEC-class device by default, surge and heave, Morison drag, wave ramp,
-      pitch limit, shutdown charge, the wave elevation in the observation.
+      pitch limit, shutdown charge, the wave elevation in the observation; later the gimbal's
+      end stops and the survival supervisor (the pitch limit no longer ends episodes).
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
@@ -153,8 +162,9 @@ class GOWECV1Env(MFEnv):
                              else physics_dt, 1e-5, 1.0),
                          default_effects=build.default_effects(self.scene, hull))  # fmt: skip
         self.irregular = self.scene.hs_given or "irregular_waves" in self.effects
-        self._base_substeps = self.n_substeps
         self.hull, self.model = build.floating_model(self.scene, kw, self.effects)
+        self._base_substeps = self.n_substeps
+        self.set_pto(0.0, 0.0)  # the substeps for the brake and the cushions
         self.buoy_radius = self.hull.radius if math.isfinite(self.hull.radius) else 0.0
         self.max_steps, self.episode_seconds = self._seconds_episode(episode_seconds,
             max_episode_steps, build.EPISODE_SECONDS)  # fmt: skip
@@ -185,8 +195,11 @@ class GOWECV1Env(MFEnv):
         return radiation_bound(self.hull, self.wave)
 
     def wave_power_flux(self) -> float:
-        """Wave power per metre of crest of the current sea (W/m), deep water."""
-        return wave_power_flux(self.wave, self.hull.rho, self.hull.g)
+        """Wave power per metre of crest of the current sea (W/m) at the hull table's water
+        depth (35 m on the ISWEC-class device; deep water for a pitch-only table)."""
+        three = self.model.three
+        depth = float(three.water_depth) if three is not None else math.inf
+        return wave_power_flux(self.wave, self.hull.rho, self.hull.g, depth)
 
     def reference_power(self) -> float:
         """P_ref = 1/2 |H| beta0 w^2 (W, Eq. 88) with beta0 = rotor-off RAO x a (Rewards)."""
@@ -200,9 +213,8 @@ class GOWECV1Env(MFEnv):
         c = check_range("damping", damping, 0.0, 1e9)
         k = check_range("stiffness", stiffness, -1e9, 1e9)
         self.model.set_pto(c, k)
-        # explicit RK4: keep the damper's rate c dt / I_g <= 2 and w_k dt <= 0.5 (stable, accurate)
-        Ig = self.model.p.gyro[1] + self.model.p.gyro[3]
-        rate = max(c / Ig, 4.0 * math.sqrt(abs(k) / Ig))
+        p = self.model.p  # explicit RK4: the stiffest gimbal load's rate x dt <= 2
+        rate = stiffest_rate(p.pto, p.gyro[1] + p.gyro[3])
         self.n_substeps = max(self._base_substeps, math.ceil(self.control_dt * rate / 2.0))
         self.physics_dt = self.control_dt / self.n_substeps
 
@@ -213,14 +225,14 @@ class GOWECV1Env(MFEnv):
         self._t = self._steps * self.control_dt
         truncated = self._steps >= self.max_steps
         obs = np.empty(self.observation_space.shape[0], np.float32)
-        loss, lo, hi, limits = self._consts
+        loss, lo, hi, limits, sup = self._consts
         ok, y, finite, over, out = step_one(
             t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
             self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals,
             self._work, lo, hi, obs, limits, self.preview_times,
         )  # fmt: skip
         if not ok:
-            info = dict(power=0.0, overspeed=False, out_of_range=False)
+            info = dict(power=0.0, overspeed=False, stroke_end=False, survival=False)
             info["reward_terms"] = {"net_electrical_energy": 0.0, "shutdown_loss": 0.0}
             return self._finish_step(self._get_obs(), 0.0, False, truncated, info, False)
         self.state = y
@@ -230,10 +242,19 @@ class GOWECV1Env(MFEnv):
         shut = -self.shutdown_energy(self._steps) * self.energy_scale if over or out else 0.0
         info["reward_terms"] = {"net_electrical_energy": reward, "shutdown_loss": shut}
         reward += shut
-        info["overspeed"], info["out_of_range"] = over, out
+        info["overspeed"], info["stroke_end"], info["survival"] = over, out, bool(y[sup] > 0.0)
         if finite and math.isfinite(reward):  # _finish_step's checks, done in the kernel
             return self._step_ok(obs, reward, over or out, truncated, info)
         return self._finish_step(obs, reward, over or out, truncated, info, True)
+
+    def gimbal_stroke(self) -> float:
+        """The gimbal's stroke (rad): the end stops' angle plus the cushion's travel (inf:
+        none); passing it ends the episode (`stroke_end`)."""
+        return float(self.model.p.pto[PTO_STROKE])
+
+    def survival(self) -> bool:
+        """The supervisor holds the device in survival (`physics.gowec.hydro.gimbal`)."""
+        return bool(self.state[self.model.survival_index()] > 0.0)
 
     def rotor_loss_power(self) -> float:
         """Rotor loss (W) while the rotor spins, else 0."""
@@ -246,19 +267,25 @@ class GOWECV1Env(MFEnv):
         return 0.5 * self.model.units * p.gyro[0] * p.psid**2
 
     def shutdown_energy(self, steps: Any) -> Any:
-        """Rotor running loss (J) of the episode's steps left after `steps` (int or array): what
-        a termination (overspeed, pitch limit) is charged, so that ending early never pays."""
-        return self.rotor_loss_power() * self.control_dt * np.maximum(self.max_steps - steps, 0)
+        """Energy (J) a failure (overspeed, stroke end) is charged for the episode's steps left
+        after `steps` (int or array): the most the device could have drawn over them, the rotor
+        loss plus every drive motoring at its power limit (n P_max / eta_m). The net
+        electrical energy of any step is at least minus this rate (`floating.pto_torque`
+        limits |M_g phi'| <= P_max), so no continuation is worse than the charge: ending early
+        never pays."""
+        rate = self.rotor_loss_power() + self.model.units * self.max_generator_power / self.eta_m
+        return rate * self.control_dt * np.maximum(self.max_steps - steps, 0)
 
     @property
     def _consts(self) -> tuple:
-        """(rotor loss W, obs bounds, (max gimbal rate, max buoy angle)), rebuilt when the public
+        """(rotor loss W, obs bounds, (max gimbal rate, stroke), the survival timer's index in the
+        state), rebuilt when the public
         attributes they come from change (e.g. domain randomisation)."""
         sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
         if self._consts_key != key:
-            lim = (self.max_gimbal_rate, self.pitch_limit)
+            lim = (self.max_gimbal_rate, self.gimbal_stroke())
             self._consts_val, self._consts_key = (
-                (self.rotor_loss_power(), sp.low, sp.high, lim),
+                (self.rotor_loss_power(), sp.low, sp.high, lim, self.model.survival_index()),
                 key,
             )
         return self._consts_val
@@ -307,10 +334,13 @@ class GOWECV1Env(MFEnv):
         )
         self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
+        if self.scene.beyond_range:  # the supervisor meets a sea beyond range in survival
+            self.state[self.model.survival_index()] = SURVIVAL_LATCHED
         info.update(
             reward_terms={"net_electrical_energy": 0.0, "shutdown_loss": 0.0},
             overspeed=False,
-            out_of_range=False,
+            stroke_end=False,
+            survival=bool(self.state[self.model.survival_index()] > 0.0),
         )
         return self._get_obs(), info
 

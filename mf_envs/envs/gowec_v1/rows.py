@@ -104,9 +104,9 @@ def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, 
              preview):  # fmt: skip
     """The single env's step in one compiled call: `step_row`, then (if the state is finite)
     `observe_one` into obs (preview: its look-ahead times) and the termination tests; limits =
-    (max gimbal rate rad/s, max buoy
-    angle rad), w = `step_work` (the env's holds n_components; a new one here if w is too small
-    for the sea). Returns (ok, y1, finite obs, overspeed, out of range)."""
+    (max gimbal rate rad/s, the gimbal's stroke rad), w = `step_work` (the env's holds
+    n_components; a new one here if w is too small for the sea). Returns (ok, y1, finite obs,
+    overspeed, past the stroke's end)."""
     if w.shape[0] < 6 * y.shape[0] + 4 * args[9].shape[0]:
         w = step_work(y.shape[0], args[9].shape[0])
     work, ph, end = step_views(w, y.shape[0], args[9].shape[0])
@@ -117,5 +117,5 @@ def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, 
     finite = observe_one(y1, t1, amp, args[9], eps, args[13][1], preview, lo, hi, obs,
                          vals[V_ELEVATION], trig)  # fmt: skip
     over = abs(y1[5]) > limits[0]
-    out = max(abs(y1[0]), abs(y1[1])) > limits[1]
+    out = abs(y1[2]) > limits[1]
     return True, y1, finite, over, out

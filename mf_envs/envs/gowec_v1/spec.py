@@ -11,7 +11,7 @@ from mf_envs.envs._spec import Field, ObsLayout
 
 MAX_GIMBAL_RATE = 60.0  # rad/s, overspeed trip and observation bound
 MAX_BUOY_RATE = 5.0  # rad/s, observation bound
-MAX_BUOY_ANGLE = 1.0  # rad: observation bound; the device's pitch_limit (<= 1 rad) ends episodes
+MAX_BUOY_ANGLE = 1.0  # rad: observation bound (and of the device's survival tilt pitch_limit)
 MAX_ELEVATION = 15.0  # m: observation bound of the wave elevation (and its preview)
 
 OBS = ObsLayout(
@@ -49,6 +49,7 @@ INFO_KEYS = (
     "time",  # s
     "reward_terms",  # {"net_electrical_energy": ...}, sums to the reward
     "numerical_failure",
-    "overspeed",  # |phi'| > max_gimbal_rate: terminates
-    "out_of_range",  # |theta| or |rho| > pitch_limit: terminates (charged the shutdown_loss)
+    "overspeed",  # |phi'| > max_gimbal_rate: terminates (charged the shutdown_loss)
+    "stroke_end",  # |phi| past the gimbal's stroke (its cushion bottomed out): terminates (same)
+    "survival",  # the supervisor holds the device in survival (PTO unloaded, gimbal braked)
 )

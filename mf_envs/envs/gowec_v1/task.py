@@ -3,13 +3,13 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
 from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant
+from mf_envs.physics.waves import group_velocity, wavenumber
 
 
 def episode_metrics(
@@ -43,14 +43,7 @@ def absorbed_power_bound(env: Any) -> float:
         return float(u.power_bound())
     rho, g, h = float(three.rho), float(three.g), float(three.water_depth)
     a, w = np.asarray(u.wave.amplitudes, float), np.asarray(u.wave.omegas, float)
-    k = w * w / g  # deep water, then Newton on w^2 = g k tanh(k h) (h = inf: deep water)
-    if math.isfinite(h):
-        for _ in range(50):
-            t = np.tanh(k * h)
-            k = k - (g * k * t - w * w) / (g * t + g * k * h * (1.0 - t * t))
-        group = w / (2.0 * k) * (1.0 + 2.0 * k * h / np.sinh(2.0 * k * h))
-    else:
-        group = g / (2.0 * w)
+    k, group = wavenumber(w, h, g), group_velocity(w, h, g)  # finite depth (inf: deep water)
     return float(np.sum(0.5 * rho * g * a * a * group * 3.0 / k))
 
 

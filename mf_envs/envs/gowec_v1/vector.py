@@ -57,6 +57,7 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ENERGY,
     state_values,
 )
+from mf_envs.physics.gowec.hydro.gimbal import SURVIVAL_LATCHED
 from mf_envs.physics.gowec.hydro.sea import (
     N_LOADS,
     drag_velocity_coefficients,
@@ -65,21 +66,24 @@ from mf_envs.physics.gowec.hydro.sea import (
 )
 
 _SCALAR_SLOTS = INFO_SLOTS  # info key -> step_row value slot (physics.gowec.hydro.batch)
-_FAILURE_KEYS = ("power", "reward_terms", "overspeed", "out_of_range", "numerical_failure")
+_FAILURE_KEYS = ("power", "reward_terms", "overspeed", "stroke_end", "survival",
+                 "numerical_failure")  # fmt: skip
 PHASE0, GIMBAL0 = (0.0, 2.0 * math.pi), (-0.1, 0.1)  # GOWECV1Env.reset's U(low, high) draws
 
 
 @numba.njit(cache=True)
 def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, tail, amp, eps, vals, lo, hi, obs,
-               preview):  # fmt: skip
+               preview, sup, timer):  # fmt: skip
     """GOWECV1Env.reset() (no options) for the rows idx whose sea (om, cp, cr, amp, eps) is in
-    place: the state at rest with the gimbal angle gimbal[j] (rad), steps = 0, the reset info's
-    value slots (`step_row`'s layout, at t = 0 with tau = 0) and the float32 observations."""
+    place: the state at rest with the gimbal angle gimbal[j] (rad) and the supervisor's timer
+    (state index sup) at timer (s), steps = 0, the reset info's value slots (`step_row`'s
+    layout, at t = 0 with tau = 0) and the float32 observations."""
     for j in range(idx.shape[0]):
         i = idx[j]
         y = Y[i]
         y[:] = 0.0
         y[2] = gimbal[j]
+        y[sup] = timer
         steps[i] = 0
         v = vals[i]
         v[:] = 0.0
@@ -111,7 +115,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         return (*super()._shared(env), a[:9], a[14:], m.drag_coefficient, m.sp[1],
                 env.wave_direction, env.physics_dt, env.n_substeps, env.max_generator_torque,
                 env.rotor_loss_power(), env.preview_times, env.max_gimbal_rate,
-                env.pitch_limit)  # fmt: skip
+                env.gimbal_stroke())  # fmt: skip
 
     def _alloc(self, n: int) -> None:
         env = self.template
@@ -176,7 +180,8 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         reset_rows(
             idx, gimbal, self.Y, self._steps, a[:9], sea["om"], sea["cp"], sea["cr"], sea["dk"],
             a[13:], sea["amp"], sea["eps"], self._vals, self._lo, self._hi, self._obs,
-            env.preview_times,
+            env.preview_times, env.model.survival_index(),
+            SURVIVAL_LATCHED if env.scene.beyond_range else 0.0,
         )  # fmt: skip
         return self._reset_infos(idx)
 
@@ -194,7 +199,8 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         info["reward_terms"] = {"net_electrical_energy": np.zeros(n), "_net_electrical_energy":
                                 mask.copy(), "shutdown_loss": np.zeros(n),
                                 "_shutdown_loss": mask.copy()}  # fmt: skip
-        info["overspeed"], info["out_of_range"] = np.zeros(n, bool), np.zeros(n, bool)
+        info["overspeed"], info["stroke_end"] = np.zeros(n, bool), np.zeros(n, bool)
+        info["survival"] = self.Y[:, self.template.model.survival_index()] > 0.0
         for key in list(info):
             if not key.startswith("_"):
                 info[f"_{key}"] = mask.copy()
@@ -229,11 +235,12 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         info["buoy_rate"] = v[:, RATES].copy()
         info["time"] = t1.copy()
         over = np.abs(Y[:, 5]) > env.max_gimbal_rate
-        out = np.maximum(np.abs(Y[:, 0]), np.abs(Y[:, 1])) > env.pitch_limit
+        out = np.abs(Y[:, 2]) > env.gimbal_stroke()
         shut = np.where(over | out, -env.shutdown_energy(self._steps) * self._escale, 0.0)
         info["reward_terms"] = {"net_electrical_energy": reward.copy(), "shutdown_loss": shut}
         reward = reward + shut
-        info["overspeed"], info["out_of_range"] = over, out
+        info["overspeed"], info["stroke_end"] = over, out
+        info["survival"] = Y[:, env.model.survival_index()] > 0.0
         finite = ok & np.isfinite(reward)  # MFEnv._finish_step: finite obs and reward
         info["numerical_failure"] = ~finite
         masks = np.ones((len(spec.INFO_KEYS) + 1, self.num_envs), dtype=bool)
@@ -249,7 +256,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
             gone = ~ok & active  # the physics failed: only the failure keys, zeroed
             info["power"][gone], info["reward_terms"]["net_electrical_energy"][gone] = 0.0, 0.0
             info["reward_terms"]["shutdown_loss"][gone] = 0.0
-            over[gone], out[gone] = False, False
+            over[gone], out[gone], info["survival"][gone] = False, False, False
             for key in set(spec.INFO_KEYS) - set(_FAILURE_KEYS):
                 info[f"_{key}"][gone] = False
         return obs, reward, term, self._steps >= env.max_steps, info

@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 
 from mf_envs._jit import kernel
 from mf_envs._validate import nonnegative_scalar, positive_scalar
+from mf_envs.physics.end_stops import cushion_torque, size_cushion
 
 # packed brake vector B
 BCMIN, BCMAX, BQMIN, BQMAX, BRCAP, BKCAP, BTREL, BASTOP, BKS, BCS = range(10)
@@ -115,8 +116,7 @@ class BrakeParams:
         d = positive_scalar("max_penetration", max_penetration)
         zeta = nonnegative_scalar("stop_damping_ratio", stop_damping_ratio)
         v = (1.0 + 2.0 * CAP_OVERSHOOT) * r  # margin over the capped rate at contact
-        ks = (jg * v * v + 2.0 * h * p * d) / (d * d)
-        cs = 2.0 * zeta * math.sqrt(ks * jg)
+        ks, cs = size_cushion(jg, v, h, p, d, zeta)
         td = h * p + ks * d + cs * v
         return cls(
             c_min=c_range[0] * h,
@@ -175,12 +175,9 @@ def brake_torque(u: float, ad: float, B: np.ndarray) -> float:
 
 @kernel(forceinline=True)
 def stop_torque(a: float, ad: float, B: np.ndarray) -> float:
-    """tau_s (N m) of the cushioned stops at gimbal angle a (rad) and rate ad (rad/s)."""
-    d = abs(a) - B[BASTOP]
-    if d <= 0.0:
-        return 0.0
-    s = 1.0 if a > 0.0 else -1.0
-    return -s * max(0.0, B[BKS] * d + B[BCS] * s * ad)
+    """tau_s (N m) of the cushioned stops at gimbal angle a (rad) and rate ad (rad/s)
+    (`end_stops.cushion_torque`)."""
+    return cushion_torque(a, ad, B[BASTOP], B[BKS], B[BCS])
 
 
 @kernel(forceinline=True)

@@ -74,6 +74,7 @@ from mf_envs._validate import (
     nonnegative_scalar,
     positive_scalar,
 )
+from mf_envs.physics.end_stops import cushion_torque as stop_law
 
 DRIVE_KINDS = ("electric", "brake", "damper", "pendulous", "spring")
 KIND_ELECTRIC, KIND_BRAKE, KIND_DAMPER, KIND_PENDULOUS, KIND_SPRING = 1, 2, 3, 4, 5
@@ -265,16 +266,12 @@ def end_stop(phi: float, phid: float, phi_max: float):
 @kernel(forceinline=True)
 def cushion_torque(phi: float, phid: float, D: np.ndarray, o: int = 0) -> float:
     """Torque (N m) of the cushioned end stops on the gimbal at angle phi (rad), rate phid
-    (rad/s): a spring-damper engaging at +-a_s that only pushes (`brake.stop_torque`),
+    (rad/s): a spring-damper engaging at +-a_s that only pushes (`end_stops.cushion_torque`),
     -sign(phi) max(0, k_s d + c_s d'), d = |phi| - a_s > 0; 0 without cushions (k_s = 0)."""
     ks = D[o + DKS]
     if ks <= 0.0:
         return 0.0
-    d = abs(phi) - D[o + DASTOP]
-    if d <= 0.0:
-        return 0.0
-    s = 1.0 if phi > 0.0 else -1.0
-    return -s * max(0.0, ks * d + D[o + DCS] * s * phid)
+    return stop_law(phi, phid, D[o + DASTOP], ks, D[o + DCS])
 
 
 @kernel(forceinline=True)

@@ -18,7 +18,8 @@ import numpy as np
 
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
-from mf_envs.physics.gowec.hydro.floating import energy_index, mechanics, rk4_steps_into
+from mf_envs.physics.gowec.hydro.floating import N_ENERGY, energy_index, mechanics, rk4_steps_into
+from mf_envs.physics.gowec.hydro.gimbal import supervise
 from mf_envs.physics.gowec.hydro.sea import ramp, sea_inputs
 
 # step_row's value slots (its docstring), by name: the one layout the env and the vector env read
@@ -129,6 +130,7 @@ def step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, 
     for i in range(m):
         if not math.isfinite(y1[i]):
             return False, (nan, nan, nan, nan, nan, nan)
+    y1[k + N_ENERGY] = supervise(y1[k + N_ENERGY], y1[0], y1[1], y1[2], dtc, args[8])
     p_el = (y1[k + 4] - y[k + 4]) / dtc - loss
     vals[V_POWER], vals[V_POWER_MECH] = p_el, (y1[k + 3] - y[k + 3]) / dtc
     cr, sr = sincos_near(y1[1], near[0], near[1], near[2])

@@ -11,7 +11,9 @@
   the flywheel (a steel disc 2.4 m across and 0.35 m thick, J = 1.2e4 kg m^2 at 250 rpm,
   H = 3.14e5 N m s per unit), the gimbal frame's inertia, the PTO limits (50 kN m and 100 kW
   per unit), the running loss (1.5 kW per unit: bearings by SKF's friction model plus seals
-  and windage in the evacuated casing), 90 % drive efficiency each way, drag coefficient 1.
+  and windage in the evacuated casing), 90 % drive efficiency each way, drag coefficient 1, the
+  gimbal's end stops (+-70 deg, 10 deg of cushion), the survival brake and the operating range
+  (sea height <= 2.5 m).
 - ``"seed_buoy"``: the device of mf_envs 0.1-0.4: the 5 m cylinder of GOWEC-v0's irregular
   sea (converged BEM table) carrying the seed's mirrored pair of Seakeeper 26 rotors (Table
   3-1), 3 kW rotor loss, 5 %-of-critical linear viscous damping, no drag, no ramp, episode
@@ -28,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from mf_envs.physics.constants import RPM
+from mf_envs.physics.end_stops import size_cushion
 from mf_envs.physics.gowec.hydro import DEFAULT_HULL_FILE, HullCoefficients
 from mf_envs.physics.gowec.hydro.three_dof import ISWEC_HULL_FILE, ThreeDofCoefficients
 
@@ -37,7 +40,12 @@ class FloatingDevice:
     """One floating GOWEC as built: every number SI. `rotor_loss` is the running loss of all
     units together (W); limits are per unit; `viscous_fraction` a linear damping as a fraction
     of critical (0 = none) and `drag_coefficient` the quadratic drag's C_d (0 = none);
-    `pitch_limit` (rad) ends the episode; `wave_ramp` (s) ramps the incident wave in."""
+    `pitch_limit` (rad) is the tilt beyond which the supervisor puts the device in survival
+    (`gimbal` module doc); `wave_ramp` (s) ramps the incident wave in. The gimbal's end stops
+    engage at +-`stop_angle` (rad) with a cushion of `stop_travel` (rad) sized by
+    `cushion` (`end_stops.size_cushion`); the survival brake is `brake_damping` (N m s/rad per
+    unit), held `survival_hold` s after its trigger; seas of (significant) wave height above
+    `max_operating_height` (m) are met in survival from the start."""
 
     name: str
     hull_file: Path
@@ -57,6 +65,25 @@ class FloatingDevice:
     mooring_stiffness: float  # N/m, linear surge spring (with surge free)
     effects: tuple[str, ...]  # the env's default effects on this device
     physics_dt: float  # s, the env's default RK4 substep (docs/gowec_v1.md: accuracy)
+    stop_angle: float = math.inf  # rad, where the cushions engage (inf: no end stops)
+    stop_travel: float = math.radians(10.0)  # rad, the cushion's travel d_max
+    stop_contact_rate: float = 3.0  # rad/s, gimbal rate the cushion is sized to stop
+    stop_hull_rate: float = 0.5  # rad/s, hull rate of the gyroscopic torque it is sized for
+    brake_damping: float = 0.0  # N m s/rad per unit, the survival brake
+    survival_hold: float = 30.0  # s
+    max_operating_height: float = math.inf  # m
+
+    def cushion(self, gimbal_inertia: float, angular_momentum: float) -> dict[str, float]:
+        """The end stops' PTO fields (`gimbal.PTO_NAMES`) for a gimbal + rotor inertia about
+        the gimbal axis (kg m^2) and a rotor of angular momentum H (N m s): k_s, c_s (damping
+        ratio 0.5) by `end_stops.size_cushion`,
+        and the stroke a_s + d_max; none when stop_angle is inf."""
+        if not math.isfinite(self.stop_angle):
+            return {}
+        ks, cs = size_cushion(gimbal_inertia, self.stop_contact_rate, abs(angular_momentum),
+                              self.stop_hull_rate, self.stop_travel, 0.5)  # fmt: skip
+        return dict(stop_angle=self.stop_angle, stop_stiffness=ks, stop_damping=cs,
+                    stroke=self.stop_angle + self.stop_travel)  # fmt: skip
 
     def hull(self) -> HullCoefficients:
         """The hull's pitch coefficients about G."""
@@ -102,7 +129,8 @@ DEVICES: dict[str, FloatingDevice] = {
         drag_coefficient=1.0, viscous_fraction=0.0, pitch_limit=math.radians(20.0),
         wave_ramp=10.0, mooring_stiffness=3.0e3,
         effects=("gyroscopic", "radiation", "viscous_damping", "quadratic_drag", "surge_heave"),
-        physics_dt=0.02,
+        physics_dt=0.02, stop_angle=math.radians(70.0), brake_damping=5.0e5,
+        max_operating_height=2.5,
     ),
     "seed_buoy": FloatingDevice(
         name="seed_buoy", hull_file=DEFAULT_HULL_FILE, three_dof=False,
@@ -111,7 +139,7 @@ DEVICES: dict[str, FloatingDevice] = {
         max_generator_torque=1.0e4, max_generator_power=5.0e4, generator_efficiency=0.8,
         drag_coefficient=0.0, viscous_fraction=0.05, pitch_limit=1.0, wave_ramp=0.0,
         mooring_stiffness=0.0, effects=("gyroscopic", "radiation", "viscous_damping"),
-        physics_dt=0.005,
+        physics_dt=0.005, brake_damping=5.0e3,
     ),
 }  # fmt: skip
 DEFAULT_DEVICE = "iswec_class"

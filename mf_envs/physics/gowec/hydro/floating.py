@@ -58,6 +58,11 @@ from numpy.typing import NDArray
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
 from mf_envs.frames.steppers import make_rk4_given, rk4_work
+from mf_envs.physics.gowec.hydro.gimbal import (
+    gimbal_loads,
+    pto_torque,  # noqa: F401  (importers' name)
+    stop_dissipation,
+)
 from mf_envs.physics.gowec.hydro.radiation import block_rates, dot_block, radiation_rates4
 from mf_envs.physics.gowec.hydro.sea import (
     N_KEEL,
@@ -72,6 +77,7 @@ from mf_envs.physics.gowec.hydro.sea import (
 
 N_MECH = 6
 N_ENERGY = 6
+N_SUPERVISOR = 1  # the supervisor's survival timer (s) after the energies (`gimbal.supervise`)
 
 
 @dataclass(frozen=True)
@@ -79,7 +85,8 @@ class FloatingParams:
     """Packed numbers of the fast path (SI). inertia = (I + A_inf, I_z) of the hull (kg m^2);
     gyro = (Ja, Jt, Jg1, Jg2, Jg3) kg m^2; psid rad/s; stiffness C (N m/rad); viscous b_v
     (N m s/rad); radiation (Ar (nr,nr), Br (nr,), Cr (nr,)); pto = (c N m s/rad, k N m/rad,
-    max torque N m, max power W, eta_generator, eta_motor)."""
+    max torque N m, max power W, eta_generator, eta_motor, then the end stops, brake and
+    supervisor of `gimbal.PTO_NAMES`)."""
 
     inertia: NDArray[np.float64]
     gyro: NDArray[np.float64]  # (Ja, Jt, Jg1, Jg2, Jg3, n_units)
@@ -94,7 +101,7 @@ class FloatingParams:
     @property
     def n_state(self) -> int:
         """Without the translation block (`FloatingModel.n_state` adds it)."""
-        return N_MECH + 2 * self.Ar.shape[0] + N_ENERGY
+        return N_MECH + 2 * self.Ar.shape[0] + N_ENERGY + N_SUPERVISOR
 
 
 # the translation parameters `tp` (TP_LEN,) (`translation_params`): on, M1 = m + A11_inf (kg),
@@ -103,16 +110,6 @@ class FloatingParams:
 # the surge force, 51 from s' to the moment, 33 from z') and the stacked order nt
 TP_ON, TP_M1, TP_A15, TP_K, TP_M3, TP_C33, TP_O11, TP_O15, TP_O51, TP_O33, TP_NT = range(11)
 TP_LEN = 11
-
-
-@kernel(forceinline=True)
-def pto_torque(phi, phid, tau, pto):
-    """M_g (N m): tau + c phi' + k phi, clipped to the torque limit and to |M_g phi'| <= P_max."""
-    m = tau + pto[0] * phid + pto[1] * phi
-    lim = pto[2]
-    if abs(phid) * lim > pto[3]:
-        lim = pto[3] / abs(phid)
-    return min(max(m, -lim), lim)
 
 
 @numba.njit(cache=True)
@@ -205,8 +202,9 @@ def mechanics(t, y, tau, args, inp, near=None):
     drag moments (dx, dy) (N m), translation tr = (s'', z'' (m/s^2), surge and heave
     excitation (N), surge radiation force mu_11 + mu_15 (N), the moment mu_51 about the axis
     across the wave (N m), heave radiation force mu_33 (N), surge and heave drag (N)); tr is
-    zeros when surge and heave are held (`translation` module doc below). near: as
-    `_mass_terms`."""
+    zeros when surge and heave are held (`translation` module doc below), and the gimbal's
+    brake and end-stop torques (M_b, tau_s) (N m, `gimbal.gimbal_loads`: M_g is 0 and the
+    brake on in survival, the state's supervisor timer > 0). near: as `_mass_terms`."""
     p_in, p_gy, psid, C, bv, Ar, _, Cr, pto = args[:9]
     sp, tp = args[13], args[14]
     mx, my = inp[0], inp[1]
@@ -220,14 +218,15 @@ def mechanics(t, y, tau, args, inp, near=None):
     for i in range(nr):
         mu_t += Cr[i] * y[6 + i]
         mu_r += Cr[i] * y[6 + nr + i]
-    Mg = pto_torque(y[2], y[5], tau, pto)
+    Mg, Mb, Ms = gimbal_loads(y[2], y[5], tau, pto, y[energy_index(args) + N_ENERGY] > 0.0)
     q0 = mx + dx - C * y[0] - mu_t - bv * y[3] - m[4]
     q1 = my + dy - C * y[1] - mu_r - bv * y[4] - m[5]
-    q2 = -p_gy[5] * Mg - m[6]
+    q2 = p_gy[5] * (Ms - Mg - Mb) - m[6]
     a00, a01, a11 = m[0], 0.0, m[1]
     if not trans:
         ud = _solve_tridiag3(a00, a01, a11, m[2], m[3], q0, q1, q2)
-        return ud, m, mu_t, mu_r, Mg, dx, dy, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        return ud, m, mu_t, mu_r, Mg, dx, dy, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), \
+            (Mb, Ms)  # fmt: skip
     Cs = args[17]
     m1, a15 = tp[TP_M1], tp[TP_A15]
     o11, o51, o33 = int(tp[TP_O11]), int(tp[TP_O51]), int(tp[TP_O33])
@@ -244,7 +243,8 @@ def mechanics(t, y, tau, args, inp, near=None):
     ud = _solve_tridiag3(a00, a01, a11, m[2], m[3], q0 + gt * h, q1 + gr * h, q2)
     sdd = (r_s + a15 * (gt * ud[0] + gr * ud[1])) / m1
     zdd = (fz + dfz - mu_z - tp[TP_C33] * y[b + 1]) / tp[TP_M3]
-    return ud, m, mu_t, mu_r, Mg, dx, dy, (sdd, zdd, fs, fz, mu_s, mu_n, mu_z, dfs, dfz)
+    return ud, m, mu_t, mu_r, Mg, dx, dy, (sdd, zdd, fs, fz, mu_s, mu_n, mu_z, dfs, dfz), \
+        (Mb, Ms)  # fmt: skip
 
 
 @numba.njit(cache=True)
@@ -262,7 +262,7 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
     p_gy, psid, Ar, Br, pto = args[1], args[2], args[5], args[6], args[8]
     bv = args[4]
     nr = Ar.shape[0]
-    ud, m, mu_t, mu_r, Mg, drx, dry, tr = mechanics(t, y, tau, args, inp, near)
+    ud, m, mu_t, mu_r, Mg, drx, dry, tr, gl = mechanics(t, y, tau, args, inp, near)
     mx, my = inp[0], inp[1]
     for i in range(3):
         dy[i] = y[3 + i]
@@ -294,7 +294,9 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
     P = nu * Mg * ph_d
     dy[k] = e_exc
     dy[k + 1] = e_rad
-    dy[k + 2] = bv * (th_d * th_d + ro_d * ro_d) - e_drag
+    # dissipated: viscous, drag, and the gimbals' survival brake and end-stop cushions
+    gimbal = nu * (gl[0] * ph_d + stop_dissipation(y[2], ph_d, gl[1], pto))
+    dy[k + 2] = bv * (th_d * th_d + ro_d * ro_d) - e_drag + gimbal
     dy[k + 3] = P
     dy[k + 4] = P * pto[4] if P >= 0.0 else P / pto[5]
     # rotor motors hold +-psi': torque Ja d/dt(w_g3) with w_g3 = sin(b) theta', b = rho + s phi
@@ -304,6 +306,7 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
         cb, sb = (m[12], m[13]) if j == 0 else (m[14], m[15])
         pm += sg * (cb * (ro_d + sg * ph_d) * th_d + sb * ud[0])
     dy[k + 5] = p_gy[0] * pm * psid
+    dy[k + N_ENERGY] = 0.0  # the supervisor's timer: stepped once per control step
 
 
 @kernel(forceinline=True)

@@ -13,20 +13,22 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from mf_envs.physics.end_stops import cushion_spring_energy
 from mf_envs.physics.gowec import GOWECParams
-from mf_envs.physics.gowec.hydro import HullCoefficients, sea
+from mf_envs.physics.gowec.hydro import HullCoefficients, gimbal, sea
 from mf_envs.physics.gowec.hydro import floating as fl
 from mf_envs.physics.gowec.hydro.radiation import RadiationFit, fit_radiation
 from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
 from mf_envs.physics.multibody import Body, Multibody, Revolute, constant_rate
-from mf_envs.physics.waves import WaveField
+from mf_envs.physics.waves import WaveField, group_velocity
 
-PTO_FIELDS = ("damping", "stiffness", "max_torque", "max_power", "eta_generator", "eta_motor")
+PTO_FIELDS = gimbal.PTO_NAMES  # the drive, end stops, brake and supervisor (`gimbal`)
 
 
 class FloatingModel:
     """Floating buoy + gyro (`floating` module doc). `viscous_damping` (N m s/rad) is an extra
-    linear damping per axis (0 = potential flow only); `pto` a dict of PTO_FIELDS."""
+    linear damping per axis (0 = potential flow only); `pto` a dict of PTO_FIELDS (gains,
+    limits, efficiencies; the end stops, brake and supervisor optional: `gimbal`)."""
 
     def __init__(
         self,
@@ -65,7 +67,7 @@ class FloatingModel:
             Ar=np.ascontiguousarray(self.fit.A, dtype=float),
             Br=np.ascontiguousarray(self.fit.B[:, 0], dtype=float),
             Cr=np.ascontiguousarray(self.fit.C[0], dtype=float),
-            pto=np.array([pto[k] for k in PTO_FIELDS], dtype=float),
+            pto=np.array(gimbal.pto_vector(pto), dtype=float),
         )
         self.set_sea(None)
 
@@ -210,6 +212,10 @@ class FloatingModel:
         out["stored"] = mechanical_energy(self.p, y, self._tr[0], d)
         return out
 
+    def survival_index(self) -> int:
+        """Index of the supervisor's survival timer (s) in the state (`gimbal.supervise`)."""
+        return int(fl.energy_index(self._args())) + fl.N_ENERGY
+
     # ------------------------------------------------------------------ engine twin
     def engine_model(self) -> Multibody:
         """The same bodies in the general B-matrix engine: a massless pitch frame (revolute
@@ -307,21 +313,25 @@ def motion_limited_bound(hull: HullCoefficients, wave: WaveField, theta_max: flo
     return min(motion, radiation_bound(hull, wave))
 
 
-def wave_power_flux(wave: WaveField, rho: float, g: float) -> float:
-    """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest), deep water (Eqs. 15, 18)."""
-    return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * g / (2.0 * wave.omegas)))
+def wave_power_flux(wave: WaveField, rho: float, g: float, depth: float = math.inf) -> float:
+    """J = sum_i rho g a_i^2 / 2 c_g(w_i) (W per metre of crest) at the water depth (m; inf:
+    deep water, c_g = g / 2 w) (Eqs. 14, 15, 18)."""
+    cg = group_velocity(np.asarray(wave.omegas, dtype=float), depth, g)
+    return float(np.sum(0.5 * rho * g * wave.amplitudes**2 * cg))
 
 
 def mechanical_energy(p: fl.FloatingParams, y: NDArray[np.float64], tp: NDArray | None = None,
                       direction: float = 0.0) -> float:  # fmt: skip
     """Kinetic + hydrostatic energy (J) of the mechanical state, with the rotor spin's constant
-    1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor); with the translation
+    1/2 Ja psi'^2 removed (the motor holds psi'; its work is E_motor), plus the end-stop
+    cushions' springs (`gimbal`); with the translation
     parameters tp (surge and heave free) also 1/2 M1 s'^2 + A15 s' alpha' + 1/2 M3 z'^2 and
     the mooring's and heave's springs."""
     M, _, spin, _ = fl.mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
     u = y[3:6]
     kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * spin
     e = kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
+    e += p.gyro[5] * cushion_spring_energy(y[2], p.pto[gimbal.PTO_STOP], p.pto[gimbal.PTO_KS])
     if tp is not None and tp[fl.TP_ON] != 0.0:
         b = fl.N_MECH + 2 * p.Ar.shape[0]
         s, z, sd, zd = y[b : b + 4]
