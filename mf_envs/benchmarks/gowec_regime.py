@@ -86,7 +86,7 @@ def plot(rows: list[dict], path: Path) -> Path:
     axes[0].set_ylabel("net electrical power (kW, symlog)")
     axes[0].legend(fontsize=8)
     fig.suptitle("Phase-locking (PLL) vs the best linear PTO on the floating ISWEC-class hull "
-                 "(x: episode ended at the pitch limit)", fontsize=10)  # fmt: skip
+                 "(x: episode ended early by a failure)", fontsize=10)  # fmt: skip
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
