@@ -226,10 +226,10 @@ class GOWECV1Env(MFEnv):
         truncated = self._steps >= self.max_steps
         obs = np.empty(self.observation_space.shape[0], np.float32)
         loss, lo, hi, limits, sup = self._consts
+        clock = (self.physics_dt, self.n_substeps, self.control_dt, loss)
         ok, y, finite, over, out = step_one(
-            t0, self._t, self.state, tau, self.physics_dt, self.n_substeps, self.model._args(),
-            self.wave.amplitudes, self.wave.phases, self.control_dt, loss, self._vals,
-            self._work, lo, hi, obs, limits, self.preview_times,
+            t0, self._t, self.state, tau, clock, self.model._args(), self.wave.amplitudes,
+            self.wave.phases, self._vals, self._work, (lo, hi, self.preview_times), obs, limits,
         )  # fmt: skip
         if not ok:
             info = dict(power=0.0, overspeed=False, stroke_end=False, survival=False)
@@ -270,7 +270,7 @@ class GOWECV1Env(MFEnv):
         """Energy (J) a failure (overspeed, stroke end) is charged for the episode's steps left
         after `steps` (int or array): the most the device could have drawn over them, the rotor
         loss plus every drive motoring at its power limit (n P_max / eta_m). The net
-        electrical energy of any step is at least minus this rate (`floating.pto_torque`
+        electrical energy of any step is at least minus this rate (`gimbal.pto_torque`
         limits |M_g phi'| <= P_max), so no continuation is worse than the charge: ending early
         never pays."""
         rate = self.rotor_loss_power() + self.model.units * self.max_generator_power / self.eta_m

@@ -64,32 +64,34 @@ def observe_at(y, t, amp, om, eps, tramp, preview, lo, hi, obs):
 
 
 @numba.njit(cache=True, nogil=True)
-def step_rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
-              loss, vals, ok, o_lo, o_hi, obs, preview):  # fmt: skip
+def step_rows(lo, hi, active, t0, t1, Y, tau, clock, shared, tail, sea, out, view):
     """The native vector env's step of the active rows lo <= i < hi: `step_row`, and where it
-    succeeded the new state into Y (N, n_state) and `observe_one` into obs (N, 8); ok (N,) bool,
-    vals (N, N_VALS); t0, t1, tau (N,); om, cp, cr, amp, eps (N, M) and dk (N, M, nodes) each
-    row's sea; shared = `floating.pack`'s first nine entries and tail its last five (sp and the
-    translation; the same for every row); o_lo, o_hi the observation
-    bounds. Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`)."""
-    _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
-          loss, vals, ok, o_lo, o_hi, obs, preview, step_work(Y.shape[1], om.shape[1]))  # fmt: skip
+    succeeded the new state into Y (N, n_state) and `observe_one` into obs (N, 8); t0, t1, tau
+    (N,); clock = (dt, n, dtc, loss) as `step_row`'s; shared = `floating.pack`'s first nine
+    entries and tail its last five (sp and the translation; the same for every row); sea = (om,
+    cp, cr, dk, amp, eps), each row's sea ((N, M), dk (N, M, nodes)); out = (vals (N, N_VALS),
+    ok (N,) bool, obs); view = (lo, hi, preview) the observation's bounds and look-ahead times.
+    Releases the GIL (blocks of rows on threads: `envs._rows.RowBlocks`)."""
+    _rows(lo, hi, active, t0, t1, Y, tau, clock, shared, tail, sea, out, view,
+          step_work(Y.shape[1], sea[0].shape[1]))  # fmt: skip
 
 
 @kernel
-def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, amp, eps, dtc,
-          loss, vals, ok, o_lo, o_hi, obs, preview, w):  # fmt: skip
+def _rows(lo, hi, active, t0, t1, Y, tau, clock, shared, tail, sea, out, view, w):
     """The row loop of `step_rows` with one `step_work` buffer w (a `mf_envs._jit.kernel`: the
     rows' views of the shared arrays cost no reference counts)."""
     p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto = shared
+    om, cp, cr, dk, amp, eps = sea
+    vals, ok, obs = out
+    o_lo, o_hi, preview = view
     m = Y.shape[1]
     work, ph, y1 = step_views(w, m, om.shape[1])  # carved once (`step_row` carves per call)
     for i in range(lo, hi):
         if not active[i]:
             continue
         args = (p_in, p_gy, psid, C, bv, Ar, Br, Cr, pto, om[i], cp[i], cr[i], dk[i], *tail)
-        good, trig = step_row_into(t0[i], t1[i], Y[i], tau[i], dt, n, args, amp[i], eps[i], dtc,
-                                   loss, vals[i], work, ph, y1)  # fmt: skip
+        good, trig = step_row_into(t0[i], t1[i], Y[i], tau[i], clock, args, amp[i], eps[i],
+                                   vals[i], work, ph, y1)  # fmt: skip
         ok[i] = good
         if good:
             yi = Y[i]
@@ -100,17 +102,17 @@ def _rows(lo, hi, active, t0, t1, Y, tau, dt, n, shared, om, cp, cr, dk, tail, a
 
 
 @numba.njit(cache=True)
-def step_one(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w, lo, hi, obs, limits,
-             preview):  # fmt: skip
-    """The single env's step in one compiled call: `step_row`, then (if the state is finite)
-    `observe_one` into obs (preview: its look-ahead times) and the termination tests; limits =
-    (max gimbal rate rad/s, the gimbal's stroke rad), w = `step_work` (the env's holds
-    n_components; a new one here if w is too small for the sea). Returns (ok, y1, finite obs,
-    overspeed, past the stroke's end)."""
+def step_one(t0, t1, y, tau, clock, args, amp, eps, vals, w, view, obs, limits):
+    """The single env's step in one compiled call: `step_row` (clock as its), then (if the
+    state is finite) `observe_one` into obs (view = (lo, hi, preview): its bounds and look-ahead
+    times) and the termination tests; limits = (max gimbal rate rad/s, the gimbal's stroke rad),
+    w = `step_work` (the env's holds n_components; a new one here if w is too small for the
+    sea). Returns (ok, y1, finite obs, overspeed, past the stroke's end)."""
+    lo, hi, preview = view
     if w.shape[0] < 6 * y.shape[0] + 4 * args[9].shape[0]:
         w = step_work(y.shape[0], args[9].shape[0])
     work, ph, end = step_views(w, y.shape[0], args[9].shape[0])
-    ok, trig = step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, end)
+    ok, trig = step_row_into(t0, t1, y, tau, clock, args, amp, eps, vals, work, ph, end)
     y1 = end.copy()  # the env keeps it as its state
     if not ok:
         return False, y1, False, False, False

@@ -72,12 +72,15 @@ PHASE0, GIMBAL0 = (0.0, 2.0 * math.pi), (-0.1, 0.1)  # GOWECV1Env.reset's U(low,
 
 
 @numba.njit(cache=True)
-def reset_rows(idx, gimbal, Y, steps, shared, om, cp, cr, dk, tail, amp, eps, vals, lo, hi, obs,
-               preview, sup, timer):  # fmt: skip
-    """GOWECV1Env.reset() (no options) for the rows idx whose sea (om, cp, cr, amp, eps) is in
-    place: the state at rest with the gimbal angle gimbal[j] (rad) and the supervisor's timer
-    (state index sup) at timer (s), steps = 0, the reset info's value slots (`step_row`'s
-    layout, at t = 0 with tau = 0) and the float32 observations."""
+def reset_rows(idx, gimbal, Y, steps, shared, tail, sea, vals, view, obs, supervisor):
+    """GOWECV1Env.reset() (no options) for the rows idx whose sea = (om, cp, cr, dk, amp, eps)
+    is in place (as `rows.step_rows`'): the state at rest with the gimbal angle gimbal[j] (rad)
+    and the supervisor's timer at supervisor = (its state index, the timer s), steps = 0, the
+    reset info's value slots (`step_row`'s layout, at t = 0 with tau = 0) and the float32
+    observations (view = (lo, hi, preview))."""
+    om, cp, cr, dk, amp, eps = sea
+    lo, hi, preview = view
+    sup, timer = supervisor
     for j in range(idx.shape[0]):
         i = idx[j]
         y = Y[i]
@@ -177,11 +180,12 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
                 translation_loads(dk, env.model.three, sea["om"][i], env.wave.amplitudes, eps)
             sea["dk"][i] = dk
         a = env.model._args()
+        rows_sea = tuple(sea[k] for k in ("om", "cp", "cr", "dk", "amp", "eps"))
+        supervisor = (env.model.survival_index(),
+                      SURVIVAL_LATCHED if env.scene.beyond_range else 0.0)  # fmt: skip
         reset_rows(
-            idx, gimbal, self.Y, self._steps, a[:9], sea["om"], sea["cp"], sea["cr"], sea["dk"],
-            a[13:], sea["amp"], sea["eps"], self._vals, self._lo, self._hi, self._obs,
-            env.preview_times, env.model.survival_index(),
-            SURVIVAL_LATCHED if env.scene.beyond_range else 0.0,
+            idx, gimbal, self.Y, self._steps, a[:9], a[13:], rows_sea, self._vals,
+            (self._lo, self._hi, env.preview_times), self._obs, supervisor,
         )  # fmt: skip
         return self._reset_infos(idx)
 
@@ -223,10 +227,11 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         a = env.model._args()
         shared = a[:9]
         obs = self._fresh
+        clock = (env.physics_dt, env.n_substeps, dtc, env.rotor_loss_power())
+        rows_sea = tuple(sea[k] for k in ("om", "cp", "cr", "dk", "amp", "eps"))
         self.blocks.run(
-            step_rows, active, t0, t1, self.Y, tau, env.physics_dt, env.n_substeps, shared,
-            sea["om"], sea["cp"], sea["cr"], sea["dk"], a[13:], sea["amp"], sea["eps"], dtc,
-            env.rotor_loss_power(), self._vals, ok, self._lo, self._hi, obs, env.preview_times,
+            step_rows, active, t0, t1, self.Y, tau, clock, shared, a[13:], rows_sea,
+            (self._vals, ok, obs), (self._lo, self._hi, env.preview_times),
         )  # fmt: skip
         v, Y = self._vals, self.Y
         reward = v[:, V_ENERGY] * self._escale

@@ -88,18 +88,19 @@ def _gyro_pitch(mech):
 
 
 @kernel
-def step_row(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, w):
+def step_row(t0, t1, y, tau, clock, args, amp, eps, vals, w):
     """One control step from (t0, y) to t1 = t0 + dtc (s) with the PTO command tau (N m) held
-    over n RK4 substeps of dt (w = `step_work`; the new state y1 is written into its entries
-    5 n_state..6 n_state, `end_state(w, n_state)`). Returns ok: False if y1 is not finite (then
-    `vals` is untouched); else vals (N_VALS,) = (net electrical power W, mechanical power W,
-    pitch rad, roll rad, pitch rate rad/s, roll rate rad/s, excitation moment N m, gyro moment
-    N m, gimbal angle rad, gimbal rate rad/s, elevation m, net electrical energy J), the
-    powers from the integrated PTO energies over dtc, `loss` (W) the rotor loss subtracted.
+    over n RK4 substeps of dt, clock = (dt, n, dtc, loss) (w = `step_work`; the new state y1 is
+    written into its entries 5 n_state..6 n_state, `end_state(w, n_state)`). Returns ok: False
+    if y1 is not finite (then `vals` is untouched); else vals (N_VALS,) = (net electrical power
+    W, mechanical power W, pitch rad, roll rad, pitch rate rad/s, roll rate rad/s, excitation
+    moment N m, gyro moment N m, gimbal angle rad, gimbal rate rad/s, elevation m, net
+    electrical energy J), the powers from the integrated PTO energies over dtc, `loss` (W) the
+    rotor loss subtracted.
     A `mf_envs._jit.kernel` (no reference counting; it returns no array)."""
     m, nc = y.shape[0], args[9].shape[0]
     work, ph, y1 = step_views(w, m, nc)
-    return step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, y1)[0]
+    return step_row_into(t0, t1, y, tau, clock, args, amp, eps, vals, work, ph, y1)[0]
 
 
 @numba.njit(cache=True, inline="always")  # returns views: not a kernel (`mf_envs._jit`)
@@ -112,10 +113,11 @@ def step_views(w, m, nc):
 
 
 @kernel
-def step_row_into(t0, t1, y, tau, dt, n, args, amp, eps, dtc, loss, vals, work, ph, y1):
+def step_row_into(t0, t1, y, tau, clock, args, amp, eps, vals, work, ph, y1):
     """`step_row` on the carved buffer (`step_views`), the new state into y1; returns (ok, the
     end state's (rho, cos rho, sin rho, phi, cos phi, sin phi)), the angles' sin/cos near the
     last substep's start (`floating._mass_terms`' near; NaNs if not ok), for the observation."""
+    dt, n, dtc, loss = clock
     m = y.shape[0]
     k = energy_index(args)
     for i in range(m):  # element-wise: a slice copy may allocate (no runtime here)

@@ -58,11 +58,7 @@ from numpy.typing import NDArray
 from mf_envs._jit import kernel
 from mf_envs.frames.kernels import sincos_near
 from mf_envs.frames.steppers import make_rk4_given, rk4_work
-from mf_envs.physics.gowec.hydro.gimbal import (
-    gimbal_loads,
-    pto_torque,  # noqa: F401  (importers' name)
-    stop_dissipation,
-)
+from mf_envs.physics.gowec.hydro.gimbal import gimbal_loads, stop_dissipation
 from mf_envs.physics.gowec.hydro.radiation import block_rates, dot_block, radiation_rates4
 from mf_envs.physics.gowec.hydro.sea import (
     N_KEEL,
@@ -382,8 +378,8 @@ def rk4_steps_into(t, y, tau, dt, n, args, work, ph):
     return i1, near
 
 
-def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray,
-         sp: NDArray, tr: tuple) -> tuple:  # fmt: skip
+def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray, sp: NDArray,
+         tr: tuple) -> tuple:  # fmt: skip
     """The argument tuple of `deriv` / `rk4_steps` for params p, excitation (om, cp, cr), the
     sea's per-component loads dk (n, N_LOADS) and the sea parameters sp (SP_LEN,)
     (`sea_inputs`), and the translation (tp, As, Bs, Cs) (`translation_params`)."""

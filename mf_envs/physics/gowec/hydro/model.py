@@ -192,7 +192,7 @@ class FloatingModel:
 
     def generator_torque(self, y: NDArray, tau: float) -> float:
         """M_g (N m) the PTO applies at state y for the command tau."""
-        return float(fl.pto_torque(y[2], y[5], tau, self.p.pto))
+        return float(gimbal.pto_torque(y[2], y[5], tau, self.p.pto))
 
     def accelerations(self, t: float, y: NDArray, tau: float) -> NDArray[np.float64]:
         """(theta'', rho'', phi'') (rad/s^2)."""
