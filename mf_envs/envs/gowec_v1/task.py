@@ -71,11 +71,11 @@ NET_POWER_CEILING = Ceiling(
 # --algos` (baselines only; 20 frozen test seeds 20000-20019, 120 s, the second half scored)
 HEADROOM_JONSWAP = (
     "the best baselines (`efficient_pto`, `passive_damper`) net 2.2 % of the ceiling (IQM "
-    "0.022 [0.015, 0.029]; 2.9 kW mean, -1.0 to 6.9 kW by sea, against 127-139 kW): far below "
-    "90 %, but the ceiling is loose (`tight=False`), so the gap overstates what is left to learn"
+    "0.022 [0.015, 0.029]; about 2.9 kW mean against 127-139 kW): far below 90 %, but the "
+    "ceiling is loose (`tight=False`), so the gap overstates what is left to learn"
 )
 HEADROOM_REGULAR = (
-    "`efficient_pto` nets 12.0 % of the ceiling (27.7 kW against 231 kW, where the generators' "
+    "`efficient_pto` nets 13.3 % of the ceiling (30.8 kW against 231 kW, where the generators' "
     "rating binds); loose like the JONSWAP id's"
 )
 
