@@ -112,7 +112,7 @@ def train(
     with staged_dir(final, replace=True, force=force, root=Path(out)) as run_dir:
         torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
-        venv, vec_kind, eval_env = _make_envs(hp, seed, prefer_native=vec_env == "auto")
+        venv, vec_kind, eval_env = _make_envs(hp, seed, vec_env == "auto", eval_episodes)
         model = _model(Algo, hp, venv, seed, tb_dir, overrides)
         meta_run = _learn(model, eval_env, run_dir, hp, total, eval_episodes, progress_bar)
         command = command or _command(env_id, timesteps, seed, config, eval_episodes, vec_env, algo)
@@ -291,8 +291,11 @@ def _budget(hp: Hyperparams, timesteps: int | None, eval_episodes: int, vec_env:
     return total
 
 
-def _make_envs(hp: Hyperparams, seed: int, prefer_native: bool) -> tuple[Any, str, Any]:
-    """(training VecEnv, its vectorisation label, 1-env evaluation VecEnv on default parameters)."""
+def _make_envs(
+    hp: Hyperparams, seed: int, prefer_native: bool, eval_rows: int = 1
+) -> tuple[Any, str, Any]:
+    """(training VecEnv, its vectorisation label, evaluation VecEnv on default parameters with
+    `eval_rows` envs: the EvalCallback's episodes run side by side, one per row)."""
     from mf_envs.train.vec import make_train_env
 
     wrappers = [
@@ -312,7 +315,7 @@ def _make_envs(hp: Hyperparams, seed: int, prefer_native: bool) -> tuple[Any, st
     # the same wrapper layout as training (SB3 syncs the VecNormalize stats layer by layer)
     eval_env, _ = make_train_env(
         hp.env_id,
-        1,
+        eval_rows,
         seed + 10_000,
         hp.env_kwargs,
         normalize=norm_eval,
