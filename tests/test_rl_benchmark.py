@@ -3,6 +3,7 @@ from, and its episode score against the stabilizer grid's own episode (a second 
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -53,29 +54,106 @@ def test_stratified_bootstrap_draws_each_task_on_its_own():
     assert out["hi"] - out["lo"] < 0.5 * (np.percentile(pooled, 97.5) - np.percentile(pooled, 2.5))
 
 
-@pytest.mark.parametrize("algo", rb.ALGOS)
+@pytest.mark.parametrize("algo", ["ppo", "sac", "td3"])
 def test_configs_carry_the_task_scene_and_budget(tmp_path, algo):
     from mf_envs.train.config import load_hyperparams
 
     task = rb.TASKS["stabilizer_irregular"]()
-    hp = load_hyperparams(task.env_id, rb.write_config(task, algo, tmp_path))
-    assert hp.n_timesteps == task.budgets[algo]
+    hp = load_hyperparams(task.env_id, rb.write_config(task, algo, 12345, tmp_path))
+    assert hp.n_timesteps == 12345
     kw = {k: (tuple(v) if isinstance(v, list) else v) for k, v in hp.env_kwargs.items()}
     assert kw == task.env_kwargs
-    assert (tmp_path / f"{algo}.yml").parent == tmp_path  # written inside the folder given
+    assert (tmp_path / f"{algo}-12345.yml").parent == tmp_path  # written inside the folder given
 
 
-def test_episode_score_equals_the_grid_benchs_roll_reduction(monkeypatch):
+def test_episode_score_equals_the_grid_benchs_roll_reduction():
     """1 - rms_on / rms_off of the LQR on two test seeds, 30 s episodes, against
     `stabilizer_grid._episode` (its own loop) on the same cell and seeds."""
     from mf_envs.benchmarks import stabilizer_grid as grid
 
-    monkeypatch.setattr(rb, "TEST_SEEDS", (20_000, 20_001))
+    seeds = (20_000, 20_001)
     task = rb.TASKS["stabilizer_irregular"]()
     task = rb.Task(**{**task.__dict__, "eval_seconds": 30.0})
-    scores = rb.episode_scores(task, "lqr")
-    for s, score in zip(rb.TEST_SEEDS, scores):
+    scores = rb.episode_scores(task, "lqr", seeds=seeds)
+    for s, score in zip(seeds, scores):
         on = grid._episode(task.env_kwargs, "lqr", s, 30.0)["rms_roll"]
         off = grid._episode(task.env_kwargs, None, s, 30.0)["rms_roll"]
         assert score == pytest.approx(1.0 - on / off, rel=1e-12)
         assert 0.0 < score < 1.0 and math.isfinite(score)
+
+
+# ------------------------------------------------------------ the grid, its records and docs
+def test_smoke_grid_writes_records_resumes_and_generates_docs(tmp_path):
+    """`mf-envs bench rl` at a tiny budget scale on one id: a record per controller and per run,
+    the results file on the normalised scale (zero action 0, best baseline 1), the docs block
+    and both figures; a second run recomputes nothing (the records are untouched)."""
+    from mf_envs.benchmarks import rl_results as res
+    from mf_envs.cli import main
+
+    out, docs = tmp_path / "b", tmp_path / "docs" / "benchmark.md"
+    docs.parent.mkdir()
+    docs.write_text("# Benchmark\n\nhand-written text stays\n")
+    argv = ["bench", "rl", "--ids", "GyroStabilizer-JONSWAP-v0", "--algos", "ppo", "--seeds",
+            "3", "--budget-scale", "1e-4", "--test-seeds", "1", "--out", str(out),
+            "--docs", str(docs)]  # fmt: skip
+    assert main(argv) == 0
+    result = json.loads((out / "results.json").read_text())
+    assert result["schema"] == res.SCHEMA and result["budget_scale"] == 1e-4
+    a = result["ids"]["GyroStabilizer-JONSWAP-v0"]
+    rows = {(r["name"], r["budget"]): r for r in result["rows"]}
+    assert rows[("zero", None)]["normalised"] == pytest.approx(0.0, abs=1e-12)
+    assert rows[(a["best_baseline"], None)]["normalised"] == pytest.approx(1.0, rel=1e-12)
+    ppo = rows[("ppo", 1_000_000)]
+    assert ppo["kind"] == "learner" and ppo["seed"] == 3 and ppo["test_seeds"] == [20_000]
+    assert ppo["env_steps"] >= 100 and ppo["wall_s"] > 0 and ("ppo", 10_000_000) in rows
+    text = docs.read_text()
+    assert (
+        "hand-written text stays" in text and res.BEGIN in text and "rl_benchmark_steps.png" in text
+    )
+    assert (docs.parent / "img" / "rl_benchmark_wallclock.png").is_file()
+    records = sorted((out / "records").rglob("*.json"))
+    stamps = [p.stat().st_mtime_ns for p in records]
+    assert main(argv) == 0
+    assert [p.stat().st_mtime_ns for p in records] == stamps
+
+
+def test_records_refuse_a_link_out_of_the_folder(tmp_path):
+    """A record folder planted as a link to a folder outside --out is refused (ValueError
+    naming out), and nothing is written through it."""
+    from mf_envs.benchmarks import rl_results as res
+
+    outside = tmp_path / "elsewhere"
+    outside.mkdir()
+    (tmp_path / "b" / "records").mkdir(parents=True)
+    (tmp_path / "b" / "records" / "Eel-v0").symlink_to(outside)
+    rec = {
+        "env_id": "Eel-v0",
+        "kind": "zero",
+        "name": "zero",
+        "seed": None,
+        "budget": None,
+        "score_name": "speed_m_s",
+        "test_seeds": [1],
+        "scores": [0.0],
+        "returns": [0.0],
+    }
+    with pytest.raises(ValueError, match="out"):
+        res.write_record(tmp_path / "b", rec)
+    assert not any(outside.iterdir())
+
+
+@pytest.mark.parametrize("env_id", ["Inchworm-v0", "Serpentine-v0", "Eel-v0"])
+def test_soft_robot_test_conditions_draw_the_declared_ranges(env_id):
+    """A soft robot's test seeds draw its scene: each kwarg of the declared randomisation is a
+    factor in its (lo, hi) range of the nominal value, and two seeds draw different scenes."""
+    from mf_envs.benchmarks.rl_tasks import HEADLINE, test_kwargs
+    from mf_envs.train.randomize import Randomizer, default_ranges
+
+    task = rb.TASKS[HEADLINE[env_id]]()
+    nominal = Randomizer(env_id, {}).nominal
+    a, b = test_kwargs(task, 20_000), test_kwargs(task, 20_001)
+    for name, (lo, hi) in default_ranges(env_id).items():
+        x, n = a[name], nominal[name]
+        f = next(iter(x.values())) / next(iter(n.values())) if isinstance(x, dict) else x / n
+        assert lo <= f <= hi, (name, f)
+        assert a[name] != b[name]

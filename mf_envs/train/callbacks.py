@@ -25,12 +25,14 @@ from mf_envs._files import atomic_path
 def deterministic_actor(model: Any) -> Callable[[np.ndarray], np.ndarray]:
     """obs (n, obs_dim) -> the deterministic actions (n, act_dim) of `model`'s policy, as
     `model.predict(obs, deterministic=True)` returns them (clipped, or unscaled for a squashed
-    policy). A torch policy is put in eval mode once and run under `no_grad`; another (SBX's
-    JAX policies) through `model.predict`."""
+    policy). A torch policy is put in eval mode once and run under `no_grad`; SBX's (JAX)
+    through `model.predict`."""
     import torch as th
 
+    from mf_envs.train.policy_sbx import is_sbx
+
     policy = model.policy
-    if not isinstance(policy, th.nn.Module):
+    if is_sbx(model):
         return lambda obs: model.predict(obs, deterministic=True)[0]
     space = model.action_space
     policy.set_training_mode(False)  # the next rollout or update sets its own mode

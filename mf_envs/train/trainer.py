@@ -13,6 +13,7 @@ import importlib.util
 import json
 import platform
 import shutil
+import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -257,7 +258,19 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
 
 
 def _algorithm(algo: str) -> Any:
-    """The SB3 class of `algo` (one of ALGOS, checked by the caller)."""
+    """The SB3 (or, "sbx_<name>", SBX) class of `algo` (one of ALGOS, checked by the caller);
+    ModuleNotFoundError naming the `sbx` extra if SBX is missing."""
+    if algo.startswith("sbx_"):
+        from mf_envs._extras import install_hint
+
+        try:
+            import sbx
+        except ModuleNotFoundError as exc:
+            raise ModuleNotFoundError(
+                f"algo {algo}: needs the sbx extra ({exc.name} is missing): {install_hint('sbx')}",
+                name=exc.name,
+            ) from exc
+        return getattr(sbx, algo.removeprefix("sbx_").upper())
     import stable_baselines3
 
     return getattr(stable_baselines3, algo.upper())
@@ -376,4 +389,9 @@ def _versions() -> dict[str, str]:
         "torch": torch.__version__,
         "gymnasium": gym.__version__,
         "numpy": numpy.__version__,
+        **{name: _version_of(name) for name in ("sbx", "jax") if name in sys.modules},
     }
+
+
+def _version_of(module: str) -> str:
+    return str(getattr(sys.modules[module], "__version__", "unknown"))
