@@ -20,7 +20,8 @@ Protocol (docs/benchmark.md):
 - **Results**: `<out>/results.json` (`rl_results.collect`: the records, the score per test
   condition, the normalised scale per id) and, with `--docs`, the generated block of that page
   and its two figures (score against env-steps and against wall-clock seconds).
-- `--budget-scale` multiplies every budget (a smoke run; the results file says so).
+- `--budget-scale` multiplies every budget (a smoke or reduced run: its records name the
+  budgets trained, so they never stand in for the full grid's).
 """
 
 from __future__ import annotations
@@ -92,21 +93,20 @@ def score_controllers(task: Task, out: Path, seeds: tuple[int, ...], command: st
 
 
 def train_and_score(
-    task: Task, algo: str, budget: int, seed: int, out: Path, scale: float,
-    seeds: tuple[int, ...], command: str,
+    task: Task, algo: str, budget: int, seed: int, out: Path, seeds: tuple[int, ...],
+    command: str,
 ) -> dict[str, Any] | None:  # fmt: skip
-    """One learner cell: train (unless its policy is on disk), score, write its record. None if
-    the record was already on disk."""
+    """One learner cell of `budget` env-steps: train (unless its policy is on disk), score,
+    write its record. None if the record was already on disk."""
     from mf_envs.train import policy
     from mf_envs.train.trainer import train
 
     if res.read_record(out, res.record_path(out, task.env_id, algo, budget, seed)) is not None:
         return None
-    steps = max(1, round(budget * scale))
     runs = make_dirs(out, out / "runs" / f"{algo}-{budget}")
     final = runs / task.env_id / ("" if algo == "ppo" else algo) / f"seed{seed}"
     if not (final / policy.POLICY_FILE).is_file():
-        cfg = write_config(task, algo, steps, out / "configs")
+        cfg = write_config(task, algo, budget, out / "configs")
         train(task.env_id, seed=seed, config=cfg, out=runs, algo=algo, evaluations=0,
               final_eval_seeds=(), force=True)  # fmt: skip
     meta = policy.read_meta(final)
@@ -120,35 +120,38 @@ def train_and_score(
     return rec
 
 
-def cells(ids: Sequence[str], algos: Sequence[str], seeds: Sequence[int]) -> list[tuple]:
-    """(task, algo, budget, seed) of the grid: every budget each task gives each algorithm."""
+def cells(
+    names: Sequence[str], algos: Sequence[str], seeds: Sequence[int], scale: float = 1.0
+) -> list[tuple]:
+    """(task, algo, budget, seed) of the grid: every budget each task gives each algorithm,
+    times `scale` (the budget a record names is the one trained)."""
     out = []
-    for env_id in ids:
-        task = TASKS[HEADLINE[env_id]]()
+    for name in names:
+        task = TASKS[name]()
         for algo in algos:
             for budget in task.budgets.get(algo, ()):
-                out += [(task, algo, budget, s) for s in seeds]
+                out += [(task, algo, max(1, round(budget * scale)), s) for s in seeds]
     return out
 
 
 def run(
-    ids: Sequence[str], algos: Sequence[str], seeds: Sequence[int], out: Path,
+    names: Sequence[str], algos: Sequence[str], seeds: Sequence[int], out: Path,
     scale: float = 1.0, n_test: int = len(TEST_SEEDS), docs: Path | None = None,
     command: str = "",
 ) -> dict[str, Any]:  # fmt: skip
-    """Run the grid (resuming), write `out/results.json`, and with `docs` regenerate that
-    page's block and its figures (in `docs`' folder's `img/`)."""
+    """Run the grid of the tasks `names` (`TASKS`; resuming), write `out/results.json`, and
+    with `docs` regenerate that page's block and its figures (in `docs`' folder's `img/`)."""
     from tqdm import tqdm
 
     out = make_dirs(out, out)  # a planted link there is refused
     test = TEST_SEEDS[:n_test]
-    for env_id in tqdm(ids, desc="baselines", unit="id"):
-        score_controllers(TASKS[HEADLINE[env_id]](), out, test, command)
-    grid = cells(ids, algos, seeds)
+    for name in tqdm(names, desc="baselines", unit="task"):
+        score_controllers(TASKS[name](), out, test, command)
+    grid = cells(names, algos, seeds, scale)
     bar = tqdm(grid, desc="runs", unit="run")
     for task, algo, budget, seed in bar:
         bar.set_postfix_str(f"{task.env_id} {algo} {budget:.0e} seed {seed}")
-        train_and_score(task, algo, budget, seed, out, scale, test, command)
+        train_and_score(task, algo, budget, seed, out, test, command)
     result = res.collect(out, scale)
     result["command"] = command
     write_atomic(out / "results.json", json.dumps(result, indent=1, default=float) + "\n")
@@ -171,7 +174,15 @@ def parser() -> argparse.ArgumentParser:
                                 formatter_class=argparse.RawDescriptionHelpFormatter)  # fmt: skip
     p.add_argument("--all", action="store_true", help="every headline id (rl_tasks.HEADLINE)")
     p.add_argument("--ids", nargs="+", choices=sorted(HEADLINE), help="these headline ids")
-    p.add_argument("--algos", nargs="+", choices=ALGOS, default=["ppo", "sbx_sac"])
+    p.add_argument(
+        "--task",
+        nargs="+",
+        choices=sorted(TASKS),
+        default=[],
+        help="these tasks (the easy ids' too: stabilizer_resonance, gowec_regular)",
+    )
+    p.add_argument("--algos", nargs="*", choices=ALGOS, default=["ppo", "sbx_sac"],
+                   help="none: score the classical controllers only")  # fmt: skip
     p.add_argument("--seeds", nargs="+", type=int, default=list(TRAIN_SEEDS))
     p.add_argument("--out", type=Path, default=Path("bench_rl"))
     p.add_argument("--budget-scale", type=float, default=1.0, help="x every budget (smoke run)")
@@ -192,15 +203,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         result = json.loads((a.out / "results.json").read_text())
         generate_docs(result, a.docs, str(a.out / "results.json"))
         return 0
-    if not a.all and not a.ids:
-        raise SystemExit("give --all or --ids")
+    if not a.all and not a.ids and not a.task:
+        raise SystemExit("give --all, --ids or --task")
     if any(s < 0 for s in a.seeds):
         raise SystemExit("--seeds: training seeds must be >= 0")
     if not (0 < a.budget_scale <= 1) or not (1 <= a.test_seeds <= len(TEST_SEEDS)):
         raise SystemExit(f"--budget-scale in (0, 1], --test-seeds in 1..{len(TEST_SEEDS)}")
-    ids = list(HEADLINE) if a.all else a.ids
+    ids = list(HEADLINE) if a.all else (a.ids or [])
+    names = list(dict.fromkeys([HEADLINE[i] for i in ids] + a.task))
     cmd = "mf-envs bench rl " + " ".join(shlex.quote(x) for x in argv)
-    result = run(ids, a.algos, a.seeds, a.out, a.budget_scale, a.test_seeds, a.docs, cmd)
+    result = run(names, a.algos, a.seeds, a.out, a.budget_scale, a.test_seeds, a.docs, cmd)
     print(res.aggregate_table(result))
     for env_id in result["ids"]:
         print(f"\n{env_id}\n{res.id_table(result, env_id)}")

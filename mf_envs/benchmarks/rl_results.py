@@ -257,9 +257,10 @@ def markdown(result: dict[str, Any], source: str, images: list[str]) -> str:
     return "\n".join(parts)
 
 
-def splice(text: str, block: str) -> str:
-    """`text` with the generated block replaced (appended if it has none)."""
-    if BEGIN not in text or END not in text:
+def splice(text: str, block: str, begin: str = BEGIN, end: str = END) -> str:
+    """`text` with the generated block between `begin` and `end` (the first and last lines of
+    `block`) replaced; appended if `text` has none."""
+    if begin not in text or end not in text:
         return text.rstrip("\n") + "\n\n" + block + "\n"
-    head, rest = text.split(BEGIN, 1)
-    return head + block + rest.split(END, 1)[1]
+    head, rest = text.split(begin, 1)
+    return head + block + rest.split(end, 1)[1]
