@@ -157,3 +157,22 @@ def test_soft_robot_test_conditions_draw_the_declared_ranges(env_id):
         f = next(iter(x.values())) / next(iter(n.values())) if isinstance(x, dict) else x / n
         assert lo <= f <= hi, (name, f)
         assert a[name] != b[name]
+
+
+def test_rank_agreement_is_spearmans_rho_of_mean_return_and_score():
+    """Four controllers whose mean returns rank them as their mean scores do give rho 1; with
+    one pair swapped, scipy's rho of the means (the points the tool reports)."""
+    from scipy.stats import spearmanr
+
+    from mf_envs.benchmarks.rl_diagnostics import rank_agreement
+
+    def row(name, ret, sc, seed=None):
+        return {"env_id": "Eel-v0", "name": name, "seed": seed, "budget": None if seed is None else 10,
+                "returns": [ret, ret + 1.0], "scores": [sc, sc]}  # fmt: skip
+
+    rows = [row("zero", -1.0, 0.0), row("a", 2.0, 0.1), row("b", 5.0, 0.3), row("ppo", 9.0, 0.2, 0)]
+    d = rank_agreement({"ids": {"Eel-v0": {}}, "rows": rows})["Eel-v0"]
+    assert d["n"] == 4 and d["points"][3]["controller"] == "ppo-1e+01-seed0"
+    assert d["spearman"] == pytest.approx(spearmanr([-0.5, 2.5, 5.5, 9.5], [0, 0.1, 0.3, 0.2])[0])
+    rows[3]["scores"] = [0.4, 0.4]
+    assert rank_agreement({"ids": {"Eel-v0": {}}, "rows": rows})["Eel-v0"]["spearman"] == 1.0

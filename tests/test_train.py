@@ -158,19 +158,21 @@ def test_shipped_configs_train_in_rl_zoo3_unchanged(algo, tmp_path):
     assert all(r["steps"] >= 256 and r["n"] == 256 and r["algo"] == algo.upper() for r in runs)
 
 
-@pytest.mark.parametrize("algo", ["SAC", "TD3"])
+@pytest.mark.parametrize("algo", ["SAC", "TD3", "SBX_SAC"])
 def test_off_policy_policies_save_and_load_without_pickle(algo, tmp_path):
-    """An SB3 SAC/TD3 model saved as JSON + safetensors loads with `load_policy` and acts as
-    SB3's own model on 500 observations (normalised by its VecNormalize); `to_sb3` rebuilds the
-    same algorithm, critics included."""
+    """An SB3 SAC/TD3 (or SBX SAC) model saved as JSON + safetensors loads with `load_policy`
+    and acts as its own model on 500 observations (normalised by its VecNormalize); `to_sb3`
+    rebuilds the same algorithm, critics (SBX: and target critics) included."""
     import stable_baselines3 as sb3
+
+    lib = pytest.importorskip("sbx") if algo == "SBX_SAC" else sb3
     from stable_baselines3.common.env_util import make_vec_env
     from stable_baselines3.common.vec_env import VecNormalize
 
     from mf_envs.train.policy import save_policy_files
 
     venv = VecNormalize(make_vec_env("Pendulum-v1", n_envs=1, seed=0), norm_reward=False)
-    model = getattr(sb3, algo)(
+    model = getattr(lib, algo.removeprefix("SBX_"))(
         "MlpPolicy", venv, learning_starts=50, batch_size=32, seed=0,
         policy_kwargs={"net_arch": [16, 16]}, device="cpu",
     )  # fmt: skip
@@ -185,7 +187,16 @@ def test_off_policy_policies_save_and_load_without_pickle(algo, tmp_path):
     np.testing.assert_allclose(ours, theirs, rtol=1e-6, atol=1e-6)
     assert np.ptp(theirs) > 0
     again = policy.to_sb3(learning_starts=10)
-    assert type(again).__name__ == algo
+    assert type(again) is type(model)
+    if algo == "SBX_SAC":
+        from mf_envs.train.policy_sbx import sbx_state
+
+        mine, copy = sbx_state(model.policy), sbx_state(again.policy)
+        assert {k.split("/")[0] for k in mine} == {"actor", "qf", "qf_target"}
+        assert (
+            all(np.array_equal(v, copy[k]) for k, v in mine.items()) and mine.keys() == copy.keys()
+        )
+        return
     for key, value in model.policy.state_dict().items():
         assert torch_equal(value, again.policy.state_dict()[key]), key
 

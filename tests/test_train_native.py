@@ -1,8 +1,7 @@
-"""Training on native vector rows: SBX's SAC in the safe policy format, the evaluation on rows."""
+"""Training on native vector rows: SBX's SAC in the safe policy format (its round trip:
+test_train.py), the evaluation on rows."""
 
 from __future__ import annotations
-
-import json
 
 import numpy as np
 import pytest
@@ -12,41 +11,6 @@ pytest.importorskip("safetensors")
 
 import mf_envs  # noqa: E402,F401  (registers the ids)
 from mf_envs.train.policy import load_policy  # noqa: E402
-
-
-def test_sbx_sac_saves_and_loads_without_pickle(tmp_path):
-    """An SBX SAC model saved as JSON + safetensors loads with `load_policy`, acts as SBX's own
-    model on 500 observations (normalised by its VecNormalize), and `to_sb3` rebuilds an SBX SAC
-    holding the same actor, critic and target-critic arrays."""
-    sbx = pytest.importorskip("sbx")
-    from stable_baselines3.common.env_util import make_vec_env
-    from stable_baselines3.common.vec_env import VecNormalize
-
-    from mf_envs.train.policy import save_policy_files
-    from mf_envs.train.policy_sbx import sbx_state
-
-    venv = VecNormalize(make_vec_env("Pendulum-v1", n_envs=2, seed=0), norm_reward=False)
-    model = sbx.SAC("MlpPolicy", venv, learning_starts=50, batch_size=32, seed=0,
-                    policy_kwargs={"net_arch": [16, 16]})  # fmt: skip
-    model.learn(200)
-    save_policy_files(tmp_path / "pol", model, venv)
-    (tmp_path / "pol" / "meta.json").write_text(json.dumps({"env_id": "Pendulum-v1"}))
-    policy = load_policy("Pendulum-v1", tmp_path / "pol")
-    assert policy.algo == "SBX_SAC"
-    obs = np.random.default_rng(0).uniform(-1, 1, (500, 3)).astype(np.float32) * [1, 1, 8]
-    theirs, _ = model.predict(venv.normalize_obs(obs), deterministic=True)
-    ours, _ = policy.predict(obs)
-    np.testing.assert_allclose(ours, theirs, rtol=1e-6, atol=1e-6)
-    assert np.ptp(theirs) > 0
-    again = policy.to_sb3(learning_starts=10)
-    mine, copy = sbx_state(model.policy), sbx_state(again.policy)
-    assert set(mine) == set(copy) and {k.split("/")[0] for k in mine} == {
-        "actor",
-        "qf",
-        "qf_target",
-    }
-    for key, value in mine.items():
-        np.testing.assert_array_equal(value, copy[key], err_msg=key)
 
 
 def test_sbx_weights_that_do_not_fit_are_refused(tmp_path):

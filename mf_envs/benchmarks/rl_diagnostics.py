@@ -90,7 +90,7 @@ def observation_scales(ids: Sequence[str], seeds: Sequence[int]) -> dict[str, di
     out = {}
     for env_id in ids:
         base = baseline_kinds(env_id)[0]
-        d: dict[str, Any] = {"baseline": base}
+        d: dict[str, Any] = {"baseline_kind": base}
         for label, kind in (("random", "random"), ("baseline", base)):
             std = observation_std(env_id, kind, seeds)
             d[label] = {"std": std.tolist(),
@@ -129,7 +129,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"\n| id | random actions: slots outside [{LOW}, {HIGH}] | default baseline |")
         print("|---|---|---|")
         for env_id, d in report["observation_scales"].items():
-            print(f"| `{env_id}` | {_fmt_slots(d['random'])} | `{d['baseline']}`: "
+            print(f"| `{env_id}` | {_fmt_slots(d['random'])} | `{d['baseline_kind']}`: "
                   f"{_fmt_slots(d['baseline'])} |")  # fmt: skip
     out = make_dirs(a.out, a.out)
     write_atomic(out / "diagnostics.json", json.dumps(report, indent=1) + "\n")
