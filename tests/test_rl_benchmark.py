@@ -167,7 +167,8 @@ def test_rank_agreement_is_spearmans_rho_of_mean_return_and_score():
     from mf_envs.benchmarks.rl_diagnostics import rank_agreement
 
     def row(name, ret, sc, seed=None):
-        return {"env_id": "Eel-v0", "name": name, "seed": seed, "budget": None if seed is None else 10,
+        budget = None if seed is None else 10
+        return {"env_id": "Eel-v0", "name": name, "seed": seed, "budget": budget,
                 "returns": [ret, ret + 1.0], "scores": [sc, sc]}  # fmt: skip
 
     rows = [row("zero", -1.0, 0.0), row("a", 2.0, 0.1), row("b", 5.0, 0.3), row("ppo", 9.0, 0.2, 0)]
