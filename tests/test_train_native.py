@@ -74,3 +74,31 @@ def test_row_episodes_match_single_env_returns():
             total, n, done = total + r, n + 1, term or trunc
         assert length[i] == n
         np.testing.assert_allclose(ret[i], total, rtol=1e-5)
+
+
+def test_train_speed_table_and_two_env_config(tmp_path):
+    """The speed table's ratio is each config's speed over the two-env one of the same id and
+    learner (rows made up: no timing here), and the two-env config is the shipped entry with
+    two rows and the earlier rollout settings."""
+    from mf_envs.benchmarks import train_speed as ts
+    from mf_envs.train.config import load_hyperparams
+
+    rows = [
+        {
+            "env_id": "Eel-v0",
+            "learner": "ppo",
+            "algo": "ppo",
+            "config": c,
+            "vectorization": v,
+            "timesteps": 100,
+            "wall_s": 1.0,
+            "steps_per_s": sps,
+        }
+        for c, v, sps in (("shipped", "native x64", 9000.0), ("two-env", "native x2", 1500.0))
+    ]
+    md = ts.table({"rows": rows, "date": "d", "machine": "m", "version": "v", "load": "1"})
+    assert "| 6.0 |" in md and "| 1.0 |" in md and md.startswith(ts.BEGIN)
+    label, algo, changes, _ = ts.CONFIGS["ppo"][1]
+    hp = load_hyperparams("Eel-v0", ts._config("Eel-v0", algo, changes, 1000, tmp_path))
+    assert label == "two-env" and hp.n_envs == 2 and hp.ppo_kwargs["n_steps"] == 512
+    assert load_hyperparams("Eel-v0").n_envs == 64 and hp.n_timesteps == 1000
