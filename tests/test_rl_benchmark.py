@@ -177,3 +177,19 @@ def test_rank_agreement_is_spearmans_rho_of_mean_return_and_score():
     assert d["spearman"] == pytest.approx(spearmanr([-0.5, 2.5, 5.5, 9.5], [0, 0.1, 0.3, 0.2])[0])
     rows[3]["scores"] = [0.4, 0.4]
     assert rank_agreement({"ids": {"Eel-v0": {}}, "rows": rows})["Eel-v0"]["spearman"] == 1.0
+
+
+def test_the_grid_covers_every_headline_id_with_its_budgets():
+    """`--all` runs every registered headline id: PPO at 1M and 10M and SBX's SAC at 1M on the
+    marine ids, PPO at 1M on the soft robots, five training seeds."""
+    from mf_envs.envs import task_ids
+
+    assert sorted(rb.HEADLINE) == sorted(task_ids(role="headline"))
+    grid = rb.cells(list(rb.HEADLINE.values()), ["ppo", "sbx_sac"], rb.TRAIN_SEEDS)
+    per = {}
+    for task, algo, budget, _ in grid:
+        per.setdefault((task.env_id, algo), set()).add(budget)
+    assert per[("GyroStabilizer-JONSWAP-v0", "ppo")] == {1_000_000, 10_000_000}
+    assert per[("FloatingGOWEC-JONSWAP-v0", "sbx_sac")] == {1_000_000}
+    assert per[("Eel-v0", "ppo")] == {1_000_000} and ("Eel-v0", "sbx_sac") not in per
+    assert len(grid) == 5 * (2 * 3 + 3 * 1) and len(rb.TRAIN_SEEDS) == 5
