@@ -94,11 +94,11 @@ def test_train_speed_table_and_two_env_config(tmp_path):
             "wall_s": 1.0,
             "steps_per_s": sps,
         }
-        for c, v, sps in (("shipped", "native x64", 9000.0), ("two-env", "native x2", 1500.0))
+        for c, v, sps in (("shipped", "native x256", 9000.0), ("two-env", "native x2", 1500.0))
     ]
     md = ts.table({"rows": rows, "date": "d", "machine": "m", "version": "v", "load": "1"})
     assert "| 6.0 |" in md and "| 1.0 |" in md and md.startswith(ts.BEGIN)
     label, algo, changes, _ = ts.CONFIGS["ppo"][1]
     hp = load_hyperparams("Eel-v0", ts._config("Eel-v0", algo, changes, 1000, tmp_path))
     assert label == "two-env" and hp.n_envs == 2 and hp.ppo_kwargs["n_steps"] == 512
-    assert load_hyperparams("Eel-v0").n_envs == 64 and hp.n_timesteps == 1000
+    assert load_hyperparams("Eel-v0").n_envs == 256 and hp.n_timesteps == 1000
