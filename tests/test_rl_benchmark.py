@@ -111,6 +111,9 @@ def test_smoke_grid_writes_records_resumes_and_generates_docs(tmp_path):
         "hand-written text stays" in text and res.BEGIN in text and "rl_benchmark_steps.png" in text
     )
     assert (docs.parent / "img" / "rl_benchmark_wallclock.png").is_file()
+    copy = json.loads((docs.parent / "results" / "rl_benchmark.json").read_text())
+    assert copy["ids"].keys() == result["ids"].keys() and len(copy["rows"]) == len(result["rows"])
+    assert "Reduced budgets" in text
     records = sorted((out / "records").rglob("*.json"))
     stamps = [p.stat().st_mtime_ns for p in records]
     assert main(argv) == 0

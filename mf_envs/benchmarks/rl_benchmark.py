@@ -18,8 +18,9 @@ Protocol (docs/benchmark.md):
   `--out` only, atomically; a record on disk is not recomputed (a trained run whose record is
   missing is scored, not retrained). Rerun the command after the envs change in a new folder.
 - **Results**: `<out>/results.json` (`rl_results.collect`: the records, the score per test
-  condition, the normalised scale per id) and, with `--docs`, the generated block of that page
-  and its two figures (score against env-steps and against wall-clock seconds).
+  condition, the normalised scale per id) and, with `--docs`, the generated block of that page,
+  its two figures (score against env-steps and against wall-clock seconds) and a copy of the
+  results file beside it (`docs/results/rl_benchmark.json`).
 - `--budget-scale` multiplies every budget (a smoke or reduced run: its records name the
   budgets trained, so they never stand in for the full grid's).
 """
@@ -156,17 +157,20 @@ def run(
     result["command"] = command
     write_atomic(out / "results.json", json.dumps(result, indent=1, default=float) + "\n")
     if docs is not None:
-        generate_docs(result, docs, str(out / "results.json"))
+        generate_docs(result, docs)
     return result
 
 
-def generate_docs(result: dict[str, Any], docs: Path, source: str) -> list[Path]:
-    """Regenerate `docs`' block and its figures (`docs`' folder/img/rl_benchmark_*.png)."""
-    img = docs.parent / "img"
-    figs = res.figures(result, img)
-    block = res.markdown(result, source, [f"img/{p.name}" for p in figs])
+def generate_docs(result: dict[str, Any], docs: Path) -> list[Path]:
+    """Regenerate `docs`' block and its figures (`docs`' folder/img/rl_benchmark_*.png), with a
+    copy of the results file beside the page (`results/rl_benchmark.json`) that it cites."""
+    folder = docs.parent
+    copy = write_atomic(make_dirs(folder, folder / "results") / "rl_benchmark.json",
+                        json.dumps(result, indent=1, default=float) + "\n")  # fmt: skip
+    figs = res.figures(result, folder / "img")
+    block = res.markdown(result, "results/rl_benchmark.json", [f"img/{p.name}" for p in figs])
     text = docs.read_text() if docs.is_file() else ""
-    return [write_atomic(docs, res.splice(text, block)), *figs]
+    return [write_atomic(docs, res.splice(text, block)), copy, *figs]
 
 
 def parser() -> argparse.ArgumentParser:
@@ -201,7 +205,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if a.docs is None:
             raise SystemExit("--from-results needs --docs")
         result = json.loads((a.out / "results.json").read_text())
-        generate_docs(result, a.docs, str(a.out / "results.json"))
+        generate_docs(result, a.docs)
         return 0
     if not a.all and not a.ids and not a.task:
         raise SystemExit("give --all, --ids or --task")

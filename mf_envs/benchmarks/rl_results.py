@@ -200,6 +200,7 @@ def figures(result: dict[str, Any], folder: Path, stem: str = "rl_benchmark") ->
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter
 
     from mf_envs._files import atomic_path
 
@@ -215,19 +216,21 @@ def figures(result: dict[str, Any], folder: Path, stem: str = "rl_benchmark") ->
                     by_name.setdefault(name, []).append(
                         (x, interval(np.array([r["normalised"] for r in rows])))
                     )
-            for j, (name, pts) in enumerate(by_name.items()):
+            for name, pts in by_name.items():
                 pts.sort(key=lambda p: p[0])
                 y = np.array([[p[1]["iqm"], p[1]["lo"], p[1]["hi"]] for p in pts])
                 err = [y[:, 0] - y[:, 1], y[:, 2] - y[:, 0]]
                 ax.errorbar([p[0] for p in pts], y[:, 0], err, fmt="o-", capsize=3,
-                            color=f"C{j}", label=name)  # fmt: skip
+                            color=colour(name), label=name)  # fmt: skip
             ax.axhline(1.0, ls="--", color="k", lw=0.8, label="best baseline")
             ax.axhline(0.0, ls=":", color="k", lw=0.8, label="zero action")
             ax.set_xscale("log")
+            ax.xaxis.set_minor_formatter(NullFormatter())
             ax.set_title(env_id, fontsize=8)
             ax.set_xlabel(label, fontsize=8)
         axes[0][0].set_ylabel("normalised score (IQM, 95 % CI)")
-        axes[0][0].legend(fontsize=6)
+        handles = {h.get_label(): h for ax in axes[0] for h in ax.get_legend_handles_labels()[0]}
+        fig.legend(handles.values(), handles.keys(), fontsize=7, loc="upper right")
         fig.tight_layout()
         path = folder / f"{stem}_{'steps' if axis == 'env_steps' else 'wallclock'}.png"
         make_dirs(folder, folder)
@@ -238,11 +241,20 @@ def figures(result: dict[str, Any], folder: Path, stem: str = "rl_benchmark") ->
     return written
 
 
+def colour(name: str) -> str:
+    """A learner's colour in every figure (PPO blue, SBX's SAC orange, others after them)."""
+    order = ("ppo", "sbx_sac", "sac", "td3")
+    return f"C{order.index(name) if name in order else len(order)}"
+
+
 def markdown(result: dict[str, Any], source: str, images: list[str]) -> str:
     """docs/benchmark.md's generated block: the aggregate table, one table per id, figures."""
-    parts = [BEGIN, f"Generated from `{source}` (schema {SCHEMA}"
-             + (f", budget scale {result['budget_scale']:g}: a smoke run" if
-                result["budget_scale"] != 1 else "") + ").", "",
+    budgets = {r["budget"] for r in result["rows"] if r["kind"] == "learner"}
+    reduced = budgets - {1_000_000, 10_000_000}  # the grid's (rl_tasks)
+    note = (f" **Reduced budgets** ({', '.join(_steps(b) for b in sorted(reduced))} env-steps), "
+            "not the full grid." if reduced else "")  # fmt: skip
+    parts = [BEGIN, f"Generated from [{source}]({source}) (schema {SCHEMA}; "
+             f"`{result.get('command', '')}`).{note}", "",
              "Across ids (normalised: 0 = zero action, 1 = best classical baseline):", "",
              aggregate_table(result)]  # fmt: skip
     for env_id, a in result["ids"].items():
