@@ -84,13 +84,20 @@ def score_controllers(task: Task, out: Path, seeds: tuple[int, ...], command: st
     """A record per classical baseline, the zero and the random action (unless on disk)."""
     for kind in task.baselines:
         tag = kind if kind in ("zero", "random") else "baseline"
-        if res.read_record(out, res.record_path(out, task.env_id, kind, None, None)) is not None:
+        if _done(out, res.record_path(out, task.env_id, kind, None, None), seeds):
             continue
         scores, returns = test_episodes(task, kind, seeds=seeds)
         res.write_record(out, {"env_id": task.env_id, "kind": tag, "name": kind, "seed": None,
                                "budget": None, "score_name": task.score_name,
                                "test_seeds": list(seeds), "scores": scores.tolist(),
                                "returns": returns.tolist(), **_stamp(command)})  # fmt: skip
+
+
+def _done(out: Path, path: Path, seeds: tuple[int, ...]) -> bool:
+    """Whether the record at `path` is on disk, scored on these test seeds (a record of other
+    test conditions is scored again and replaced)."""
+    rec = res.read_record(out, path)
+    return rec is not None and rec["test_seeds"] == list(seeds)
 
 
 def train_and_score(
@@ -102,7 +109,7 @@ def train_and_score(
     from mf_envs.train import policy
     from mf_envs.train.trainer import train
 
-    if res.read_record(out, res.record_path(out, task.env_id, algo, budget, seed)) is not None:
+    if _done(out, res.record_path(out, task.env_id, algo, budget, seed), seeds):
         return None
     runs = make_dirs(out, out / "runs" / f"{algo}-{budget}")
     final = runs / task.env_id / ("" if algo == "ppo" else algo) / f"seed{seed}"

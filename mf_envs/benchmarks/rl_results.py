@@ -82,6 +82,11 @@ def collect(out: Path, budget_scale: float = 1.0) -> dict[str, Any]:
         rec = read_record(out, p)
         if rec is not None:
             rows.append(rec)
+    conditions = {tuple(r["test_seeds"]) for r in rows}
+    if len(conditions) > 1:
+        raise ValueError(f"out: {out}'s records were scored on different test seeds "
+                         f"({sorted(len(c) for c in conditions)} of them); rerun with one "
+                         "--test-seeds in its own folder")  # fmt: skip
     ids: dict[str, dict[str, Any]] = {}
     for env_id in sorted({r["env_id"] for r in rows}):
         mine = [r for r in rows if r["env_id"] == env_id]
