@@ -208,9 +208,9 @@ def episode(task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Any =
             ctrl = make_baseline(env, kind)
         m = dict(run_episode(task.env_id, env, ctrl, seed))
         if task.metric == "speed" and "speed" not in m:  # the inchworm: advance per step
-            from mf_envs.benchmarks.headline import _inchworm_speed
+            from mf_envs.benchmarks.headline import inchworm_speed
 
-            m["speed"] = _inchworm_speed(env, m)
+            m["speed"] = inchworm_speed(env, m)
         ceiling = declaration(task.env_id).ceiling
         m["ceiling"] = math.nan if ceiling is None else float(ceiling.of(env))
         return m

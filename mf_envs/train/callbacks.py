@@ -3,8 +3,7 @@
 `PeriodicEvaluation` does what SB3's `EvalCallback` does (the same `evaluations.npz` log:
 timesteps, results, ep_lengths; the best policy saved on a new best mean return; the training
 env's `VecNormalize` statistics synced into the evaluation env first), with the evaluation
-episodes run side by side, one per row of the evaluation env, and the actions taken from the
-policy network directly (`deterministic_actor`), not through `model.predict`'s per-call setup.
+episodes run side by side, one per row of the evaluation env (`model.predict` on the batch).
 On a native vector env the evaluation then costs an episode's length of batched steps, not
 `n_eval_episodes` episodes of single steps.
 """
@@ -13,39 +12,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.vec_env import VecEnv, sync_envs_normalization
 
 from mf_envs._files import atomic_path
-
-
-def deterministic_actor(model: Any) -> Callable[[np.ndarray], np.ndarray]:
-    """obs (n, obs_dim) -> the deterministic actions (n, act_dim) of `model`'s policy, as
-    `model.predict(obs, deterministic=True)` returns them (clipped, or unscaled for a squashed
-    policy). A torch policy is put in eval mode once and run under `no_grad`; SBX's (JAX)
-    through `model.predict`."""
-    import torch as th
-
-    from mf_envs.train.policy_sbx import is_sbx
-
-    policy = model.policy
-    if is_sbx(model):
-        return lambda obs: model.predict(obs, deterministic=True)[0]
-    space = model.action_space
-    policy.set_training_mode(False)  # the next rollout or update sets its own mode
-
-    def act(obs: np.ndarray) -> np.ndarray:
-        with th.no_grad():
-            a = policy._predict(th.as_tensor(obs, device=policy.device), deterministic=True)
-        a = a.cpu().numpy().reshape((-1, *space.shape))
-        return (
-            policy.unscale_action(a) if policy.squash_output else np.clip(a, space.low, space.high)
-        )
-
-    return act
 
 
 def row_episodes(act: Callable[[np.ndarray], np.ndarray], venv: VecEnv) -> tuple[np.ndarray, ...]:
@@ -83,7 +55,9 @@ class PeriodicEvaluation(BaseCallback):
 
         if self.model.get_vec_normalize_env() is not None:
             sync_envs_normalization(self.training_env, self.eval_env)
-        ret, length = row_episodes(deterministic_actor(self.model), self.eval_env)
+        ret, length = row_episodes(
+            lambda obs: self.model.predict(obs, deterministic=True)[0], self.eval_env
+        )
         self.timesteps.append(int(self.num_timesteps))
         self.results.append(ret)
         self.lengths.append(length)
