@@ -53,7 +53,7 @@ from mf_envs.benchmarks.rl_tasks import (  # noqa: F401  (the protocol's names, 
 )
 
 TRAIN_SEEDS = (0, 1, 2, 3, 4)
-ALGOS = ("ppo", "sbx_sac", "sac", "td3")
+ALGOS = ("ppo", "sbx_sac")  # the learners the grid gives budgets (rl_tasks)
 
 
 def write_config(task: Task, algo: str, budget: int, folder: Path) -> Path:
