@@ -18,13 +18,15 @@ EXTRAS = {
     "mpmath": "dev",
     "hypothesis": "dev",
     "ray": "ray",
+    "sbx": "sbx",
+    "jax": "sbx",
     "capytaine": "hydro",
     "xarray": "hydro",
 }
 
 
 # extras that pull torch: on Linux a plain `pip install torch` is the multi-GB CUDA build
-TORCH_EXTRAS = ("train", "ray")
+TORCH_EXTRAS = ("train", "ray", "sbx")
 CPU_TORCH = "pip install torch==2.13.0 --index-url https://download.pytorch.org/whl/cpu"
 
 

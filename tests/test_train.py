@@ -1,15 +1,14 @@
-"""PPO training infrastructure (train/): configs, vector-env adapter, normalised policies,
-smoke runs, domain randomisation, evaluation and the CLI error paths.
+"""PPO training infrastructure (train/): configs, the vector-env adapter, smoke runs, the CLI
+error paths and reproducibility (the policy format: test_policy_files.py; the evaluation loop:
+test_evaluate_loop.py; domain randomisation: test_domain_randomization.py).
 
-Truth used: SB3's own `VecNormalize.normalize_obs` and `PPO.predict` (a second route through the
-library for `load_policy`), Gymnasium's `SyncVectorEnv` + SB3's `DummyVecEnv` on the same seeds
-(for the native-vector adapter), and hand-rolled episodes (for the evaluation loop).
+Truth used: Gymnasium's `SyncVectorEnv` + SB3's `DummyVecEnv` on the same seeds (for the
+native-vector adapter), rl-zoo3 running the shipped configs unchanged.
 """
 
 from __future__ import annotations
 
 import json
-import warnings
 from pathlib import Path
 
 import gymnasium as gym
@@ -22,16 +21,15 @@ sb3 = pytest.importorskip(
 pytest.importorskip("safetensors", reason="needs the train extra: pip install -e '.[train]'")
 
 import mf_envs  # noqa: E402,F401  (registers the env ids)
-from mf_envs.envs import ENV_SPECS, available_env_ids, declaration  # noqa: E402
+from mf_envs.envs import ENV_SPECS, available_env_ids  # noqa: E402
 from mf_envs.train.config import (  # noqa: E402
     load_hyperparams,
     parse_policy_kwargs,
     read_config,
     resolve_schedules,
 )
-from mf_envs.train.evaluate import episode_metrics, evaluate_controllers, run_episode  # noqa: E402
-from mf_envs.train.policy import POLICY_ROOT, load_policy, save_policy  # noqa: E402
-from mf_envs.train.provenance import PolicyEnvWarning  # noqa: E402
+from mf_envs.train.evaluate import evaluate_controllers  # noqa: E402
+from mf_envs.train.policy import load_policy  # noqa: E402
 
 TINY = {"n_steps": 64, "batch_size": 64, "n_epochs": 1, "policy_kwargs": {"net_arch": [8]}}
 SMOKE_IDS = ["Pendulum-v1", *available_env_ids()]
@@ -44,8 +42,12 @@ def test_config_parses_for_every_env(env_id):
 
     from stable_baselines3 import PPO
 
+    from mf_envs.envs import task_ids
+
     hp = load_hyperparams(env_id)
-    assert hp.n_timesteps is not None and hp.n_timesteps > 0 and 1 <= hp.n_envs <= 2
+    assert hp.n_timesteps is not None and hp.n_timesteps > 0 and 1 <= hp.n_envs <= 1024
+    if env_id in task_ids(role="headline"):  # the headline ids train on native rows
+        assert hp.n_envs >= 64
     kwargs = resolve_schedules(hp.ppo_kwargs)
     accepted = set(inspect.signature(PPO.__init__).parameters)
     assert set(kwargs) <= accepted, set(kwargs) - accepted
@@ -154,38 +156,6 @@ def test_shipped_configs_train_in_rl_zoo3_unchanged(algo, tmp_path):
     assert all(r["steps"] >= 256 and r["n"] == 256 and r["algo"] == algo.upper() for r in runs)
 
 
-@pytest.mark.parametrize("algo", ["SAC", "TD3"])
-def test_off_policy_policies_save_and_load_without_pickle(algo, tmp_path):
-    """An SB3 SAC/TD3 model saved as JSON + safetensors loads with `load_policy` and acts as
-    SB3's own model on 500 observations (normalised by its VecNormalize); `to_sb3` rebuilds the
-    same algorithm, critics included."""
-    import stable_baselines3 as sb3
-    from stable_baselines3.common.env_util import make_vec_env
-    from stable_baselines3.common.vec_env import VecNormalize
-
-    from mf_envs.train.policy import save_policy_files
-
-    venv = VecNormalize(make_vec_env("Pendulum-v1", n_envs=1, seed=0), norm_reward=False)
-    model = getattr(sb3, algo)(
-        "MlpPolicy", venv, learning_starts=50, batch_size=32, seed=0,
-        policy_kwargs={"net_arch": [16, 16]}, device="cpu",
-    )  # fmt: skip
-    model.learn(200)
-    save_policy_files(tmp_path / "pol", model, venv)
-    (tmp_path / "pol" / "meta.json").write_text(json.dumps({"env_id": "Pendulum-v1"}))
-    policy = load_policy("Pendulum-v1", tmp_path / "pol")
-    assert policy.algo == algo
-    obs = np.random.default_rng(0).uniform(-1, 1, (500, 3)).astype(np.float32) * [1, 1, 8]
-    theirs, _ = model.predict(venv.normalize_obs(obs), deterministic=True)
-    ours, _ = policy.predict(obs)
-    np.testing.assert_allclose(ours, theirs, rtol=1e-6, atol=1e-6)
-    assert np.ptp(theirs) > 0
-    again = policy.to_sb3(learning_starts=10)
-    assert type(again).__name__ == algo
-    for key, value in model.policy.state_dict().items():
-        assert torch_equal(value, again.policy.state_dict()[key]), key
-
-
 def test_train_sac_smoke_and_summary_label(tmp_path):
     from mf_envs.train.trainer import train
 
@@ -263,139 +233,6 @@ def test_make_train_env_uses_native_vector_entry_point():
     venv.close()
 
 
-# --------------------------------------------------------------------------- policies
-def _trained_model(tmp_path):
-    """A few PPO updates on Pendulum with VecNormalize, saved with save_policy."""
-    from stable_baselines3 import PPO
-
-    from mf_envs.train.vec import make_train_env
-
-    venv, _ = make_train_env("Pendulum-v1", 2, seed=0, normalize={})
-    model = PPO("MlpPolicy", venv, seed=0, device="cpu", **TINY)
-    model.learn(256)
-    save_policy(tmp_path / "pol", model, venv, {"env_id": "Pendulum-v1", "seed": 0})
-    return model, venv
-
-
-def test_load_policy_on_raw_obs_equals_sb3_on_normalized_obs(tmp_path):
-    model, venv = _trained_model(tmp_path)
-    assert not np.allclose(venv.obs_rms.mean, 0.0)  # statistics really moved
-    names = {p.name for p in (tmp_path / "pol").iterdir()}
-    assert names == {"policy.json", "policy.safetensors", "obs_normalization.json", "meta.json"}
-    policy = load_policy("Pendulum-v1", tmp_path / "pol")  # rebuilt from JSON + safetensors
-    env = gym.make("Pendulum-v1")
-    obs, _ = env.reset(seed=7)
-    for _ in range(50):
-        a, state = policy.predict(obs, deterministic=True)
-        assert state is None and env.action_space.contains(a)
-        ref, _ = model.predict(venv.normalize_obs(obs), deterministic=True)  # SB3, in memory
-        np.testing.assert_array_equal(a, ref)
-        obs, *_ = env.step(a)
-    batch = np.stack([env.observation_space.sample() for _ in range(4)])
-    ab, _ = policy.predict(batch)
-    assert ab.shape == (4, 1)
-    # normalisation is not the identity, so skipping it would change the actions
-    raw, _ = model.predict(batch, deterministic=True)
-    assert not np.allclose(raw, ab)
-
-
-def _payload_zip(path, marker):
-    """An SB3-style model.zip whose `data` entry unpickles to os.system('touch marker')."""
-    import base64
-    import os
-    import pickle
-    import zipfile
-
-    class Payload:
-        def __reduce__(self):
-            return (os.system, (f"touch {marker}",))
-
-    blob = base64.b64encode(pickle.dumps(Payload())).decode()
-    data = {"policy_class": {":type:": "<class 'abc.ABCMeta'>", ":serialized:": blob}}
-    with zipfile.ZipFile(path, "w") as z:
-        z.writestr("data", json.dumps(data))
-        z.writestr("_stable_baselines3_version", "2.9.2")
-
-
-@pytest.mark.parametrize("as_folder", [False, True])
-def test_pickle_payload_is_refused_and_never_runs(tmp_path, capsys, as_folder):
-    from mf_envs.cli import main
-
-    marker = tmp_path / "PWNED"
-    folder = tmp_path / "evil"
-    folder.mkdir()
-    _payload_zip(folder / "model.zip", marker)
-    target = folder if as_folder else folder / "model.zip"
-    with pytest.raises(ValueError, match="pickle"):
-        load_policy("Pendulum-v1", target)
-    assert main(["evaluate", "Pendulum-v1", "--policy", str(target), "--out", str(tmp_path / "e")])
-    assert main(["render", "GOWEC-v0", "--policy", str(target), "--out", str(tmp_path / "r.gif")])
-    err = capsys.readouterr().err.strip().splitlines()
-    assert all("pickle" in line for line in err) and len(err) == 2
-    assert not marker.exists()
-    # the payload is real: SB3's own loader does run it (so the test above can fail)
-    from stable_baselines3.common.save_util import json_to_data
-
-    json_to_data(_zip_data(folder / "model.zip"))
-    assert marker.exists()
-
-
-def _zip_data(path):
-    import zipfile
-
-    with zipfile.ZipFile(path) as z:
-        return z.read("data").decode()
-
-
-def test_policy_kwargs_whitelist(tmp_path):
-    from mf_envs.train.kwargs import parse_policy_kwargs as whitelist
-
-    marker = tmp_path / "ran"
-    for text in (
-        f"dict(x=th.os.system('touch {marker}'))",
-        f"dict(net_arch=__import__('os').system('touch {marker}'))",
-        "dict(activation_fn=nn.Module)",
-        "dict(activation_fn=nn.Tanh.__class__)",
-        "[i for i in range(3)]",
-    ):
-        with pytest.raises(ValueError, match="not allowed"):
-            whitelist(text)
-    with pytest.raises(ValueError, match="unknown key 'foo'"):
-        whitelist("dict(net_arch=[8], foo=1)")
-    with pytest.raises(ValueError, match="net_arch"):
-        whitelist({"net_arch": [8, "x"]})
-    assert not marker.exists()
-    pk = whitelist(
-        "dict(log_std_init=-1.5, activation_fn=th.nn.ReLU, net_arch=dict(pi=[4], vf=[4]))"
-    )
-    assert pk == {"log_std_init": -1.5, "activation_fn": "ReLU", "net_arch": {"pi": [4], "vf": [4]}}
-    assert whitelist({"activation_fn": "nn.Tanh", "ortho_init": False})["activation_fn"] == "Tanh"
-
-
-def test_load_policy_errors(tmp_path):
-    _trained_model(tmp_path)
-    with pytest.raises(ValueError, match="trained on Pendulum-v1"):
-        load_policy("CartPole-v1", tmp_path / "pol")
-    with pytest.raises(ValueError, match="no policy"):
-        load_policy("Pendulum-v1", tmp_path / "nothing")
-    with pytest.raises(ValueError, match="no shipped policy"):
-        load_policy("Pendulum-v1")
-
-
-@pytest.mark.parametrize("env_id", sorted(p.name for p in POLICY_ROOT.glob("*") if p.is_dir()))
-def test_shipped_policies_load_and_act(env_id):
-    meta = json.loads((POLICY_ROOT / env_id / "meta.json").read_text())
-    for key in ("command", "seed", "timesteps", "wall_time_s", "evaluation", "package_version"):
-        assert key in meta
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", PolicyEnvWarning)  # it matches today's env
-        policy = load_policy(env_id)
-    env = gym.make(env_id)
-    obs, _ = env.reset(seed=123)
-    a, _ = policy.predict(obs)
-    assert env.action_space.contains(np.asarray(a, dtype=np.float32))
-
-
 # --------------------------------------------------------------------------- smoke runs
 @pytest.mark.parametrize("env_id", SMOKE_IDS)
 @pytest.mark.slow
@@ -422,138 +259,6 @@ def test_smoke_train_then_evaluate(env_id, tmp_path):
     assert {r["metric"] for r in rows} >= {"return", "steps"}
 
 
-# --------------------------------------------------------------------------- evaluation
-class _Zero:
-    def reset(self):
-        pass
-
-    def predict(self, obs, deterministic=True):
-        return np.zeros(1, np.float32), None
-
-
-def test_evaluation_loop_matches_hand_rolled_episodes():
-    rows = evaluate_controllers("Pendulum-v1", {"zero": lambda env: _Zero()}, seeds=[5, 6])
-    returns = []
-    for s in (5, 6):
-        env = gym.make("Pendulum-v1")
-        env.reset(seed=s)
-        total, done = 0.0, False
-        while not done:
-            _, r, term, trunc, _ = env.step(np.zeros(1, np.float32))
-            total += r
-            done = term or trunc
-        returns.append(total)
-    got = {r["metric"]: r for r in rows}
-    assert got["return"]["mean"] == pytest.approx(np.mean(returns))
-    assert got["return"]["std"] == pytest.approx(np.std(returns, ddof=1))
-    assert got["steps"]["mean"] == 200 and got["return"]["n_seeds"] == 2
-
-
-@pytest.mark.parametrize("env_id", available_env_ids())
-def test_env_metrics_from_info(env_id):
-    env = gym.make(env_id)
-    m = run_episode(env_id, env, _ZeroFor(env), seed=0)
-    key = declaration(env_id).metric.name  # the env's primary metric, computed from its infos
-    assert np.isfinite(m[key])
-    if env_id == "GyroStabilizer-v0":
-        assert m["rms_roll"] <= m["max_abs_roll"]
-
-
-class _ZeroFor(_Zero):
-    def __init__(self, env):
-        self.shape = env.action_space.shape
-
-    def predict(self, obs, deterministic=True):
-        return np.zeros(self.shape, np.float32), None
-
-
-def test_episode_metrics_definitions():
-    class _Env:
-        class unwrapped:  # noqa: N801
-            @staticmethod
-            def analytic_max_power():
-                return 4.0
-
-    infos = [
-        {"x_tail": 1.0},
-        {"power": 1.0, "roll": 0.3, "x_tail": 1.5, "time": 10.0},
-        {"power": 3.0, "roll": -0.4, "x_tail": 2.0, "time": 10.05},
-    ]
-    g = episode_metrics("GOWEC-v0", _Env, [1.0, 2.0], infos)
-    assert g["power_ratio_all"] == pytest.approx(0.5) and g["return"] == 3.0
-    g = episode_metrics("GOWEC-v0", _Env, [0] * 4, [{}] + [{"power": p} for p in (0, 4, 4, 4)])
-    assert g["power_ratio"] == pytest.approx(1.0)  # steady part: the last 3/4 of the steps
-    assert g["power_ratio_all"] == pytest.approx(0.75)
-    s = episode_metrics("GyroStabilizer-v0", _Env, [0, 0], infos)
-    assert s["rms_roll_all"] == pytest.approx(np.sqrt((0.09 + 0.16) / 2))
-    assert s["rms_roll"] == pytest.approx(0.4)  # only after the 10 s transient
-    i = episode_metrics("Inchworm-v0", _Env, [0, 0], infos)
-    assert i["tail_advance_per_step"] == pytest.approx(0.5)
-    anchors = ["head", "head", "tail", "tail", "head", "tail", "head"]  # 2 head->tail switches
-    infos = [{"x_tail": 0.1 * k, "anchor": a} for k, a in enumerate(anchors)]
-    i = episode_metrics("Inchworm-v0", _Env, [0] * 6, infos)
-    assert i["gait_cycles"] == 2 and i["tail_advance_per_cycle"] == pytest.approx(0.3)
-
-
-# --------------------------------------------------------------------------- randomisation
-def test_domain_randomization_redraws_params_deterministically():
-    from mf_envs.train.randomize import DomainRandomization
-
-    def draws(seed):
-        env = DomainRandomization(gym.make("Pendulum-v1"), ranges={"g": (0.8, 1.2), "zz": (1, 2)})
-        out = []
-        obs, info = env.reset(seed=seed)
-        out.append((info["randomized"]["g"], env.unwrapped.g, obs))
-        for _ in range(3):
-            obs, info = env.reset()
-            out.append((info["randomized"]["g"], env.unwrapped.g, obs))
-        return out
-
-    a, b, c = draws(0), draws(0), draws(1)
-    gs = [g for g, _, _ in a]
-    assert all(8.0 <= g <= 12.0 for g in gs) and len(set(gs)) == 4
-    assert all(g == ug for g, ug, _ in a)  # the env really runs with the drawn g
-    for x, y in zip(a, b):
-        assert x[0] == y[0] and np.array_equal(x[2], y[2])
-    assert a[0][0] != c[0][0]
-    with pytest.raises(ValueError, match="none of"):
-        DomainRandomization(gym.make("Pendulum-v1"), ranges={"zz": (1, 2)})
-
-
-def test_domain_randomization_choices_mix_regular_and_irregular_seas():
-    """FloatingGOWEC-v0's default choices: the env really runs the drawn sea (regular when
-    significant_wave_height is None, JONSWAP of that Hs otherwise), reproducibly."""
-    from mf_envs.train.randomize import DomainRandomization
-
-    def draws(seed):
-        env = DomainRandomization(gym.make("FloatingGOWEC-v0", episode_seconds=1.0))
-        out = [env.reset(seed=seed)[1]["randomized"]]
-        out += [env.reset()[1]["randomized"] for _ in range(7)]
-        seas = [(env.unwrapped.irregular, env.unwrapped.wave_period)]
-        return out, seas
-
-    a, sa = draws(3)
-    assert draws(3)[0] == a
-    hs = [d["significant_wave_height"] for d in a]
-    assert None in hs and any(h is not None for h in hs)
-    last = a[-1]
-    irregular, period = sa[-1]
-    assert irregular == (last["significant_wave_height"] is not None)
-    assert period == (last["peak_period"] if irregular else last["wave_period"])
-    with pytest.raises(ValueError, match="choices"):
-        DomainRandomization(gym.make("FloatingGOWEC-v0"), choices={"no_such_kwarg": (1, 2)})
-
-
-def test_shift_scenes_only_use_real_kwargs():
-    from mf_envs.train.randomize import nominal_kwargs, shift_scenes, shifted_kwargs
-
-    assert shifted_kwargs("Pendulum-v1", {"g": 1.5, "zz": 2.0}) == {"g": 15.0}
-    for env_id in available_env_ids():
-        nominal = nominal_kwargs(env_id)
-        for kw in shift_scenes(env_id).values():
-            assert set(kw) <= set(nominal)
-
-
 # --------------------------------------------------------------------------- CLI
 def test_cli_errors_are_one_line(capsys, tmp_path, monkeypatch):
     from mf_envs.cli import main
@@ -564,18 +269,6 @@ def test_cli_errors_are_one_line(capsys, tmp_path, monkeypatch):
     assert main(["evaluate", "Pendulum-v1", "--policy", str(tmp_path / "none")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 3 and all(line.startswith("mf-envs ") for line in err)
-
-
-def test_cli_evaluate_writes_table_and_csv(tmp_path, monkeypatch, capsys):
-    from mf_envs.cli import main
-
-    _trained_model(tmp_path)
-    monkeypatch.chdir(tmp_path)
-    assert main(["evaluate", "Pendulum-v1", "--policy", "pol", "--episodes", "2"]) == 0
-    out = capsys.readouterr().out
-    assert "ppo" in out and "±" in out
-    csv = Path(tmp_path / "mf_envs_eval" / "Pendulum-v1" / "evaluate.csv").read_text()
-    assert csv.startswith("env_id,scene,controller,metric,mean,std,n_seeds")
 
 
 def test_training_is_reproducible(tmp_path):
@@ -639,40 +332,6 @@ def test_tensorboard_flag_without_tensorboard_is_a_clear_error(tmp_path, capsys)
     assert not any(tmp_path.iterdir())  # refused before training
 
 
-@pytest.mark.parametrize("env_id", available_env_ids())
-def test_domain_randomization_on_mf_envs(env_id):
-    from mf_envs.train.randomize import DomainRandomization, applicable_ranges, nominal_kwargs
-
-    ranges = applicable_ranges(env_id)
-    if not ranges:
-        pytest.skip(f"{env_id} has none of the randomisable kwargs")
-    env = DomainRandomization(gym.make(env_id))
-    nominal = nominal_kwargs(env_id)
-    drawn = []
-    for seed in (0, None):
-        obs, info = env.reset(seed=seed)
-        assert env.observation_space.contains(obs)
-        for k, v in info["randomized"].items():
-            # discrete draws (FloatingGOWEC-v0's sea): checked in their own test
-            if k in env.choices:
-                assert v in env.choices[k]
-                continue
-            lo, hi = ranges[k]
-            if isinstance(nominal[k], dict):  # one factor on every number of the dict
-                factors = [v[c] / nominal[k][c] for c in nominal[k]]
-                assert set(v) == set(nominal[k])
-                assert max(factors) - min(factors) < 1e-12 * max(factors)
-                assert lo * (1 - 1e-12) <= factors[0] <= hi * (1 + 1e-12)
-                assert getattr(env.unwrapped, k) == pytest.approx(v)  # the env's resolved dict
-                continue
-            assert lo * nominal[k] <= v <= hi * nominal[k]
-            if not env.choices and isinstance(getattr(env.unwrapped, k, None), float):
-                assert getattr(env.unwrapped, k) == pytest.approx(v)  # really simulated
-        drawn.append(info["randomized"])
-        env.step(env.action_space.sample())
-    assert drawn[0] != drawn[1]
-
-
 @pytest.mark.parametrize(
     "path",
     sorted((Path(__file__).parents[1] / "mf_envs" / "train" / "configs").glob("*.yml")),
@@ -725,37 +384,3 @@ def test_native_vector_training_equals_dummy_vec_env(env_id, tmp_path):
     for pa, pb in zip(a.policy.parameters(), b.policy.parameters()):
         assert torch.equal(pa, pb)
     np.testing.assert_array_equal(a.normalization.var, b.normalization.var)
-
-
-@pytest.mark.parametrize("env_id", ["GOWEC-v0"])
-def test_to_sb3_acts_as_the_loaded_policy_and_fine_tunes(env_id):
-    """`load_policy(...).to_sb3()`: an SB3 PPO built from the safetensors weights (no pickle)
-    gives the loaded policy's actions on 500 observations (normalised by its VecNormalize), and
-    trains on."""
-    policy = load_policy(env_id)
-    model = policy.to_sb3(n_steps=64, batch_size=64, n_epochs=1)
-    venv = model.get_env()
-    env = gym.make(env_id)
-    obs, _ = env.reset(seed=7)
-    rng = np.random.default_rng(7)
-    observations = []
-    for _ in range(500):
-        observations.append(obs)
-        obs, _, term, trunc, _ = env.step(rng.uniform(-1, 1, env.action_space.shape))
-        if term or trunc:
-            obs, _ = env.reset()
-    batch = np.array(observations, dtype=np.float32)
-    ours, _ = policy.predict(batch)
-    x = venv.normalize_obs(batch) if policy.normalization is not None else batch
-    theirs, _ = model.predict(x, deterministic=True)
-    np.testing.assert_array_equal(ours, theirs)
-    before = {k: v.clone() for k, v in model.policy.state_dict().items()}
-    model.learn(64)
-    after = model.policy.state_dict()
-    assert any(not torch_equal(before[k], after[k]) for k in before)
-
-
-def torch_equal(a, b) -> bool:
-    import torch
-
-    return bool(torch.equal(a, b))

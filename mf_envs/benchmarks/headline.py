@@ -100,7 +100,7 @@ def measure(row: Row, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
             scores.append(m["power_ratio"])
             ceilings.append(float(decl.ceiling.value))
         else:
-            scores.append(m["speed"] if "speed" in m else _inchworm_speed(env, m))
+            scores.append(m["speed"] if "speed" in m else inchworm_speed(env, m))
             ceilings.append(math.nan)
     env.close()
     return {"env_id": row.env_id, "baseline": kind, "score": row.score, "seeds": list(seeds),
@@ -123,7 +123,7 @@ def _rotor_off_rms(env_id: str, seed: int) -> float:
     return float(rms)
 
 
-def _inchworm_speed(env: Any, m: dict[str, float]) -> float:
+def inchworm_speed(env: Any, m: dict[str, float]) -> float:
     """The inchworm's speed (m/s): its declared tail advance per control step / the step."""
     return m["tail_advance_per_step"] / float(env.unwrapped.control_dt)
 

@@ -1,350 +1,232 @@
-"""RL benchmark on a headline task: algorithms x training seeds, frozen test seeds, one window,
-interquartile means with stratified-bootstrap 95 % intervals (Agarwal et al. 2021).
+"""RL benchmark: every headline id x algorithm x training seed x budget, scored on frozen test
+conditions, one results file, docs/benchmark.md's tables and figures generated from it.
 
-    python -m mf_envs.benchmarks.rl_benchmark --task stabilizer_irregular --out bench_rl
-    python -m mf_envs.benchmarks.rl_benchmark --algos sac --seeds 0 1 2 3 4   # more seeds
+    mf-envs bench rl --all --out bench_rl --docs docs/benchmark.md      # the whole grid (hours)
+    python -m mf_envs.benchmarks.rl_benchmark --all --out bench_rl      # the same
+    mf-envs bench rl --ids GyroStabilizer-JONSWAP-v0 --seeds 0 1 --algos ppo --out b
+    mf-envs bench rl --all --budget-scale 0.001 --test-seeds 2 --out smoke   # a smoke run
 
 Protocol (docs/benchmark.md):
-- **Training**: `mf_envs.train.train` with the shipped rl-zoo3 entry of each algorithm
-  (`configs/<algo>.yml`) plus the task's env kwargs, one run per (algorithm, training seed),
-  on the task's budget; a new sea every reset.
-- **Test seeds**: `TEST_SEEDS` (20000-20019), frozen, never used by training (training episodes
-  draw from the trainer's seeds, its evaluation callback from 10000+): each seed draws a new
-  irregular-sea realisation, not just a phase.
-- **Window**: every controller, learned or classical, is scored on the same episodes of
-  `eval_seconds` and the same window (the env's metric after its settling time).
-- **Policies**: the final policy of each run (the `best` checkpoint is not used).
-- **Score**: the task's normalised score per episode (the stabilizer: RMS roll reduction
-  1 - rms_on / rms_off against the same sea with the rotor off); a run's score is its mean
-  over the test seeds; per algorithm the interquartile mean over runs and its stratified
-  bootstrap 95 % interval (`interval`, 2000 resamples; with 3
-  runs the IQM trims nothing and is the mean). Baselines are deterministic: their interval is
-  the bootstrap over the 20 test episodes.
-
-Writes `<out>/<task>/results.json`, `table.md`, `learning_curves.png` and the runs under
-`<out>/<task>/runs/`.
+- **Grid** (`rl_tasks.HEADLINE`, `Task.budgets`): PPO at 1M and 10M env-steps on the marine
+  headline ids and 1M on the soft robots, SBX's SAC at 1M on the marine ids; training seeds
+  `TRAIN_SEEDS` (0-4). Each run is `train.trainer.train` with the shipped rl-zoo3 entry of its
+  algorithm (native vector rows) and the task's scene, no evaluation checks during training;
+  the final policy is scored.
+- **Test conditions** (`rl_tasks`): test seeds 20000-20019, each a new sea (marine ids) or a
+  draw of the declared randomisation ranges (soft robots), never seen by training.
+- **Resume**: each run and each controller writes one record file (`rl_results`) inside
+  `--out` only, atomically; a record on disk is not recomputed (a trained run whose record is
+  missing is scored, not retrained). Rerun the command after the envs change in a new folder.
+- **Results**: `<out>/results.json` (`rl_results.collect`: the records, the score per test
+  condition, the normalised scale per id) and, with `--docs`, the generated block of that page,
+  its two figures (score against env-steps and against wall-clock seconds) and a copy of the
+  results file beside it (`docs/results/rl_benchmark.json`).
+- `--budget-scale` multiplies every budget (a smoke or reduced run: its records name the
+  budgets trained, so they never stand in for the full grid's).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import math
+import platform
+import shlex
+import sys
 import time
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from mf_envs._files import make_dirs, write_atomic
+from mf_envs.benchmarks import rl_results as res
+from mf_envs.benchmarks.rl_results import interval  # noqa: F401  (the protocol's estimator)
+from mf_envs.benchmarks.rl_tasks import (  # noqa: F401  (the protocol's names, importers')
+    HEADLINE,
+    TASKS,
+    TEST_SEEDS,
+    RandomAction,
+    Task,
+    ZeroAction,
+    episode_scores,
+    rotor_off,
+    test_episodes,
+)
 
-TEST_SEEDS = tuple(range(20_000, 20_020))
-TRAIN_SEEDS = (0, 1, 2)
-ALGOS = ("sac", "td3", "ppo")
-
-
-@dataclass(frozen=True)
-class Task:
-    """A benchmark task on a registered id (its scene: the id's spec kwargs plus `env_kwargs`):
-    budgets, baselines, and the normalised score with its ceiling.
-
-    Score per test episode: with `reference_kwargs`, 1 - metric / metric of the same seed in
-    the reference scene (the stabilizer: rotor off); without, metric / the id's ceiling for the
-    episode's scene (`EnvDeclaration.ceiling`, e.g. a sea's power bound)."""
-
-    name: str
-    env_id: str
-    env_kwargs: dict[str, Any]
-    eval_seconds: float
-    budgets: dict[str, int]
-    baselines: tuple[str, ...]
-    ceiling: float
-    ceiling_note: str
-    score_name: str
-    reference_kwargs: Callable[[dict[str, Any]], dict[str, Any]] | None = field(repr=False)
-    metric: str | None = None  # the episode metric scored (None: the env's primary metric)
+TRAIN_SEEDS = (0, 1, 2, 3, 4)
+ALGOS = ("ppo", "sbx_sac")  # the learners the grid gives budgets (rl_tasks)
 
 
-def rotor_off(kwargs: dict[str, Any]) -> dict[str, Any]:
-    """The stabilizer's reference scene: the same sea with the rotor off."""
-    return {**kwargs, "effects": tuple(e for e in kwargs["effects"] if e != "gyroscopic")}
-
-
-def _stabilizer_irregular() -> Task:
-    """GyroStabilizer-JONSWAP-v0: its scene's kwargs (the grid cell's; the episode length is
-    the protocol's, `eval_seconds`) and its ceiling."""
-    from mf_envs.envs import declaration
-
-    env_id = "GyroStabilizer-JONSWAP-v0"
-    decl = declaration(env_id)
-    kw = {k: v for k, v in decl.kwargs.items() if k != "episode_seconds"}
-    return Task(
-        name="stabilizer_irregular",
-        env_id=env_id,
-        env_kwargs=kw,
-        eval_seconds=120.0,
-        budgets={"ppo": 50_000, "sac": 20_000, "td3": 20_000},
-        baselines=("random", "pid", "lqr"),
-        ceiling=float(decl.ceiling.value),
-        ceiling_note="RMS roll reduction 1 (no roll left); no causal bound computed",
-        score_name="rms_roll_reduction",
-        reference_kwargs=rotor_off,
-    )
-
-
-def _stabilizer_resonance() -> Task:
-    """The default scene (regular beam wave at the roll resonance): the easy task, where the
-    benchmark's first review saw SAC beat the classical controllers; a test seed sets only the
-    wave's phase and the start, so its 20 episodes are nearly one."""
-    from mf_envs.envs.gyro_stabilizer import DEFAULT_EFFECTS
-
-    irregular = _stabilizer_irregular()
-    return Task(
-        name="stabilizer_resonance",
-        env_id="GyroStabilizer-v0",
-        env_kwargs={"effects": tuple(DEFAULT_EFFECTS)},
-        eval_seconds=120.0,
-        budgets=irregular.budgets,
-        baselines=irregular.baselines,
-        ceiling=1.0,
-        ceiling_note=irregular.ceiling_note,
-        score_name=irregular.score_name,
-        reference_kwargs=rotor_off,
-    )
-
-
-def _gowec_irregular() -> Task:
-    """FloatingGOWEC-JONSWAP-v0: mean net electrical power over the episode's second half as a
-    fraction of the id's ceiling for that episode's sea (`gowec_v1.task.net_power_ceiling`)."""
-    return Task(
-        name="gowec_irregular",
-        env_id="FloatingGOWEC-JONSWAP-v0",
-        env_kwargs={},
-        eval_seconds=120.0,
-        budgets={"ppo": 100_000, "sac": 20_000, "td3": 20_000},  # fits a 2-core hour
-        baselines=(
-            "zero",
-            "random",
-            "bang_bang",
-            "linear_pto",
-            "passive_damper",
-            "efficient_pto",
-        ),  # fmt: skip
-        ceiling=1.0,
-        ceiling_note="net power / the sea's `net_power_ceiling` (loss-inclusive, loose)",
-        score_name="net_power_of_ceiling",
-        reference_kwargs=None,
-        metric="net_power",
-    )
-
-
-def _gowec_regular() -> Task:
-    """FloatingGOWEC-v0's default regular sea (a = 1 m, T = 6 s): the GOWEC's easy task, scored
-    as `gowec_irregular` (a test seed sets only the wave's phase)."""
-    from dataclasses import replace
-
-    return replace(_gowec_irregular(), name="gowec_regular", env_id="FloatingGOWEC-v0")
-
-
-TASKS: dict[str, Callable[[], Task]] = {
-    "stabilizer_irregular": _stabilizer_irregular,
-    "stabilizer_resonance": _stabilizer_resonance,
-    "gowec_irregular": _gowec_irregular,
-    "gowec_regular": _gowec_regular,
-}
-
-
-# ------------------------------------------------------------------------------- evaluation
-class RandomAction:
-    """Uniform random actions from a seeded generator (one per episode)."""
-
-    def __init__(self, space: Any, seed: int) -> None:
-        self.space, self.rng = space, np.random.default_rng(seed)
-
-    def reset(self) -> None:
-        return None
-
-    def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
-        return self.rng.uniform(self.space.low, self.space.high).astype(self.space.dtype), None
-
-
-class ZeroAction(RandomAction):
-    def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
-        return np.zeros(self.space.shape, self.space.dtype), None
-
-
-def _metric(
-    task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Path | None
-) -> tuple[float, float]:
-    """The scored metric of one test episode of `kind` (a baseline, "random", "zero", or the
-    policy in `run`; the env's primary metric unless `task.metric`) and the id's ceiling for
-    that episode's scene (nan without one)."""
-    import gymnasium as gym
-
-    from mf_envs.controllers import make_baseline
-    from mf_envs.envs import declaration
-    from mf_envs.train.evaluate import primary_metric, run_episode
-    from mf_envs.train.policy import load_policy
-
-    env = gym.make(task.env_id, **kwargs)
-    try:
-        if run is not None:
-            ctrl: Any = load_policy(task.env_id, run)
-        elif kind in ("random", "zero"):
-            ctrl = (RandomAction if kind == "random" else ZeroAction)(env.action_space, seed)
-        else:
-            ctrl = make_baseline(env, kind)
-        name = task.metric or primary_metric(task.env_id).name
-        value = float(run_episode(task.env_id, env, ctrl, seed)[name])
-        ceiling = declaration(task.env_id).ceiling
-        return value, (math.nan if ceiling is None else ceiling.of(env))
-    finally:
-        env.close()
-
-
-def episode_scores(task: Task, kind: str, run: Path | None = None) -> np.ndarray:
-    """Normalised score of `kind` (a baseline, "random", or the policy in `run`) on each test
-    seed (`Task`): 1 - metric / metric of the same seed in the reference scene, or metric / the
-    episode's ceiling."""
-    # longer than the spec's episode: gym.make without its TimeLimit (episode_seconds ends it)
-    kw = {**task.env_kwargs, "episode_seconds": task.eval_seconds, "max_episode_steps": -1}
-    out = []
-    for s in TEST_SEEDS:
-        value, ceiling = _metric(task, kw, kind, s, run)
-        if task.reference_kwargs is None:
-            out.append(value / ceiling)
-        else:
-            out.append(1.0 - value / _metric(task, task.reference_kwargs(kw), "zero", s, None)[0])
-    return np.array(out)
-
-
-def interval(scores: np.ndarray, reps: int = 2000, seed: int = 0) -> dict[str, float]:
-    """IQM and stratified-bootstrap 95 % percentile interval of `scores` (runs,) or (runs, tasks),
-    as in Agarwal et al. (NeurIPS 2021): each bootstrap sample redraws the runs of every task
-    (column) with replacement, and its IQM is the 25 % trimmed mean of all the drawn scores. The
-    mean and its sample std beside them. Written with numpy and scipy (rliable's
-    `get_interval_estimates` with `aggregate_iqm` computes the same statistic)."""
-    from scipy.stats import trim_mean
-
-    m = np.atleast_2d(np.asarray(scores, dtype=float))
-    if m.shape[0] == 1:
-        m = m.T
-    runs, tasks = m.shape
-    rng = np.random.default_rng(seed)
-    rows = rng.integers(0, runs, size=(reps, runs, tasks))  # per task, its own draw of runs
-    drawn = m[rows, np.arange(tasks)]
-    boot = trim_mean(drawn.reshape(reps, -1), 0.25, axis=1)
-    lo, hi = np.percentile(boot, [2.5, 97.5])
-    flat = m.ravel()
-    return {"iqm": float(trim_mean(flat, 0.25)), "lo": float(lo), "hi": float(hi),
-            "mean": float(flat.mean()), "std": float(flat.std(ddof=1)) if flat.size > 1 else 0.0,
-            "n": int(runs)}  # fmt: skip
-
-
-# ------------------------------------------------------------------------------- training
-def write_config(task: Task, algo: str, folder: Path) -> Path:
+def write_config(task: Task, algo: str, budget: int, folder: Path) -> Path:
     """The shipped rl-zoo3 entry of `algo` for the env plus the task's env kwargs and budget,
-    written as `folder/<algo>.yml` (the file `mf-envs train --config` reads)."""
+    written as `folder/<algo>-<budget>.yml` (the file `mf-envs train --config` reads)."""
     import yaml
 
     from mf_envs.train.config import config_entry, default_config
 
     entry = config_entry(task.env_id, default_config(algo))  # a variant's: its env's
-    entry["n_timesteps"] = int(task.budgets[algo])
+    entry["n_timesteps"] = int(budget)
     entry["env_kwargs"] = {k: list(v) if isinstance(v, tuple) else v
                            for k, v in task.env_kwargs.items()}  # fmt: skip
-    folder.mkdir(parents=True, exist_ok=True)
-    return write_atomic(
-        folder / f"{algo}.yml", yaml.safe_dump({task.env_id: entry}, sort_keys=False)
-    )
+    make_dirs(folder, folder)
+    text = yaml.safe_dump({task.env_id: entry}, sort_keys=False)
+    return write_atomic(folder / f"{algo}-{budget}.yml", text)
 
 
-def train_runs(task: Task, algos: Sequence[str], seeds: Sequence[int], out: Path) -> dict:
-    """Train every (algorithm, seed) not already on disk; {algo: [(seed, run_dir, wall_s)]}."""
+def _stamp(command: str) -> dict[str, Any]:
+    from mf_envs import __version__
+
+    machine = f"{platform.machine()}, {platform.system()}, Python {platform.python_version()}"
+    return {"machine": machine, "version": __version__, "command": command,
+            "date": time.strftime("%Y-%m-%dT%H:%MZ", time.gmtime())}  # fmt: skip
+
+
+def score_controllers(task: Task, out: Path, seeds: tuple[int, ...], command: str) -> None:
+    """A record per classical baseline, the zero and the random action (unless on disk)."""
+    for kind in task.baselines:
+        tag = kind if kind in ("zero", "random") else "baseline"
+        if _done(out, res.record_path(out, task.env_id, kind, None, None), seeds):
+            continue
+        scores, returns = test_episodes(task, kind, seeds=seeds)
+        res.write_record(out, {"env_id": task.env_id, "kind": tag, "name": kind, "seed": None,
+                               "budget": None, "score_name": task.score_name,
+                               "test_seeds": list(seeds), "scores": scores.tolist(),
+                               "returns": returns.tolist(), **_stamp(command)})  # fmt: skip
+
+
+def _done(out: Path, path: Path, seeds: tuple[int, ...]) -> bool:
+    """Whether the record at `path` is on disk, scored on these test seeds (a record of other
+    test conditions is scored again and replaced)."""
+    rec = res.read_record(out, path)
+    return rec is not None and rec["test_seeds"] == list(seeds)
+
+
+def train_and_score(
+    task: Task, algo: str, budget: int, seed: int, out: Path, seeds: tuple[int, ...],
+    command: str,
+) -> dict[str, Any] | None:  # fmt: skip
+    """One learner cell of `budget` env-steps: train (unless its policy is on disk), score,
+    write its record. None if the record was already on disk."""
     from mf_envs.train import policy
     from mf_envs.train.trainer import train
 
-    runs: dict[str, list[tuple[int, Path, float]]] = {}
-    for algo in algos:
-        cfg = write_config(task, algo, out / "configs")
-        for s in seeds:
-            final = out / "runs" / task.env_id / ("" if algo == "ppo" else algo) / f"seed{s}"
-            if not (final / policy.POLICY_FILE).is_file():
-                t0 = time.time()
-                train(task.env_id, seed=s, config=cfg, out=out / "runs", algo=algo,
-                      final_eval_seeds=(), force=True)  # fmt: skip
-                print(f"{algo} seed {s}: trained in {time.time() - t0:.0f} s", flush=True)
-            runs.setdefault(algo, []).append(
-                (s, final, float(policy.read_meta(final)["wall_time_s"]))
-            )
-    return runs
+    if _done(out, res.record_path(out, task.env_id, algo, budget, seed), seeds):
+        return None
+    runs = make_dirs(out, out / "runs" / f"{algo}-{budget}")
+    final = runs / task.env_id / ("" if algo == "ppo" else algo) / f"seed{seed}"
+    if not (final / policy.POLICY_FILE).is_file():
+        cfg = write_config(task, algo, budget, out / "configs")
+        train(task.env_id, seed=seed, config=cfg, out=runs, algo=algo, evaluations=0,
+              final_eval_seeds=(), force=True)  # fmt: skip
+    meta = policy.read_meta(final)
+    scores, returns = test_episodes(task, algo, final, seeds)
+    rec = {"env_id": task.env_id, "kind": "learner", "name": algo, "seed": seed,
+           "budget": budget, "env_steps": int(meta["timesteps"]), "score_name": task.score_name,
+           "test_seeds": list(seeds), "scores": scores.tolist(), "returns": returns.tolist(),
+           "wall_s": float(meta["wall_time_s"]), "steps_per_s": float(meta["steps_per_s"]),
+           "vectorization": meta.get("vectorization"), **_stamp(command)}  # fmt: skip
+    res.write_record(out, rec)
+    return rec
 
 
-# ------------------------------------------------------------------------------- report
-def table(task: Task, rows: dict[str, dict[str, Any]]) -> str:
-    head = (f"| controller | runs | {task.score_name}: IQM [95 % CI] | mean ± std | "
-            "of ceiling | budget (steps) | wall per run (s) |")  # fmt: skip
-    lines = [head, "|---|---|---|---|---|---|---|"]
-    for name, r in rows.items():
-        lines.append(
-            f"| {name} | {r['n']} | {r['iqm']:.3f} [{r['lo']:.3f}, {r['hi']:.3f}] | "
-            f"{r['mean']:.3f} ± {r['std']:.3f} | {r['iqm'] / task.ceiling:.0%} | "
-            f"{r.get('budget', '-')} | {r.get('wall', '-')} |"
-        )
-    lines.append(f"| ceiling | | {task.ceiling:g} ({task.ceiling_note}) | | 100% | | |")
-    return "\n".join(lines)
+def cells(
+    names: Sequence[str], algos: Sequence[str], seeds: Sequence[int], scale: float = 1.0
+) -> list[tuple]:
+    """(task, algo, budget, seed) of the grid: every budget each task gives each algorithm,
+    times `scale` (the budget a record names is the one trained)."""
+    out = []
+    for name in names:
+        task = TASKS[name]()
+        for algo in algos:
+            for budget in task.budgets.get(algo, ()):
+                out += [(task, algo, max(1, round(budget * scale)), s) for s in seeds]
+    return out
 
 
-def curves(task: Task, runs: dict, path: Path) -> Path:
-    from mf_envs.train.curves import plot_learning_curves
+def run(
+    names: Sequence[str], algos: Sequence[str], seeds: Sequence[int], out: Path,
+    scale: float = 1.0, n_test: int = len(TEST_SEEDS), docs: Path | None = None,
+    command: str = "",
+) -> dict[str, Any]:  # fmt: skip
+    """Run the grid of the tasks `names` (`TASKS`; resuming), write `out/results.json`, and
+    with `docs` regenerate that page's block and its figures (in `docs`' folder's `img/`)."""
+    from tqdm import tqdm
 
-    folders, labels = [], []
-    for algo, items in runs.items():
-        for s, run, _ in items:
-            if (run / "evaluations.npz").is_file():
-                folders.append(run)
-                labels.append(f"{algo} seed {s}")
-    return plot_learning_curves(folders, path, f"{task.env_id}: {task.name}", labels)
-
-
-def run(task_name: str, algos: Sequence[str], seeds: Sequence[int], out: Path) -> dict[str, Any]:
-    task = TASKS[task_name]()
-    folder = make_dirs(out, out / task.name)  # a planted link there is refused
-    runs = train_runs(task, algos, seeds, folder)
-    rows: dict[str, dict[str, Any]] = {}
-    for kind in task.baselines:
-        rows[kind] = interval(episode_scores(task, kind))
-        print(f"{kind}: {rows[kind]}", flush=True)
-    for algo, items in runs.items():
-        per_run = np.array([episode_scores(task, algo, run).mean() for _, run, _ in items])
-        rows[algo] = {**interval(per_run), "budget": task.budgets[algo],
-                      "wall": f"{np.median([w for *_, w in items]):.0f}",
-                      "per_run": per_run.tolist()}  # fmt: skip
-        print(f"{algo}: {rows[algo]}", flush=True)
-    md = table(task, rows)
-    write_atomic(folder / "table.md", md + "\n")
-    result = {"task": task.name, "env_id": task.env_id, "env_kwargs": task.env_kwargs,
-              "eval_seconds": task.eval_seconds, "test_seeds": list(TEST_SEEDS),
-              "train_seeds": list(seeds), "rows": rows}  # fmt: skip
-    write_atomic(folder / "results.json", json.dumps(result, indent=1, default=str))
-    if any(items for items in runs.values()):
-        curves(task, runs, folder / "learning_curves.png")
-    print(md)
+    out = make_dirs(out, out)  # a planted link there is refused
+    test = TEST_SEEDS[:n_test]
+    for name in tqdm(names, desc="baselines", unit="task"):
+        score_controllers(TASKS[name](), out, test, command)
+    grid = cells(names, algos, seeds, scale)
+    bar = tqdm(grid, desc="runs", unit="run")
+    for task, algo, budget, seed in bar:
+        bar.set_postfix_str(f"{task.env_id} {algo} {budget:.0e} seed {seed}")
+        train_and_score(task, algo, budget, seed, out, test, command)
+    result = res.collect(out, scale)
+    result["command"] = command
+    write_atomic(out / "results.json", json.dumps(result, indent=1, default=float) + "\n")
+    if docs is not None:
+        generate_docs(result, docs)
     return result
 
 
-def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    p.add_argument("--task", choices=sorted(TASKS), default="stabilizer_irregular")
-    p.add_argument("--algos", nargs="*", choices=ALGOS, default=list(ALGOS))
+def generate_docs(result: dict[str, Any], docs: Path) -> list[Path]:
+    """Regenerate `docs`' block and its figures (`docs`' folder/img/rl_benchmark_*.png), with a
+    copy of the results file beside the page (`results/rl_benchmark.json`) that it cites."""
+    folder = docs.parent
+    copy = write_atomic(make_dirs(folder, folder / "results") / "rl_benchmark.json",
+                        json.dumps(result, indent=1, default=float) + "\n")  # fmt: skip
+    figs = res.figures(result, folder / "img")
+    block = res.markdown(result, "results/rl_benchmark.json", [f"img/{p.name}" for p in figs])
+    text = docs.read_text() if docs.is_file() else ""
+    return [write_atomic(docs, res.splice(text, block)), copy, *figs]
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="mf-envs bench rl", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)  # fmt: skip
+    p.add_argument("--all", action="store_true", help="every headline id (rl_tasks.HEADLINE)")
+    p.add_argument("--ids", nargs="+", choices=sorted(HEADLINE), help="these headline ids")
+    p.add_argument(
+        "--task",
+        nargs="+",
+        choices=sorted(TASKS),
+        default=[],
+        help="these tasks (the easy ids' too: stabilizer_resonance, gowec_regular)",
+    )
+    p.add_argument("--algos", nargs="*", choices=ALGOS, default=["ppo", "sbx_sac"],
+                   help="none: score the classical controllers only")  # fmt: skip
     p.add_argument("--seeds", nargs="+", type=int, default=list(TRAIN_SEEDS))
     p.add_argument("--out", type=Path, default=Path("bench_rl"))
-    a = p.parse_args(argv)
-    if any(s < 0 or math.isnan(s) for s in a.seeds):
+    p.add_argument("--budget-scale", type=float, default=1.0, help="x every budget (smoke run)")
+    p.add_argument("--test-seeds", type=int, default=len(TEST_SEEDS),
+                   help=f"the first N of the {len(TEST_SEEDS)} test conditions")  # fmt: skip
+    p.add_argument("--docs", type=Path, help="regenerate this page's block (docs/benchmark.md)")
+    p.add_argument("--from-results", action="store_true",
+                   help="with --docs: regenerate from OUT/results.json only (no runs)")  # fmt: skip
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(argv) if argv is not None else sys.argv[1:]
+    a = parser().parse_args(argv)
+    if a.from_results:
+        if a.docs is None:
+            raise SystemExit("--from-results needs --docs")
+        result = json.loads((a.out / "results.json").read_text())
+        generate_docs(result, a.docs)
+        return 0
+    if not a.all and not a.ids and not a.task:
+        raise SystemExit("give --all, --ids or --task")
+    if any(s < 0 for s in a.seeds):
         raise SystemExit("--seeds: training seeds must be >= 0")
-    run(a.task, a.algos, a.seeds, a.out)
+    if not (0 < a.budget_scale <= 1) or not (1 <= a.test_seeds <= len(TEST_SEEDS)):
+        raise SystemExit(f"--budget-scale in (0, 1], --test-seeds in 1..{len(TEST_SEEDS)}")
+    ids = list(HEADLINE) if a.all else (a.ids or [])
+    names = list(dict.fromkeys([HEADLINE[i] for i in ids] + a.task))
+    cmd = "mf-envs bench rl " + " ".join(shlex.quote(x) for x in argv)
+    result = run(names, a.algos, a.seeds, a.out, a.budget_scale, a.test_seeds, a.docs, cmd)
+    print(res.aggregate_table(result))
+    for env_id in result["ids"]:
+        print(f"\n{env_id}\n{res.id_table(result, env_id)}")
     return 0
 
 

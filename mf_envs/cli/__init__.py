@@ -117,7 +117,11 @@ def _add_run_commands(sub: Any) -> None:
     d.add_argument("--only", nargs="+", metavar="SYSTEM", help="run only these demo modules")
     d.set_defaults(func=_cmd_demo)
 
-    b = sub.add_parser("bench", help="benchmarks: accuracy | speed | controllers (CSV + PNG)")
+    b = sub.add_parser(
+        "bench",
+        help="benchmarks: accuracy | speed | controllers (CSV + PNG); rl: `mf-envs bench rl "
+        "--help`",
+    )
     b.add_argument("kind", choices=BENCH_KINDS)
     b.add_argument("--out", required=True, help="output folder")
     b.add_argument("--quick", action="store_true", help="a reduced ladder that runs in minutes")
@@ -144,8 +148,9 @@ def _add_train_commands(sub: Any) -> None:
     t = sub.add_parser("train", help="train a PPO agent (Stable-Baselines3) on an env")
     t.add_argument("env_id")
     t.add_argument(
-        "--algo", choices=("ppo", "sac", "td3"), default="ppo",
-        help="Stable-Baselines3 algorithm (default: %(default)s); config: configs/ALGO.yml",
+        "--algo", choices=("ppo", "sac", "td3", "sbx_sac"), default="ppo",
+        help="Stable-Baselines3 algorithm, or sbx_sac: SBX's SAC (JAX; the sbx extra) "
+        "(default: %(default)s); config: configs/ALGO.yml (sbx_sac: sac.yml)",
     )  # fmt: skip
     t.add_argument(
         "--timesteps", type=arg_int(1, MAX_TIMESTEPS), default=None,
@@ -211,6 +216,11 @@ def _written(paths: list[Path]) -> str:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    rest = list(sys.argv[1:] if argv is None else argv)
+    if rest[:2] == ["bench", "rl"]:  # the RL benchmark has its own options
+        from mf_envs.benchmarks import rl_benchmark
+
+        return rl_benchmark.main(rest[2:])
     parser = build_parser()
     args = parser.parse_args(argv)
     func: Callable[[argparse.Namespace], list[Path]] = args.func

@@ -54,14 +54,18 @@ from mf_envs.train.kwargs import resolve_activation
 
 CONFIG_DIR = Path(__file__).parent / "configs"
 DEFAULT_CONFIG = CONFIG_DIR / "ppo.yml"
-ALGOS = ("ppo", "sac", "td3")  # `mf-envs train --algo`; configs/<algo>.yml as rl-zoo3's files
+# `mf-envs train --algo`: SB3's PPO, SAC, TD3 and SBX's SAC (the JAX SB3, its update compiled;
+# the `sbx` extra), configs/<algo>.yml as rl-zoo3's files; SBX's SAC reads sac.yml (its keys are
+# SB3's, as rl-zoo3's SBX runs read hyperparams/sac.yml)
+ALGOS = ("ppo", "sac", "td3", "sbx_sac")
+CONFIG_OF = {"sbx_sac": "sac"}
 
 
 def default_config(algo: str = "ppo") -> Path:
     """The shipped rl-zoo3 file of `algo` (`configs/ppo.yml`, `sac.yml`, `td3.yml`)."""
     if algo not in ALGOS:
         raise ValueError(f"algo: one of {ALGOS}, got {algo!r}")
-    return CONFIG_DIR / f"{algo}.yml"
+    return CONFIG_DIR / f"{CONFIG_OF.get(algo, algo)}.yml"
 
 
 _ZOO_KEYS = (

@@ -1,18 +1,8 @@
-"""Saved policies (SB3 PPO, SAC, TD3): JSON + safetensors, and `load_policy` on raw env
-observations.
+"""Saved policies (SB3 PPO, SAC, TD3; SBX's SAC): `save_policy` writes a policy folder (its
+files: `train.policy_files`), `load_policy` rebuilds the policy acting on raw env observations.
 
-A policy folder (written by `mf-envs train`, shipped under `mf_envs/train/policies/<env_id>/`):
-
-- `policy.json` — what to rebuild: algorithm, spaces, `policy_kwargs` (by the whitelist of
-  `train.kwargs`: net_arch, activation by name, log_std_init, ...), `use_sde`;
-- `policy.safetensors` — the weights of SB3's `ActorCriticPolicy` (tensors only);
-- `obs_normalization.json` — the `VecNormalize` observation statistics (mean, var, epsilon, clip);
-  absent if the run did not normalise observations;
-- `evaluations.npz` — the `EvalCallback` log (learning curve, read with `allow_pickle=False`);
-- `meta.json` — env id, exact command, seed, timesteps, wall time, evaluation scores.
-
-Nothing in a policy folder is unpickled or evaluated (docs/design.md): SB3's `model.zip` keeps
-cloudpickled objects in its `data` entry that run code on load, so `load_policy` refuses it.
+Nothing in a policy folder is unpickled or evaluated (docs/design.md): the network is rebuilt
+from `policy.json` and its weights read from `policy.safetensors`.
 """
 
 from __future__ import annotations
@@ -20,90 +10,31 @@ from __future__ import annotations
 import json
 import math
 import os
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from mf_envs._files import atomic_path, check_depth, read_regular, safe_name, write_atomic
-from mf_envs._validate import check_finite, check_nonnegative, check_range
-from mf_envs.train.kwargs import (
-    activation_name,
-    check_arch_size,
-    parse_policy_kwargs,
-    resolve_activation,
+from mf_envs._files import atomic_path, write_atomic
+from mf_envs.train.kwargs import activation_name, parse_policy_kwargs, resolve_activation
+from mf_envs.train.policy_files import (  # noqa: F401  (the names importers take from here)
+    ALGOS,
+    FORMAT,
+    META_FILE,
+    NORM_FILE,
+    POLICY_FILE,
+    WEIGHTS_FILE,
+    ObsNormalization,
+    box,
+    read_description,
+    read_json,
+    read_meta,
+    refuse_pickles,
+    space_json,
+    write_meta,
 )
 
 POLICY_ROOT = Path(__file__).parent / "policies"
-POLICY_FILE = "policy.json"
-WEIGHTS_FILE = "policy.safetensors"
-NORM_FILE = "obs_normalization.json"
-META_FILE = "meta.json"
-FORMAT = "mf-envs-policy/1"
-REFUSED_SUFFIXES = (".zip", ".pkl", ".pickle", ".pt", ".pth")
-# algorithm -> (SB3 module, model class, policy class): what policy.json's "algo" may name
-ALGOS = {
-    "PPO": ("stable_baselines3", "PPO", "stable_baselines3.common.policies", "ActorCriticPolicy"),
-    "SAC": ("stable_baselines3", "SAC", "stable_baselines3.sac.policies", "SACPolicy"),
-    "TD3": ("stable_baselines3", "TD3", "stable_baselines3.td3.policies", "TD3Policy"),
-}
-MAX_JSON_BYTES = 8 << 20  # a policy folder's JSON files are a few KB
-MAX_INPUTS = 65_536  # observation entries of a policy (the envs have fewer than 200)
-
-
-@dataclass(frozen=True)
-class ObsNormalization:
-    """SB3 `VecNormalize` observation transform: clip((obs - mean) / sqrt(var + eps), +-clip).
-
-    mean, var: (obs_dim,) float64 running statistics of the raw observations.
-    """
-
-    mean: np.ndarray
-    var: np.ndarray
-    epsilon: float
-    clip_obs: float
-
-    @classmethod
-    def from_vecnormalize(cls, vn: Any) -> ObsNormalization | None:
-        if not getattr(vn, "norm_obs", False):
-            return None
-        rms = vn.obs_rms
-        return cls(np.array(rms.mean, float), np.array(rms.var, float), vn.epsilon, vn.clip_obs)
-
-    def apply(self, obs: np.ndarray) -> np.ndarray:
-        """Normalised float32 observation(s), same shape as `obs` ((obs_dim,) or (n, obs_dim))."""
-        z = (np.asarray(obs, dtype=np.float64) - self.mean) / np.sqrt(self.var + self.epsilon)
-        return np.clip(z, -self.clip_obs, self.clip_obs).astype(np.float32)
-
-    def to_json(self) -> dict[str, Any]:
-        return {
-            "mean": self.mean.tolist(),
-            "var": self.var.tolist(),
-            "epsilon": self.epsilon,
-            "clip_obs": self.clip_obs,
-        }
-
-    @classmethod
-    def from_json(cls, d: dict[str, Any], obs_dim: int | None = None) -> ObsNormalization:
-        """From `to_json`'s dict; ValueError naming the field for a missing or non-numeric field,
-        a length other than `obs_dim`, NaN/inf, a negative variance or a non-positive
-        epsilon/clip (checked here, at load, not at the first `predict`)."""
-        missing = sorted({"mean", "var", "epsilon", "clip_obs"} - set(d))
-        if missing:
-            raise ValueError(f"{NORM_FILE}: missing {missing}")
-        mean = check_finite(f"{NORM_FILE}: mean", d["mean"])
-        var = check_nonnegative(f"{NORM_FILE}: var", d["var"])
-        for name, arr in (("mean", mean), ("var", var)):
-            if arr.ndim != 1 or (obs_dim is not None and arr.shape != (obs_dim,)):
-                raise ValueError(
-                    f"{NORM_FILE}: {name} must list {obs_dim} numbers, got shape {arr.shape}"
-                )
-        eps = check_range(f"{NORM_FILE}: epsilon", d["epsilon"], 0.0, None)
-        clip = check_range(f"{NORM_FILE}: clip_obs", d["clip_obs"], 0.0, None)
-        if eps <= 0 or clip <= 0:
-            raise ValueError(f"{NORM_FILE}: epsilon and clip_obs must be > 0, got {eps}, {clip}")
-        return cls(mean, var, eps, clip)
 
 
 class PPOPolicy:
@@ -124,7 +55,7 @@ class PPOPolicy:
         policy_kwargs: dict[str, Any] | None = None,
         algo: str = "PPO",
     ) -> None:
-        self.algo = algo  # "PPO", "SAC" or "TD3" (ALGOS)
+        self.algo = algo  # "PPO", "SAC", "TD3" or "SBX_SAC" (ALGOS)
         self.policy = policy
         self.normalization = normalization
         self.meta = meta
@@ -161,7 +92,11 @@ class PPOPolicy:
             env = VecNormalize(env, norm_obs=True, norm_reward=False, clip_obs=n.clip_obs,
                                epsilon=n.epsilon)  # fmt: skip
             env.obs_rms.mean, env.obs_rms.var = n.mean.copy(), n.var.copy()
-        sde = {} if self.algo == "TD3" else {"use_sde": bool(getattr(self.policy, "use_sde", 0))}
+        sde = (
+            {}
+            if self.algo in ("TD3", "SBX_SAC")
+            else {"use_sde": bool(getattr(self.policy, "use_sde", 0))}
+        )
         model = _class(self.algo, 0)(
             "MlpPolicy", env, policy_kwargs=dict(self.policy_kwargs), device="cpu",
             **sde, **ppo_kwargs,
@@ -175,7 +110,12 @@ class PPOPolicy:
                 f"env: spaces {theirs.observation_space}, {theirs.action_space} do not fit the "
                 f"policy's {ours.observation_space}, {ours.action_space}"
             )
-        model.policy.load_state_dict(self.policy.state_dict(), strict=True)
+        if self.algo == "SBX_SAC":
+            from mf_envs.train.policy_sbx import put_sbx_state, sbx_state
+
+            put_sbx_state(model.policy, sbx_state(self.policy), "the loaded policy")
+        else:
+            model.policy.load_state_dict(self.policy.state_dict(), strict=True)
         return model
 
 
@@ -203,7 +143,7 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     folder = Path(path) if path is not None else policy_dir(env_id)
     if folder.name == POLICY_FILE:
         folder = folder.parent
-    _refuse_pickles(folder, path)
+    refuse_pickles(folder, path)
     if not os.path.lexists(folder / POLICY_FILE):
         where = "no shipped policy" if path is None else "no policy"
         raise ValueError(f"policy: {where} for {env_id} at {str(folder / POLICY_FILE)!r}")
@@ -215,7 +155,7 @@ def load_policy(env_id: str, path: str | Path | None = None) -> PPOPolicy:
     norm = None
     if os.path.lexists(norm_path):  # a FIFO or a folder there is an error, not "absent"
         obs_dim = math.prod(desc["observation_space"]["shape"])
-        stats = _read_json(norm_path)  # a FIFO, a deep or malformed file: named by it
+        stats = read_json(norm_path)  # a FIFO, a deep or malformed file: named by it
         try:
             norm = ObsNormalization.from_json(stats, obs_dim)
         except ValueError as exc:
@@ -241,62 +181,6 @@ def _need_train_extra() -> None:
         ) from exc
 
 
-def _refuse_pickles(folder: Path, path: str | Path | None) -> None:
-    """ValueError for a pickle-based policy file (SB3 model.zip, vecnormalize.pkl, torch.save)."""
-    legacy = folder if folder.suffix in REFUSED_SUFFIXES else folder / "model.zip"
-    if legacy.is_file() and (
-        folder.suffix in REFUSED_SUFFIXES or not (folder / POLICY_FILE).is_file()
-    ):
-        raise ValueError(
-            f"policy: {str(legacy)!r} is a pickle-based file (SB3 model.zip); mf-envs does not "
-            "load it because unpickling can run code. Use a folder with policy.json + "
-            "policy.safetensors (written by `mf-envs train`)"
-        )
-
-
-def read_description(folder: Path) -> dict[str, Any]:
-    """`policy.json`, checked field by field (format, policy, spaces with matching shapes and
-    finite bounds, policy_kwargs through the whitelist); ValueError naming the file."""
-    p = folder / POLICY_FILE
-    desc = _read_json(p)
-    if desc.get("format") != FORMAT or desc.get("policy") != "MlpPolicy":
-        raise ValueError(f"policy: {p} is not an {FORMAT} MlpPolicy file")
-    desc.setdefault("algo", "PPO")
-    if not isinstance(desc["algo"], str) or desc["algo"] not in ALGOS:
-        raise ValueError(f"policy: {p}: algo {desc['algo']!r} is not one of {sorted(ALGOS)}")
-    for key in ("observation_space", "action_space"):
-        space = desc.get(key)
-        if not isinstance(space, dict) or set(space) != {"shape", "low", "high"}:
-            raise ValueError(f"policy: {p}: {key} must be {{shape, low, high}}, got {space!r}")
-        shape = space["shape"]
-        if not (
-            isinstance(shape, list)
-            and 0 < len(shape) <= 3
-            and all(isinstance(n, int) and not isinstance(n, bool) and 0 < n <= 4096 for n in shape)
-        ):
-            raise ValueError(f"policy: {p}: {key}.shape must be a list of positive ints")
-        for bound in ("low", "high"):
-            b = space[bound]
-            if not isinstance(b, list) or len(b) != math.prod(shape):
-                raise ValueError(f"policy: {p}: {key}.{bound} must list {math.prod(shape)} numbers")
-            bad = [v for v in b if not _finite_number(v)]
-            if bad:
-                raise ValueError(f"policy: {p}: {key}.{bound} holds {bad[0]!r}, not a number")
-    n = math.prod(desc["observation_space"]["shape"])
-    if n > MAX_INPUTS:
-        raise ValueError(f"policy: {p}: observation_space has {n} entries, more than {MAX_INPUTS}")
-    if not isinstance(desc.get("use_sde", False), bool):
-        raise ValueError(f"policy: {p}: use_sde must be true or false")
-    try:
-        desc["policy_kwargs"] = parse_policy_kwargs(desc.get("policy_kwargs", {}))
-        n_act = math.prod(desc["action_space"]["shape"])
-        arch = desc["policy_kwargs"].get("net_arch", [64, 64])
-        check_arch_size(arch, n, n_act)  # before the network is allocated
-    except ValueError as exc:  # its message starts with the key (policy_kwargs, activation_fn)
-        raise ValueError(f"policy: {p}: {exc}") from exc
-    return desc
-
-
 def _class(algo: str, which: int) -> Any:
     """ALGOS[algo]'s model class (which=0) or policy class (which=1)."""
     import importlib
@@ -312,13 +196,18 @@ def _rebuild(folder: Path, desc: dict[str, Any]) -> Any:
     `.safetensors` is refused by the format, never run)."""
     from safetensors.torch import load_file
 
+    weights = folder / WEIGHTS_FILE
+    if desc["algo"] == "SBX_SAC":
+        from mf_envs.train.policy_sbx import rebuild_sbx
+
+        obs, act = box(desc["observation_space"]), box(desc["action_space"])
+        return rebuild_sbx(obs, act, dict(desc["policy_kwargs"]), weights)
     kwargs = resolve_activation(desc["policy_kwargs"])
     if desc["algo"] != "TD3":  # TD3's deterministic actor has no state-dependent exploration
         kwargs["use_sde"] = desc.get("use_sde", False)
     pol = _class(desc["algo"], 1)(
-        _box(desc["observation_space"]), _box(desc["action_space"]), lambda _: 0.0, **kwargs
+        box(desc["observation_space"]), box(desc["action_space"]), lambda _: 0.0, **kwargs
     )
-    weights = folder / WEIGHTS_FILE
     try:
         state = load_file(weights, device="cpu")
     except Exception as exc:  # noqa: BLE001 - safetensors raises its own SafetensorError
@@ -334,61 +223,22 @@ def _rebuild(folder: Path, desc: dict[str, Any]) -> Any:
     return pol
 
 
-def _box(d: dict[str, Any]) -> Any:
-    from gymnasium.spaces import Box
-
-    low = np.array([_num(v) for v in d["low"]], dtype=np.float32).reshape(d["shape"])
-    high = np.array([_num(v) for v in d["high"]], dtype=np.float32).reshape(d["shape"])
-    return Box(low, high, dtype=np.float32)
-
-
-def _finite_number(v: Any) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(float(v))
-
-
-def _num(v: Any) -> float:
-    if _finite_number(v):
-        return float(v)
-    raise ValueError(f"policy: space bound {v!r} is not a finite number")
-
-
-def _space_json(space: Any) -> dict[str, Any]:
-    return {
-        "shape": list(space.shape),
-        "low": [float(v) for v in np.ravel(space.low)],
-        "high": [float(v) for v in np.ravel(space.high)],
-    }
-
-
-def _read_json(p: Path) -> dict[str, Any]:
-    """The JSON object in `p`: a regular file (a FIFO is refused, not opened for reading) of at
-    most MAX_JSON_BYTES nesting at most `_files.MAX_DEPTH` deep; ValueError naming the file."""
-    data = read_regular(p, MAX_JSON_BYTES, "policy")
-    check_depth(data, f"policy: {p}")
-    try:
-        d = json.loads(data)
-    except ValueError as exc:  # JSONDecodeError and UnicodeDecodeError are ValueErrors
-        raise ValueError(f"policy: cannot read {p} ({exc})") from exc
-    if not isinstance(d, dict):
-        raise ValueError(f"policy: {p} must hold a JSON object")
-    return d
-
-
 def save_policy_files(folder: Path, model: Any, vecnorm: Any | None = None) -> list[Path]:
     """Write `policy.json`, `policy.safetensors` (and the obs statistics) of an SB3 PPO, SAC
     or TD3 model (the policy's whole state: actor and critics, for fine-tuning)."""
-    from safetensors.torch import save_file
+    from mf_envs.train.policy_sbx import is_sbx, sbx_policy_kwargs, sbx_state
 
-    pk = dict(model.policy_kwargs)
+    sbx = is_sbx(model)
+    pk = sbx_policy_kwargs(model) if sbx else dict(model.policy_kwargs)
     pk.pop("use_sde", None)  # SAC keeps it among its policy kwargs; stored as "use_sde" below
     if "activation_fn" in pk:
         pk["activation_fn"] = activation_name(pk["activation_fn"])
     desc = {
         "format": FORMAT,
-        "algo": type(model).__name__,
+        "algo": ("SBX_" if sbx else "") + type(model).__name__,
         "policy": "MlpPolicy",
-        "observation_space": _space_json(model.observation_space),
-        "action_space": _space_json(model.action_space),
+        "observation_space": space_json(model.observation_space),
+        "action_space": space_json(model.action_space),
         "policy_kwargs": parse_policy_kwargs(pk),
         "use_sde": bool(getattr(model, "use_sde", False)),
     }
@@ -396,9 +246,16 @@ def save_policy_files(folder: Path, model: Any, vecnorm: Any | None = None) -> l
         raise ValueError(f"algo: {desc['algo']} policies are not saved; use one of {sorted(ALGOS)}")
     folder.mkdir(parents=True, exist_ok=True)
     write_atomic(folder / POLICY_FILE, json.dumps(desc, indent=1) + "\n", "policy")
-    state = {k: v.detach().cpu().contiguous() for k, v in model.policy.state_dict().items()}
     with atomic_path(folder / WEIGHTS_FILE, "policy") as tmp:
-        save_file(state, tmp)
+        if sbx:
+            from safetensors.numpy import save_file as save_arrays
+
+            save_arrays(sbx_state(model.policy), tmp)
+        else:
+            from safetensors.torch import save_file
+
+            pol = model.policy
+            save_file({k: v.detach().cpu().contiguous() for k, v in pol.state_dict().items()}, tmp)
     written = [folder / POLICY_FILE, folder / WEIGHTS_FILE]
     norm = ObsNormalization.from_vecnormalize(vecnorm) if vecnorm is not None else None
     if norm is not None:
@@ -407,32 +264,6 @@ def save_policy_files(folder: Path, model: Any, vecnorm: Any | None = None) -> l
     return written
 
 
-def read_meta(folder: Path) -> dict[str, Any]:
-    """`folder/meta.json` as a dict ({} if absent); ValueError naming the file if it is not a
-    JSON object or its `env_id` is not a plain name (it names folders when a run is shipped)."""
-    p = Path(folder) / META_FILE
-    if not os.path.lexists(p):
-        return {}
-    meta = _read_json(p)
-    if "env_id" in meta:
-        safe_name(f"policy: {p}: env_id", meta["env_id"])
-    return meta
-
-
 def save_policy(folder: Path, model: Any, vecnorm: Any | None, meta: dict[str, Any]) -> list[Path]:
     """Write the policy files (`save_policy_files`) and meta.json into `folder`."""
     return [*save_policy_files(folder, model, vecnorm), write_meta(folder, meta)]
-
-
-def write_meta(folder: Path, meta: dict[str, Any]) -> Path:
-    p = folder / META_FILE
-    write_atomic(p, json.dumps(meta, indent=2, default=_jsonable) + "\n", "policy")
-    return p
-
-
-def _jsonable(v: Any) -> Any:
-    if isinstance(v, np.generic):
-        return v.item()
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    return str(v)

@@ -27,13 +27,13 @@ from typing import Any
 import numpy as np
 
 from mf_envs._files import atomic_path, write_atomic
-from mf_envs.train.policy import (
+from mf_envs.train.policy_files import (
     FORMAT,
     META_FILE,
     NORM_FILE,
     POLICY_FILE,
     WEIGHTS_FILE,
-    _space_json,
+    space_json,
 )
 
 RLLIB_SMALL_NUMBER = 1e-6  # ray.rllib.utils.numpy.SMALL_NUMBER, added to the filter's std
@@ -71,8 +71,8 @@ def export_policy(algo: Any, env: Any, folder: Path, meta: dict[str, Any]) -> li
         "format": FORMAT,
         "algo": "PPO",
         "policy": "MlpPolicy",
-        "observation_space": _space_json(env.observation_space),
-        "action_space": _space_json(env.action_space),
+        "observation_space": space_json(env.observation_space),
+        "action_space": space_json(env.action_space),
         "policy_kwargs": kwargs,
         "use_sde": False,
         "source": "rllib",

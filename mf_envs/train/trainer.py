@@ -13,6 +13,7 @@ import importlib.util
 import json
 import platform
 import shutil
+import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -44,7 +45,7 @@ from mf_envs.train.provenance import env_record
 
 # unseen seeds: training envs use seed, seed + 1, ...; the EvalCallback env seed + 10_000
 EVAL_SEEDS = tuple(range(1000, 1005))
-EVALS_PER_RUN = 12  # EvalCallback checks per run (learning-curve points)
+EVALS_PER_RUN = 12  # evaluation checks per run (learning-curve points)
 SHIP_FILES = (
     "policy.json",
     "policy.safetensors",
@@ -88,14 +89,18 @@ def train(
     overrides: dict[str, Any] | None = None,
     force: bool = False,
     algo: str = "ppo",
+    evaluations: int = EVALS_PER_RUN,
 ) -> TrainResult:
     """Train `algo` (SB3 "ppo", "sac" or "td3") on `env_id` with the YAML hyperparameters
     (default `configs/<algo>.yml`); returns the run folder and files.
 
     `overrides`: algorithm kwargs replacing the config's (tests use a tiny `policy_kwargs`);
-    `eval_episodes`: per EvalCallback check (rl-zoo3's default, 5); `vec_env`: "auto" (the env's
+    `eval_episodes`: per evaluation check (rl-zoo3's default, 5; one per row of the
+    evaluation env); `vec_env`: "auto" (the env's
     native vector env where it has one, else `DummyVecEnv`) or "dummy" (the zoo's `--vec-env
-    dummy`); `final_eval_seeds`: episodes scored after training for meta.json (empty: skip).
+    dummy`); `evaluations`: checks during training (the learning curve and the `best/` policy;
+    0: none, the benchmark's setting); `final_eval_seeds`: episodes scored after training for
+    meta.json (empty: skip).
     The run is written into a temporary folder beside `<out>/<env_id>/seed<S>/` (SAC and TD3:
     `<out>/<env_id>/<algo>/seed<S>/`) and moved there when complete; an existing run folder is
     replaced only with `force` (ValueError otherwise).
@@ -106,15 +111,17 @@ def train(
     tb_dir = _tensorboard_dir(out, env_id) if tensorboard else None
     if seed < 0:
         raise ValueError(f"seed: must be >= 0, got {seed}")
+    if evaluations < 0:
+        raise ValueError(f"evaluations: must be >= 0, got {evaluations}")
     final = Path(out) / env_id / ("" if algo == "ppo" else algo) / f"seed{seed}"
     if progress_bar and importlib.util.find_spec("rich") is None:
         progress_bar = False  # SB3's bar needs tqdm and rich; train without it
     with staged_dir(final, replace=True, force=force, root=Path(out)) as run_dir:
         torch.set_num_threads(1)  # tiny MLPs: one thread is fastest and leaves the other core free
 
-        venv, vec_kind, eval_env = _make_envs(hp, seed, prefer_native=vec_env == "auto")
+        venv, vec_kind, eval_env = _make_envs(hp, seed, vec_env == "auto", eval_episodes)
         model = _model(Algo, hp, venv, seed, tb_dir, overrides)
-        meta_run = _learn(model, eval_env, run_dir, hp, total, eval_episodes, progress_bar)
+        meta_run = _learn(model, eval_env, run_dir, hp, (total, evaluations), progress_bar)
         command = command or _command(env_id, timesteps, seed, config, eval_episodes, vec_env, algo)
         meta = {"env_id": env_id, "algo": algo, "command": command, "seed": seed,
                 **meta_run.pop("run"), "vectorization": f"{vec_kind} x{hp.n_envs}",
@@ -165,26 +172,18 @@ def _learn(
     eval_env: Any,
     run_dir: Path,
     hp: Any,
-    total: int,
-    eval_episodes: int,
+    budget: tuple[int, int],
     progress_bar: bool,
 ) -> dict[str, Any]:
-    """`model.learn` for `total` steps with an EvalCallback (EVALS_PER_RUN checks, the best
-    policy saved to run_dir/best); {"run": timesteps, wall time, steps/s} plus the best
-    checkpoint's step and return."""
-    from stable_baselines3.common.callbacks import EvalCallback
+    """`model.learn` for `budget` = (steps, checks) with a `PeriodicEvaluation` (the checks, the
+    best policy saved to run_dir/best; no checks: none); {"run": timesteps, wall time,
+    steps/s} plus the best checkpoint's step and return."""
+    from mf_envs.train.callbacks import PeriodicEvaluation
 
     n_steps = int(getattr(model, "n_steps", 1))  # PPO: one rollout; SAC/TD3: any step
-    on_best = _SaveNormalization(run_dir / "best")
-    eval_cb = EvalCallback(
-        eval_env,
-        n_eval_episodes=eval_episodes,
-        eval_freq=max(total // (EVALS_PER_RUN * hp.n_envs), n_steps),
-        log_path=str(run_dir),
-        callback_on_new_best=on_best,
-        deterministic=True,
-        verbose=0,
-    )
+    total, checks = budget
+    freq = max(total // (max(checks, 1) * hp.n_envs), n_steps) if checks > 0 else 0
+    eval_cb = PeriodicEvaluation(eval_env, freq, run_dir, run_dir / "best")
     t0 = time.perf_counter()
     model.learn(total_timesteps=total, callback=eval_cb, progress_bar=progress_bar)
     wall = time.perf_counter() - t0
@@ -193,8 +192,8 @@ def _learn(
         "wall_time_s": round(wall, 2),
         "steps_per_s": round(model.num_timesteps / wall, 1),
     }
-    best = {"best_timestep": getattr(on_best, "best_timestep", None),
-            "best_eval_return": float(eval_cb.best_mean_reward)}  # fmt: skip
+    best_return = float(eval_cb.best_mean_reward) if eval_cb.timesteps else None
+    best = {"best_timestep": eval_cb.best_timestep, "best_eval_return": best_return}
     return {"run": run, **best}
 
 
@@ -259,7 +258,19 @@ def ship_run(run_dir: str | Path, root: Path = POLICY_ROOT) -> list[Path]:
 
 
 def _algorithm(algo: str) -> Any:
-    """The SB3 class of `algo` (one of ALGOS, checked by the caller)."""
+    """The SB3 (or, "sbx_<name>", SBX) class of `algo` (one of ALGOS, checked by the caller);
+    ModuleNotFoundError naming the `sbx` extra if SBX is missing."""
+    if algo.startswith("sbx_"):
+        from mf_envs._extras import install_hint
+
+        try:
+            import sbx
+        except ModuleNotFoundError as exc:
+            raise ModuleNotFoundError(
+                f"algo {algo}: needs the sbx extra ({exc.name} is missing): {install_hint('sbx')}",
+                name=exc.name,
+            ) from exc
+        return getattr(sbx, algo.removeprefix("sbx_").upper())
     import stable_baselines3
 
     return getattr(stable_baselines3, algo.upper())
@@ -291,8 +302,11 @@ def _budget(hp: Hyperparams, timesteps: int | None, eval_episodes: int, vec_env:
     return total
 
 
-def _make_envs(hp: Hyperparams, seed: int, prefer_native: bool) -> tuple[Any, str, Any]:
-    """(training VecEnv, its vectorisation label, 1-env evaluation VecEnv on default parameters)."""
+def _make_envs(
+    hp: Hyperparams, seed: int, prefer_native: bool, eval_rows: int = 1
+) -> tuple[Any, str, Any]:
+    """(training VecEnv, its vectorisation label, evaluation VecEnv on default parameters with
+    `eval_rows` envs: the EvalCallback's episodes run side by side, one per row)."""
     from mf_envs.train.vec import make_train_env
 
     wrappers = [
@@ -312,7 +326,7 @@ def _make_envs(hp: Hyperparams, seed: int, prefer_native: bool) -> tuple[Any, st
     # the same wrapper layout as training (SB3 syncs the VecNormalize stats layer by layer)
     eval_env, _ = make_train_env(
         hp.env_id,
-        1,
+        eval_rows,
         seed + 10_000,
         hp.env_kwargs,
         normalize=norm_eval,
@@ -321,24 +335,6 @@ def _make_envs(hp: Hyperparams, seed: int, prefer_native: bool) -> tuple[Any, st
     if norm_eval is not None:
         eval_env.training = False
     return venv, kind, eval_env
-
-
-class _SaveNormalization:
-    """EvalCallback `callback_on_new_best`: save the best policy (JSON + safetensors) with the
-    VecNormalize statistics of that moment into `folder`."""
-
-    def __new__(cls, folder: Path) -> Any:
-        from stable_baselines3.common.callbacks import BaseCallback
-
-        from mf_envs.train.policy import save_policy_files
-
-        class SaveNorm(BaseCallback):
-            def _on_step(self) -> bool:
-                self.best_timestep = int(self.num_timesteps)
-                save_policy_files(folder, self.model, self.model.get_vec_normalize_env())
-                return True
-
-        return SaveNorm()
 
 
 def _tensorboard_dir(out: str | Path, env_id: str) -> str:
@@ -393,4 +389,9 @@ def _versions() -> dict[str, str]:
         "torch": torch.__version__,
         "gymnasium": gym.__version__,
         "numpy": numpy.__version__,
+        **{name: _version_of(name) for name in ("sbx", "jax") if name in sys.modules},
     }
+
+
+def _version_of(module: str) -> str:
+    return str(getattr(sys.modules[module], "__version__", "unknown"))

@@ -113,9 +113,14 @@ def split_infos(infos: dict[str, Any], n: int) -> list[dict[str, Any]]:
                 if mask[i]:
                     out[i][key] = sub
             continue
-        for i in range(n):
-            if mask[i]:
-                out[i][key] = value[i]
+        # 1-D arrays as Python scalars (one C call); rows of an n-D array stay arrays
+        values = value.tolist() if isinstance(value, np.ndarray) and value.ndim == 1 else value
+        if isinstance(mask, np.ndarray) and mask.all():
+            for d, v in zip(out, values, strict=True):
+                d[key] = v
+            continue
+        for i in np.flatnonzero(mask):
+            out[i][key] = values[i]
     return out
 
 
