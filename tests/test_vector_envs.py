@@ -491,38 +491,47 @@ def test_row_blocks_share_rows_so_that_blocks_end_together() -> None:
     assert rb.bounds() == [0, 600, 1000]
 
 
+_FORK_SCRIPT = """
+import os, signal, sys, time
+import gymnasium as gym, numpy as np
+import mf_envs  # noqa: F401
+kw = {"episode_seconds": 0.3, "num_threads": 2}
+def make():
+    return gym.make_vec("GyroStabilizer-v0", num_envs=300, vectorization_mode="vector_entry_point",
+                        **kw)
+parent = make()
+parent.reset(seed=4)
+acts = np.random.default_rng(0).uniform(-1.2, 1.2, (10, 300, 1)).astype(np.float32)
+ref = [parent.step(a)[0] for a in acts]
+pid = os.fork()
+if pid == 0:  # the child: exit code 0 only if it ran and matched
+    ok = False
+    try:
+        child = make()
+        child.reset(seed=4)
+        ok = all(np.array_equal(child.step(a)[0], r) for a, r in zip(acts, ref))
+    finally:
+        os._exit(0 if ok else 3)
+for _ in range(600):  # a child stuck on its parent's (absent) worker threads: fail, not hang
+    done, status = os.waitpid(pid, os.WNOHANG)
+    if done:
+        sys.exit(os.waitstatus_to_exitcode(status))
+    time.sleep(0.1)
+os.kill(pid, signal.SIGKILL)
+sys.exit(4)
+"""
+
+
 def test_stabilizer_threaded_env_survives_fork() -> None:
     """A process forked after the worker threads started (it has none of them) steps its
-    threaded vector env on its own workers, with the parent's results."""
-    import os
+    threaded vector env on its own workers, with the parent's results. Run in a fresh
+    interpreter: a test worker that has imported JAX (the sbx extra) must not fork."""
+    import subprocess
+    import sys
 
-    kw = {"episode_seconds": 0.3, "num_threads": 2}
-    parent = make_vec(ENV_STAB, 300, **kw)
-    parent.reset(seed=4)
-    acts = actions(parent, 10)
-    ref = [parent.step(a)[0] for a in acts]
-    pid = os.fork()
-    if pid == 0:  # the child: exit code 0 only if it ran and matched
-        ok = False
-        try:
-            child = make_vec(ENV_STAB, 300, **kw)
-            child.reset(seed=4)
-            ok = all(np.array_equal(child.step(a)[0], r) for a, r in zip(acts, ref))
-        finally:
-            os._exit(0 if ok else 3)
-    import signal
-    import time
-
-    for _ in range(600):  # a child stuck on its parent's (absent) worker threads: fail, not hang
-        done, status = os.waitpid(pid, os.WNOHANG)
-        if done:
-            break
-        time.sleep(0.1)
-    else:
-        os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
-        pytest.fail("the forked child did not finish in 60 s")
-    assert os.waitstatus_to_exitcode(status) == 0
+    out = subprocess.run([sys.executable, "-c", _FORK_SCRIPT], capture_output=True, text=True,
+                         timeout=600)  # fmt: skip
+    assert out.returncode == 0, (out.returncode, out.stderr[-2000:])
 
 
 def test_inchworm_native_vector_env_runs_the_friction_scene() -> None:
