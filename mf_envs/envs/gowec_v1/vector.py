@@ -57,7 +57,6 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ENERGY,
     state_values,
 )
-from mf_envs.physics.gowec.hydro.gimbal import SURVIVAL_LATCHED
 from mf_envs.physics.gowec.hydro.sea import (
     N_LOADS,
     drag_velocity_coefficients,
@@ -181,7 +180,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
             idx, gimbal, self.Y, self._steps, a[:9], sea["om"], sea["cp"], sea["cr"], sea["dk"],
             a[13:], sea["amp"], sea["eps"], self._vals, self._lo, self._hi, self._obs,
             env.preview_times, env.model.survival_index(),
-            SURVIVAL_LATCHED if env.scene.beyond_range else 0.0,
+            env.survival_at_reset(),
         )  # fmt: skip
         return self._reset_infos(idx)
 
