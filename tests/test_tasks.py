@@ -164,12 +164,12 @@ def test_the_best_baseline_is_below_90_percent_of_the_headline_ceiling(task_name
 
 
 # ------------------------------------------------------- observation slots zero in a scene
-def _obs_range(env_id: str, **kwargs) -> np.ndarray:
+def _obs_range(env_id: str, steps: int = 300, **kwargs) -> np.ndarray:
     env = gym.make(env_id, **kwargs)
     obs, _ = env.reset(seed=0)
     rng = np.random.default_rng(0)
     lo, hi = obs.copy(), obs.copy()
-    for _ in range(300):
+    for _ in range(steps):
         obs, *_ = env.step(rng.uniform(-1, 1, env.action_space.shape).astype(np.float32))
         lo, hi = np.minimum(lo, obs), np.maximum(hi, obs)
     env.close()
@@ -189,12 +189,15 @@ def test_slots_zero_in_a_tasks_scene_carry_the_motion_of_another(env_id, zero, s
     """Why these slots stay (docs/api.md, "Observation slots"): the hull's rates about the
     axes the head-on wave does not excite (and FloatingGOWEC's roll) are zero to round-off in
     the id's scene under random actions, and carry the motion in an oblique sea (or with one
-    gyro unit, whose reaction rolls the hull); every other slot moves in the id's scene."""
+    gyro unit, whose reaction rolls the hull, over 20 s: past the wave's 10 s ramp, since random
+    torque sends FloatingGOWEC's gimbal into its stops and the device into survival, where the
+    braked gimbal no longer rolls the hull by itself); every other slot moves in the id's
+    scene."""
     still = _obs_range(env_id)
     assert np.all(still[zero] < 1e-9)
     others = np.delete(still, zero)
     assert np.all(others > 1e-4)
-    assert np.all(_obs_range(env_id, **scene)[zero] > 1e-4)
+    assert np.all(_obs_range(env_id, 1000, **scene)[zero] > 1e-4)
 
 
 @pytest.mark.parametrize("env_id", ["GyroStabilizer-v0", "GyroStabilizer-JONSWAP-v0",

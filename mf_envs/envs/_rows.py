@@ -13,7 +13,8 @@ from typing import Any
 
 import numpy as np
 
-ONE_ROW = np.ones(1, dtype=bool)  # the active mask of a single env, row 0 of a batch of one
+# a single env is row SINGLE of a batch of one, stepped with the active mask ONE_ROW
+SINGLE, ONE_ROW = 0, np.ones(1, dtype=bool)
 _POOL: dict[str, Any] = {"pid": None, "workers": [], "lock": None}  # `_workers`
 
 

@@ -11,7 +11,7 @@ from gymnasium import spaces
 from mf_envs._validate import (
     check_range,
 )
-from mf_envs.envs._rows import ONE_ROW
+from mf_envs.envs._rows import ONE_ROW, SINGLE
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec import build, rows, spec
 from mf_envs.envs.gowec.render import wave_frame
@@ -206,26 +206,31 @@ class GOWECEnv(MFEnv):
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         b = self.rows
-        b.Mg[0] = self._scalar_action(action) * self.max_generator_torque
-        rows.step_rows(0, 1, ONE_ROW, b, self.site)
-        reward, obs = float(b.reward[0]), b.obs[0].copy()
-        truncated = bool(b.steps[0] >= self.max_steps)
-        if not b.ok[0]:
+        b.Mg[SINGLE] = self._scalar_action(action) * self.max_generator_torque
+        rows.step_rows(SINGLE, SINGLE + 1, ONE_ROW, b, self.site)
+        reward, obs = float(b.reward[SINGLE]), b.obs[SINGLE].copy()
+        truncated = bool(b.steps[SINGLE] >= self.max_steps)
+        if not b.ok[SINGLE]:
             info = {"power": 0.0, "reward_terms": {"energy": reward}, "overspeed": False}
             return self._finish_step(obs, reward, False, truncated, info, False)
-        self._last_power = power = float(b.energy[0]) / self.control_dt
+        self._last_power = power = float(b.energy[SINGLE]) / self.control_dt
         info = spec.step_info(power, *self._info_state(), self._t, reward)
-        info["overspeed"] = overspeed = bool(b.overspeed[0])
+        info["overspeed"] = overspeed = bool(b.overspeed[SINGLE])
         return self._step_ok(obs, reward, overspeed, truncated, info)
 
     # the state of row 0 (views: tests perturb them)
-    state = property(lambda self: self.rows.x[0], doc="(phi rad, phi' rad/s), row 0's view")
-    _t = property(lambda self: float(self.rows.t[0]))
+    state = property(lambda self: self.rows.x[SINGLE], doc="(phi rad, phi' rad/s), row 0's view")
+    _t = property(lambda self: float(self.rows.t[SINGLE]))
 
     def _info_state(self) -> tuple[float, float, float, float]:
         """(phi, phi', w1, eta) of row 0 as floats (`spec.step_info`)."""
         b = self.rows
-        return float(b.x[0, 0]), float(b.x[0, 1]), float(b.w[0, 0]), float(b.eta[0])
+        return (
+            float(b.x[SINGLE, 0]),
+            float(b.x[SINGLE, 1]),
+            float(b.w[SINGLE, 0]),
+            float(b.eta[SINGLE]),
+        )
 
     def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
         angle = 4.0 * math.pi
@@ -259,18 +264,23 @@ class GOWECEnv(MFEnv):
             self.model = self._model0.with_phases([phase])
         self.wave = self.model.wave
         b, m = self.rows, self.model
-        b.amp[0], b.om[0], b.eps[0], b.k[0] = self.wave.amplitudes, self.wave.omegas, m._eps, m._k
-        b.psid[0], b.dt[0], b.n_sub[0] = m.psid, self.physics_dt, self.n_substeps
-        b.cdt[0], b.scale[0] = self.control_dt, self.reward_scale
-        rows.reset_row(0, phi, phid, float(self.wave.elevation(0.0)), b, self.site)
+        b.amp[SINGLE], b.om[SINGLE], b.eps[SINGLE], b.k[SINGLE] = (
+            self.wave.amplitudes,
+            self.wave.omegas,
+            m._eps,
+            m._k,
+        )
+        b.psid[SINGLE], b.dt[SINGLE], b.n_sub[SINGLE] = m.psid, self.physics_dt, self.n_substeps
+        b.cdt[SINGLE], b.scale[SINGLE] = self.control_dt, self.reward_scale
+        rows.reset_row(SINGLE, phi, phid, float(self.wave.elevation(0.0)), b, self.site)
         self._last_power = 0.0
         info = spec.step_info(0.0, *self._info_state(), 0.0, 0.0)
         info["overspeed"] = False
-        return b.obs[0].copy(), info
+        return b.obs[SINGLE].copy(), info
 
     def _draw_frame(self) -> np.ndarray:
         R = self.wave.buoy_motion(self._t)[0] if "buoy_rocking" in self.effects else np.eye(3)
-        phi, P = float(self.rows.x[0, 0]), self._last_power
+        phi, P = float(self.rows.x[SINGLE, 0]), self._last_power
         text = f"t = {self._t:5.1f} s   phi = {math.remainder(phi, 2 * math.pi):+.2f} rad"
         text += f"   P = {P / 1e3:.2f} kW"
         return wave_frame(

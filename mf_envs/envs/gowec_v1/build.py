@@ -48,12 +48,6 @@ class Scene:
     drag_coefficient: float  # quadratic drag C_d (0 = none)
     pitch_limit: float  # rad: |theta| or |rho| beyond it puts the device in survival
     wave_ramp: float  # s: the incident wave ramps in over it
-    sea_height: float  # m: Hs of an irregular sea, the wave height 2 a of a regular wave
-
-    @property
-    def beyond_range(self) -> bool:
-        """The sea is higher than the device's operating range (met in survival)."""
-        return self.sea_height > DEVICES[self.device].max_operating_height
 
 
 def device_of(kw: dict[str, Any]) -> FloatingDevice:
@@ -72,10 +66,9 @@ def build(kw: dict[str, Any]) -> Scene:
     amplitude = check_range("wave_amplitude", kw["wave_amplitude"], 1e-6, 30.0)
     direction = check_range("wave_direction", kw["wave_direction"], -10.0, 10.0)
     irregular = kw["significant_wave_height"] is not None
-    height = 2.0 * amplitude
     if irregular:
         hs = check_range("significant_wave_height", kw["significant_wave_height"], 1e-6, 30.0)
-        amplitude, height = hs / (2.0 * math.sqrt(2.0)), hs
+        amplitude = hs / (2.0 * math.sqrt(2.0))
     # both periods are checked whichever sea is used (a bad one is an error either way)
     periods = {n: check_range(n, kw[n], 0.5, 60.0) for n in ("wave_period", "peak_period")}
     spectrum = check_choice("spectrum", kw["spectrum"], SPECTRA)
@@ -93,8 +86,24 @@ def build(kw: dict[str, Any]) -> Scene:
         check_range("max_gimbal_rate", kw["max_gimbal_rate"], 1e-6),
         kw["device"], check_range("drag_coefficient", kw["drag_coefficient"], 0.0, 100.0),
         check_range("pitch_limit", kw["pitch_limit"], 1e-3, 1.0),
-        check_range("wave_ramp", kw["wave_ramp"], 0.0, 1e4), height,
+        check_range("wave_ramp", kw["wave_ramp"], 0.0, 1e4),
     )  # fmt: skip
+
+
+def draw_wave(irregular: bool, amplitude: float, period: float, direction: float, spectrum: str,
+              gamma: float, n_components: int, omega_max: float,
+              rng: np.random.Generator) -> waves.WaveField:  # fmt: skip
+    """The sea of a reset: an irregular sea of Hs = 2 sqrt 2 a, peak period `period` and
+    n_components between 0.3 x its peak frequency and omega_max (rad/s, the hull table's
+    top), or a regular wave of a random phase."""
+    if not irregular:
+        return waves.regular_wave(amplitude, period, direction,
+                                  phase=float(rng.uniform(0.0, 2.0 * math.pi)))  # fmt: skip
+    fn = SPECTRA[spectrum]
+    spec_fn = (lambda w, h, tp: fn(w, h, tp, gamma)) if spectrum == "jonswap" else fn
+    return waves.IrregularSea(spec_fn, 2.0 * math.sqrt(2.0) * amplitude, period, n_components,
+                              rng, direction, omega_range=(0.3 * 2 * math.pi / period,
+                                                           omega_max))  # fmt: skip
 
 
 def observation(max_gimbal_rate: float, wave_preview: Any) -> tuple[np.ndarray, spaces.Box]:

@@ -41,7 +41,6 @@ AVAILABLE_EFFECTS = {
 }
 DEFAULT_EFFECTS = DEVICES[DEFAULT_DEVICE].effects  # a device's own: `devices.FloatingDevice`
 _P = GOWECParams()
-SPECTRA = build.SPECTRA
 
 
 class GOWECV1Env(MFEnv):
@@ -238,7 +237,6 @@ class GOWECV1Env(MFEnv):
         self.state = y
         reward = float(self._vals[hb.V_ENERGY] * self.energy_scale)  # net electrical energy
         info = self._info_from(self._vals)
-        # ending early must not pay: the rotors' running loss of the steps left is charged
         shut = -self.shutdown_energy(self._steps) * self.energy_scale if over or out else 0.0
         info["reward_terms"] = {"net_electrical_energy": reward, "shutdown_loss": shut}
         reward += shut
@@ -248,13 +246,18 @@ class GOWECV1Env(MFEnv):
         return self._finish_step(obs, reward, over or out, truncated, info, True)
 
     def gimbal_stroke(self) -> float:
-        """The gimbal's stroke (rad): the end stops' angle plus the cushion's travel (inf:
-        none); passing it ends the episode (`stroke_end`)."""
+        """The gimbal's stroke (rad, end stops + cushion travel; inf: none): past it, a failure."""
         return float(self.model.p.pto[PTO_STROKE])
 
     def survival(self) -> bool:
         """The supervisor holds the device in survival (`physics.gowec.hydro.gimbal`)."""
         return bool(self.state[self.model.survival_index()] > 0.0)
+
+    def survival_at_reset(self) -> float:
+        """The supervisor's timer (s) at a reset: latched for the episode when the sea (Hs, or
+        a regular wave's height 2 a) is above the device's operating range, else 0."""
+        height = 2.0 * self.wave_amplitude * (math.sqrt(2.0) if self.irregular else 1.0)
+        return SURVIVAL_LATCHED if height > DEVICES[self.device].max_operating_height else 0.0
 
     def rotor_loss_power(self) -> float:
         """Rotor loss (W) while the rotor spins, else 0."""
@@ -267,64 +270,36 @@ class GOWECV1Env(MFEnv):
         return 0.5 * self.model.units * p.gyro[0] * p.psid**2
 
     def shutdown_energy(self, steps: Any) -> Any:
-        """Energy (J) a failure (overspeed, stroke end) is charged for the episode's steps left
-        after `steps` (int or array): the most the device could have drawn over them, the rotor
-        loss plus every drive motoring at its power limit (n P_max / eta_m). The net
-        electrical energy of any step is at least minus this rate (`gimbal.pto_torque`
-        limits |M_g phi'| <= P_max), so no continuation is worse than the charge: ending early
-        never pays."""
+        """Energy (J) a failure is charged for the steps left after `steps` (int or array): the
+        most the device could draw over them, rotor loss + n P_max / eta_m (the drive limits
+        |M_g phi'| <= P_max): no continuation costs more, so ending early never pays."""
         rate = self.rotor_loss_power() + self.model.units * self.max_generator_power / self.eta_m
         return rate * self.control_dt * np.maximum(self.max_steps - steps, 0)
 
     @property
     def _consts(self) -> tuple:
-        """(rotor loss W, obs bounds, (max gimbal rate, stroke), the survival timer's index in the
-        state), rebuilt when the public
-        attributes they come from change (e.g. domain randomisation)."""
+        """(rotor loss W, obs bounds, (max gimbal rate, stroke), the survival timer's index),
+        rebuilt when the attributes they come from change (e.g. domain randomisation)."""
         sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
         if self._consts_key != key:
             lim = (self.max_gimbal_rate, self.gimbal_stroke())
-            self._consts_val, self._consts_key = (
-                (self.rotor_loss_power(), sp.low, sp.high, lim, self.model.survival_index()),
-                key,
-            )
+            self._consts_val = (self.rotor_loss_power(), sp.low, sp.high, lim,
+                                self.model.survival_index())  # fmt: skip
+            self._consts_key = key
         return self._consts_val
 
     def _check_reset_options(self, opts: dict[str, Any]) -> dict[str, Any]:
-        lim = {
-            "buoy_pitch": spec.MAX_BUOY_ANGLE,
-            "buoy_roll": spec.MAX_BUOY_ANGLE,
-            "gimbal_angle": 1e3,
-            "gimbal_rate": self.max_gimbal_rate,
-        }
+        lim = {"buoy_pitch": spec.MAX_BUOY_ANGLE, "buoy_roll": spec.MAX_BUOY_ANGLE,
+               "gimbal_angle": 1e3, "gimbal_rate": self.max_gimbal_rate}  # fmt: skip
         for k in opts:
             opts[k] = check_range(k, opts[k], -lim[k], lim[k])
         return opts
 
     def _start(self, opts: dict[str, Any]) -> tuple[np.ndarray, dict[str, Any]]:
         rng = self.np_random
-        if self.irregular:
-            hs = 2.0 * math.sqrt(2.0) * self.wave_amplitude
-            fn = SPECTRA[self.spectrum]
-            spec_fn = (
-                (lambda w, h, tp: fn(w, h, tp, self.gamma)) if self.spectrum == "jonswap" else fn
-            )
-            self.wave = waves.IrregularSea(
-                spec_fn,
-                hs,
-                self.wave_period,
-                self.n_components,
-                rng,
-                self.wave_direction,
-                omega_range=(0.3 * 2 * math.pi / self.wave_period, float(self.hull.omega[-1])),
-            )
-        else:
-            self.wave = waves.regular_wave(
-                self.wave_amplitude,
-                self.wave_period,
-                self.wave_direction,
-                phase=float(rng.uniform(0.0, 2.0 * math.pi)),
-            )
+        self.wave = build.draw_wave(self.irregular, self.wave_amplitude, self.wave_period,
+                                    self.wave_direction, self.spectrum, self.gamma,
+                                    self.n_components, float(self.hull.omega[-1]), rng)  # fmt: skip
         self.model.set_sea(self.wave)
         self.state = self.model.initial_state(
             opts.get("buoy_pitch", 0.0),
@@ -334,14 +309,9 @@ class GOWECV1Env(MFEnv):
         )
         self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
-        if self.scene.beyond_range:  # the supervisor meets a sea beyond range in survival
-            self.state[self.model.survival_index()] = SURVIVAL_LATCHED
-        info.update(
-            reward_terms={"net_electrical_energy": 0.0, "shutdown_loss": 0.0},
-            overspeed=False,
-            stroke_end=False,
-            survival=bool(self.state[self.model.survival_index()] > 0.0),
-        )
+        self.state[self.model.survival_index()] = self.survival_at_reset()
+        info.update(reward_terms={"net_electrical_energy": 0.0, "shutdown_loss": 0.0},
+                    overspeed=False, stroke_end=False, survival=self.survival())  # fmt: skip
         return self._get_obs(), info
 
     def _info(self, p_el: float, p_mech: float, tau: float) -> dict[str, Any]:

@@ -57,7 +57,6 @@ from mf_envs.physics.gowec.hydro.batch import (
     V_ENERGY,
     state_values,
 )
-from mf_envs.physics.gowec.hydro.gimbal import SURVIVAL_LATCHED
 from mf_envs.physics.gowec.hydro.sea import (
     N_LOADS,
     drag_velocity_coefficients,
@@ -181,8 +180,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
             sea["dk"][i] = dk
         a = env.model._args()
         rows_sea = tuple(sea[k] for k in ("om", "cp", "cr", "dk", "amp", "eps"))
-        supervisor = (env.model.survival_index(),
-                      SURVIVAL_LATCHED if env.scene.beyond_range else 0.0)  # fmt: skip
+        supervisor = (env.model.survival_index(), env.survival_at_reset())
         reset_rows(
             idx, gimbal, self.Y, self._steps, a[:9], a[13:], rows_sea, self._vals,
             (self._lo, self._hi, env.preview_times), self._obs, supervisor,

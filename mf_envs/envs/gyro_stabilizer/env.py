@@ -10,7 +10,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
-from mf_envs.envs._rows import ONE_ROW
+from mf_envs.envs._rows import ONE_ROW, SINGLE
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gyro_stabilizer import build, render, rows, spec
 from mf_envs.physics.ship.coupling import SwayRollYaw
@@ -212,7 +212,7 @@ class GyroStabilizerEnv(MFEnv):
         self.observation_space = spaces.Box(-OBS_HIGH, OBS_HIGH, dtype=np.float32)
         # the env is row 0 of a batch of one: the vector env's kernels step and reset it
         self.rows = rows.alloc_rows(1, (1, 2), self.physics_dt, self.n_substeps)
-        self.rows.P[0] = rows.pack(self.scene, 0.0)
+        self.rows.P[SINGLE] = rows.pack(self.scene, 0.0)
         self._task = rows.Task(self.roll_scale, self.effort_weight, self.control_dt)
         self._energy = 0.0
         # what the controller sees: opt-in effects, nothing to do per step when both are off
@@ -239,28 +239,28 @@ class GyroStabilizerEnv(MFEnv):
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         b = self.rows
-        b.u[0] = spec.precession_command(self._scalar_action(action), self.max_precession_rate)
-        rows.step_rows(0, 1, ONE_ROW, b, self._task)
-        obs = b.obs[0].copy()  # clipped to the observation bounds
+        b.u[SINGLE] = spec.precession_command(self._scalar_action(action), self.max_precession_rate)
+        rows.step_rows(SINGLE, SINGLE + 1, ONE_ROW, b, self._task)
+        obs = b.obs[SINGLE].copy()  # clipped to the observation bounds
         info = rows.info_of(b.cols[:, 0])
         self._energy = info["drive_energy"]
-        reward, ok = float(b.reward[0]), bool(b.ok[0])
-        truncated = bool(b.steps[0] >= self.max_steps)
+        reward, ok = float(b.reward[SINGLE]), bool(b.ok[SINGLE])
+        truncated = bool(b.steps[SINGLE] >= self.max_steps)
         if self._sensed and ok:
             obs = self._sense(obs)
         if not ok:
             return self._finish_step(obs, reward, False, truncated, info, False)
         if self.render_mode is not None:  # what render() draws if the state later blows up
-            self._frame_state = (b.R[0].copy(), float(b.y[0, 3]), float(b.t[0]))
+            self._frame_state = (b.R[SINGLE].copy(), float(b.y[SINGLE, 3]), float(b.t[SINGLE]))
         return self._step_ok(obs, reward, False, truncated, info)
 
     # the state of row 0 (views: tests and baselines read and perturb them)
-    _y = property(lambda self: self.rows.y[0])
-    _R = property(lambda self: self.rows.R[0])
-    _P = property(lambda self: self.rows.P[0])
-    _tab = property(lambda self: self.rows.tab[0])
-    _out = property(lambda self: self.rows.out[0])
-    _t = property(lambda self: float(self.rows.t[0]))
+    _y = property(lambda self: self.rows.y[SINGLE])
+    _R = property(lambda self: self.rows.R[SINGLE])
+    _P = property(lambda self: self.rows.P[SINGLE])
+    _tab = property(lambda self: self.rows.tab[SINGLE])
+    _out = property(lambda self: self.rows.out[SINGLE])
+    _t = property(lambda self: float(self.rows.t[SINGLE]))
 
     def _sense(self, obs: np.ndarray) -> np.ndarray:
         """The observation as the controller sees it (`sensor_noise`, `sensor_delay`): noise
@@ -307,13 +307,18 @@ class GyroStabilizerEnv(MFEnv):
         if self.rows.tab.shape[1:] != tab.shape:
             self.rows = self.rows._replace(tab=np.zeros((1, *tab.shape)))
         b = self.rows
-        b.P[0], b.tab[0], b.dt[0], b.n_sub[0] = P, tab, self.physics_dt, self.n_substeps
+        b.P[SINGLE], b.tab[SINGLE], b.dt[SINGLE], b.n_sub[SINGLE] = (
+            P,
+            tab,
+            self.physics_dt,
+            self.n_substeps,
+        )
         self._task = rows.Task(self.roll_scale, self.effort_weight, self.control_dt)
-        rows.reset_row(0, roll, roll_rate, gimbal, b)
+        rows.reset_row(SINGLE, roll, roll_rate, gimbal, b)
         self._energy = 0.0
         info = rows.info_of(b.cols[:, 0])
-        self._frame_state = (b.R[0].copy(), float(b.y[0, 3]), 0.0)
-        obs = b.obs[0].copy()
+        self._frame_state = (b.R[SINGLE].copy(), float(b.y[SINGLE, 3]), 0.0)
+        obs = b.obs[SINGLE].copy()
         if self._sensed:
             self._buf[:] = obs  # the sensors read the initial state until the delay has passed
             obs = self._sense(obs)

@@ -219,7 +219,7 @@ def apply_preset(kw: dict[str, Any], defaults: dict[str, Any]) -> dict[str, Any]
     preset = kw.pop("preset")
     if preset is None:
         return kw
-    if preset not in PRESETS:
+    if not isinstance(preset, str) or preset not in PRESETS:
         raise ValueError(f"preset: must be one of {PRESETS} or None, got {preset!r}")
     for key, value in PYELASTICA_SCENE.items():
         if kw[key] != defaults[key]:
