@@ -121,7 +121,8 @@ def test_native_randomization_equals_sync_over_wrappers(case: str, mode: Autores
         assert_infos_equal(out_s[4], out_v[4], f"step {t}: ")
         done = out_v[2] | out_v[3]
         drawn.append(out_v[4].get("randomized"))
-        substeps.update(getattr(vec.unwrapped, "_nsub", np.zeros(1)).tolist())
+        rows = getattr(vec.unwrapped, "b", None)  # the native rows' batch (its physics substeps)
+        substeps.update(getattr(rows, "n_sub", np.zeros(1)).tolist())
         for d in drawn[-2:]:
             if d and "significant_wave_height" in d:
                 m = d["_significant_wave_height"]
