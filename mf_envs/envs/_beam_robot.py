@@ -15,7 +15,15 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
-from mf_envs.envs._beam_rows import REP_ENERGY, REP_ITER, REP_NET, REP_OK, REP_X0, REP_Y0
+from mf_envs.envs._beam_rows import (
+    N_REPORT,
+    REP_ENERGY,
+    REP_ITER,
+    REP_NET,
+    REP_OK,
+    REP_X0,
+    REP_Y0,
+)
 from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.serpentine import spec
 from mf_envs.envs.serpentine.build import initial_dofs
@@ -67,7 +75,7 @@ class BeamRobotMixin(metaclass=ABCMeta):
         self.state = np.zeros((2, nd))  # (d, v): beam dofs [m, rad] and their rates
         self.state[0] = self.model.straight()
         self.cmd = np.zeros(n)  # commanded kappa# at the control points [1/m]
-        self._body, self._rep = np.zeros(5), np.zeros(self.robot_rows.N_REPORT)
+        self._body, self._rep = np.zeros(5), np.zeros(N_REPORT)
         self._obs = np.zeros(self.obs_layout.size, np.float32)
         self._steps = 0
         self._track: list[tuple[float, float]] = []

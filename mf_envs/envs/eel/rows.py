@@ -24,14 +24,7 @@ from collections import namedtuple
 import numba
 import numpy as np
 
-from mf_envs.envs._beam_rows import (  # noqa: F401 (N_REPORT re-exported)
-    N_REPORT,
-    body_state,
-    close_report,
-    open_report,
-    pack_cfg,
-    to_gauss,
-)
+from mf_envs.envs import _beam_rows as br
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.swimmer.fluid import shape_tables
@@ -63,7 +56,7 @@ def pack(scene, model, n_substeps: int, physics_dt: float, control_dt: float,
         np.array([*WAVE_WAVELENGTH, *WAVE_FREQUENCY]), float(control_dt),
     )  # fmt: skip
     body = (quad, water, (THETA, scene.stress_theta), 0.0)
-    return pack_cfg(scene, model, (n_substeps, physics_dt), target, body, wave)
+    return br.pack_cfg(scene, model, (n_substeps, physics_dt), target, body, wave)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -88,7 +81,7 @@ def observe_row(d, v, cmd, cfg, body, out):
     for j in range(n):
         out[j] = el.kappa_at(d, 6 * ce[j], le[ce[j]], cxi[j]) * length
         out[n + 6 + j] = cmd[j] / cfg.max_curvature
-    body_state(d, v, le, cfg.nz, cfg.npsi, body)
+    br.body_state(d, v, le, cfg.nz, cfg.npsi, body)
     rel = body[4] - cfg.target
     out[n] = math.sin(rel)
     out[n + 1] = math.cos(rel)
@@ -132,8 +125,8 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
     for j in range(n):
         change = new[j] - cmd[j]
         new[j] = cmd[j] + min(max(change, -max_change), max_change)
-    to_gauss(cfg.interp, cmd, new, k_old, k_new)
-    open_report(d, v, cfg, body, rep, acc)
+    br.to_gauss(cfg.interp, cmd, new, k_old, k_new)
+    br.open_report(d, v, cfg, body, rep, acc)
     total, ok = 0, 1.0
     for s in range(n_sub):
         for e in range(ne):
@@ -147,7 +140,7 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
             break
     for j in range(n):
         cmd[j] = new[j]
-    close_report(rep, ok, acc, total)
+    br.close_report(rep, ok, acc, total)
     observe_row(d, v, cmd, cfg, body, obs)
 
 

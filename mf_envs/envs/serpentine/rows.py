@@ -21,14 +21,7 @@ from collections import namedtuple
 import numba
 import numpy as np
 
-from mf_envs.envs._beam_rows import (  # noqa: F401 (N_REPORT re-exported)
-    N_REPORT,
-    body_state,
-    close_report,
-    open_report,
-    pack_cfg,
-    to_gauss,
-)
+from mf_envs.envs import _beam_rows as br
 from mf_envs.physics.actuators.kernels import lag_at
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.kernels import _scratch as _kernel_scratch
@@ -44,7 +37,7 @@ def pack(scene, model, n_substeps: int, physics_dt: float, target: float):
     ground = (p.mass_per_length * scene.gravity, p.mass_per_length, scene.ground.packed())
     muscles = Muscles(float(scene.actuator_time_constant), float(scene.actuator_rate_limit))
     body = (quad_tables(model), ground, THETA, scene.material_damping)
-    return pack_cfg(scene, model, (n_substeps, physics_dt), target, body, muscles)
+    return br.pack_cfg(scene, model, (n_substeps, physics_dt), target, body, muscles)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -72,7 +65,7 @@ def observe_row(d, v, cmd, cfg, body, out):
     rel = d[d.shape[0] - 1] - cfg.target
     out[n] = math.sin(rel)
     out[n + 1] = math.cos(rel)
-    body_state(d, v, le, cfg.nz, cfg.npsi, body)
+    br.body_state(d, v, le, cfg.nz, cfg.npsi, body)
     c, s = math.cos(body[4]), math.sin(body[4])
     out[n + 2] = (c * body[2] + s * body[3]) / length
     out[n + 3] = (-s * body[2] + c * body[3]) / length
@@ -92,7 +85,7 @@ def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
     for j in range(n):
         u[j] = cfg.max_curvature * action[j]
         c1[j] = cmd[j]
-    open_report(d, v, cfg, body, rep, acc)
+    br.open_report(d, v, cfg, body, rep, acc)
     total, ok = 0, 1.0
     for s in range(n_sub):
         # kappa# at the control points at the substep's ends: linear from the old command to
@@ -108,7 +101,7 @@ def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
                 c1[j] = cmd[j] + (s + 1) / n_sub * (u[j] - cmd[j])
         if tau_a > 0.0:
             lag_at(cmd, u, (s + 1) * h, tau_a, rate_a, c1)
-        to_gauss(cfg.interp, c0, c1, ka, kb)
+        br.to_gauss(cfg.interp, c0, c1, ka, kb)
         its = advance_linear(d, v, ka, kb, h, cfg.body, ks, acc)
         total += abs(its)
         if its < 0:
@@ -116,7 +109,7 @@ def step_row(d, v, cmd, action, cfg, sc, body, obs, rep):
             break
     for j in range(n):
         cmd[j] = c1[j]
-    close_report(rep, ok, acc, total)
+    br.close_report(rep, ok, acc, total)
     observe_row(d, v, cmd, cfg, body, obs)
 
 
