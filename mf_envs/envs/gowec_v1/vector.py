@@ -179,13 +179,16 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
                 translation_loads(dk, env.model.three, sea["om"][i], env.wave.amplitudes, eps)
             sea["dk"][i] = dk
         a = env.model._args()
-        rows_sea = tuple(sea[k] for k in ("om", "cp", "cr", "dk", "amp", "eps"))
         supervisor = (env.model.survival_index(), env.survival_at_reset())
         reset_rows(
-            idx, gimbal, self.Y, self._steps, a[:9], a[13:], rows_sea, self._vals,
+            idx, gimbal, self.Y, self._steps, a[:9], a[13:], self._sea_rows(), self._vals,
             (self._lo, self._hi, env.preview_times), self._obs, supervisor,
         )  # fmt: skip
         return self._reset_infos(idx)
+
+    def _sea_rows(self) -> tuple:
+        """The rows' sea as the kernels take it (`rows.step_rows`): (om, cp, cr, dk, amp, eps)."""
+        return tuple(self.sea[k] for k in ("om", "cp", "cr", "dk", "amp", "eps"))
 
     def _reset_infos(self, idx: np.ndarray) -> dict[str, Any]:
         """The batched reset infos of rows idx (GOWECV1Env.reset's keys, dtypes and values)."""
@@ -215,7 +218,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         return int(sum(a.nbytes for a in arrays)) + self._ok.nbytes + self._draws.nbytes
 
     def _step_batch(self, actions: np.ndarray, active: np.ndarray) -> tuple[Any, ...]:
-        env, sea, dtc = self.template, self.sea, self.template.control_dt
+        env, dtc = self.template, self.template.control_dt
         tau = actions[:, 0] * env.max_generator_torque
         t0 = self._steps * dtc
         self._steps[active] += 1
@@ -226,9 +229,8 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         shared = a[:9]
         obs = self._fresh
         clock = (env.physics_dt, env.n_substeps, dtc, env.rotor_loss_power())
-        rows_sea = tuple(sea[k] for k in ("om", "cp", "cr", "dk", "amp", "eps"))
         self.blocks.run(
-            step_rows, active, t0, t1, self.Y, tau, clock, shared, a[13:], rows_sea,
+            step_rows, active, t0, t1, self.Y, tau, clock, shared, a[13:], self._sea_rows(),
             (self._vals, ok, obs), (self._lo, self._hi, env.preview_times),
         )  # fmt: skip
         v, Y = self._vals, self.Y
