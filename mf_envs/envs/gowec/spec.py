@@ -1,8 +1,8 @@
 """GOWEC-v0's env concerns, declared once: observation layout, reward, info keys, failure contract.
 
-Used by both `GOWECEnv` (env.py) and the native `GOWECVectorEnv` (vector.py); the observation
-and the step flags come from one numba function, `rows.observe`, which the vector env calls row
-by row (`rows.observe_rows`), so the two agree bit for bit.
+Used by both `GOWECEnv` (env.py) and the native `GOWECVectorEnv` (vector.py); the step itself
+(physics, observation, flags, reward) is one compiled function, `rows.step_rows`, whose row 0
+is the single env, so the two agree bit for bit.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
-"""The scratch arrays of the serpentine beam's compiled time loop (`kernels.advance`,
-`kernels.advance_linear`: the step allocates nothing) and its quadrature tables."""
+"""The scratch arrays of the serpentine beam's compiled time loop (`kernels.advance_linear`,
+`kernels.run`: the step allocates nothing) and its quadrature tables."""
 
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ def _scratch(n_dof, n_elements):
 
 
 def make_scratch(n_dof: int, n_elements: int) -> tuple:
-    """The scratch arrays of `advance` / `advance_linear` for a beam of n_elements: the band
+    """The scratch arrays of `advance_linear` / `run` for a beam of n_elements: the band
     solver's (work, pivots), kappa# at the sub-step ends, states at the sub-step ends, the
     Newton vectors, four element vectors (11,), the tangent's band, the start's strains
     (`beam.fused.start_strains`), an element matrix, the second predictor's Newton vectors
