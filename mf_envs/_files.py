@@ -26,6 +26,7 @@ import re
 import stat
 import tempfile
 import zipfile
+import zlib
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -150,6 +151,37 @@ def check_npz(path: str | Path, max_bytes: int) -> None:
                 )
 
 
+def read_npz(path: str | Path, max_bytes: int, read: Any, what: str, field: str = "hull") -> Any:
+    """read(z) of the `.npz` archive at `path` (`check_npz` first, then opened without
+    pickles). A missing file, a bad archive or read's KeyError/ValueError/TypeError become a
+    ValueError naming `field`, the file and `what` it should have been."""
+    p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"{field}: file {str(p)!r} not found")
+    try:
+        check_npz(p, max_bytes)  # headers first: a declared (1e12,) is refused
+        z = np.load(p, allow_pickle=False)
+        if not isinstance(z, np.lib.npyio.NpzFile):
+            raise ValueError("an .npy array, not an .npz archive of named arrays")
+        with z:
+            return read(z)
+    except (KeyError, OSError, ValueError, TypeError, EOFError, zipfile.BadZipFile,
+            zlib.error) as exc:  # fmt: skip
+        raise ValueError(f"{field}: file {str(p)!r} is not {what} ({exc})") from exc
+
+
+def npz_array(z: Any, key: str, ndim: int) -> Any:
+    """Array `key` of an open archive as float64 with `ndim` dimensions (a float when 0)."""
+    if key not in z.files:
+        raise KeyError(f"no array {key!r}")
+    a = np.asarray(z[key])
+    if a.dtype.kind not in "iuf":
+        raise ValueError(f"{key}: expected real numbers, got dtype {a.dtype}")
+    if a.ndim != ndim:
+        raise ValueError(f"{key}: expected {ndim} dimensions, got shape {a.shape}")
+    return float(a) if ndim == 0 else a.astype(np.float64)
+
+
 def read_regular(path: str | Path, max_bytes: int, what: str) -> bytes:
     """The bytes of the regular file `path` (links to one are followed), at most `max_bytes`;
     ValueError naming `what` and the file for a FIFO, device or folder (opened without
@@ -259,6 +291,22 @@ def atomic_path(path: str | Path, field: str = "out") -> Iterator[Path]:
     finally:
         if os.path.lexists(tmp):
             os.unlink(tmp)
+
+
+def save_figure(fig: Any, path: str | Path, dpi: int = 110, **savefig_kw: Any) -> Path:
+    """Write matplotlib figure `fig` to `path` through `atomic_path` (its folder created; a
+    link or non-regular file at `path` refused; the format from the suffix, png without one)
+    and close it, whatever happened; returns the path."""
+    import matplotlib.pyplot as plt
+
+    p = Path(path)
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True)
+        with atomic_path(p) as tmp:
+            fig.savefig(tmp, dpi=dpi, format=p.suffix.lstrip(".") or "png", **savefig_kw)
+    finally:
+        plt.close(fig)
+    return p
 
 
 def write_atomic(path: str | Path, data: str | bytes, field: str = "out") -> Path:

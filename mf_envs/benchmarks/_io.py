@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs._files import atomic_path
+from mf_envs._files import atomic_path, save_figure
 
 
 def timed(fn: Any, *args: Any, repeat: int = 1, **kwargs: Any) -> tuple[Any, float]:
@@ -130,8 +130,4 @@ def work_precision_plot(path: Path, rows: Sequence[dict[str, Any]], title: str) 
         _sparse_log_ticks(ax.yaxis, ax.get_ylim())
     fig.suptitle(title)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=110, format=path.suffix.lstrip(".") or "png")
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)

@@ -24,6 +24,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
+from mf_envs._files import save_figure
 from mf_envs.benchmarks.controllers.gowec_v1 import episode
 from mf_envs.physics.gowec.hydro.devices import DEVICES
 
@@ -88,9 +89,7 @@ def plot(rows: list[dict], path: Path) -> Path:
     fig.suptitle("Phase-locking (PLL) vs the best linear PTO on the floating ISWEC-class hull "
                  "(x: episode ended early by a failure)", fontsize=10)  # fmt: skip
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=110)
 
 
 def main(argv: list[str] | None = None) -> None:

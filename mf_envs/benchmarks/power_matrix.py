@@ -35,6 +35,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
+from mf_envs._files import save_figure
 from mf_envs.controllers import make_baseline
 
 ENV_ID = "FloatingGOWEC-v0"
@@ -178,9 +179,7 @@ def plot(rows: list[dict], path: Path) -> Path:
                  f"(* = a failure ended an episode)", fontsize=9)  # fmt: skip
     fig.colorbar(im, ax=ax, label="net electrical power (kW)")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=110)
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -207,7 +207,7 @@ def figures(result: dict[str, Any], folder: Path, stem: str = "rl_benchmark") ->
     import matplotlib.pyplot as plt
     from matplotlib.ticker import NullFormatter
 
-    from mf_envs._files import atomic_path
+    from mf_envs._files import save_figure
 
     ids = list(result["ids"])
     written = []
@@ -239,10 +239,7 @@ def figures(result: dict[str, Any], folder: Path, stem: str = "rl_benchmark") ->
         fig.tight_layout()
         path = folder / f"{stem}_{'steps' if axis == 'env_steps' else 'wallclock'}.png"
         make_dirs(folder, folder)
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=100, format="png")
-        plt.close(fig)
-        written.append(path)
+        written.append(save_figure(fig, path, dpi=100))
     return written
 
 

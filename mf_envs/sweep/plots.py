@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs._files import atomic_path, inside, safe_name
+from mf_envs._files import inside, safe_name, save_figure
 from mf_envs.sweep.config import SweepConfig
 
 UNITS = {
@@ -132,14 +132,6 @@ def _edges(v: list[float]) -> np.ndarray:
 
 def _save(fig: Any, out: Path, name: str) -> Path:
     """Write the figure as `out/name`; the name (from the config) must stay inside `out`."""
-    import matplotlib.pyplot as plt
-
     path = inside(out, Path(out) / safe_name("config: name", name), "config: name")
-    path.parent.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()
-    try:
-        with atomic_path(Path(out) / name) as tmp:  # no link at its name; old or new picture
-            fig.savefig(tmp, dpi=110, format="png")
-    finally:
-        plt.close(fig)
-    return path
+    return save_figure(fig, path)  # no link at its name; old or new picture

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mf_envs._files import atomic_path
+from mf_envs._files import save_figure
 
 
 def load_curve(folder: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -53,8 +53,4 @@ def plot_learning_curves(
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=110, format=path.suffix.lstrip(".") or "png")
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)

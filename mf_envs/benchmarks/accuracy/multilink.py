@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 from scipy.linalg import eigh
 
+from mf_envs._files import save_figure
 from mf_envs.benchmarks._io import accuracy_row, observed_order, timed
 from mf_envs.physics import multilink as ml
 from mf_envs.physics.multilink.elastica import elastica_cantilever
@@ -236,10 +237,7 @@ def convergence_figure(path: Path, rows_: list[dict], dpi: int = 110) -> Path:
     a1.grid(True, which="both", alpha=0.3)
     a1.legend(fontsize=6)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=dpi)
 
 
 def main() -> None:

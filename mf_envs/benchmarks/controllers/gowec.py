@@ -17,6 +17,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
+from mf_envs._files import save_figure
 from mf_envs.controllers import make_baseline
 from mf_envs.envs.gowec.task import DECLARATION
 from mf_envs.physics.gowec import SEAKEEPER, detuned_mean_power
@@ -127,6 +128,5 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
     ax2.legend(fontsize=7)
     fig.tight_layout()
     path = out / "controllers_gowec.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return [path]

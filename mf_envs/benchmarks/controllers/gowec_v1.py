@@ -21,6 +21,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
+from mf_envs._files import save_figure
 from mf_envs.benchmarks.controllers.ppo import make_controller, with_ppo
 from mf_envs.controllers import make_baseline
 from mf_envs.envs.gowec_v1.task import DECLARATION
@@ -132,8 +133,7 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
     ax.legend()
     fig.tight_layout()
     p = out / "gowec_v1_capture_width.png"
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
+    save_figure(fig, p, dpi=110)
     return [p]
 
 
@@ -179,10 +179,7 @@ def _free_decay(m, hull, out: Path) -> Path:
     ax.set_ylim(-0.085, 0.06)
     ax.legend(loc="lower right", fontsize=8, ncol=2)
     fig.tight_layout()
-    path = out / "gowec_v1_free_decay.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out / "gowec_v1_free_decay.png", dpi=110)
 
 
 def _rao(m, hull, out: Path) -> Path:
@@ -221,10 +218,7 @@ def _rao(m, hull, out: Path) -> Path:
     ax.set_ylabel("pitch RAO (rad/m)")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    path = out / "gowec_v1_rao.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out / "gowec_v1_rao.png", dpi=110)
 
 
 def _coupling(out: Path) -> Path:
@@ -272,10 +266,7 @@ def _coupling(out: Path) -> Path:
     a1.set_ylim(lo, hi + 0.3 * (hi - lo))  # room for the legend
     a1.legend(fontsize=8, loc="upper left", ncol=3)
     fig.tight_layout()
-    p = out / "gowec_v1_coupling.png"
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
-    return p
+    return save_figure(fig, out / "gowec_v1_coupling.png", dpi=110)
 
 
 if __name__ == "__main__":  # python -m mf_envs.benchmarks.controllers.gowec_v1 OUT_FOLDER

@@ -25,6 +25,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
+from mf_envs._files import save_figure
 from mf_envs.benchmarks.controllers.ppo import make_controller, with_ppo
 from mf_envs.controllers.inchworm import WARMUP_SECONDS, WIRE_WARMUP_SECONDS
 from mf_envs.envs.inchworm import LAG_FRICTION_SCENE, RIOS2017_SCENE
@@ -181,7 +182,5 @@ def plot(out, rows: list[dict]) -> list:
         axes[2, j].legend(loc="upper left")
     fig.tight_layout()
     path = Path(out) / "inchworm_gaits.png"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    save_figure(fig, path, dpi=100)
     return [path]

@@ -36,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs._files import save_figure
 from mf_envs.envs.gyro_stabilizer.task import DECLARATION, SETTLE
 
 ENV_ID = DECLARATION.env_id
@@ -248,6 +249,5 @@ def plot(out: Path, rows: list[dict]) -> list[Path]:
                       fontsize=7)  # fmt: skip
     fig.tight_layout()
     p = out / "controllers_stabilizer.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
+    save_figure(fig, p, dpi=100)
     return [p]

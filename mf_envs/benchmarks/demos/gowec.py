@@ -19,6 +19,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
+from mf_envs._files import save_figure
 from mf_envs.controllers import make_baseline
 from mf_envs.envs.gowec.task import DECLARATION
 from mf_envs.physics import gowec as gw
@@ -100,10 +101,7 @@ def _plot_episode(out: Path, runs: dict, ref: float) -> Path:
         ax.grid(alpha=0.3)
     fig.suptitle(f"GOWEC-v0, Seakeeper 26 rotor, a = 1 m, T = 6 s (Eq. 95 = {ref:.0f} W)")
     fig.tight_layout()
-    path = out / "gowec_pll.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out / "gowec_pll.png", dpi=110)
 
 
 def _plot_maps(out: Path) -> Path:
@@ -137,10 +135,7 @@ def _plot_maps(out: Path) -> Path:
     fig.suptitle("Fig. 3-5: the GOWEC nets power only in short, steep waves "
                  "(80 % generator efficiency, spool-up subtracted)")  # fmt: skip
     fig.tight_layout()
-    path = out / "gowec_power_map.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out / "gowec_power_map.png", dpi=110)
 
 
 def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:

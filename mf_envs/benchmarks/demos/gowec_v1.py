@@ -20,6 +20,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401
+from mf_envs._files import save_figure
 from mf_envs.controllers import make_baseline
 from mf_envs.envs.gowec_v1.task import DECLARATION
 
@@ -127,8 +128,7 @@ def run(out: Path, quick: bool) -> tuple[list[Path], list[str]]:
     )
     fig.tight_layout()
     files = [out / "gowec_v1_episode.png"]
-    fig.savefig(files[0], dpi=100)
-    plt.close(fig)
+    save_figure(fig, files[0], dpi=100)
     if shots:
         from mf_envs.render import save_gif
 

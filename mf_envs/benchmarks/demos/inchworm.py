@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs._files import save_figure
 from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.beam import solve_cantilever, timoshenko_cantilever_uniform
 from mf_envs.physics.inchworm import (
@@ -84,9 +85,7 @@ def _fig4_5(out: Path) -> Path:
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(out / "beam_fig4_5.png", dpi=110)
-    plt.close(fig)
-    return out / "beam_fig4_5.png"
+    return save_figure(fig, out / "beam_fig4_5.png", dpi=110)
 
 
 def _rollup(out: Path) -> Path:
@@ -102,9 +101,7 @@ def _rollup(out: Path) -> Path:
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(out / "beam_rollup.png", dpi=110)
-    plt.close(fig)
-    return out / "beam_rollup.png"
+    return save_figure(fig, out / "beam_rollup.png", dpi=110)
 
 
 def _snapshots(out: Path, name: str, hist, title: str, every: int = 5) -> Path:
@@ -135,10 +132,7 @@ def _snapshots(out: Path, name: str, hist, title: str, every: int = 5) -> Path:
     sm = ScalarMappable(norm=Normalize(0.0, 1.0), cmap=cmap)
     bar = fig.colorbar(sm, ax=ax, orientation="vertical", fraction=0.03, pad=0.02)
     bar.set_label("time order\n(0 = first, 1 = last)", fontsize=8)
-    path = out / name
-    fig.savefig(path, dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return save_figure(fig, out / name, dpi=110, bbox_inches="tight")
 
 
 def _gif(out: Path, quick: bool) -> Path | None:
@@ -211,7 +205,6 @@ def _gaits(out: Path, n_cyc: int) -> tuple[list[Path], list[str]]:
     ax.legend(fontsize=7, loc="upper left")
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(out / "inchworm_progress.png", dpi=110)
-    plt.close(fig)
+    save_figure(fig, out / "inchworm_progress.png", dpi=110)
     files.append(out / "inchworm_progress.png")
     return files, lines

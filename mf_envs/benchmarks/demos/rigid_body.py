@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs._files import save_figure
 from mf_envs.physics.rigid_body import (
     analytic_omega,
     elliptic_solution,
@@ -83,9 +84,7 @@ def polhode_figure(path: Path, dpi: int = 100) -> Path:
     ax3.set_box_aspect((np.sqrt(2), 1, np.sqrt(0.5)))
     fig.suptitle("Polhodes, J1/J2 = 2, J3/J2 = 0.5, d = 0.65 ... 1.95; separatrices red (Eq. 40b)")
     fig.tight_layout(w_pad=4.0)  # room between the 3D z label and panel (b)
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=dpi)
 
 
 def momentum_figure(path: Path, nut, racket, dpi: int = 100) -> Path:
@@ -104,9 +103,7 @@ def momentum_figure(path: Path, nut, racket, dpi: int = 100) -> Path:
             ax.legend(fontsize=7, loc="lower left")
         axes[1, col].set_xlabel("t [s]")
     fig.tight_layout()
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=dpi)
 
 
 def racket_vs_exact_figure(path: Path, tr, exact, dpi: int = 100) -> Path:
@@ -127,9 +124,7 @@ def racket_vs_exact_figure(path: Path, tr, exact, dpi: int = 100) -> Path:
     ax_err.grid(alpha=0.3, which="both")
     ax.set_title(f"Tennis racket, seed scheme dt = {tr.dt:g} s: max rel. error {rel.max():.2e}")
     fig.tight_layout()
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=dpi)
 
 
 def racket_gif(path: Path, tr, n_frames: int) -> Path:

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs._files import save_figure
 from mf_envs.envs.gyro_stabilizer.task import DECLARATION
 from mf_envs.physics.ship import (
     SEED_EFFECTS,
@@ -90,8 +91,7 @@ def fig_3_9(out: Path, quick: bool) -> tuple[Path, str]:
     fig.suptitle("Fig. 3-9: continuous vs sinusoidal gimbal excitation, a = π/2 (two gyros)")
     fig.tight_layout()
     p = out / "stabilizer_fig3_9.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
+    save_figure(fig, p, dpi=100)
     return p, (
         f"Fig 3-9: peak roll rate continuous {peaks['continuous']:.5f}, sinusoidal "
         f"{peaks['sinusoidal']:.5f} rad/s (same response)"
@@ -135,8 +135,7 @@ def fig_3_10_11(out: Path, quick: bool) -> tuple[Path, str]:
         a_.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
     fig.tight_layout()
     p = out / "stabilizer_fig3_10_11.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
+    save_figure(fig, p, dpi=100)
     return p, "Figs 3-10/11 peak roll-rate residual vs capacity bound: " + "; ".join(lines)
 
 
@@ -180,8 +179,7 @@ def fig_3_12_13(out: Path, quick: bool) -> tuple[Path, str]:
         a_.grid(alpha=0.3)
     fig.tight_layout()
     p = out / "stabilizer_fig3_12_13.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
+    save_figure(fig, p, dpi=100)
     err = np.abs(slopes / (2 * np.sin(amps)) - 1).max()
     return p, f"Figs 3-12/13: fit {A:.4f} sin({B:.4f} a); max |slope/(2 sin a) - 1| = {err:.2e}"
 
@@ -207,8 +205,7 @@ def fig_3_14_15(out: Path, quick: bool) -> tuple[Path, str]:
         a_.grid(alpha=0.3)
     fig.tight_layout()
     p = out / "stabilizer_fig3_14_15.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
+    save_figure(fig, p, dpi=100)
     lin = np.polyfit(periods, roll_amp, 1)
     resid = np.abs(np.polyval(lin, periods) - roll_amp).max() / max(roll_amp)
     inv = np.array(acc_amp) * periods
@@ -291,8 +288,7 @@ def fig_yacht(out: Path, quick: bool) -> tuple[list[Path], str]:
     )
     fig.tight_layout()
     p = out / "stabilizer_yacht.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
+    save_figure(fig, p, dpi=100)
     g = save_gif(frames, out / "stabilizer_yacht.gif", fps=5)
     return [p, g], (
         f"yacht RMS roll: off {math.degrees(off):.2f} deg, PID "

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mf_envs._files import save_figure
 from mf_envs.benchmarks._io import timed
 from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.beam import solve_cantilever
@@ -267,6 +268,5 @@ def plot(out: Path, rows_: list[dict]) -> list[Path]:
     ax.legend(fontsize=8)
     path = out / "speed_beam_step_vs_elements.png"
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return [path]

@@ -42,6 +42,7 @@ import gymnasium as gym
 import numpy as np
 
 import mf_envs  # noqa: F401  (registers the envs)
+from mf_envs._files import save_figure
 from mf_envs.envs import VECTOR_SPECS, available_env_ids, declaration
 
 ORDER = 20
@@ -316,8 +317,7 @@ def plot(out: Path, rows: list[dict[str, Any]]) -> list[Path]:
     ax[2].set(xlabel="steps/s relative to no effect", title="cost per effect")
     fig.tight_layout()
     path = out / "speed_envs.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
     return [path]
 
 

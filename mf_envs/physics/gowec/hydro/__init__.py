@@ -24,8 +24,6 @@ Files are `.npz` read with `allow_pickle=False` (nothing loaded executes code).
 from __future__ import annotations
 
 import math
-import zipfile
-import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -33,7 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from mf_envs._files import check_npz
+from mf_envs._files import npz_array, read_npz
 from mf_envs.physics.constants import RHO_SEAWATER, G
 
 # the converged mesh's coefficients (the seed buoy's hull, `devices`)
@@ -150,27 +148,18 @@ class HullCoefficients:
     @classmethod
     def load(cls, path: str | Path) -> HullCoefficients:
         """Read a file written by `save`; ValueError naming the file if missing or inconsistent."""
-        p = Path(path)
-        if not p.is_file():
-            raise ValueError(f"hull: file {str(p)!r} not found")
-        try:
-            check_npz(p, MAX_MEMBER_BYTES)  # headers first: a declared (1e12,) is refused
-            z = np.load(p, allow_pickle=False)
-            if not isinstance(z, np.lib.npyio.NpzFile):
-                raise ValueError("an .npy array, not an .npz archive of named arrays")
-            with z:
-                kw: dict[str, Any] = {k: _entry(z, k, ()) for k in _SCALARS}
-                for k in _ARRAYS[:3]:
-                    kw[k] = _entry(z, k, None)
-                kw["excitation"] = _entry(z, "excitation_re", None) + 1j * _entry(
-                    z, "excitation_im", None
-                )
-        except (KeyError, OSError, ValueError, TypeError, EOFError, zipfile.BadZipFile,
-                zlib.error) as exc:  # fmt: skip
-            raise ValueError(
-                f"hull: file {str(p)!r} is not a hull coefficient file ({exc})"
-            ) from exc
-        return cls(**kw, name=str(p))
+
+        def read(z: Any) -> dict[str, Any]:
+            kw: dict[str, Any] = {k: npz_array(z, k, 0) for k in _SCALARS}
+            for k in _ARRAYS[:3]:
+                kw[k] = npz_array(z, k, 1)
+            kw["excitation"] = npz_array(z, "excitation_re", 1) + 1j * npz_array(
+                z, "excitation_im", 1
+            )
+            return kw
+
+        kw = read_npz(path, MAX_MEMBER_BYTES, read, "a hull coefficient file")
+        return cls(**kw, name=str(Path(path)))
 
     # ------------------------------------------------------------------ interpolation
     def at(self, w: float) -> tuple[float, float, complex]:
@@ -209,20 +198,6 @@ class HullCoefficients:
                 break
             w = w_new
         return w_new
-
-
-def _entry(z: Any, key: str, shape: tuple[int, ...] | None) -> Any:
-    """Array `key` of the archive as float64: a scalar when `shape` is (), else 1-D."""
-    if key not in z.files:
-        raise KeyError(f"no array {key!r}")
-    a = np.asarray(z[key])
-    if a.dtype.kind not in "iuf":
-        raise ValueError(f"{key}: expected real numbers, got dtype {a.dtype}")
-    if shape == () and a.shape != ():
-        raise ValueError(f"{key}: expected a scalar, got shape {a.shape}")
-    if shape is None and a.ndim != 1:
-        raise ValueError(f"{key}: expected a 1-D array, got shape {a.shape}")
-    return float(a) if shape == () else a.astype(np.float64)
 
 
 def _validate(h: HullCoefficients) -> None:

@@ -28,8 +28,6 @@ File schema (`.npz`, read with `allow_pickle=False`, all arrays float64):
 from __future__ import annotations
 
 import math
-import zipfile
-import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -37,7 +35,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from mf_envs._files import check_npz
+from mf_envs._files import npz_array, read_npz
 
 MAX_MEMBER_BYTES = 16 << 20  # one array of a hull file (the shipped one: a few KB)
 ISWEC_HULL_FILE = Path(__file__).with_name("iswec_cylinder_3dof.npz")
@@ -87,30 +85,21 @@ class ThreeDofCoefficients:
     @classmethod
     def load(cls, path: str | Path = ISWEC_HULL_FILE) -> ThreeDofCoefficients:
         """Read a file written by `save`; ValueError naming the file if missing or inconsistent."""
-        p = Path(path)
-        if not p.is_file():
-            raise ValueError(f"hull: file {str(p)!r} not found")
-        try:
-            check_npz(p, MAX_MEMBER_BYTES)  # headers first: a declared (1e12,) is refused
-            z = np.load(p, allow_pickle=False)
-            if not isinstance(z, np.lib.npyio.NpzFile):
-                raise ValueError("an .npy array, not an .npz archive of named arrays")
-            with z:
-                kw: dict[str, Any] = {k: float(_entry(z, k, 0)) for k in _SCALARS}
-                for k, nd in (("omega", 1), ("wavenumber", 1), ("added_mass", 3),
-                              ("damping", 3), *((k, 2) for k in _FIXED)):  # fmt: skip
-                    kw[k] = _entry(z, k, nd)
-                if not np.array_equal(_entry(z, "modes", 1), MODES):
-                    raise ValueError(f"modes: expected {MODES}")
-                kw["excitation"] = _entry(z, "excitation_re", 2) + 1j * _entry(
-                    z, "excitation_im", 2
-                )
-        except (KeyError, OSError, ValueError, TypeError, EOFError, zipfile.BadZipFile,
-                zlib.error) as exc:  # fmt: skip
-            raise ValueError(
-                f"hull: file {str(p)!r} is not a 3-dof coefficient file ({exc})"
-            ) from exc
-        return cls(**kw, name=str(p))
+
+        def read(z: Any) -> dict[str, Any]:
+            kw: dict[str, Any] = {k: npz_array(z, k, 0) for k in _SCALARS}
+            for k, nd in (("omega", 1), ("wavenumber", 1), ("added_mass", 3),
+                          ("damping", 3), *((k, 2) for k in _FIXED)):  # fmt: skip
+                kw[k] = npz_array(z, k, nd)
+            if not np.array_equal(npz_array(z, "modes", 1), MODES):
+                raise ValueError(f"modes: expected {MODES}")
+            kw["excitation"] = npz_array(z, "excitation_re", 2) + 1j * npz_array(
+                z, "excitation_im", 2
+            )
+            return kw
+
+        kw = read_npz(path, MAX_MEMBER_BYTES, read, "a 3-dof coefficient file")
+        return cls(**kw, name=str(Path(path)))
 
     @property
     def group_velocity(self) -> NDArray[np.float64]:
@@ -122,17 +111,6 @@ class ThreeDofCoefficients:
     def wave_power_flux(self, amplitude: float = 1.0) -> NDArray[np.float64]:
         """J = rho g a^2 c_g / 2 (W per metre of crest) of a regular wave at each omega."""
         return 0.5 * self.rho * self.g * amplitude**2 * self.group_velocity
-
-
-def _entry(z: Any, key: str, ndim: int) -> NDArray[np.float64]:
-    if key not in z.files:
-        raise KeyError(f"no array {key!r}")
-    a = np.asarray(z[key])
-    if a.dtype.kind not in "iuf":
-        raise ValueError(f"{key}: expected real numbers, got dtype {a.dtype}")
-    if a.ndim != ndim:
-        raise ValueError(f"{key}: expected {ndim} dimensions, got shape {a.shape}")
-    return a.astype(np.float64)
 
 
 def _validate(h: ThreeDofCoefficients) -> None:
