@@ -9,6 +9,7 @@ faces (batched, validated).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -16,42 +17,37 @@ from numpy.typing import ArrayLike, NDArray
 from mf_envs.frames import kernels as _k
 
 
+def _rows(batch: Any, x: ArrayLike, name: str, trail_in: tuple, trail_out: tuple) -> Any:
+    """Numba kernel `batch` (over a contiguous (n, *trail_in) stack) applied to x (..., *trail_in)
+    -> (..., *trail_out); ValueError naming `name` for any other trailing shape."""
+    x = np.asarray(x, dtype=np.float64)
+    k = len(trail_in)
+    if x.shape[x.ndim - k :] != trail_in:
+        raise ValueError(f"{name}: expected trailing shape {trail_in}, got shape {x.shape}")
+    lead = x.shape[: x.ndim - k]
+    return batch(np.ascontiguousarray(x.reshape((-1, *trail_in)))).reshape(lead + trail_out)
+
+
 def hat(w: ArrayLike) -> NDArray[np.float64]:
     """Skew matrix of w (..., 3) -> (..., 3, 3), hat(w) @ v = w x v (ch. 3 Eq. 11)."""
-    w = np.asarray(w, dtype=np.float64)
-    if w.shape[-1] != 3:
-        raise ValueError(f"w: expected last dimension 3, got shape {w.shape}")
-    flat = np.ascontiguousarray(w.reshape(-1, 3))
-    return _k.hat_batch(flat).reshape(w.shape[:-1] + (3, 3))
+    return _rows(_k.hat_batch, w, "w", (3,), (3, 3))
 
 
 def vee(W: ArrayLike) -> NDArray[np.float64]:
     """Inverse of hat: (..., 3, 3) skew matrix -> (..., 3). Uses the skew part of W."""
-    W = np.asarray(W, dtype=np.float64)
-    if W.shape[-2:] != (3, 3):
-        raise ValueError(f"W: expected trailing shape (3, 3), got {W.shape}")
-    flat = np.ascontiguousarray(W.reshape(-1, 3, 3))
-    return _k.vee_batch(flat).reshape(W.shape[:-2] + (3,))
+    return _rows(_k.vee_batch, W, "W", (3, 3), (3,))
 
 
 def exp_so3(w: ArrayLike) -> NDArray[np.float64]:
     """Rodrigues formula exp(hat(w)) (ch. 2 Eq. 29) of rotation vectors w (..., 3) -> (..., 3, 3);
     the numba kernel `mf_envs.frames.kernels.exp_so3` (series for small angles) over the batch."""
-    w = np.asarray(w, dtype=np.float64)
-    if w.shape[-1] != 3:
-        raise ValueError(f"w: expected last dimension 3, got shape {w.shape}")
-    flat = np.ascontiguousarray(w.reshape(-1, 3))
-    return _k.exp_so3_batch(flat).reshape(w.shape[:-1] + (3, 3))
+    return _rows(_k.exp_so3_batch, w, "w", (3,), (3, 3))
 
 
 def log_so3(R: ArrayLike) -> NDArray[np.float64]:
     """Rotation vector w with exp_so3(w) = R, |w| in [0, pi]; batched over (..., 3, 3)
     (the numba kernel `mf_envs.frames.kernels.log_so3`, safe near 0 and pi)."""
-    R = np.asarray(R, dtype=np.float64)
-    if R.shape[-2:] != (3, 3):
-        raise ValueError(f"R: expected trailing shape (3, 3), got {R.shape}")
-    flat = np.ascontiguousarray(R.reshape(-1, 3, 3))
-    return _k.log_so3_batch(flat).reshape(R.shape[:-2] + (3,))
+    return _rows(_k.log_so3_batch, R, "R", (3, 3), (3,))
 
 
 def rot_x(angle: float) -> NDArray[np.float64]:
