@@ -85,7 +85,6 @@ def train(
     eval_episodes: int = 5,
     vec_env: str = "auto",
     final_eval_seeds: tuple[int, ...] = EVAL_SEEDS,
-    command: str | None = None,
     overrides: dict[str, Any] | None = None,
     force: bool = False,
     algo: str = "ppo",
@@ -122,7 +121,7 @@ def train(
         venv, vec_kind, eval_env = _make_envs(hp, seed, vec_env == "auto", eval_episodes)
         model = _model(Algo, hp, venv, seed, tb_dir, overrides)
         meta_run = _learn(model, eval_env, run_dir, hp, (total, evaluations), progress_bar)
-        command = command or _command(env_id, timesteps, seed, config, eval_episodes, vec_env, algo)
+        command = _command(env_id, timesteps, seed, config, eval_episodes, vec_env, algo)
         meta = {"env_id": env_id, "algo": algo, "command": command, "seed": seed,
                 **meta_run.pop("run"), "vectorization": f"{vec_kind} x{hp.n_envs}",
                 "selected": "final", "hyperparams": _jsonable_hp(hp, overrides, total),
