@@ -36,8 +36,10 @@ WAVE_FREQUENCY = (0.5, 5.0)  # f [Hz]
 # lightest body / water density: with the reactive force alone, bang-bang strokes failed the
 # implicit step at 10-100 kg/m^3 in fresh water (3-14 of 400 steps) and never at 200 and above
 MIN_DENSITY_RATIO = 0.25
-# effort weight x (body mass x (L / 1 s)^2): effort_weight = EFFORT_SCALE / (m L^2 / s^2)
-EFFORT_SCALE = 0.02
+# effort weight x (body mass x (L / 1 s)^2): effort_weight = EFFORT_SCALE / (m L^2 / s^2); a
+# regulariser small enough that the return ranks controllers as their speed does (0.02 put the
+# random policy's return below the `fast` gait's against their speeds)
+EFFORT_SCALE = 0.002
 
 
 @dataclasses.dataclass(frozen=True)

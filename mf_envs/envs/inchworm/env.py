@@ -78,9 +78,9 @@ class InchwormEnv(MFEnv):
     `reward = progress + effort`, the terms in `info["reward_terms"]`:
     `progress` = tail advance this step / L (computed in the body's local coordinates, exact at
     any distance); `effort` = -effort_weight * energy of the step [J]: with `sma_wires` the
-    electrical energy duty I^2 R' l of the wires (default weight 1e-4 / (m_A g L * L)), else the
+    electrical energy duty I^2 R' l of the wires (default weight 1e-5 / (m_A g L * L)), else the
     positive mechanical actuation work of P = -int M3 d kappa#/dt dS (no regeneration; default
-    weight 1 / (m_A g L * L)). Info keys: `spec.INFO_KEYS` (`time` = steps x control_dt;
+    weight 0.1 / (m_A g L * L)). Info keys: `spec.INFO_KEYS` (`time` = steps x control_dt;
     `kappa_sharp` = realised actuation curvature at the control points [1/m], `actuation_power`
     = mean mechanical actuation power of the step [W], `actuation_energy` [J] (the effort's),
     `electrical_energy` [J], `mechanical_work` [J] (with gripping feet the work of the wires'

@@ -60,7 +60,7 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     `reward = progress + effort`, the terms in `info["reward_terms"]`: `progress` = centre-of-
     mass displacement along the target direction in the step / L; `effort` = -effort_weight x
     actuation energy of the step [J] (the muscles' positive work -int M3 dkappa#/dt dS, no
-    regeneration; default weight 0.1 / (m_A g L^2): about 0.07 of progress for the
+    regeneration; default weight 0.01 / (m_A g L^2): about 0.007 of progress for the
     PyElastica-like serpenoid). Info keys: `spec.INFO_KEYS` (x, y of the centre of mass [m],
     heading [rad], speed [m/s], actuation energy [J] and power [W], time [s]).
 
@@ -92,7 +92,7 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     | backward_ratio, lateral_ratio | 1.5, 2 | backward, lateral coefficient / mu |
     | slip_speed | 1e-3 | regularisation speed of the friction [m/s] |
     | viscous_tangential, viscous_normal | 2, 4 | c_t, c_n [N s/m^2] with `viscous_ground` |
-    | effort_weight | None | [1/J] >= 0; None: 0.1 / (m_A g L^2) |
+    | effort_weight | None | [1/J] >= 0; None: 0.01 / (m_A g L^2) |
     | reset_noise_scale | 0.05 | start curvature noise / max_curvature, in [0, 1] |
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
     | material_damping | 0.01 | Kelvin-Voigt retardation time tau [s] of the body, in [0, 10] |
