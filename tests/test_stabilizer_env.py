@@ -40,10 +40,9 @@ def test_spaces_info_and_reward_terms():
         assert r == pytest.approx(
             info["reward_terms"]["roll"] + info["reward_terms"]["effort"], abs=1e-12
         )
-        assert info["roll"] == pytest.approx(float(obs[OBS.index("roll")]), abs=1e-6)
-        assert info["roll_rate"] == pytest.approx(
-            float(obs[OBS.index("roll_rate")]), rel=1e-6, abs=1e-7
-        )
+        o = OBS.unpack(obs)  # physical values: slot x its fixed scale
+        assert info["roll"] == pytest.approx(o["roll"], abs=1e-6)
+        assert info["roll_rate"] == pytest.approx(o["roll_rate"], rel=1e-6, abs=1e-7)
         # gyro roll moment is -n H phi' cos(phi) of the current state (Eq. 123)
         H = env.unwrapped.gyro.angular_momentum
         assert info["gyro_moment"] == pytest.approx(

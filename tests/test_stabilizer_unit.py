@@ -198,7 +198,7 @@ SENSED = (*DEFAULT_EFFECTS, "sensor_noise", "sensor_delay")
 
 
 def test_sensor_noise_has_the_documented_spread_and_keeps_the_true_reward():
-    from mf_envs.envs.gyro_stabilizer.spec import sensor_sigma
+    from mf_envs.envs.gyro_stabilizer.spec import OBS, sensor_sigma
 
     kw = {"episode_seconds": 200.0, "max_episode_steps": 4000}
     env = gym.make(ENV_ID, effects=(*DEFAULT_EFFECTS, "sensor_noise"), **kw)
@@ -213,7 +213,7 @@ def test_sensor_noise_has_the_documented_spread_and_keeps_the_true_reward():
         a = np.zeros(1, np.float32)
         n1, r1, _, _, _ = env.step(a)
         n2, r2, _, _, _ = clean.step(a)
-        err.append(n1.astype(float) - n2)
+        err.append(OBS.physical(n1) - OBS.physical(n2))  # SI
         rew.append(r1 - r2)
     err = np.array(err)
     # the same physics (noise only on what the controller sees): the spread is the noise's

@@ -146,6 +146,7 @@ class PIDStabilizer:
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         m = self.m
+        obs = OBS.physical(obs)  # SI (the observation's roll slots are in fixed units)
         rate, phi = float(obs[_ROLL_RATE]), float(obs[_PHI])
         deriv = 0.0 if self.prev_rate is None else (rate - self.prev_rate) / m.dt
         self.prev_rate = rate
@@ -259,6 +260,7 @@ class LQRStabilizer:
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         m = self.m
+        obs = OBS.physical(obs)  # SI
         x = np.array([obs[_ROLL], obs[_ROLL_RATE], obs[_PHI], obs[_PHI_RATE], self.z])
         x = x[: self.gain.shape[1]].astype(np.float64)
         cmd = -float(self.gain[0] @ x)
@@ -286,6 +288,7 @@ class RollRateLaw:
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         m = self.m
+        obs = OBS.physical(obs)  # SI
         cmd = min(max(self.k * float(obs[_ROLL_RATE]), -m.max_rate), m.max_rate)
         cmd = _stop_envelope(cmd, float(obs[_PHI]), m)
         return np.array([cmd / m.max_rate], dtype=np.float32), None

@@ -8,6 +8,11 @@ and controllers and tests address slots by name (`layout.index("roll")`,
 
 A bound is a number or the name of an env argument that sets it (e.g. "max_gimbal_rate"); the
 numbers are supplied by `high(**values)`. All bounds are symmetric: the field lies in [-b, b].
+
+A field's `scale` (default 1) is the fixed unit the observation is given in: the slot holds the
+physical value / scale, so that a learner sees O(1) numbers without running normalisation (the
+bound is stated in physical units; the slot's bound is bound / scale). Controllers read
+physical values with `physical(obs)`.
 """
 
 from __future__ import annotations
@@ -21,13 +26,15 @@ import numpy as np
 
 @dataclass(frozen=True)
 class Field:
-    """One named observation quantity: `size` consecutive float32 slots within +-`bound`."""
+    """One named observation quantity: `size` consecutive float32 slots holding value / `scale`,
+    the value within +-`bound` (in `unit`)."""
 
     name: str
     unit: str
     bound: float | str
     doc: str
     size: int = 1
+    scale: float = 1.0
 
 
 class ObsLayout:
@@ -73,12 +80,24 @@ class ObsLayout:
         values = values or {}
         out = np.empty(self.size, dtype=np.float32)
         for f in self.fields:
-            out[self.slice(f.name)] = values[f.bound] if isinstance(f.bound, str) else f.bound
+            bound = values[f.bound] if isinstance(f.bound, str) else f.bound
+            out[self.slice(f.name)] = bound / f.scale
         return out
 
+    def scales(self) -> np.ndarray:
+        """Each slot's scale (size,) float64: physical value = slot x scale."""
+        out = np.empty(self.size)
+        for f in self.fields:
+            out[self.slice(f.name)] = f.scale
+        return out
+
+    def physical(self, obs: Any) -> np.ndarray:
+        """The observation (..., size) in physical units (float64): slot x its field's scale."""
+        return np.asarray(obs, dtype=np.float64) * self.scales()
+
     def unpack(self, obs: Any) -> dict[str, Any]:
-        """{name: value} of one observation (scalars as float, vectors as arrays)."""
-        obs = np.asarray(obs)
+        """{name: physical value} of one observation (scalars as float, vectors as arrays)."""
+        obs = self.physical(obs)
         return {
             f.name: float(obs[self._start[f.name]]) if f.size == 1 else obs[self.slice(f.name)]
             for f in self.fields
@@ -91,7 +110,8 @@ class ObsLayout:
             s = self.slice(f.name)
             num = str(s.start) if f.size == 1 else f"{s.start}..{s.stop - 1}"
             bound = f.bound if isinstance(f.bound, str) else f"{f.bound:g}"
-            rows.append(f"| {num} | {f.name} | {f.doc} | +-{bound} | {f.unit} |")
+            doc = f.doc if f.scale == 1.0 else f"{f.doc}, in units of {f.scale:g} {f.unit}".strip()
+            rows.append(f"| {num} | {f.name} | {doc} | +-{bound} | {f.unit} |")
         return "\n".join(rows)
 
 

@@ -71,12 +71,16 @@ class GyroStabilizerEnv(MFEnv):
 
     ## Observation Space
     `Box(float32, (6,))`, what a real controller measures, laid out by
-    `mf_envs.envs.gyro_stabilizer.spec.OBS` (read slots by name: `OBS.index("roll")`):
+    `mf_envs.envs.gyro_stabilizer.spec.OBS` (read slots by name: `OBS.index("roll")`; physical
+    values: `OBS.physical(obs)`). Roll and roll rate come in fixed units of 0.05 rad and 0.05
+    rad/s, so that every slot is O(1) without running normalisation; pitch and yaw rate stay
+    near zero in a beam sea (the headline scene: std 4e-4 and 5e-3 rad/s) and carry the hull's
+    response at other headings:
 
     | Num | Name | Observation | Bound | Unit |
     |---|---|---|---|---|
-    | 0 | roll | roll angle (z-y-x Euler angle, `physics.ship.roll_angle`) | +-3.14159 | rad |
-    | 1 | roll_rate | roll rate omega_1 (body) | +-10 | rad/s |
+    | 0 | roll | roll angle (z-y-x Euler angle, `physics.ship.roll_angle`), in units of 0.05 rad | +-3.14159 | rad |
+    | 1 | roll_rate | roll rate omega_1 (body), in units of 0.05 rad/s | +-10 | rad/s |
     | 2 | pitch_rate | pitch rate omega_2 (body) | +-10 | rad/s |
     | 3 | yaw_rate | yaw rate omega_3 (body) | +-10 | rad/s |
     | 4 | gimbal_angle | gimbal angle phi of gyro 1, wrapped to [-pi, pi) | +-3.14159 | rad |
@@ -218,8 +222,10 @@ class GyroStabilizerEnv(MFEnv):
         # what the controller sees: opt-in effects, nothing to do per step when both are off
         scale = check_range("sensor_noise_scale", sensor_noise_scale, 0.0, 1e3)
         delay = check_range("sensor_delay_time", sensor_delay_time, 0.0, 60.0)
-        self._sigma = (
-            spec.sensor_sigma(self.control_dt, scale) if "sensor_noise" in self.effects else None
+        self._sigma = (  # in the observation's units
+            spec.sensor_sigma(self.control_dt, scale) / spec.OBS.scales()
+            if "sensor_noise" in self.effects
+            else None
         )
         self._delay = (
             max(1, round(delay / self.control_dt)) if "sensor_delay" in self.effects else 0

@@ -29,14 +29,16 @@ from mf_envs.physics.ship.seas import (
 )
 
 OBS = spec.OBS
-_HIGH = tuple(float(v) for v in OBS.high())
+_HIGH = tuple(float(v) for v in OBS.high())  # in the observation's units
+_SCALE = tuple(float(v) for v in OBS.scales())
 _TWO_PI = 2.0 * math.pi
 
 
 @kernel
 def observe(roll, y, R, out):
-    """The observation (OBS order) of ship state y (N_STATE,), attitude R (3, 3) and its roll
-    angle (rad) into the float32 row `out`, clipped to the bounds; returns False (out untouched)
+    """The observation (OBS order, each value / its field's scale) of ship state y (N_STATE,),
+    attitude R (3, 3) and its roll angle (rad) into the float32 row `out`, clipped to the
+    bounds; returns False (out untouched)
     if the state is not finite (the failure contract)."""
     for i in range(y.shape[0]):
         if not math.isfinite(y[i]):
@@ -49,7 +51,7 @@ def observe(roll, y, R, out):
     phi = (v if 0.0 <= v < _TWO_PI else v % _TWO_PI) - math.pi
     vals = (roll, y[0], y[1], y[2], phi, y[4])
     for i in range(6):
-        out[i] = min(max(vals[i], -_HIGH[i]), _HIGH[i])
+        out[i] = min(max(vals[i] / _SCALE[i], -_HIGH[i]), _HIGH[i])
     return True
 
 
@@ -146,7 +148,7 @@ def _row_tail(i, e0, b, task, ob, c):
         for k in range(ob.shape[0]):
             ob[k] = b.last[i, k]
     energy = yi[K.E_STATE] - e0
-    q = np.float64(ob[_ROLL]) / task.roll_scale
+    q = np.float64(ob[_ROLL]) * _SCALE[_ROLL] / task.roll_scale
     c[C_RROLL], c[C_REFFORT] = -(q * q), -task.effort_weight * energy
     rew = c[C_RROLL] + c[C_REFFORT]
     _info_row(c, roll, yi, oi, energy)

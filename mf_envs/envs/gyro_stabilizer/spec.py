@@ -13,9 +13,14 @@ import numpy as np
 
 from mf_envs.envs._spec import Field, ObsLayout
 
+# the observation's fixed units of roll and roll rate (`_spec.Field.scale`): a stabilised hull
+# rolls by a few hundredths of a radian (RMS roll 0.015 rad under LQR, 0.047 under random
+# actions on GyroStabilizer-JONSWAP-v0), so in radians the two slots sat near 0.02-0.05
+ROLL_UNIT, ROLL_RATE_UNIT = 0.05, 0.05  # rad, rad/s
 OBS = ObsLayout(
-    Field("roll", "rad", math.pi, "roll angle (z-y-x Euler angle, `physics.ship.roll_angle`)"),
-    Field("roll_rate", "rad/s", 10.0, "roll rate omega_1 (body)"),
+    Field("roll", "rad", math.pi, "roll angle (z-y-x Euler angle, `physics.ship.roll_angle`)",
+          scale=ROLL_UNIT),
+    Field("roll_rate", "rad/s", 10.0, "roll rate omega_1 (body)", scale=ROLL_RATE_UNIT),
     Field("pitch_rate", "rad/s", 10.0, "pitch rate omega_2 (body)"),
     Field("yaw_rate", "rad/s", 10.0, "yaw rate omega_3 (body)"),
     Field("gimbal_angle", "rad", math.pi, "gimbal angle phi of gyro 1, wrapped to [-pi, pi)"),
@@ -36,7 +41,8 @@ ENCODER_NOISE = 2.0 * math.pi / 4096.0 / math.sqrt(12.0)
 
 
 def sensor_sigma(control_dt: float, scale: float = 1.0) -> np.ndarray:
-    """Per-sample noise standard deviations (OBS order, SI) at control step control_dt (s)."""
+    """Per-sample noise standard deviations (OBS order, SI) at control step control_dt (s);
+    / `OBS.scales()` in the observation's units."""
     band = math.sqrt(0.5 / control_dt)  # sqrt(Nyquist bandwidth), sqrt(Hz)
     rate = GYRO_NOISE_DENSITY * band
     return scale * np.array([TILT_NOISE_DENSITY * band, rate, rate, rate, ENCODER_NOISE,

@@ -22,6 +22,7 @@ import numba
 import numpy as np
 
 from mf_envs.envs import _beam_rows as br
+from mf_envs.envs.serpentine.spec import VELOCITY_UNIT
 from mf_envs.physics.actuators.kernels import lag_at
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.kernels import _scratch as _kernel_scratch
@@ -67,8 +68,9 @@ def observe_row(d, v, cmd, cfg, body, out):
     out[n + 1] = math.cos(rel)
     br.body_state(d, v, le, cfg.nz, cfg.npsi, body)
     c, s = math.cos(body[4]), math.sin(body[4])
-    out[n + 2] = (c * body[2] + s * body[3]) / length
-    out[n + 3] = (-s * body[2] + c * body[3]) / length
+    unit = length * VELOCITY_UNIT  # m/s (the slots' fixed unit, `spec.VELOCITY_UNIT` L/s)
+    out[n + 2] = (c * body[2] + s * body[3]) / unit
+    out[n + 3] = (-s * body[2] + c * body[3]) / unit
 
 
 @numba.njit(cache=True, nogil=True)

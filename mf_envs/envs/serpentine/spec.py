@@ -7,6 +7,9 @@ from mf_envs.envs._spec import Field, ObsLayout
 
 CURVATURE_OBS_LIMIT = 20.0  # |kappa L| bound of the observation (also caps max_curvature * L)
 VELOCITY_OBS_LIMIT = 10.0  # |v_com| / L bound [1/s] (the snake crawls at ~0.1 L/s)
+# the velocity slots' fixed unit (`_spec.Field.scale`), in L/s: the snake crawls at ~0.1 L/s,
+# so in L/s the slots' spread was 0.02-0.04 (random actions, the heading baseline)
+VELOCITY_UNIT = 0.1
 REWARD_TERMS = ("progress", "effort")
 RESET_OPTIONS = ("heading", "kappa")
 INFO_KEYS = (
@@ -27,18 +30,22 @@ INFO_KEYS = (
 
 def observation_layout(n: int) -> ObsLayout:
     """The observation of a serpentine with n control points (2 n + 4 slots)."""
-    return beam_layout(n, "psi_head", VELOCITY_OBS_LIMIT)
+    return beam_layout(n, "psi_head", VELOCITY_OBS_LIMIT, velocity_unit=VELOCITY_UNIT)
 
 
-def beam_layout(n: int, heading: str, velocity_limit: float, extra: tuple = ()) -> ObsLayout:
+def beam_layout(
+    n: int, heading: str, velocity_limit: float, extra: tuple = (), velocity_unit: float = 1.0
+) -> ObsLayout:
     """A beam robot's observation with n control points: the curvatures, the heading (`heading`:
     the angle it reads) against the target, the centre of mass's velocity (bound
-    `velocity_limit` L/s), the robot's `extra` fields and the commanded curvatures."""
+    `velocity_limit` L/s, in units of `velocity_unit` L/s), the robot's `extra` fields and the
+    commanded curvatures."""
     return ObsLayout(
         Field("curvature", "", CURVATURE_OBS_LIMIT, "measured kappa L at the control points", n),
         Field("sin_heading", "", 1.0, f"sin({heading} - target direction)"),
         Field("cos_heading", "", 1.0, f"cos({heading} - target direction)"),
-        Field("velocity", "1/s", velocity_limit, "v_com / L along, across the mean axis", 2),
+        Field("velocity", "1/s", velocity_limit, "v_com / L along, across the mean axis", 2,
+              scale=velocity_unit),
         *extra,
         Field("curvature_command", "", 1.0, "kappa# / max_curvature at the step's end", n),
     )
