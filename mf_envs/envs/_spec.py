@@ -104,14 +104,18 @@ class ObsLayout:
         }
 
     def table(self) -> str:
-        """The docstring's Observation Space table (markdown, one row per field)."""
+        """The docstring's Observation Space table (markdown, one row per field; a scaled
+        field's bound and unit are the slot's: +-bound / scale in units of scale x unit)."""
         rows = ["| Num | Name | Observation | Bound | Unit |", "|---|---|---|---|---|"]
         for f in self.fields:
             s = self.slice(f.name)
             num = str(s.start) if f.size == 1 else f"{s.start}..{s.stop - 1}"
-            bound = f.bound if isinstance(f.bound, str) else f"{f.bound:g}"
-            doc = f.doc if f.scale == 1.0 else f"{f.doc}, in units of {f.scale:g} {f.unit}".strip()
-            rows.append(f"| {num} | {f.name} | {doc} | +-{bound} | {f.unit} |")
+            if isinstance(f.bound, str):  # the slot's bound and unit (the unit x its scale)
+                bound = f.bound if f.scale == 1.0 else f"{f.bound} / {f.scale:g}"
+            else:
+                bound = f"{f.bound / f.scale:g}"
+            unit = f.unit if f.scale == 1.0 else f"{f.scale:g} {f.unit}"
+            rows.append(f"| {num} | {f.name} | {f.doc} | +-{bound} | {unit} |")
         return "\n".join(rows)
 
 

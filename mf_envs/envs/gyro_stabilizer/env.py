@@ -79,8 +79,8 @@ class GyroStabilizerEnv(MFEnv):
 
     | Num | Name | Observation | Bound | Unit |
     |---|---|---|---|---|
-    | 0 | roll | roll angle (z-y-x Euler angle, `physics.ship.roll_angle`), in units of 0.05 rad | +-3.14159 | rad |
-    | 1 | roll_rate | roll rate omega_1 (body), in units of 0.05 rad/s | +-10 | rad/s |
+    | 0 | roll | roll angle (z-y-x Euler angle, `physics.ship.roll_angle`) | +-62.8319 | 0.05 rad |
+    | 1 | roll_rate | roll rate omega_1 (body) | +-200 | 0.05 rad/s |
     | 2 | pitch_rate | pitch rate omega_2 (body) | +-10 | rad/s |
     | 3 | yaw_rate | yaw rate omega_3 (body) | +-10 | rad/s |
     | 4 | gimbal_angle | gimbal angle phi of gyro 1, wrapped to [-pi, pi) | +-3.14159 | rad |

@@ -18,8 +18,13 @@ from mf_envs.envs._spec import Field, ObsLayout
 # actions on GyroStabilizer-JONSWAP-v0), so in radians the two slots sat near 0.02-0.05
 ROLL_UNIT, ROLL_RATE_UNIT = 0.05, 0.05  # rad, rad/s
 OBS = ObsLayout(
-    Field("roll", "rad", math.pi, "roll angle (z-y-x Euler angle, `physics.ship.roll_angle`)",
-          scale=ROLL_UNIT),
+    Field(
+        "roll",
+        "rad",
+        math.pi,
+        "roll angle (z-y-x Euler angle, `physics.ship.roll_angle`)",
+        scale=ROLL_UNIT,
+    ),
     Field("roll_rate", "rad/s", 10.0, "roll rate omega_1 (body)", scale=ROLL_RATE_UNIT),
     Field("pitch_rate", "rad/s", 10.0, "pitch rate omega_2 (body)"),
     Field("yaw_rate", "rad/s", 10.0, "yaw rate omega_3 (body)"),

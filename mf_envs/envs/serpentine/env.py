@@ -51,7 +51,7 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     | 0..n-1 | curvature | measured kappa L at the control points (strain gauges) | +-20 | |
     | n | sin_heading | sin(psi_head - target direction) | +-1 | |
     | n+1 | cos_heading | cos(psi_head - target direction) | +-1 | |
-    | n+2..n+3 | velocity | v_com / L along, across the mean axis, in units of 0.1 1/s | +-10 | 1/s |
+    | n+2..n+3 | velocity | v_com / L along, across the mean axis | +-100 | 0.1 1/s |
     | n+4..2n+3 | curvature_command | muscles' kappa# / max_curvature (the lag's state) | +-1 | |
 
     psi_head is the frame angle at the head; the mean axis is the mean frame angle.

@@ -44,8 +44,14 @@ def beam_layout(
         Field("curvature", "", CURVATURE_OBS_LIMIT, "measured kappa L at the control points", n),
         Field("sin_heading", "", 1.0, f"sin({heading} - target direction)"),
         Field("cos_heading", "", 1.0, f"cos({heading} - target direction)"),
-        Field("velocity", "1/s", velocity_limit, "v_com / L along, across the mean axis", 2,
-              scale=velocity_unit),
+        Field(
+            "velocity",
+            "1/s",
+            velocity_limit,
+            "v_com / L along, across the mean axis",
+            2,
+            scale=velocity_unit,
+        ),
         *extra,
         Field("curvature_command", "", 1.0, "kappa# / max_curvature at the step's end", n),
     )
