@@ -64,11 +64,6 @@ class GOWECV1Env(MFEnv):
     ## Observation Space
     OBSERVATION_TABLE
 
-    In a sea along the pitch axis (the default `wave_direction` pi/2, and the headline
-    JONSWAP id) the hull moves in one plane: w2, w3 and roll (slots 4, 5, 7) stay 0 and carry
-    the motion of oblique seas and roll resets. With the gimbal swinging a few tens of degrees
-    (a damping PTO), cos(phi) varies little (std 0.01) while sin(phi) carries the angle.
-
     ## Rewards
     Net electrical energy of the step / (P_ref control_dt): generator output eta_g P when P =
     n M_g phi' > 0 (n = gyro_units, the same torque on each unit), drawn power P / eta_m when
@@ -352,4 +347,4 @@ class GOWECV1Env(MFEnv):
         return draw_frame(self)
 
 
-GOWECV1Env.__doc__ = (GOWECV1Env.__doc__ or "").replace("OBSERVATION_TABLE", spec.OBS.table())
+GOWECV1Env.__doc__ = (GOWECV1Env.__doc__ or "").replace("OBSERVATION_TABLE", spec.OBS_DOC)

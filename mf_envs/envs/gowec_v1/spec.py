@@ -14,6 +14,13 @@ MAX_BUOY_RATE = 5.0  # rad/s, observation bound
 MAX_BUOY_ANGLE = 1.0  # rad: observation bound (and of the device's survival tilt pitch_limit)
 MAX_ELEVATION = 15.0  # m: observation bound of the wave elevation (and its preview)
 
+# the env docstring's observation table, then its slots with little spread explained
+_OBS_NOTE = (
+    "In a sea along the pitch axis (the default `wave_direction` pi/2, and the headline JONSWAP "
+    "id) the hull moves in one plane: w2, w3 and roll (slots 4, 5, 7) stay 0 and carry the "
+    "motion of oblique seas and roll resets. With the gimbal swinging a few tens of degrees (a "
+    "damping PTO), cos(phi) varies little (std 0.01) while sin(phi) carries the angle."
+)
 OBS = ObsLayout(
     Field("sin_gimbal_angle", "", 1.0, "sin(phi), gimbal angle phi (encoder)"),
     Field("cos_gimbal_angle", "", 1.0, "cos(phi)"),
@@ -29,6 +36,7 @@ OBS = ObsLayout(
 N_PREVIEW = 8
 I_SIN, I_COS = OBS.index("sin_gimbal_angle"), OBS.index("cos_gimbal_angle")
 I_RATE = OBS.index("gimbal_rate")
+OBS_DOC = OBS.table() + "\n\n" + _OBS_NOTE
 S_BUOY = OBS.slice("buoy_rates")
 S_ANGLES = OBS.slice("buoy_angles")
 I_ELEVATION = OBS.index("wave_elevation")

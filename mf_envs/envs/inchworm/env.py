@@ -61,12 +61,7 @@ class InchwormEnv(MFEnv):
     `Box(float32, (2 n + 6,))`, what an on-board robot can sense, laid out by
     `mf_envs.envs.inchworm.spec.observation_layout(n, sma)` (the env's `obs_layout`; read slots
     by name: `obs_layout.slice("curvature")`, `obs_layout.index("grip")`); without `sma_wires`
-    the slots n..2n-1 are `curvature_command` (commanded kappa# / max_curvature, +-1). On the
-    default flat ground each foot's reaction stays near its static share of the weight (std
-    1e-4 of it, quasi-static crawling); the slots carry terrain and the friction scenes' loads.
-    Under uniform random duty the wires' thermal lag averages the duty, so the body hardly
-    moves (angles' std 0.03 rad, head-tail distance 5e-4 L, against 0.39 and 0.11 under the
-    tuned gait):
+    the slots n..2n-1 are `curvature_command` (kappa# / max_curvature; spreads: docs/inchworm.md):
 
     | Num | Name | Observation | Bound | Unit |
     |---|---|---|---|---|
