@@ -25,6 +25,8 @@ MIN_DT = 1e-6  # s, smallest control or physics step
 MAX_CONTROL_DT = 60.0  # s, largest control step
 MAX_SUBSTEPS = 10_000  # physics substeps per control step (a step must stay fast)
 MAX_EPISODE_STEPS = 10_000_000  # control steps per episode
+# what step() returns: observation, reward, terminated, truncated, info
+StepResult = tuple[np.ndarray, float, bool, bool, dict[str, Any]]
 
 
 def episode_steps_arg(value: Any) -> int | None:
@@ -228,29 +230,16 @@ class MFEnv(gym.Env):
         raise TypeError(f"{type(self).__name__} does not define _start()")
 
     # ------------------------------------------------------------------ numerics
-    def _step_ok(
-        self,
-        obs: np.ndarray,
-        reward: float,
-        terminated: bool,
-        truncated: bool,
-        info: dict[str, Any],
-    ) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+    def _step_ok(self, obs: np.ndarray, reward: float, terminated: bool, truncated: bool,
+                 info: dict[str, Any]) -> StepResult:  # fmt: skip
         """The end of a healthy step whose observation the env's kernel already checked finite
         and clipped to the bounds: `_finish_step`'s contract without repeating its checks."""
         info["numerical_failure"] = False
         self._last_obs = obs
         return obs, reward, terminated, truncated, info
 
-    def _finish_step(
-        self,
-        obs: np.ndarray,
-        reward: float,
-        terminated: bool,
-        truncated: bool,
-        info: dict[str, Any],
-        state_ok: bool,
-    ) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+    def _finish_step(self, obs: np.ndarray, reward: float, terminated: bool, truncated: bool,
+                     info: dict[str, Any], state_ok: bool) -> StepResult:  # fmt: skip
         """Apply the numerical-failure contract and remember the last finite observation."""
         obs = np.asarray(obs, dtype=np.float32)
         ok = bool(state_ok) and bool(np.all(np.isfinite(obs))) and bool(np.isfinite(reward))

@@ -282,11 +282,7 @@ class DrivenInchworm:
             self.electrical_energy += out.energy
         else:
             out.energy = rep[qs.REP_A2POS] / self.meter.efficiency
-        z = np.zeros_like(d)
-        sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
-        sim.kappa = self._gauss(self.kappa_ctrl)
-        sim.anchor = anchor or "head"
-        sim._recenter()  # noqa: SLF001 - same package: the local origin follows the tail
+        self._settle(d, anchor, dt)
         return out
 
     def _kinematic(self, gauss: list[np.ndarray], anchor: str | None, dt: float) -> int:
@@ -296,6 +292,16 @@ class DrivenInchworm:
             iterations += sim.actuate(gauss[j + 1], dt=dt / n, anchor=anchor).iterations
             self.meter.add(increment_work(sim.model, d_a, sim.state.d, gauss[j], gauss[j + 1]))
         return iterations
+
+    def _settle(self, d: np.ndarray, anchor: str | None, dt: float) -> None:
+        """The beam at rest in configuration d after a compiled step of dt (quasi-static: no
+        velocity), its Gauss-point actuation the realised curvature, re-centred on the tail."""
+        sim = self.sim
+        z = np.zeros_like(d)
+        sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
+        sim.kappa = self._gauss(self.kappa_ctrl)
+        sim.anchor = anchor or "head"
+        sim._recenter()  # noqa: SLF001 - same package: the local origin follows the tail
 
     def kernel_args(self) -> tuple:
         """(act, feet, S_ctrl, gauss_S, f_ext, beam constants) of `quasistatic.drive_step`
@@ -338,11 +344,7 @@ class DrivenInchworm:
         out.energy = rep[ss.REP_POS] / self.meter.efficiency
         out.net_work = float(rep[ss.REP_NET])
         out.mechanical_work = float(rep[ss.REP_POS])
-        z = np.zeros_like(d)
-        sim.state = NewmarkState(d, z, z.copy(), sim.state.t + dt)
-        sim.kappa = self._gauss(self.kappa_ctrl)
-        sim.anchor = anchor or "head"
-        sim._recenter()  # noqa: SLF001 - same package: the local origin follows the tail
+        self._settle(d, anchor, dt)
         return out
 
 
