@@ -1,17 +1,11 @@
 """Eel-v0 as a native batched vector env: N eels stepped in one compiled call.
 
-`gym.make_vec("Eel-v0", num_envs=N, vectorization_mode="vector_entry_point", **kwargs)`
-builds it; `kwargs` are those of `gym.make("Eel-v0", ...)` plus `autoreset_mode`
-(default NEXT_STEP) and `num_threads` (blocks of rows stepped at once on threads, default: one
-per CPU; a row's arithmetic does not depend on it). Every scene (every effect set) is compiled.
-
-Trajectories are identical, bit for bit, to `SyncVectorEnv` over N single `EelEnv`s with
-the same seeds (`tests/test_vector_envs.py`): resets go through a template single env whose
-state is copied into the row (`_load`); steps through `envs.eel.rows.step_rows`, which
-runs the single env's own compiled step (`rows.step_row`) for every row; the reward, info
-and failure contract are `SerpentineVectorEnv`'s (the beam robots' shared step on (N,) arrays).
-See `mf_envs.envs._vector`. Domain randomisation: the serpentine's (each row holds its
-compiled configuration, here with the water's drag laws).
+It is the serpentine's (`mf_envs.envs.serpentine.vector`, whose module docstring says how
+`gym.make_vec("Eel-v0", num_envs=N, vectorization_mode="vector_entry_point", **kwargs)` builds
+it, its threads, its bit-identity with `SyncVectorEnv` over single `EelEnv`s and its domain
+randomisation) stepping the eel's own compiled step (`envs.eel.rows.step_rows`, each row with
+the water's drag laws); the reward, info and failure contract are the beam robots' shared step
+on (N,) arrays (`tests/test_vector_envs.py`).
 """
 
 from __future__ import annotations
