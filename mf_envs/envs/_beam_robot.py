@@ -32,6 +32,30 @@ from mf_envs.physics.beam.solver import BeamModel
 MAX_HEADING = 4 * math.pi  # rad, |heading| of a reset option
 
 
+_START_AND_END = """## Starting State
+    At rest, curvature kappa0 = max_curvature x U(-reset_noise_scale, reset_noise_scale) at the
+    control points (linear between) and commanded alike (an equilibrium), mean frame angle
+    U(-initial_heading_range, initial_heading_range), centre of mass at the origin.
+    `reset(options={"heading": rad (|.| <= 4 pi), "kappa": (n,) 1/m within +-max_curvature})`
+    overrides; any other key or value raises ValueError naming it (and draws nothing).
+
+    ## Episode End
+    Truncation after `episode_seconds` or `max_episode_steps` (default DEFAULT;
+    docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
+    after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
+"""
+
+
+def beam_doc(doc: str | None) -> str:
+    """A beam robot's class docstring with its `BEAM_START_AND_END(<default episode>)` line
+    replaced by the Starting State and Episode End sections they share."""
+    head, sep, rest = (doc or "").partition("BEAM_START_AND_END(")
+    if not sep:
+        return doc or ""
+    default, _, tail = rest.partition(")\n")
+    return head + _START_AND_END.replace("DEFAULT", default) + tail
+
+
 def step_terms(body, rep, target_direction, length, effort_weight) -> tuple[Any, dict]:
     """The centre of mass's advance along the target direction in a step [m] and the reward
     terms (`progress` = advance / L, `effort` = -effort_weight x the actuation energy [J]) of
@@ -52,6 +76,10 @@ class BeamRobotMixin(metaclass=ABCMeta):
     robot_build: ModuleType
     robot_rows: ModuleType
     robot_spec: ModuleType
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        cls.__doc__ = beam_doc(cls.__doc__)  # the shared Starting State and Episode End
 
     def _make_robot(self, kw: dict[str, Any], episode_default: float) -> None:
         """The start of the constructor (after `MFEnv.__init__`): the scene from the kwargs

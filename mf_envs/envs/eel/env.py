@@ -67,17 +67,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     regeneration; default weight 0.002 / (m L^2 / s^2), m the body mass). Info keys:
     `spec.INFO_KEYS`.
 
-    ## Starting State
-    At rest, curvature kappa0 = max_curvature x U(-reset_noise_scale, reset_noise_scale) at the
-    control points (linear between) and commanded alike (an equilibrium), mean frame angle
-    U(-initial_heading_range, initial_heading_range), centre of mass at the origin.
-    `reset(options={"heading": rad (|.| <= 4 pi), "kappa": (n,) 1/m within +-max_curvature})`
-    overrides; any other key or value raises ValueError naming it (and draws nothing).
-
-    ## Episode End
-    Truncation after `episode_seconds` or `max_episode_steps` (default 500 = 10 s at 0.02 s;
-    docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
-    after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
+    BEAM_START_AND_END(500 = 10 s at 0.02 s)
 
     ## Arguments
     | Argument | Default | Meaning |

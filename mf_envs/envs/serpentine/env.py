@@ -64,17 +64,7 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     PyElastica-like serpenoid). Info keys: `spec.INFO_KEYS` (x, y of the centre of mass [m],
     heading [rad], speed [m/s], actuation energy [J] and power [W], time [s]).
 
-    ## Starting State
-    At rest, curvature kappa0 = max_curvature x U(-reset_noise_scale, reset_noise_scale) at the
-    control points (linear between) and commanded alike (an equilibrium), mean frame angle
-    U(-initial_heading_range, initial_heading_range), centre of mass at the origin.
-    `reset(options={"heading": rad (|.| <= 4 pi), "kappa": (n,) 1/m within +-max_curvature})`
-    overrides; any other key or value raises ValueError naming it (and draws nothing).
-
-    ## Episode End
-    Truncation after `episode_seconds` or `max_episode_steps` (default 400 = 20 s at 0.05 s;
-    docs/api.md, "Episode length"). Termination on numerical failure (Newton fails even
-    after 2^6 step halvings, or a non-finite state): info["numerical_failure"] = True.
+    BEAM_START_AND_END(400 = 20 s at 0.05 s)
 
     ## Arguments
     | Argument | Default | Meaning |
