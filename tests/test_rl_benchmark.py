@@ -182,6 +182,26 @@ def test_rank_agreement_is_spearmans_rho_of_mean_return_and_score():
     assert rank_agreement({"ids": {"Eel-v0": {}}, "rows": rows})["Eel-v0"]["spearman"] == 1.0
 
 
+def test_rank_agreement_ties_speeds_closer_than_their_resolution():
+    """Two controllers that do not move (speeds 2e-9 and 5e-7 m/s, below the 1 um/s
+    resolution) tie: their returns' order no longer counts, and rho is scipy's with the tie
+    (average ranks); the unrounded rho stays reported."""
+    from scipy.stats import spearmanr
+
+    from mf_envs.benchmarks.rl_diagnostics import SCORE_RESOLUTION, rank_agreement
+
+    assert SCORE_RESOLUTION["speed_m_s"] == 1e-6
+    rows = [{"env_id": "Inchworm-v0", "name": n, "seed": None, "budget": None,
+             "returns": [r], "scores": [s]}
+            for n, r, s in (("zero", -0.10, 2e-9), ("random", -0.11, 5e-7),
+                            ("gait", 2.0, 4e-3), ("tuned", 3.0, 5e-3))]  # fmt: skip
+    d = rank_agreement({"ids": {"Inchworm-v0": {"score_name": "speed_m_s"}}, "rows": rows})
+    d = d["Inchworm-v0"]
+    assert d["spearman"] == pytest.approx(spearmanr([-0.10, -0.11, 2, 3], [0, 0, 4e-3, 5e-3])[0])
+    assert d["spearman_raw"] == pytest.approx(0.8)  # the swapped pair below resolution
+    assert d["spearman"] > d["spearman_raw"]
+
+
 def test_the_grid_covers_every_headline_id_with_its_budgets():
     """`--all` runs every registered headline id: PPO at 1M and 10M and SBX's SAC at 1M on the
     marine ids, PPO at 1M on the soft robots, five training seeds."""
