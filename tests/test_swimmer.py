@@ -16,6 +16,7 @@ from mf_envs.physics.serpentine.stepping import Body
 from mf_envs.physics.swimmer import Swimmer, Water
 from mf_envs.physics.swimmer.fluid import added_momentum, assemble_water
 from mf_envs.physics.swimmer.theory import (
+    coasting_distance,
     coasting_speed,
     lighthill_thrust,
     taylor_small_amplitude_speed,
@@ -145,6 +146,23 @@ def test_coasting_body_decays_as_its_own_ode_at_second_order(direction):
     assert errors[-1] < 1e-3, errors
     ratios = errors[0] / errors[1], errors[1] / errors[2]
     assert all(3.5 < r < 4.5 for r in ratios), (errors, ratios)
+
+
+@pytest.mark.parametrize("a, b", [(0.01, 0.05), (0.0, 0.05), (0.01, 0.0)])
+def test_coasting_distance_closed_form_matches_the_integrated_ode(a, b):
+    """theory.coasting_distance against scipy's integration of M x'' = -a x' - b x'^2 (rtol
+    1e-12) to the time the speed falls to V1."""
+    from scipy.integrate import solve_ivp
+
+    mass, v0, v1 = 0.02, 0.4, 0.1
+
+    def slow(t, y):
+        return y[1] - v1
+
+    sol = solve_ivp(lambda t, y: [y[1], -(a * y[1] + b * y[1] ** 2) / mass], [0.0, 100.0],
+                    [0.0, v0], rtol=1e-12, atol=1e-14, events=slow)  # fmt: skip
+    want = sol.y_events[0][0][0]
+    assert coasting_distance(v0, v1, mass, a, b) == pytest.approx(want, rel=1e-9)
 
 
 def test_body_and_entrained_water_conserve_momentum():
