@@ -147,3 +147,43 @@ def test_the_lightest_allowed_body_survives_bang_bang_strokes(pattern):
         if term or trunc:
             env.reset(seed=k + 1)
     assert failures == 0
+
+
+def _coast(env, seed):
+    """Swim the default controller 5 s, command a straight body and coast: the distance along
+    the track from 0.5 s after the stop (the body straight) while the speed falls by e [m]."""
+    base = env.unwrapped
+    _run(env, make_baseline(env), 250, seed=seed)
+    xy, speed = [], []
+    for _ in range(200):
+        env.step(np.zeros(base.action_space.shape, np.float32))
+        xy.append(base._body[:2].copy())
+        speed.append(np.hypot(base._body[2], base._body[3]))
+    xy, speed = np.array(xy), np.array(speed)
+    path = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))])
+    i0, goal = 25, speed[25] / np.e
+    i1 = int(np.argmax(speed < goal))
+    assert i1 > i0
+    frac = (speed[i1 - 1] - goal) / (speed[i1 - 1] - speed[i1])
+    return path[i1 - 1] + frac * (path[i1] - path[i1 - 1]) - path[i0]
+
+
+@pytest.mark.parametrize("drag_form", [0.13, 0.24])
+def test_coasting_distance_is_the_cited_drag_coefficients(drag_form):
+    """After the muscles stop, the eel coasts while its speed falls by e the distance
+    M / b = `theory.coasting_distance(1, 1/e, M, 0, b)` of M dV/dt = -b V^2, b = k_t L + k_f:
+    the drag of a gliding fish (docs/eel.md) at the ends of the cited range of the form-drag
+    coefficient, to 0.5 %; without the form drag the eel coasts the skin friction's longer
+    M / (k_t L)."""
+    from mf_envs.physics.swimmer.theory import coasting_distance
+
+    env = gym.make("Eel-v0", drag_form=drag_form, episode_seconds=100.0)
+    scene = env.unwrapped.scene
+    mass, water, length = scene.body_mass, scene.water, scene.length
+    b = water.k_tangential * length + water.k_form
+    want = coasting_distance(1.0, 1.0 / np.e, mass, 0.0, b)
+    assert _coast(env, seed=21) == pytest.approx(want, rel=5e-3)
+    bare = gym.make("Eel-v0", effects=("resistive", "reactive"), episode_seconds=100.0)
+    skin = coasting_distance(1.0, 1.0 / np.e, mass, 0.0, water.k_tangential * length)
+    assert _coast(bare, seed=21) == pytest.approx(skin, rel=5e-3)
+    assert want < 0.75 * skin

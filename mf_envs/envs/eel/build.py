@@ -4,7 +4,7 @@
 parameters of an anguilliform wave: `HEAD_RATIO`, `WAVE_WAVELENGTH`, `WAVE_FREQUENCY`), the rod
 (`physics.serpentine.rod_params`, a solid circular section of the body's diameter), the water
 (`physics.swimmer.Water`: Taylor's resistive law with `resistive`, Lighthill's added mass and
-tail force with `reactive`), the actuation range, its rate limit and control points, the reward
+tail force with `reactive`, the leading end's form drag with `form_drag`), the actuation range, its rate limit and control points, the reward
 weight and the start noise.
 The maps between the control points and the beam and the start shape are the serpentine's
 (`envs.serpentine.build.interpolation`, `control_points`, `initial_dofs`).
@@ -81,6 +81,8 @@ def water(kw: dict[str, Any], effects: frozenset, diameter: float) -> Water:
         diameter=diameter,
         c_normal=check_range("drag_normal", kw["drag_normal"], 0.0, 100.0),
         c_tangential=check_range("drag_tangential", kw["drag_tangential"], 0.0, 100.0),
+        c_form=check_range("drag_form", kw["drag_form"], 0.0, 100.0),
+        form_drag="form_drag" in effects,
         resistive="resistive" in effects,
         reactive="reactive" in effects,
     )

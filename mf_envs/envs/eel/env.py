@@ -10,13 +10,20 @@ import numpy as np
 from mf_envs.envs._beam_robot import BeamRobotMixin
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.eel import build, render, rows, spec
-from mf_envs.physics.swimmer.fluid import C_NORMAL, C_TANGENTIAL, RHO_WATER, point_forces
+from mf_envs.physics.swimmer.fluid import (
+    C_FORM,
+    C_NORMAL,
+    C_TANGENTIAL,
+    RHO_WATER,
+    point_forces,
+)
 
 AVAILABLE_EFFECTS = {
     "resistive": "Taylor's (1952) quadratic normal and tangential drag of each body element",
     "reactive": "Lighthill's (1960) added mass on the normal velocity and the tail force",
+    "form_drag": "the leading end's axial form drag of a gliding fish (docs/eel.md)",
 }
-DEFAULT_EFFECTS = ("resistive", "reactive")
+DEFAULT_EFFECTS = ("resistive", "reactive", "form_drag")
 EPISODE_SECONDS = 10.0  # s, the default episode (500 steps of the default 0.02 s)
 
 
@@ -30,6 +37,8 @@ class EelEnv(BeamRobotMixin, MFEnv):
     (M3 = EI (kappa - kappa#)); the water acts through Taylor's (1952) resistive force
     (quadratic cross-flow drag C_N = 1.1 and skin friction C_T = 0.0055) and Lighthill's
     (1960) reactive force (added mass rho pi d^2 / 4 on the normal velocity, the tail force),
+    and a form drag on the leading end along its axis (frontal-area coefficient 0.19, from the
+    drag of gliding fish; docs/eel.md),
     stepped by the implicit energy-momentum scheme with the added mass in the residual and the
     forces' consistent tangents. Goal: swim along the target direction (+x) with little
     actuation energy.
@@ -86,6 +95,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | youngs_modulus, shear_modulus | 1e6, E / 1.5 | E, G [Pa] in [1e3, 1e12] |
     | density, water_density | 1000, 1000 | body, water density [kg/m^3]; body >= 0.25 x water |
     | drag_normal, drag_tangential | 1.1, 0.0055 | Taylor's C_N, C_T (docs/eel.md) |
+    | drag_form | 0.19 | form drag coefficient on the frontal area pi d^2 / 4 (docs/eel.md) |
     | n_elements | 6 | C1 elements, 2..64 |
     | max_curvature | 50 | action scale [1/m], max_curvature L <= 20 |
     | max_curvature_rate | 750 | muscle rate limit of the command [1/(m s)] (docs/eel.md) |
@@ -98,10 +108,11 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
     | numerical_damping | 0.1 | theta_s - 1/2 of the stresses, in [0, 0.5] (0: energy-conserving) |
     | action_mode | "curvature" | or "wave": (amplitude, wavelength, frequency) of the wave |
-    | effects | resistive, reactive | either or both; () a body in vacuum |
+    | effects | resistive, reactive, form_drag | any subset; () a body in vacuum |
 
     ## Version History
-    * v0: initial release.
+    * v0: initial release; the form drag (effect `form_drag`, on by default) added later,
+      which changes trajectories by design.
     """
 
     RESET_OPTIONS = spec.RESET_OPTIONS
@@ -120,6 +131,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
         water_density: float = RHO_WATER,
         drag_normal: float = C_NORMAL,
         drag_tangential: float = C_TANGENTIAL,
+        drag_form: float = C_FORM,
         n_elements: int = 6,
         max_curvature: float = 50.0,
         max_curvature_rate: float = 750.0,
