@@ -187,3 +187,40 @@ def test_coasting_distance_is_the_cited_drag_coefficients(drag_form):
     skin = coasting_distance(1.0, 1.0 / np.e, mass, 0.0, water.k_tangential * length)
     assert _coast(bare, seed=21) == pytest.approx(skin, rel=5e-3)
     assert want < 0.75 * skin
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_muscle_power_stays_within_its_limit_under_bang_bang_strokes(seed):
+    """Effect `muscle_power` (default): the muscles' positive power of every control step
+    (actuation energy / control_dt) stays within 1 % of muscle_power_density x
+    muscle_mass_fraction x body mass (0.249 W), where the same strokes without the limit reach
+    several times it; nothing fails."""
+    rng = np.random.default_rng(seed)
+    actions = rng.choice([-1.0, 1.0], size=(200, 7)).astype(np.float32)
+    powers = {}
+    for effects in (None, ("resistive", "reactive", "form_drag")):
+        env = gym.make("Eel-v0", effects=effects)
+        env.reset(seed=seed)
+        base = env.unwrapped
+        out = []
+        for a in actions:
+            _, _, term, _, info = env.step(a)
+            assert not term
+            out.append(info["actuation_energy"] / base.control_dt)
+        powers[effects is None] = np.array(out)
+    cap = 22.0 * 0.5 * env.unwrapped.scene.body_mass
+    assert np.max(powers[True]) <= 1.01 * cap
+    assert np.max(powers[False]) > 3.0 * cap
+    assert np.mean(powers[True] > 0.95 * cap) > 0.2  # the limit binds on many steps
+
+
+def test_a_muscle_power_limit_above_the_need_changes_nothing():
+    """The `heading` baseline needs at most 0.22 W (docs/eel.md): with a limit of 100x that the
+    run is bit for bit the run without the effect."""
+    runs = []
+    for kw in ({"muscle_power_density": 4400.0}, {"effects": ("resistive", "reactive",
+                                                             "form_drag")}):  # fmt: skip
+        env = gym.make("Eel-v0", **kw)
+        obs, infos = _run(env, make_baseline(env), 100, seed=2)
+        runs.append(obs)
+    assert np.array_equal(runs[0], runs[1])

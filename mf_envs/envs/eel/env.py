@@ -22,8 +22,9 @@ AVAILABLE_EFFECTS = {
     "resistive": "Taylor's (1952) quadratic normal and tangential drag of each body element",
     "reactive": "Lighthill's (1960) added mass on the normal velocity and the tail force",
     "form_drag": "the leading end's axial form drag of a gliding fish (docs/eel.md)",
+    "muscle_power": "the muscles' positive power capped at fish muscle's power density",
 }
-DEFAULT_EFFECTS = ("resistive", "reactive", "form_drag")
+DEFAULT_EFFECTS = ("resistive", "reactive", "form_drag", "muscle_power")
 EPISODE_SECONDS = 10.0  # s, the default episode (500 steps of the default 0.02 s)
 
 
@@ -47,7 +48,11 @@ class EelEnv(BeamRobotMixin, MFEnv):
     `Box(-1, 1, (n_control_points,), float32)`: target kappa# = max_curvature * a at the
     control points S_j = j L / (n - 1), tail (S = 0) to head (S = L), linear in S between them.
     The command moves towards the target by at most max_curvature_rate x control_dt per step
-    (the muscles' finite rate) and linearly in time over the step.
+    (the muscles' finite rate) and linearly in time over the step. With the effect
+    `muscle_power` (default) the step's change is scaled down further where the muscles'
+    positive work in the step would exceed max power x control_dt, max power =
+    muscle_power_density x muscle_mass_fraction x body mass (22 W/kg x 0.5 x 22.6 g = 0.25 W;
+    docs/eel.md).
 
     With `action_mode="wave"` the action is `Box(-1, 1, (3,), float32)`: the tail's curvature
     amplitude a in [0, max_curvature], the wavelength lambda / L in [0.4, 2] and the frequency f
@@ -99,6 +104,8 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | n_elements | 6 | C1 elements, 2..64 |
     | max_curvature | 50 | action scale [1/m], max_curvature L <= 20 |
     | max_curvature_rate | 750 | muscle rate limit of the command [1/(m s)] (docs/eel.md) |
+    | muscle_power_density | 22 | the muscles' power limit per kg of muscle [W/kg] (docs/eel.md) |
+    | muscle_mass_fraction | 0.5 | muscle mass / body mass, in [0.001, 1] |
     | n_control_points | 7 | actuation control points, 2..64 |
     | control_dt, physics_dt | 0.02, 0.01 | s per step, implicit physics step |
     | episode_seconds | None | episode length [s]; None: 10 s |
@@ -108,11 +115,12 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
     | numerical_damping | 0.1 | theta_s - 1/2 of the stresses, in [0, 0.5] (0: energy-conserving) |
     | action_mode | "curvature" | or "wave": (amplitude, wavelength, frequency) of the wave |
-    | effects | resistive, reactive, form_drag | any subset; () a body in vacuum |
+    | effects | resistive, reactive, form_drag, muscle_power | any subset; () a body in vacuum |
 
     ## Version History
-    * v0: initial release; the form drag (effect `form_drag`, on by default) added later,
-      which changes trajectories by design.
+    * v0: initial release; the form drag (effect `form_drag`) and the muscles' power limit
+      (effect `muscle_power`), both on by default, added later, which changes trajectories by
+      design.
     """
 
     RESET_OPTIONS = spec.RESET_OPTIONS
@@ -135,6 +143,8 @@ class EelEnv(BeamRobotMixin, MFEnv):
         n_elements: int = 6,
         max_curvature: float = 50.0,
         max_curvature_rate: float = 750.0,
+        muscle_power_density: float = build.MUSCLE_POWER_DENSITY,
+        muscle_mass_fraction: float = build.MUSCLE_MASS_FRACTION,
         n_control_points: int = 7,
         control_dt: float = 0.02,
         physics_dt: float = 0.01,
