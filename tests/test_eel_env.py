@@ -224,3 +224,23 @@ def test_a_muscle_power_limit_above_the_need_changes_nothing():
         obs, infos = _run(env, make_baseline(env), 100, seed=2)
         runs.append(obs)
     assert np.array_equal(runs[0], runs[1])
+
+
+def test_kinematics_of_a_run_follow_the_commanded_wave():
+    """`gait_kinematics` on the `eel` gait (a, lambda / L, T) = EEL: the tail beats at the
+    commanded 1 / T (to 0.5 %), the body's wave runs at the commanded lambda within 5 % (the
+    body is not the command: it lags and bends under the water's load), V = f lambda, slip =
+    U / V below one, St = f 2 A / U; the speed is gait_stats' over the same window (1 %)."""
+    from mf_envs.controllers.eel import EEL, gait_kinematics
+
+    env = gym.make("Eel-v0", episode_seconds=20.0)
+    k = gait_kinematics(env, "eel", seconds=6.0, warmup=3.0, seed=4)
+    length = env.unwrapped.scene.length
+    assert k["frequency"] == pytest.approx(1.0 / EEL[2], rel=5e-3)
+    assert k["wavelength"] == pytest.approx(EEL[1] * length, rel=5e-2)
+    assert k["wave_speed"] == pytest.approx(k["frequency"] * k["wavelength"], rel=1e-12)
+    assert 0.5 < k["slip"] < 1.0
+    assert k["strouhal"] == pytest.approx(k["frequency"] * 2 * k["amplitude"] / k["speed"])
+    assert k["froude_lighthill"] == pytest.approx(0.5 * (1 + k["slip"]))
+    stats = gait_stats(gym.make("Eel-v0"), EEL, seconds=6.0, warmup=3.0, seed=4)
+    assert k["speed"] == pytest.approx(stats["speed"], rel=1e-2)
