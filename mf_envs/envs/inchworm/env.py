@@ -12,6 +12,7 @@ from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.inchworm import build, render, spec
 from mf_envs.envs.inchworm.build import PDMS_E, PDMS_G, PDMS_MASS, SEED_SCENE_EFFECTS
+from mf_envs.physics.actuators.sma import MAX_WIRE_TEMPERATURE
 from mf_envs.physics.beam import NewtonDivergence
 from mf_envs.physics.beam.contact.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS
@@ -129,6 +130,7 @@ class InchwormEnv(MFEnv):
     | wire_lever_arm | 6e-4 | wires below the neutral axis [m], <= height / 2 |
     | wire_alloy | "HT" | "HT" (90 degC) or "LT" (70 degC) Flexinol |
     | ambient_temperature | 20.0 | still air [degC] in [-40, 60], below the alloy's Mf |
+    | max_wire_temperature | 150.0 | the wires' over-temperature limit [degC] (docs/inchworm.md) |
     | increment_factor | 4.0 | increments up to factor * 2h/L^2 (seed: 1; same equilibria) |
     |  |  | at most 200 increments (or Newmark steps) per step |
     | reset_noise_scale | 0.05 | initial actuation noise, in [0, 1] |
@@ -137,7 +139,10 @@ class InchwormEnv(MFEnv):
     |  | sma_wires, gripping_feet | actuator_dynamics, friction (exclusive pairs: ValueError) |
 
     With `sma_wires` the wires must hold the body: max_curvature x wire_lever_arm inside the
-    alloy's repeatable strain (6 %), else ValueError naming max_curvature.
+    alloy's repeatable strain (6 %), else ValueError naming max_curvature; and the temperature
+    the wires approach at full duty (ambient + I^2 R' / (h p), which no duty sequence exceeds)
+    must stay within max_wire_temperature, else ValueError naming ambient_temperature and
+    wire_diameter (the default wires: 123 degC).
 
     ## Version History
     * v0: initial release (kinematic anchoring of Eq. 102; quasi-static by default); then
@@ -185,6 +190,7 @@ class InchwormEnv(MFEnv):
         wire_lever_arm: float = 0.6e-3,
         wire_alloy: str = "HT",
         ambient_temperature: float = 20.0,
+        max_wire_temperature: float = MAX_WIRE_TEMPERATURE,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
