@@ -2,16 +2,17 @@
 itself (its compiled step, the `wave` baseline's commands, 4 s from rest, heading 0).
 
 Scenes (the `dt` column is the refinement parameter named in `param`):
-- `eel_physics_dt`: physics_dt = control_dt / 1, 2, 4, 8 at the default control_dt = 0.02 s
+- `eel_physics_dt`: physics_dt = control_dt / 1, 2, 4, 8, 16 at the default control_dt = 0.02 s
   and 6 elements, for numerical_damping 0.1 (the default) and 0 (the energy-conserving
   scheme); error = |mean speed from 1.5 to 4 s - reference| / reference, the reference being
   the same damping at control_dt / REFERENCE_SUBSTEPS (256; the commands are the same for every
   row: the error is the time integration's; the end point's distance to the reference's, / L,
   is the column `position_error`). The reference's own error is estimated by the run at half
   its substeps (control_dt / 128): columns `reference_speed_change` and
-  `reference_position_change` (relative speed change and end-point gap / L between the two). The speed scatters by ~1 % at every step: the rate-limited commands'
-  corners excite the shear and axial modes (periods below 1 ms, resolved by no step here),
-  whose aliasing differs from step to step.
+  `reference_position_change` (relative speed change and end-point gap / L between the two).
+  The speed scatters by ~1 % at every step: the rate-limited commands' corners excite the shear
+  and axial modes (periods below 1 ms, resolved by no step here), whose aliasing differs from
+  step to step.
 - `eel_elements`: n_elements = 3, 4, 6, 8, 12 at the default steps; error = |mean speed from
   1.5 to 4 s - the 24-element speed| / that speed; param h = L / n_el.
 """

@@ -4,8 +4,9 @@
 parameters of an anguilliform wave: `HEAD_RATIO`, `WAVE_WAVELENGTH`, `WAVE_FREQUENCY`), the rod
 (`physics.serpentine.rod_params`, a solid circular section of the body's diameter), the water
 (`physics.swimmer.Water`: Taylor's resistive law with `resistive`, Lighthill's added mass and
-tail force with `reactive`, the leading end's form drag with `form_drag`), the actuation range, its rate limit and control points, the reward
-weight and the start noise.
+tail force with `reactive`, the leading end's form drag with `form_drag`), the actuation
+range, its rate limit, the muscles' power limit and control points, the reward weight and the
+start noise.
 The maps between the control points and the beam and the start shape are the serpentine's
 (`envs.serpentine.build.interpolation`, `control_points`, `initial_dofs`).
 

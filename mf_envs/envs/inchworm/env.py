@@ -108,7 +108,7 @@ class InchwormEnv(MFEnv):
     ## Arguments
     | Argument | Default | Meaning |
     |----------|---------|---------|
-    | length | 0.06 | body length L [m] in [0.01, 10] (RIOS2017_BODY: 0.3) |
+    | length | 0.05 | body length L [m] in [0.01, 10] (RIOS2017_BODY: 0.3) |
     | width, height | 0.010, 0.003 | cross-section b, h [m] in [1e-4, 1], h <= L / 5 |
     | youngs_modulus, shear_modulus | 1.5e6, 5.03e5 | E, G [Pa] in [1e3, 1e13] (PDMS, nu 0.49) |
     | mass_per_length | 0.0309 | m_A [kg/m] in [1e-6, 1e4] (1030 kg/m^3; J_3C = m_A h^2 / 12) |
@@ -163,14 +163,14 @@ class InchwormEnv(MFEnv):
 
     def __init__(
         self,
-        length: float = 0.06,
+        length: float = 0.05,
         width: float = 0.010,
         height: float = 0.003,
         youngs_modulus: float = PDMS_E,
         shear_modulus: float = PDMS_G,
         mass_per_length: float = PDMS_MASS,
         n_elements: int = 12,
-        max_curvature: float = 50.0,
+        max_curvature: float = 60.0,
         effects: Any = None,
         n_control_points: int = 3,
         control_dt: float = 0.1,
