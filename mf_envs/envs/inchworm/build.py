@@ -20,7 +20,13 @@ from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs.inchworm.spec import CURVATURE_OBS_LIMIT
 from mf_envs.physics.actuators.curvature import SMA_RATE_LIMIT, SMA_TIME_CONSTANT, ActuatorParams
 from mf_envs.physics.actuators.sizing import size_wires
-from mf_envs.physics.actuators.sma import FLEXINOL_HT, FLEXINOL_LT, SMAWireParams, flexinol_wire
+from mf_envs.physics.actuators.sma import (  # noqa: F401  (MAX_WIRE_TEMPERATURE: the env's default)
+    FLEXINOL_HT,
+    FLEXINOL_LT,
+    MAX_WIRE_TEMPERATURE,
+    SMAWireParams,
+    flexinol_wire,
+)
 from mf_envs.physics.beam.contact.friction import FrictionParams
 from mf_envs.physics.beam.contact.grip import GripFeetParams, GripLaw
 from mf_envs.physics.inchworm import InchwormParams

@@ -12,7 +12,6 @@ from mf_envs.envs._spec import check_curvature_option
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.inchworm import build, render, spec
 from mf_envs.envs.inchworm.build import PDMS_E, PDMS_G, PDMS_MASS, SEED_SCENE_EFFECTS
-from mf_envs.physics.actuators.sma import MAX_WIRE_TEMPERATURE
 from mf_envs.physics.beam import NewtonDivergence
 from mf_envs.physics.beam.contact.feet import NoQuasiStaticEquilibrium
 from mf_envs.physics.inchworm import INCHWORM_EFFECTS
@@ -113,7 +112,7 @@ class InchwormEnv(MFEnv):
     | youngs_modulus, shear_modulus | 1.5e6, 5.03e5 | E, G [Pa] in [1e3, 1e13] (PDMS, nu 0.49) |
     | mass_per_length | 0.0309 | m_A [kg/m] in [1e-6, 1e4] (1030 kg/m^3; J_3C = m_A h^2 / 12) |
     | n_elements | 12 | C1 elements, 1..64 |
-    | max_curvature | 50.0 | largest abs(kappa#) [1/m] (sma_wires: full stroke), <= 20 / L |
+    | max_curvature | 60.0 | largest abs(kappa#) [1/m] (sma_wires: full stroke), <= 20 / L |
     | n_control_points | 3 | actuation control points (wire groups), 2..64 |
     | control_dt, physics_dt | 0.1, 0.1 | s per step; Newmark step with `inertia` |
     | episode_seconds | None | episode length [s]; None: max_episode_steps steps |
@@ -129,8 +128,7 @@ class InchwormEnv(MFEnv):
     | wire_diameter | 1.5e-4 | Flexinol wire diameter [m] (a row of the maker's table) |
     | wire_lever_arm | 6e-4 | wires below the neutral axis [m], <= height / 2 |
     | wire_alloy | "HT" | "HT" (90 degC) or "LT" (70 degC) Flexinol |
-    | ambient_temperature | 20.0 | still air [degC] in [-40, 60], below the alloy's Mf |
-    | max_wire_temperature | 150.0 | the wires' over-temperature limit [degC] (docs/inchworm.md) |
+    | ambient_temperature, max_wire_temperature | 20, 150 | still air (< Mf), wire limit [degC] |
     | increment_factor | 4.0 | increments up to factor * 2h/L^2 (seed: 1; same equilibria) |
     |  |  | at most 200 increments (or Newmark steps) per step |
     | reset_noise_scale | 0.05 | initial actuation noise, in [0, 1] |
@@ -138,11 +136,7 @@ class InchwormEnv(MFEnv):
     | effects | gravity, shear_deformation, anchor_switching, | also: inertia, terrain, |
     |  | sma_wires, gripping_feet | actuator_dynamics, friction (exclusive pairs: ValueError) |
 
-    With `sma_wires` the wires must hold the body: max_curvature x wire_lever_arm inside the
-    alloy's repeatable strain (6 %), else ValueError naming max_curvature; and the temperature
-    the wires approach at full duty (ambient + I^2 R' / (h p), which no duty sequence exceeds)
-    must stay within max_wire_temperature, else ValueError naming ambient_temperature and
-    wire_diameter (the default wires: 123 degC).
+    With `sma_wires`, max_curvature x wire_lever_arm within the alloy's 6 % (else ValueError).
 
     ## Version History
     * v0: initial release (kinematic anchoring of Eq. 102; quasi-static by default); then
@@ -190,7 +184,7 @@ class InchwormEnv(MFEnv):
         wire_lever_arm: float = 0.6e-3,
         wire_alloy: str = "HT",
         ambient_temperature: float = 20.0,
-        max_wire_temperature: float = MAX_WIRE_TEMPERATURE,
+        max_wire_temperature: float = build.MAX_WIRE_TEMPERATURE,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
