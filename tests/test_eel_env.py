@@ -147,3 +147,100 @@ def test_the_lightest_allowed_body_survives_bang_bang_strokes(pattern):
         if term or trunc:
             env.reset(seed=k + 1)
     assert failures == 0
+
+
+def _coast(env, seed):
+    """Swim the default controller 5 s, command a straight body and coast: the distance along
+    the track from 0.5 s after the stop (the body straight) while the speed falls by e [m]."""
+    base = env.unwrapped
+    _run(env, make_baseline(env), 250, seed=seed)
+    xy, speed = [], []
+    for _ in range(200):
+        env.step(np.zeros(base.action_space.shape, np.float32))
+        xy.append(base._body[:2].copy())
+        speed.append(np.hypot(base._body[2], base._body[3]))
+    xy, speed = np.array(xy), np.array(speed)
+    path = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))])
+    i0, goal = 25, speed[25] / np.e
+    i1 = int(np.argmax(speed < goal))
+    assert i1 > i0
+    frac = (speed[i1 - 1] - goal) / (speed[i1 - 1] - speed[i1])
+    return path[i1 - 1] + frac * (path[i1] - path[i1 - 1]) - path[i0]
+
+
+@pytest.mark.parametrize("drag_form", [0.13, 0.24])
+def test_coasting_distance_is_the_cited_drag_coefficients(drag_form):
+    """After the muscles stop, the eel coasts while its speed falls by e the distance
+    M / b = `theory.coasting_distance(1, 1/e, M, 0, b)` of M dV/dt = -b V^2, b = k_t L + k_f:
+    the drag of a gliding fish (docs/eel.md) at the ends of the cited range of the form-drag
+    coefficient, to 0.5 %; without the form drag the eel coasts the skin friction's longer
+    M / (k_t L)."""
+    from mf_envs.physics.swimmer.theory import coasting_distance
+
+    env = gym.make("Eel-v0", drag_form=drag_form, episode_seconds=100.0)
+    scene = env.unwrapped.scene
+    mass, water, length = scene.body_mass, scene.water, scene.length
+    b = water.k_tangential * length + water.k_form
+    want = coasting_distance(1.0, 1.0 / np.e, mass, 0.0, b)
+    assert _coast(env, seed=21) == pytest.approx(want, rel=5e-3)
+    bare = gym.make("Eel-v0", effects=("resistive", "reactive"), episode_seconds=100.0)
+    skin = coasting_distance(1.0, 1.0 / np.e, mass, 0.0, water.k_tangential * length)
+    assert _coast(bare, seed=21) == pytest.approx(skin, rel=5e-3)
+    assert want < 0.75 * skin
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_muscle_power_stays_within_its_limit_under_bang_bang_strokes(seed):
+    """Effect `muscle_power` (default): the muscles' positive power of every control step
+    (actuation energy / control_dt) stays within 1 % of muscle_power_density x
+    muscle_mass_fraction x body mass (0.249 W), where the same strokes without the limit reach
+    several times it; nothing fails."""
+    rng = np.random.default_rng(seed)
+    actions = rng.choice([-1.0, 1.0], size=(200, 7)).astype(np.float32)
+    powers = {}
+    for effects in (None, ("resistive", "reactive", "form_drag")):
+        env = gym.make("Eel-v0", effects=effects)
+        env.reset(seed=seed)
+        base = env.unwrapped
+        out = []
+        for a in actions:
+            _, _, term, _, info = env.step(a)
+            assert not term
+            out.append(info["actuation_energy"] / base.control_dt)
+        powers[effects is None] = np.array(out)
+    cap = 22.0 * 0.5 * env.unwrapped.scene.body_mass
+    assert np.max(powers[True]) <= 1.01 * cap
+    assert np.max(powers[False]) > 3.0 * cap
+    assert np.mean(powers[True] > 0.95 * cap) > 0.2  # the limit binds on many steps
+
+
+def test_a_muscle_power_limit_above_the_need_changes_nothing():
+    """The `heading` baseline needs at most 0.22 W (docs/eel.md): with a limit of 100x that the
+    run is bit for bit the run without the effect."""
+    runs = []
+    for kw in ({"muscle_power_density": 4400.0}, {"effects": ("resistive", "reactive",
+                                                             "form_drag")}):  # fmt: skip
+        env = gym.make("Eel-v0", **kw)
+        obs, infos = _run(env, make_baseline(env), 100, seed=2)
+        runs.append(obs)
+    assert np.array_equal(runs[0], runs[1])
+
+
+def test_kinematics_of_a_run_follow_the_commanded_wave():
+    """`gait_kinematics` on the `eel` gait (a, lambda / L, T) = EEL: the tail beats at the
+    commanded 1 / T (to 0.5 %), the body's wave runs at the commanded lambda within 5 % (the
+    body is not the command: it lags and bends under the water's load), V = f lambda, slip =
+    U / V below one, St = f 2 A / U; the speed is gait_stats' over the same window (1 %)."""
+    from mf_envs.controllers.eel import EEL, gait_kinematics
+
+    env = gym.make("Eel-v0", episode_seconds=20.0)
+    k = gait_kinematics(env, "eel", seconds=6.0, warmup=3.0, seed=4)
+    length = env.unwrapped.scene.length
+    assert k["frequency"] == pytest.approx(1.0 / EEL[2], rel=5e-3)
+    assert k["wavelength"] == pytest.approx(EEL[1] * length, rel=5e-2)
+    assert k["wave_speed"] == pytest.approx(k["frequency"] * k["wavelength"], rel=1e-12)
+    assert 0.5 < k["slip"] < 1.0
+    assert k["strouhal"] == pytest.approx(k["frequency"] * 2 * k["amplitude"] / k["speed"])
+    assert k["froude_lighthill"] == pytest.approx(0.5 * (1 + k["slip"]))
+    stats = gait_stats(gym.make("Eel-v0"), EEL, seconds=6.0, warmup=3.0, seed=4)
+    assert k["speed"] == pytest.approx(stats["speed"], rel=1e-2)

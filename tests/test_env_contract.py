@@ -145,14 +145,17 @@ def test_inchworm_full_noise_resets_and_steps():
 def test_inchworm_reward_is_exact_far_from_the_origin():
     """The progress term is computed in local coordinates: the same crawl at x_tail = 1e6 m
     scores what it scores at 0 (x_tail - x_tail_old there would lose 1e-10 m per step)."""
-    rewards = []
+    rewards, progress = [], []
     for x0 in (0.0, 1e6):
         env = gym.make("Inchworm-v0")
         env.reset(seed=0, options={"x_tail": x0})
         rng = np.random.default_rng(1)
-        rewards.append([env.step(rng.uniform(-1, 1, 4))[1] for _ in range(12)])
+        steps = [env.step(rng.uniform(-1, 1, 4)) for _ in range(12)]
+        rewards.append([s[1] for s in steps])
+        progress.append([s[4]["reward_terms"]["progress"] for s in steps])
     np.testing.assert_allclose(rewards[0], rewards[1], rtol=0, atol=1e-12)
-    assert max(abs(r) for r in rewards[0]) > 1e-3
+    np.testing.assert_allclose(progress[0], progress[1], rtol=0, atol=1e-12)
+    assert max(abs(r) for r in progress[0]) > 1e-4  # the first step moves the tail (1.9e-4 L)
 
 
 @pytest.mark.parametrize(

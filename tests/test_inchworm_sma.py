@@ -318,3 +318,27 @@ def test_stored_tuned_gait_is_the_brute_force_optimum():
     t_heat, t_cool, off, speed = ctrl._tune_wires(ctrl._default_config())
     assert (t_heat, t_cool, off) == pytest.approx(ctrl.TUNED_SMA, abs=1e-9)
     assert speed > 0.08  # L/s (docs/inchworm.md: 0.0829 L/s)
+
+
+def test_wires_stay_under_their_over_temperature_limit():
+    """The default wires at full duty for 30 s (25 time constants) reach the lumped balance's
+    fixed point ambient + I^2 R' / (h p) = 123.3 degC (to 1e-6 K) and never exceed it, under the
+    150 degC limit; a robot whose wires would pass the limit (50 degC still air: 153 degC) is
+    refused naming ambient_temperature, a limit at or below Af naming max_wire_temperature."""
+    env = gym.make("Inchworm-v0", episode_seconds=60.0)
+    env.reset(seed=0)
+    base = env.unwrapped
+    bound = base.scene.wires.params.steady_temperature(1.0)
+    assert bound == pytest.approx(123.319, abs=1e-3)
+    hottest = []
+    for _ in range(round(30.0 / base.control_dt)):
+        _, _, term, _, info = env.step(np.ones(base.action_space.shape, np.float32))
+        assert not term
+        hottest.append(float(np.max(info["wire_temperature"])))
+    assert max(hottest) <= bound + 1e-9
+    assert hottest[-1] == pytest.approx(bound, abs=1e-6)
+    with pytest.raises(ValueError, match="^ambient_temperature"):
+        gym.make("Inchworm-v0", ambient_temperature=50.0)
+    with pytest.raises(ValueError, match="^max_wire_temperature"):
+        gym.make("Inchworm-v0", max_wire_temperature=100.0)  # HT's Af
+    assert gym.make("Inchworm-v0", ambient_temperature=40.0) is not None  # 143 degC

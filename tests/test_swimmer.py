@@ -16,6 +16,7 @@ from mf_envs.physics.serpentine.stepping import Body
 from mf_envs.physics.swimmer import Swimmer, Water
 from mf_envs.physics.swimmer.fluid import added_momentum, assemble_water
 from mf_envs.physics.swimmer.theory import (
+    coasting_distance,
     coasting_speed,
     lighthill_thrust,
     taylor_small_amplitude_speed,
@@ -79,9 +80,11 @@ def _random_state(sw, rng):
 
 @pytest.mark.parametrize("linear", [False, True])
 def test_water_tangent_matches_central_differences(linear):
-    """dF/dd and dF/dv of the resistive + tail forces (`assemble_water`) and dp/dd, dp/dv of
-    the entrained water's momentum (`added_momentum`) against central differences."""
-    sw = _swimmer(Water(diameter=D, linear=linear, linear_normal=3.0, linear_tangential=0.4))
+    """dF/dd and dF/dv of the resistive + end forces (trailing edge and form drag,
+    `assemble_water`) and dp/dd, dp/dv of the entrained water's momentum (`added_momentum`)
+    against central differences."""
+    sw = _swimmer(Water(diameter=D, linear=linear, linear_normal=3.0, linear_tangential=0.4,
+                        form_drag=True, end_speed=0.05))  # fmt: skip
     rng = np.random.default_rng(3)
     d, v = _random_state(sw, rng)
     nzt, npt, law = sw.packed
@@ -121,6 +124,47 @@ def test_water_tangent_matches_central_differences(linear):
             assert np.max(np.abs(k - fd)) < 1e-7 * scale, (assemble, wrt)
 
 
+@pytest.mark.parametrize("backwards", [False, True])
+def test_form_drag_of_a_towed_straight_body(backwards):
+    """Resistive + form drag, towed along its axis head first (or tail first): the resultant
+    is -(k_t L + k_f) |u| u t exactly (the leading end carries k_f), with the blend's weights
+    summing to one; the tangential speed 0.3 m/s is far above the blend's width."""
+    water = Water(diameter=D, reactive=False, form_drag=True)
+    sw = _swimmer(water)
+    u = -0.3 if backwards else 0.3
+    d, v = _rigid(sw, 0.4, (u * np.cos(0.4), u * np.sin(0.4)))
+    f, power = sw.water_force(d, v)
+    k = water.k_tangential * L + water.k_form
+    t = np.array([np.cos(0.4), np.sin(0.4)])
+    want = -k * abs(u) * u * t
+    got = np.array([f[0::6].sum(), f[2::6].sum()])
+    assert np.linalg.norm(got - want) <= 1e-10 * np.linalg.norm(want)
+    assert water.k_form == pytest.approx(0.5 * 1000.0 * 0.19 * np.pi * D**2 / 4, rel=1e-12)
+    end = f[-5] * t[0] + f[-3] * t[1] if not backwards else f[0] * t[0] + f[2] * t[1]
+    skin = -water.k_tangential * L * abs(u) * u  # the leading node carries the form drag
+    assert abs(end - (-water.k_form * abs(u) * u)) < 0.3 * abs(skin)
+
+
+@pytest.mark.parametrize("c_form", [0.13, 0.19, 0.24])
+def test_coasting_distance_with_form_drag(c_form):
+    """A straight body launched head first at 0.3 m/s, resistive + form drag (the cited range of
+    the form-drag coefficient, docs/eel.md): the distance it coasts while slowing to the speed
+    it has after 3 s is `theory.coasting_distance` of M dV/dt = -(k_t L + k_f) V^2 (M the body
+    mass: no added mass along the axis), to 1e-4; the speed is `theory.coasting_speed`."""
+    water = Water(diameter=D, reactive=False, form_drag=True, c_form=c_form)
+    sw = _swimmer(water)
+    v0, t_end, dt = 0.3, 3.0, 0.01
+    d, v = _rigid(sw, 0.0, (v0, 0.0))
+    h = sw.simulate(t_end, dt, every=int(round(t_end / dt)), d0=d, v0=v)
+    mass = sw.model.params.mass_per_length * L
+    b = water.k_tangential * L + water.k_form
+    v_end = coasting_speed(v0, t_end, b, mass)
+    com_v = h.momentum()[0][-1][0] / mass
+    assert com_v == pytest.approx(v_end, rel=1e-4)
+    moved = h.com()[-1][0] - h.com()[0][0]
+    assert moved == pytest.approx(coasting_distance(v0, v_end, mass, 0.0, b), rel=1e-4)
+
+
 @pytest.mark.parametrize("direction", ["along", "across"])
 def test_coasting_body_decays_as_its_own_ode_at_second_order(direction):
     """A straight body launched at V0 along (resistive only) or across (resistive + added mass,
@@ -145,6 +189,23 @@ def test_coasting_body_decays_as_its_own_ode_at_second_order(direction):
     assert errors[-1] < 1e-3, errors
     ratios = errors[0] / errors[1], errors[1] / errors[2]
     assert all(3.5 < r < 4.5 for r in ratios), (errors, ratios)
+
+
+@pytest.mark.parametrize("a, b", [(0.01, 0.05), (0.0, 0.05), (0.01, 0.0)])
+def test_coasting_distance_closed_form_matches_the_integrated_ode(a, b):
+    """theory.coasting_distance against scipy's integration of M x'' = -a x' - b x'^2 (rtol
+    1e-12) to the time the speed falls to V1."""
+    from scipy.integrate import solve_ivp
+
+    mass, v0, v1 = 0.02, 0.4, 0.1
+
+    def slow(t, y):
+        return y[1] - v1
+
+    sol = solve_ivp(lambda t, y: [y[1], -(a * y[1] + b * y[1] ** 2) / mass], [0.0, 100.0],
+                    [0.0, v0], rtol=1e-12, atol=1e-14, events=slow)  # fmt: skip
+    want = sol.y_events[0][0][0]
+    assert coasting_distance(v0, v1, mass, a, b) == pytest.approx(want, rel=1e-9)
 
 
 def test_body_and_entrained_water_conserve_momentum():

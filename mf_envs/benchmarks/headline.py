@@ -61,7 +61,7 @@ ROWS = (
         "generator torque (power-limited)", "net_power_of_ceiling"),
     Row("FloatingGOWEC-JONSWAP-v0", "the same, JONSWAP Hs 1.5 m, Tp 6 s, a new sea per seed "
         "(headline)", "as above", "as above", "net_power_of_ceiling"),
-    Row("Inchworm-v0", "60 mm PDMS inchworm robot: planar active C¹ beam, SMA wires, gripping "
+    Row("Inchworm-v0", "50 mm PDMS inchworm robot: planar active C¹ beam, SMA wires, gripping "
         "feet (§4.7-4.10)", "curvatures, wire temperatures, feet", "SMA wire duty cycles",
         "speed"),
     Row("Serpentine-v0", "PyElastica's continuum snake (0.35 m) as a planar active beam on "

@@ -9,6 +9,9 @@
 * `fast`: the wave with (a, lambda / L, T) optimised by scipy (Nelder-Mead, bounded) for the
   centre-of-mass speed on a short horizon (`tune`, the numbers are `FAST`);
 * `efficient`: the same for the Froude efficiency `froude_efficiency` (`EFFICIENT`);
+* `eel`: the wave set by hand to an American eel's measured kinematics at 1.4 L/s (`EEL`: a tail
+  amplitude near 0.08 L, Gillis 1998, at the 2.8 Hz that Strouhal number 0.32, Tytell 2004,
+  implies there; docs/eel.md, "Kinematics against eels");
 * `heading` (default, the strongest: the start heading is random): the fast wave plus a
   curvature bias -gain x heading error (the mean axis's heading relative to the target
   direction, observed as sin, cos, low-pass filtered over one period), so the eel turns
@@ -37,8 +40,12 @@ WAVE = (40.0, 0.8, 0.4)  # a [1/m], lambda / L, T [s]: a hand-picked anguillifor
 # `python -m mf_envs.controllers.eel --tune` (default env, 4 s horizon, speed and power over
 # 1.5-4 s, Nelder-Mead from WAVE, 60 evaluations each); the fast gait sits on the period bound
 # and saturates the muscles' rate limit (a 2 pi / T > max_curvature_rate)
+# (the stats as tuned, before the form drag and power limit; now: fast 0.789 m/s, slip 0.81;
+# efficient 0.192 m/s, slip 0.60; `gait_stats`, seed 0)
 FAST = (44.3981, 0.9791, 0.2)  # 0.834 m/s, slip 0.85, Froude efficiency 0.11
 EFFICIENT = (30.532, 0.7501, 0.465)  # 0.208 m/s, slip 0.65, Froude efficiency 0.26
+# by hand (five trials, seed 0): 1.33 L/s, tail amplitude 0.083 L, St 0.35 (docs/eel.md)
+EEL = (30.5, 0.75, 1.0 / 2.8)
 BOUNDS = ((5.0, 50.0), (0.4, 2.0), (0.2, 1.5))  # a [1/m], lambda / L, T [s]
 
 
@@ -87,9 +94,10 @@ class HeadingWave(TravellingWave):
 def gait_stats(env: Any, params: tuple[float, float, float], seconds: float = 4.0,
                warmup: float = 1.5, seed: int = 0) -> dict[str, float]:  # fmt: skip
     """Speed [m/s] (centre-of-mass displacement from `warmup` to `seconds` / time), mean net
-    muscle power [W] over the same window, slip U / c (c = lambda / T the body wave's speed) and
-    the Froude efficiency of the wave (a, lambda / L, T) in `env` (reset with seed, heading 0,
-    straight)."""
+    muscle power [W] over the same window, slip U / c (c = lambda / T the commanded wave's
+    speed), the Froude efficiency in the towed-body convention (`froude_efficiency`) and in
+    Lighthill's elongated-body one, (1 + U / c) / 2 (`froude_lighthill`), of the wave
+    (a, lambda / L, T) in `env` (reset with seed, heading 0, straight)."""
     ctrl = TravellingWave(env, *params)
     base = ctrl.base
     obs, info = env.reset(seed=seed, options={"heading": 0.0, "kappa": np.zeros(base.n_ctrl)})
@@ -98,7 +106,8 @@ def gait_stats(env: Any, params: tuple[float, float, float], seconds: float = 4.
     for k in range(n):
         obs, _, term, trunc, info = env.step(ctrl.predict(obs)[0])
         if term or trunc:
-            return {"speed": 0.0, "power": float("inf"), "slip": 0.0, "froude": 0.0}
+            return {"speed": 0.0, "power": float("inf"), "slip": 0.0, "froude": 0.0,
+                    "froude_lighthill": 0.0}  # fmt: skip
         if k + 1 == n_warm:
             start = (info["x"], info["y"])
         elif k + 1 > n_warm:
@@ -112,17 +121,52 @@ def gait_stats(env: Any, params: tuple[float, float, float], seconds: float = 4.
         "power": power,
         "slip": speed / wave_speed,
         "froude": froude_efficiency(base.scene, speed, power),
+        "froude_lighthill": 0.5 * (1.0 + speed / wave_speed),
     }
 
 
 def froude_efficiency(scene: Any, speed: float, power: float) -> float:
-    """Useful power / power into the water: D(U) U / P, D(U) = 1/2 rho pi d C_T L U^2 the
-    resistive drag of the straight body towed at the swimming speed U (Taylor's tangential
-    law), P the mean net muscle power [W] (all of it goes to the water at a steady gait)."""
+    """Useful power / power into the water in the towed-body convention: D(U) U / P, D(U) =
+    (1/2 rho pi d C_T L + k_f) U^2 the drag of the straight body towed along its axis at the
+    swimming speed U (Taylor's tangential law and the form drag, if on), P the mean net muscle
+    power [W] (all of it goes to the water at a steady gait). Not comparable with Lighthill's
+    elongated-body efficiency (1 + U / V) / 2, which counts only the reactive wake's loss
+    (`gait_stats`' froude_lighthill, `gait_kinematics`)."""
     if power <= 0.0:
         return 0.0
-    drag = scene.water.k_tangential * scene.length * speed**2
+    drag = (scene.water.k_tangential * scene.length + scene.water.k_form) * speed**2
     return drag * speed / power
+
+
+def gait_kinematics(env: Any, kind: str | tuple = "wave", seconds: float = 6.0,
+                    warmup: float = 3.0, seed: int = 0) -> dict[str, float]:  # fmt: skip
+    """The swimming kinematics (`physics.swimmer.kinematics.body_kinematics`: tail-beat
+    frequency and amplitude, wavelength, wave speed, slip, Strouhal number, Lighthill's
+    efficiencies) of the baseline `kind` (or the wave (a, lambda / L, T)) in `env`, measured on
+    its centreline nodes from `warmup` to `seconds` [s] after a reset with seed, heading 0 and
+    a straight body."""
+    from mf_envs.controllers import make_baseline
+    from mf_envs.physics.swimmer.kinematics import body_kinematics
+
+    base = env.unwrapped
+    ctrl = make_baseline(env, kind) if isinstance(kind, str) else TravellingWave(env, *kind)
+    ctrl.reset()
+    obs, _ = env.reset(seed=seed, options={"heading": 0.0, "kappa": np.zeros(base.n_ctrl)})
+    n_warm, n = round(warmup / base.control_dt), round(seconds / base.control_dt)
+    rec: dict[str, list] = {"t": [], "p": [], "c": [], "a": [], "v": []}
+    for k in range(n):
+        obs, _, term, trunc, info = env.step(ctrl.predict(obs)[0])
+        if term or trunc:
+            raise ValueError("seconds: the run ended (failure or truncation) before it")
+        if k + 1 >= n_warm:
+            d, v = base.state
+            rec["t"].append((k + 1) * base.control_dt)
+            rec["p"].append(np.stack([d[0::6], d[2::6]], axis=1))
+            rec["c"].append((info["x"], info["y"]))
+            rec["a"].append(d[4])
+            rec["v"].append((v[0], v[2]))
+    arr = {key: np.array(val) for key, val in rec.items()}
+    return body_kinematics(arr["t"], arr["p"], base.model.node_S, arr["c"], arr["a"], arr["v"])
 
 
 def tune(env: Any, objective: str = "speed", x0: tuple = WAVE,
@@ -141,6 +185,7 @@ register(ENV_ID, "heading", HeadingWave, default=True)
 register(ENV_ID, "wave", TravellingWave)
 register(ENV_ID, "fast", lambda env, **kw: TravellingWave(env, *FAST, **kw))
 register(ENV_ID, "efficient", lambda env, **kw: TravellingWave(env, *EFFICIENT, **kw))
+register(ENV_ID, "eel", lambda env, **kw: TravellingWave(env, *EEL, **kw))
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -2,14 +2,17 @@
 itself (its compiled step, the `wave` baseline's commands, 4 s from rest, heading 0).
 
 Scenes (the `dt` column is the refinement parameter named in `param`):
-- `eel_physics_dt`: physics_dt = control_dt / 1, 2, 4, 8 at the default control_dt = 0.02 s
+- `eel_physics_dt`: physics_dt = control_dt / 1, 2, 4, 8, 16 at the default control_dt = 0.02 s
   and 6 elements, for numerical_damping 0.1 (the default) and 0 (the energy-conserving
   scheme); error = |mean speed from 1.5 to 4 s - reference| / reference, the reference being
-  the same damping at control_dt / 64 (the commands are the same for every row: the error is
-  the time integration's; the end point's distance to the reference's, / L, is the column
-  `position_error`). The speed scatters by ~1 % at every step: the rate-limited commands'
-  corners excite the shear and axial modes (periods below 1 ms, resolved by no step here),
-  whose aliasing differs from step to step.
+  the same damping at control_dt / REFERENCE_SUBSTEPS (256; the commands are the same for every
+  row: the error is the time integration's; the end point's distance to the reference's, / L,
+  is the column `position_error`). The reference's own error is estimated by the run at half
+  its substeps (control_dt / 128): columns `reference_speed_change` and
+  `reference_position_change` (relative speed change and end-point gap / L between the two).
+  The speed scatters by ~1 % at every step: the rate-limited commands' corners excite the shear
+  and axial modes (periods below 1 ms, resolved by no step here), whose aliasing differs from
+  step to step.
 - `eel_elements`: n_elements = 3, 4, 6, 8, 12 at the default steps; error = |mean speed from
   1.5 to 4 s - the 24-element speed| / that speed; param h = L / n_el.
 """
@@ -23,6 +26,7 @@ import numpy as np
 from mf_envs.benchmarks._io import accuracy_row, timed
 
 ORDER = 60
+REFERENCE_SUBSTEPS = 256  # physics steps per control step of the physics_dt scene's reference
 SECONDS, WARMUP = 4.0, 1.5
 
 
@@ -53,14 +57,21 @@ def _physics_dt(quick: bool) -> list[dict]:
     rows = []
     control = 0.02
     for damping in (0.1, 0.0):
-        ref, ref_speed = _swim(physics_dt=control / 64, numerical_damping=damping)
+        ref, ref_speed = _swim(physics_dt=control / REFERENCE_SUBSTEPS, numerical_damping=damping)
+        half, half_speed = _swim(physics_dt=2 * control / REFERENCE_SUBSTEPS,
+                                 numerical_damping=damping)  # fmt: skip
+        ref_check = {
+            "reference_speed_change": abs(half_speed - ref_speed) / ref_speed,
+            "reference_position_change": float(np.linalg.norm(half - ref) / 0.2),
+        }
         for n_sub in (1, 2, 4) if quick else (1, 2, 4, 8, 16):
             (end, speed), sec = timed(_swim, physics_dt=control / n_sub, numerical_damping=damping)
             err = abs(speed - ref_speed) / ref_speed
             gap = float(np.linalg.norm(end - ref) / 0.2)
             rows.append(accuracy_row("eel_physics_dt", f"numerical_damping {damping:g}",
                                      control / n_sub, err, sec, "physics_dt [s]", speed=speed,
-                                     reference_speed=ref_speed, position_error=gap))  # fmt: skip
+                                     reference_speed=ref_speed, position_error=gap,
+                                     **ref_check))  # fmt: skip
     return rows
 
 

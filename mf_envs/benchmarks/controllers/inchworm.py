@@ -1,7 +1,7 @@
 """Inchworm-v0 baselines: the seed gaits (Eqs. 101, 103), the tuned gait and (SMA robot) the
 validation gait, through the actions.
 
-Scenes: `pdms_sma` = the Inchworm-v0 defaults (the buildable PDMS robot, L = 60 mm, Flexinol wires
+Scenes: `pdms_sma` = the Inchworm-v0 defaults (the buildable PDMS robot, L = 50 mm, Flexinol wires
 heated by duty cycles, gripping feet); `lag_friction` = the lag-friction robot (the seed's section,
 L = 0.3 m, kappa0# = 13 1/m through the rate-limited lag on Coulomb friction feet,
 `LAG_FRICTION_SCENE`); `seed_scene` = the dissertation's scene (kinematic anchors, kappa# as

@@ -4,8 +4,9 @@
 parameters of an anguilliform wave: `HEAD_RATIO`, `WAVE_WAVELENGTH`, `WAVE_FREQUENCY`), the rod
 (`physics.serpentine.rod_params`, a solid circular section of the body's diameter), the water
 (`physics.swimmer.Water`: Taylor's resistive law with `resistive`, Lighthill's added mass and
-tail force with `reactive`), the actuation range, its rate limit and control points, the reward
-weight and the start noise.
+tail force with `reactive`, the leading end's form drag with `form_drag`), the actuation
+range, its rate limit, the muscles' power limit and control points, the reward weight and the
+start noise.
 The maps between the control points and the beam and the start shape are the serpentine's
 (`envs.serpentine.build.interpolation`, `control_points`, `initial_dofs`).
 
@@ -36,6 +37,13 @@ WAVE_FREQUENCY = (0.5, 5.0)  # f [Hz]
 # lightest body / water density: with the reactive force alone, bang-bang strokes failed the
 # implicit step at 10-100 kg/m^3 in fresh water (3-14 of 400 steps) and never at 200 and above
 MIN_DENSITY_RATIO = 0.25
+# the muscles' power limit (effect `muscle_power`, docs/eel.md): the steady cyclic power of fish
+# fast (white) muscle, 27.5 W/kg wet muscle in a 10 cm cod to 16.4 in a 60 cm one, ~ L^-0.29
+# (Anderson & Johnston 1992, work loops at 8 C): 22 W/kg at L = 0.2 m; times the myotomal muscle's
+# share of the body mass, 0.5 (Johnsrude & Webb 1985: 42.4 W/kg muscle = 0.64 W of one side's
+# muscle in a 60.5 g trout, 15 g, a quarter of the body per side)
+MUSCLE_POWER_DENSITY = 22.0  # W/kg of muscle
+MUSCLE_MASS_FRACTION = 0.5
 # effort weight x (body mass x (L / 1 s)^2): effort_weight = EFFORT_SCALE / (m L^2 / s^2); a
 # regulariser small enough that the return ranks controllers as their speed does (0.02 put the
 # random policy's return below the `fast` gait's against their speeds)
@@ -50,6 +58,7 @@ class Scene(RobotScene):
     max_curvature_rate: float  # 1/(m s), muscle rate limit on the command
     stress_theta: float  # the stresses' theta point (physics.swimmer.kernels): > 1/2 damps
     action_mode: str  # "curvature" (kappa# at the control points) or "wave" (a, lambda, f)
+    max_muscle_power: float  # W, the muscles' positive power limit (inf: none)
 
     @property
     def body_mass(self) -> float:
@@ -83,9 +92,20 @@ def water(kw: dict[str, Any], effects: frozenset, diameter: float) -> Water:
         diameter=diameter,
         c_normal=check_range("drag_normal", kw["drag_normal"], 0.0, 100.0),
         c_tangential=check_range("drag_tangential", kw["drag_tangential"], 0.0, 100.0),
+        c_form=check_range("drag_form", kw["drag_form"], 0.0, 100.0),
+        form_drag="form_drag" in effects,
         resistive="resistive" in effects,
         reactive="reactive" in effects,
     )
+
+
+def max_muscle_power(kw: dict[str, Any], effects: frozenset, body_mass: float) -> float:
+    """The muscles' power limit [W]: muscle_power_density x muscle_mass_fraction x body mass
+    with the effect `muscle_power`, inf without it (both kwargs validated whatever the
+    effects)."""
+    density = check_range("muscle_power_density", kw["muscle_power_density"], 1e-6, 1e6)
+    fraction = check_range("muscle_mass_fraction", kw["muscle_mass_fraction"], 1e-3, 1.0)
+    return density * fraction * body_mass if "muscle_power" in effects else float("inf")
 
 
 def action_mode(value: Any) -> str:
@@ -107,4 +127,5 @@ def build(kw: dict[str, Any], effects: frozenset) -> Scene:
         max_curvature_rate=check_range("max_curvature_rate", kw["max_curvature_rate"], 1e-6, 1e9),
         stress_theta=check_range("numerical_damping", kw["numerical_damping"], 0.0, 0.5) + 0.5,
         action_mode=action_mode(kw["action_mode"]),
+        max_muscle_power=max_muscle_power(kw, effects, mass),
     )

@@ -10,13 +10,21 @@ import numpy as np
 from mf_envs.envs._beam_robot import BeamRobotMixin
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.eel import build, render, rows, spec
-from mf_envs.physics.swimmer.fluid import C_NORMAL, C_TANGENTIAL, RHO_WATER, point_forces
+from mf_envs.physics.swimmer.fluid import (
+    C_FORM,
+    C_NORMAL,
+    C_TANGENTIAL,
+    RHO_WATER,
+    point_forces,
+)
 
 AVAILABLE_EFFECTS = {
     "resistive": "Taylor's (1952) quadratic normal and tangential drag of each body element",
     "reactive": "Lighthill's (1960) added mass on the normal velocity and the tail force",
+    "form_drag": "the leading end's axial form drag of a gliding fish (docs/eel.md)",
+    "muscle_power": "the muscles' positive power capped at fish muscle's power density",
 }
-DEFAULT_EFFECTS = ("resistive", "reactive")
+DEFAULT_EFFECTS = ("resistive", "reactive", "form_drag", "muscle_power")
 EPISODE_SECONDS = 10.0  # s, the default episode (500 steps of the default 0.02 s)
 
 
@@ -30,6 +38,8 @@ class EelEnv(BeamRobotMixin, MFEnv):
     (M3 = EI (kappa - kappa#)); the water acts through Taylor's (1952) resistive force
     (quadratic cross-flow drag C_N = 1.1 and skin friction C_T = 0.0055) and Lighthill's
     (1960) reactive force (added mass rho pi d^2 / 4 on the normal velocity, the tail force),
+    and a form drag on the leading end along its axis (frontal-area coefficient 0.19, from the
+    drag of gliding fish; docs/eel.md),
     stepped by the implicit energy-momentum scheme with the added mass in the residual and the
     forces' consistent tangents. Goal: swim along the target direction (+x) with little
     actuation energy.
@@ -38,7 +48,11 @@ class EelEnv(BeamRobotMixin, MFEnv):
     `Box(-1, 1, (n_control_points,), float32)`: target kappa# = max_curvature * a at the
     control points S_j = j L / (n - 1), tail (S = 0) to head (S = L), linear in S between them.
     The command moves towards the target by at most max_curvature_rate x control_dt per step
-    (the muscles' finite rate) and linearly in time over the step.
+    (the muscles' finite rate) and linearly in time over the step. With the effect
+    `muscle_power` (default) the step's change is scaled down further where the muscles'
+    positive work in the step would exceed max power x control_dt, max power =
+    muscle_power_density x muscle_mass_fraction x body mass (22 W/kg x 0.5 x 22.6 g = 0.25 W;
+    docs/eel.md).
 
     With `action_mode="wave"` the action is `Box(-1, 1, (3,), float32)`: the tail's curvature
     amplitude a in [0, max_curvature], the wavelength lambda / L in [0.4, 2] and the frequency f
@@ -76,9 +90,12 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | youngs_modulus, shear_modulus | 1e6, E / 1.5 | E, G [Pa] in [1e3, 1e12] |
     | density, water_density | 1000, 1000 | body, water density [kg/m^3]; body >= 0.25 x water |
     | drag_normal, drag_tangential | 1.1, 0.0055 | Taylor's C_N, C_T (docs/eel.md) |
+    | drag_form | 0.19 | form drag coefficient on the frontal area pi d^2 / 4 (docs/eel.md) |
     | n_elements | 6 | C1 elements, 2..64 |
     | max_curvature | 50 | action scale [1/m], max_curvature L <= 20 |
     | max_curvature_rate | 750 | muscle rate limit of the command [1/(m s)] (docs/eel.md) |
+    | muscle_power_density | 22 | the muscles' power limit per kg of muscle [W/kg] (docs/eel.md) |
+    | muscle_mass_fraction | 0.5 | muscle mass / body mass, in [0.001, 1] |
     | n_control_points | 7 | actuation control points, 2..64 |
     | control_dt, physics_dt | 0.02, 0.01 | s per step, implicit physics step |
     | episode_seconds | None | episode length [s]; None: 10 s |
@@ -88,10 +105,12 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
     | numerical_damping | 0.1 | theta_s - 1/2 of the stresses, in [0, 0.5] (0: energy-conserving) |
     | action_mode | "curvature" | or "wave": (amplitude, wavelength, frequency) of the wave |
-    | effects | resistive, reactive | either or both; () a body in vacuum |
+    | effects | resistive, reactive, form_drag, muscle_power | any subset; () a body in vacuum |
 
     ## Version History
-    * v0: initial release.
+    * v0: initial release; the form drag (effect `form_drag`) and the muscles' power limit
+      (effect `muscle_power`), both on by default, added later, which changes trajectories by
+      design.
     """
 
     RESET_OPTIONS = spec.RESET_OPTIONS
@@ -110,9 +129,12 @@ class EelEnv(BeamRobotMixin, MFEnv):
         water_density: float = RHO_WATER,
         drag_normal: float = C_NORMAL,
         drag_tangential: float = C_TANGENTIAL,
+        drag_form: float = C_FORM,
         n_elements: int = 6,
         max_curvature: float = 50.0,
         max_curvature_rate: float = 750.0,
+        muscle_power_density: float = build.MUSCLE_POWER_DENSITY,
+        muscle_mass_fraction: float = build.MUSCLE_MASS_FRACTION,
         n_control_points: int = 7,
         control_dt: float = 0.02,
         physics_dt: float = 0.01,

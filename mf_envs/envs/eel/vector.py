@@ -28,7 +28,9 @@ class EelVectorEnv(SerpentineVectorEnv):
     single_env_cls = EelEnv
     row_cost = "heavy"  # a Newton solve per row: one block per CPU from N = 2
     # held per row in its compiled configuration `cfg` (`_row_held`): `randomize_rows`
-    ROW_KWARGS = frozenset(("youngs_modulus", "shear_modulus", "drag_normal", "drag_tangential"))
+    ROW_KWARGS = frozenset(
+        ("youngs_modulus", "shear_modulus", "drag_normal", "drag_tangential", "drag_form")
+    )
 
     def _alloc(self, n: int) -> None:
         super()._alloc(n)

@@ -20,7 +20,13 @@ from mf_envs._validate import check_choice, check_int, check_range
 from mf_envs.envs.inchworm.spec import CURVATURE_OBS_LIMIT
 from mf_envs.physics.actuators.curvature import SMA_RATE_LIMIT, SMA_TIME_CONSTANT, ActuatorParams
 from mf_envs.physics.actuators.sizing import size_wires
-from mf_envs.physics.actuators.sma import FLEXINOL_HT, FLEXINOL_LT, SMAWireParams, flexinol_wire
+from mf_envs.physics.actuators.sma import (  # noqa: F401  (MAX_WIRE_TEMPERATURE: the env's default)
+    FLEXINOL_HT,
+    FLEXINOL_LT,
+    MAX_WIRE_TEMPERATURE,
+    SMAWireParams,
+    flexinol_wire,
+)
 from mf_envs.physics.beam.contact.friction import FrictionParams
 from mf_envs.physics.beam.contact.grip import GripFeetParams, GripLaw
 from mf_envs.physics.inchworm import InchwormParams
@@ -160,8 +166,10 @@ def wire_groups(
     """The SMA wire groups (one per control point, `wires.SMAWires`) sized to the body: the
     wires at `wire_lever_arm` must hold EI max_curvature at the maker's 172 MPa
     (`sizing.size_wires`) with their strain max_curvature x lever arm inside the alloy's
-    repeatable range. The wire kwargs are checked always, the sizing with `sma_wires` only
-    (None without it)."""
+    repeatable range; and the temperature the wires approach at full duty of the rated current
+    (`SMAWireParams.steady_temperature`, which no duty sequence exceeds) must stay at or below
+    `max_wire_temperature`. The wire kwargs are checked always, the sizing with `sma_wires`
+    only (None without it)."""
     diameter = check_range("wire_diameter", kw["wire_diameter"], 1e-6, 1e-2)
     try:
         flexinol_wire(diameter)
@@ -170,8 +178,14 @@ def wire_groups(
     lever = check_range("wire_lever_arm", kw["wire_lever_arm"], 1e-6, 1.0)
     alloy = ALLOYS[check_choice("wire_alloy", kw["wire_alloy"], tuple(ALLOYS))]
     ambient = check_range("ambient_temperature", kw["ambient_temperature"], -40.0, 60.0)
+    t_max = check_range("max_wire_temperature", kw["max_wire_temperature"], -40.0, 1000.0)
     if not on:
         return None
+    if t_max <= alloy.austenite_finish:
+        raise ValueError(
+            f"max_wire_temperature: {t_max:g} degC is not above Af = {alloy.austenite_finish} "
+            f"degC of {alloy.name} (the wires could never finish contracting)"
+        )
     if lever > params.height / 2.0:
         raise ValueError(
             f"wire_lever_arm: {lever} m puts the wires outside the section (height / 2)"
@@ -190,6 +204,13 @@ def wire_groups(
         diameter=diameter, length=params.length / n_ctrl, n_wires=sizing.count, alloy=alloy,
         strain_max=sizing.wire_strain, ambient=ambient, name="Inchworm-v0 body wires",
     )  # fmt: skip
+    hottest = group.steady_temperature(1.0)
+    if hottest > t_max:
+        raise ValueError(
+            f"ambient_temperature, wire_diameter: the wires would reach {hottest:.1f} degC at "
+            f"full duty of the rated current ({ambient:g} degC still air, {diameter:g} m wire), "
+            f"above max_wire_temperature = {t_max:g} degC"
+        )
     return SMAWires(group, max_curvature, n_ctrl)
 
 

@@ -107,12 +107,12 @@ class InchwormEnv(MFEnv):
     ## Arguments
     | Argument | Default | Meaning |
     |----------|---------|---------|
-    | length | 0.06 | body length L [m] in [0.01, 10] (RIOS2017_BODY: 0.3) |
+    | length | 0.05 | body length L [m] in [0.01, 10] (RIOS2017_BODY: 0.3) |
     | width, height | 0.010, 0.003 | cross-section b, h [m] in [1e-4, 1], h <= L / 5 |
     | youngs_modulus, shear_modulus | 1.5e6, 5.03e5 | E, G [Pa] in [1e3, 1e13] (PDMS, nu 0.49) |
     | mass_per_length | 0.0309 | m_A [kg/m] in [1e-6, 1e4] (1030 kg/m^3; J_3C = m_A h^2 / 12) |
     | n_elements | 12 | C1 elements, 1..64 |
-    | max_curvature | 50.0 | largest abs(kappa#) [1/m] (sma_wires: full stroke), <= 20 / L |
+    | max_curvature | 60.0 | largest abs(kappa#) [1/m] (sma_wires: full stroke), <= 20 / L |
     | n_control_points | 3 | actuation control points (wire groups), 2..64 |
     | control_dt, physics_dt | 0.1, 0.1 | s per step; Newmark step with `inertia` |
     | episode_seconds | None | episode length [s]; None: max_episode_steps steps |
@@ -128,7 +128,7 @@ class InchwormEnv(MFEnv):
     | wire_diameter | 1.5e-4 | Flexinol wire diameter [m] (a row of the maker's table) |
     | wire_lever_arm | 6e-4 | wires below the neutral axis [m], <= height / 2 |
     | wire_alloy | "HT" | "HT" (90 degC) or "LT" (70 degC) Flexinol |
-    | ambient_temperature | 20.0 | still air [degC] in [-40, 60], below the alloy's Mf |
+    | ambient_temperature, max_wire_temperature | 20, 150 | still air (< Mf), wire limit [degC] |
     | increment_factor | 4.0 | increments up to factor * 2h/L^2 (seed: 1; same equilibria) |
     |  |  | at most 200 increments (or Newmark steps) per step |
     | reset_noise_scale | 0.05 | initial actuation noise, in [0, 1] |
@@ -136,8 +136,7 @@ class InchwormEnv(MFEnv):
     | effects | gravity, shear_deformation, anchor_switching, | also: inertia, terrain, |
     |  | sma_wires, gripping_feet | actuator_dynamics, friction (exclusive pairs: ValueError) |
 
-    With `sma_wires` the wires must hold the body: max_curvature x wire_lever_arm inside the
-    alloy's repeatable strain (6 %), else ValueError naming max_curvature.
+    With `sma_wires`, max_curvature x wire_lever_arm within the alloy's 6 % (else ValueError).
 
     ## Version History
     * v0: initial release (kinematic anchoring of Eq. 102; quasi-static by default); then
@@ -158,14 +157,14 @@ class InchwormEnv(MFEnv):
 
     def __init__(
         self,
-        length: float = 0.06,
+        length: float = 0.05,
         width: float = 0.010,
         height: float = 0.003,
         youngs_modulus: float = PDMS_E,
         shear_modulus: float = PDMS_G,
         mass_per_length: float = PDMS_MASS,
         n_elements: int = 12,
-        max_curvature: float = 50.0,
+        max_curvature: float = 60.0,
         effects: Any = None,
         n_control_points: int = 3,
         control_dt: float = 0.1,
@@ -185,6 +184,7 @@ class InchwormEnv(MFEnv):
         wire_lever_arm: float = 0.6e-3,
         wire_alloy: str = "HT",
         ambient_temperature: float = 20.0,
+        max_wire_temperature: float = build.MAX_WIRE_TEMPERATURE,
         render_mode: str | None = None,
     ) -> None:
         kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}

@@ -35,7 +35,7 @@ DECLARATION = EnvDeclaration(
     metric=Metric("tail_advance_per_step", True, "m"),
     episode_metrics=episode_metrics,
     info_keys=("x_head", "x_tail", "centerline"),
-    bad_reset_options=(("x_tail", 1e17), ("kappa", [1.0, 2.0]), ("kappa", [0.0, 0.0, -51.0])),
+    bad_reset_options=(("x_tail", 1e17), ("kappa", [1.0, 2.0]), ("kappa", [0.0, 0.0, -61.0])),
     # the body, then the feet's friction: every coefficient of `friction_coefficients` times one
     # factor (`train.randomize`: a dict-valued kwarg), in both feet's scenes
     randomize={

@@ -42,6 +42,12 @@ NITI_DENSITY = 6450.0  # rho [kg/m^3], F1140 physical properties
 NITI_SPECIFIC_HEAT = 0.2 * CAL * 1e3  # c [J/(kg K)], 0.2 cal/(g degC), F1140
 NITI_LATENT_HEAT = 5.78 * CAL * 1e3  # L [J/kg], 5.78 cal/g, F1140
 RATED_STRESS = 172e6  # [Pa] the maker's heating pull force basis (25 ksi)
+# [degC] the wires' over-temperature limit. Dynalloy's technical data, as far as we could read
+# it (F1140 Rev I.2, first pages), gives no maximum temperature; a Nitinol actuator designer
+# states that actuators "are very easily damaged if the stress exceeds roughly 40 ksi or if the
+# temperature exceeds 150 degrees C" (nitinolactuators.com, "Nitinol actuator over-stress
+# protection"). Not the maker's number: docs/inchworm.md
+MAX_WIRE_TEMPERATURE = 150.0
 ROOM_TEMPERATURE = 20.0  # [degC] still air of the maker's tests (our reading of "room")
 GRAM_FORCE = 9.80665e-3  # [N]
 
@@ -226,6 +232,15 @@ class SMAWireParams:
     def latent_kelvin(self) -> float:
         """L / c [K] (0 with latent_heat off): the latent heat as a temperature."""
         return NITI_LATENT_HEAT / NITI_SPECIFIC_HEAT if self.latent_heat else 0.0
+
+    def steady_temperature(self, duty: float = 1.0) -> float:
+        """T_amb + duty I^2 R' / (h p) [degC]: the fixed point of the lumped heat balance under a
+        constant duty of the rated current. The exact solution approaches it monotonically and
+        the latent heat is absorbed on heating (released on cooling, below Ms), so no sequence
+        of duties in [0, duty] takes a wire from at most this temperature above it."""
+        return self.ambient + duty * self.current**2 * self.resistance_per_length / (
+            self.film_conductance
+        )
 
     def kernel_args(self) -> tuple:
         """(hp, cap, T_amb) and (As, Af, Ms, Mf, L/c), the kernels' order."""

@@ -42,6 +42,17 @@ v_t = v . t, v_n = v . n:
   (P(d_{n+1}, v_{n+1}) - P(d_n, v_n)) / dt, so body plus water momentum is conserved exactly
   when nothing else acts (`added_momentum` gives the nodal P and its derivatives).
 
+* form drag (effect `form_drag` of the env): the drag of a gliding fish above the skin friction
+  of the flat plate (pressure drag of the blunt head and the thickened boundary layer), lumped
+  on the leading end as a point force along its axis, F = -k_f |u| u t, k_f = 1/2 rho C_F
+  pi d^2 / 4 (C_F on the frontal area), at the head (S = L) while it leads (u > 0 there) and at
+  the tail while the body backs (u < 0 there), blended by sigma(u_head), sigma(-u_tail) as the
+  trailing-edge term. A straight body towed along its axis then feels -(k_t L + k_f) |u| u t
+  exactly (sigma(u) + sigma(-u) = 1). C_F is derived from gliding fish (docs/eel.md): the total
+  drag coefficient on the wetted area C_D measured on gliding fish, less the skin friction
+  C_T, times the wetted / frontal area ratio 4 L / d: C_F = (C_D - C_T) 4 L / d. Tangent (h(u)
+  = sigma |u| u, w = du/dpsi = v . n): dF/dv = -k_f h'(u) t t^T, dF/dpsi = -k_f (h' w t + h n).
+
 Buoyancy: the body swims in a horizontal plane, gravity is normal to it, and a neutrally
 buoyant body (density = rho) feels no net vertical load; the in-plane model has no buoyancy term.
 """
@@ -70,8 +81,13 @@ RHO_WATER = RHO_FRESHWATER  # kg/m^3, the eel's water
 # on the wetted perimeter (laminar flat plate 1.328 / sqrt(Re_L) at Re_L = U L / nu ~ 6e4)
 C_NORMAL = 1.1
 C_TANGENTIAL = 0.0055
+# form drag on the frontal area pi d^2 / 4 (module docstring), from the drag coefficient of gliding
+# fish on their wetted area, 0.0075-0.0091 (Sagong, Jeon & Choi 2013, sailfish and swordfish at
+# cruising Reynolds numbers; "comparable to tuna and pike"): their mid-range 0.0083 less C_T,
+# times 4 L / d = 66.7 (d = 0.06 L): (0.0083 - 0.0055) x 66.7 = 0.19; the range gives 0.13-0.24
+C_FORM = 0.19
 # packed layout of `Water.packed()`
-W_KN, W_KT, W_LINEAR, W_CN, W_CT, W_RESISTIVE, W_MA, W_TAIL, W_END_SPEED = range(9)
+W_KN, W_KT, W_LINEAR, W_CN, W_CT, W_RESISTIVE, W_MA, W_TAIL, W_END_SPEED, W_KF = range(10)
 END_SPEED = 1e-3  # m/s, the width of the smooth switch between the ends (module docstring)
 
 
@@ -81,7 +97,8 @@ class Water:
     dimensionless C_N, C_T (quadratic law) or the linear coefficients c_n, c_t [N s/m^2] when
     `linear`; `resistive`, `reactive` switch the two forces (`tail`: Lighthill's trailing-edge
     term with the reactive force, at whichever end trails; `end_speed` [m/s] the width of the
-    smooth switch between the ends)."""
+    smooth switch between the ends); `form_drag` the leading end's form drag of frontal-area
+    coefficient `c_form` (module docstring)."""
 
     density: float = RHO_WATER
     diameter: float = 0.012
@@ -94,12 +111,14 @@ class Water:
     reactive: bool = True
     tail: bool = True
     end_speed: float = END_SPEED
+    form_drag: bool = False
+    c_form: float = C_FORM
 
     def __post_init__(self) -> None:
         check_positive("end_speed", self.end_speed)
         check_positive("density", self.density)
         check_positive("diameter", self.diameter)
-        for name in ("c_normal", "c_tangential", "linear_normal", "linear_tangential"):
+        for name in ("c_normal", "c_tangential", "linear_normal", "linear_tangential", "c_form"):
             check_nonnegative(name, getattr(self, name))
 
     @property
@@ -117,8 +136,16 @@ class Water:
         """1/2 rho pi d C_T [kg/m^2]."""
         return 0.5 * self.density * math.pi * self.diameter * self.c_tangential
 
+    @property
+    def k_form(self) -> float:
+        """k_f = 1/2 rho C_F pi d^2 / 4 [kg/m] (0 with the form drag off)."""
+        if not self.form_drag:
+            return 0.0
+        return 0.5 * self.density * self.c_form * math.pi * self.diameter**2 / 4.0
+
     def packed(self) -> np.ndarray:
-        """The compiled layout (k_n, k_t, linear, c_n, c_t, resistive, m_a, tail, end_speed)."""
+        """The compiled layout (k_n, k_t, linear, c_n, c_t, resistive, m_a, tail, end_speed,
+        k_f)."""
         return np.array(
             [
                 self.k_normal,
@@ -130,6 +157,7 @@ class Water:
                 self.added_mass,
                 1.0 if (self.tail and self.reactive) else 0.0,
                 self.end_speed,
+                self.k_form,
             ]
         )
 
@@ -232,21 +260,52 @@ def _end_into(d, v, base, sign, law, f, ab, cd, cv, pf):
 
 
 @numba.njit(cache=True, nogil=True)
+def _form_into(d, v, base, sign, k_f, eps, f, ab, cd, cv):
+    """The form drag at the node whose dofs start at `base` (sign +1: the head, -1: the tail),
+    weighted by sigma(sign u) (module docstring), added to f and, with its tangent (cd dF/dd +
+    cv dF/dv), to the band ab. Returns its power [W]."""
+    v1, v2, psi = v[base], v[base + 2], d[base + 4]
+    c, s = math.cos(psi), math.sin(psi)
+    u = c * v1 + s * v2
+    x = sign * u
+    r = math.sqrt(x * x + eps * eps)
+    g = 0.5 * (1.0 + x / r)
+    h = g * abs(u) * u
+    f[base] -= k_f * h * c
+    f[base + 2] -= k_f * h * s
+    if cd != 0.0 or cv != 0.0:
+        dh = 0.5 * eps * eps / (r * r * r) * sign * abs(u) * u + 2.0 * g * abs(u)
+        w = -s * v1 + c * v2  # du/dpsi
+        t = (c, s)
+        nrm = (-s, c)
+        for ci in range(2):
+            for cj in range(2):
+                ab[HALF_BW + 2 * ci - 2 * cj, base + 2 * cj] -= cv * k_f * dh * t[ci] * t[cj]
+            ab[HALF_BW + 2 * ci - 4, base + 4] -= cd * k_f * (dh * w * t[ci] + h * nrm[ci])
+    return -k_f * h * u
+
+
+@numba.njit(cache=True, nogil=True)
 def tail_into(d, v, law, f, ab, cd, cv):
-    """Lighthill's trailing-edge force (if on) at (d, v), at whichever end trails (module
-    docstring), added to f, cd dF/dd + cv dF/dv to the band ab (cd = cv = 0: no tangent).
-    Returns its power [W]."""
+    """The end forces at (d, v): Lighthill's trailing-edge force (if on) at whichever end
+    trails and the form drag (if on) at whichever end leads (module docstring), added to f,
+    cd dF/dd + cv dF/dv to the band ab (cd = cv = 0: no tangent). Returns their power [W]."""
+    power = 0.0
+    head = d.shape[0] - 5  # the last node (n_dof = 6 n_el + 5): its z1, z2, psi at +0, +2, +4
+    if law[W_KF] > 0.0:
+        eps = law[W_END_SPEED]
+        power += _form_into(d, v, head, 1.0, law[W_KF], eps, f, ab, cd, cv)
+        power += _form_into(d, v, 0, -1.0, law[W_KF], eps, f, ab, cd, cv)
     if law[W_TAIL] <= 0.0:
-        return 0.0
+        return power
     pf = np.empty(8)
-    power = _end_into(d, v, 0, 1.0, law, f, ab, cd, cv, pf)  # node 0: z1, z2, psi = d[0, 2, 4]
-    # the last node (n_dof = 6 n_el + 5): z1, z2, psi = d[6 n_el], d[6 n_el + 2], d[6 n_el + 4]
-    return power + _end_into(d, v, d.shape[0] - 5, -1.0, law, f, ab, cd, cv, pf)
+    power += _end_into(d, v, 0, 1.0, law, f, ab, cd, cv, pf)  # node 0: z1, z2, psi = d[0, 2, 4]
+    return power + _end_into(d, v, head, -1.0, law, f, ab, cd, cv, pf)
 
 
 @numba.njit(cache=True, nogil=True)
 def assemble_water(d, v, le, nzt, npt, law, f, ab, cd, cv):
-    """Add the nodal force of Taylor's resistive law (if on) and Lighthill's tail force (if on)
+    """Add the nodal force of Taylor's resistive law (if on) and the end forces (`tail_into`)
     at configuration d and dof velocities v (n_dof,) to f (n_dof,), and cd dF/dd + cv dF/dv to
     the banded ab (21, n_dof) (cd = cv = 0: no tangent). nzt, npt: `shape_tables(le)`; law:
     `Water.packed()`. Returns the power [W]."""
