@@ -71,7 +71,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | n+1 | cos_heading | cos(mean frame angle - target direction) | +-1 | |
     | n+2..n+3 | velocity | v_com / L along, across the mean axis | +-20 | 1/s |
     | n+4 | tail_angle | tail frame angle - mean frame angle (wrapped) | +-3.5 | rad |
-    | n+5 | tail_rate | rate of the tail's frame angle | +-200 | rad/s |
+    | n+5 | tail_rate | rate of the tail's frame angle | +-20 | 10 rad/s |
     | n+6..2n+5 | curvature_command | kappa# / max_curvature at the step's end | +-1 | |
 
     ## Rewards

@@ -25,6 +25,7 @@ import numba
 import numpy as np
 
 from mf_envs.envs import _beam_rows as br
+from mf_envs.envs.eel.spec import TAIL_RATE_UNIT
 from mf_envs.physics.beam import element as el
 from mf_envs.physics.beam.fused import quadrature_tables
 from mf_envs.physics.serpentine.stepping import bending_work
@@ -98,7 +99,7 @@ def observe_row(d, v, cmd, cfg, body, out):
     out[n + 3] = (-s * body[2] + c * body[3]) / length
     tail = d[4] - body[4]
     out[n + 4] = math.atan2(math.sin(tail), math.cos(tail))
-    out[n + 5] = v[4]
+    out[n + 5] = v[4] / TAIL_RATE_UNIT  # in the slot's fixed unit (`spec.TAIL_RATE_UNIT`)
 
 
 @numba.njit(cache=True, nogil=True)
