@@ -45,9 +45,10 @@ MIN_DENSITY_RATIO = 0.25
 MUSCLE_POWER_DENSITY = 22.0  # W/kg of muscle
 MUSCLE_MASS_FRACTION = 0.5
 # effort weight x (body mass x (L / 1 s)^2): effort_weight = EFFORT_SCALE / (m L^2 / s^2); a
-# regulariser small enough that the return ranks controllers as their speed does (0.02 put the
-# random policy's return below the `fast` gait's against their speeds)
-EFFORT_SCALE = 0.002
+# regulariser small enough that the return ranks controllers as their speed does: over the zero,
+# random and classical controllers on test seeds 20000-20019, Spearman's rho of return and
+# speed was 0.57 at 0.002 (the `fast` gait's effort outweighed its progress), 0.96 at 0.0002
+EFFORT_SCALE = 0.0002
 
 
 @dataclasses.dataclass(frozen=True)

@@ -78,7 +78,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     `reward = progress + effort`, the terms in `info["reward_terms"]`: `progress` = centre-of-
     mass displacement along the target direction in the step / L; `effort` = -effort_weight x
     actuation energy of the step [J] (the muscles' positive work -int M3 dkappa#/dt dS, no
-    regeneration; default weight 0.002 / (m L^2 / s^2), m the body mass). Info keys:
+    regeneration; default weight 2e-4 / (m L^2 / s^2), m the body mass). Info keys:
     `spec.INFO_KEYS`.
 
     BEAM_START_AND_END(500 = 10 s at 0.02 s)
@@ -100,7 +100,7 @@ class EelEnv(BeamRobotMixin, MFEnv):
     | control_dt, physics_dt | 0.02, 0.01 | s per step, implicit physics step |
     | episode_seconds | None | episode length [s]; None: 10 s |
     | max_episode_steps | None | or the episode length in control steps |
-    | effort_weight | None | [1/J] >= 0; None: 0.002 / (m L^2 / s^2) |
+    | effort_weight | None | [1/J] >= 0; None: 2e-4 / (m L^2 / s^2) |
     | reset_noise_scale | 0.05 | start curvature noise / max_curvature, in [0, 1] |
     | initial_heading_range | pi | start heading drawn in +-this [rad], in [0, pi] |
     | numerical_damping | 0.1 | theta_s - 1/2 of the stresses, in [0, 0.5] (0: energy-conserving) |
