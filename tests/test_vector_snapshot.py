@@ -68,3 +68,19 @@ def test_restore_rejects_a_snapshot_of_another_env():
     b.reset(seed=0)
     with pytest.raises(ValueError, match="snap"):
         a.restore(b.snapshot())
+
+
+def test_loaded_rows_take_the_single_envs_pto():
+    """FloatingGOWEC-v0 under a linear PTO set on the single env (`set_pto`, as efficient_pto
+    does at reset): the loaded rows run the same drive law, bit for bit."""
+    kw = {"significant_wave_height": 1.0, "peak_period": 6.0}
+    env = gym.make("FloatingGOWEC-v0", **kw).unwrapped
+    env.reset(seed=2)
+    env.set_pto(5e4, 3e3)
+    v = _vec("FloatingGOWEC-v0", kw, 2).unwrapped
+    v.reset(seed=0)
+    v.load_env(env)
+    zero = np.zeros((1,), np.float32)
+    for _ in range(10):
+        r = env.step(zero)[1]
+        assert np.all(v.step(np.zeros((2, 1), np.float32))[1] == r)

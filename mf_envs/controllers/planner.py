@@ -37,10 +37,15 @@ import numpy as np
 class SamplingPlanner:
     """CEM planner over the vector rows of `env`'s id (module doc).
 
-    horizon H (control steps), samples K (rows), iterations (CEM rounds per replan), elite
-    (fraction refitted), replan (control steps played per plan), std (initial sampling std of
+    horizon H (knots of `hold` control steps each: a sequence is H actions, each held `hold`
+    steps), samples K (rows), iterations (CEM rounds per replan), elite (fraction refitted),
+    replan (knots played per plan, <= H), std (initial sampling std of
     an action in [-1, 1]), init (the first plan's constant action), seed (the sampler's
-    generator), causal (module doc), num_threads (the vector env's row blocks)."""
+    generator), causal (module doc), num_threads (the vector env's row blocks), base (a
+    baseline kind that acts only through the env's drive settings at its reset, e.g.
+    FloatingGOWEC's `efficient_pto`, whose linear PTO gains `load_env` copies into the rows:
+    the planner's torque then adds to that drive law; ValueError if the base commands a
+    nonzero action)."""
 
     def __init__(
         self,
@@ -50,11 +55,13 @@ class SamplingPlanner:
         iterations: int = 3,
         elite: float = 0.125,
         replan: int = 2,
+        hold: int = 1,
         std: float = 0.5,
         init: float = 0.0,
         seed: int = 0,
         causal: bool = False,
         num_threads: int | None = 1,
+        base: str | None = None,
     ) -> None:
         import gymnasium as gym
 
@@ -65,7 +72,8 @@ class SamplingPlanner:
         self.h = check_int("horizon", horizon, 1)
         self.k = check_int("samples", samples, 1)
         self.iterations = check_int("iterations", iterations, 1)
-        self.replan = check_int("replan", replan, 1)
+        self.hold = check_int("hold", hold, 1)
+        self.replan = check_int("replan", replan, 1, self.h)
         self.elite = max(1, round(check_range("elite", elite, 0.0, 1.0) * self.k))
         self.std0 = check_range("std", std, 0.0, 2.0)
         self.init = check_range("init", init, -1.0, 1.0)
@@ -76,9 +84,18 @@ class SamplingPlanner:
         self.vec.reset(seed=0)
         self.dim = self.env.action_space.shape[0]
         self.forecast = _forecast_of(self.env) if self.causal else None
+        self.base = None
+        if base is not None:
+            from mf_envs.controllers import make_baseline
+
+            self.base = make_baseline(env, base)
         self.reset()
 
     def reset(self) -> None:
+        if self.base is not None and self.env._last_obs is not None:  # after the env's reset
+            self.base.reset()
+            if np.any(self.base.predict(self.env._last_obs)[0] != 0.0):
+                raise ValueError("base: acts through its actions; only drive-setting bases")
         self.rng = np.random.default_rng(self.seed)
         self.mean = np.full((self.h, self.dim), self.init)
         self.queue: list[np.ndarray] = []
@@ -87,7 +104,7 @@ class SamplingPlanner:
     def predict(self, obs: Any, deterministic: bool = True) -> tuple[np.ndarray, None]:
         if not self.queue:
             plan = self._plan()
-            self.queue = list(plan[: self.replan])
+            self.queue = list(np.repeat(plan[: self.replan], self.hold, axis=0))
             self.mean = np.concatenate([plan[self.replan :],
                                         np.repeat(plan[-1:], self.replan, axis=0)])  # fmt: skip
         return self.queue.pop(0).astype(np.float32), None
@@ -95,7 +112,7 @@ class SamplingPlanner:
     def _plan(self) -> np.ndarray:
         """CEM from the env's current state: the best sequence found (H, dim)."""
         left = self.env.max_steps - self._steps()
-        h = max(1, min(self.h, left))
+        h = max(1, min(self.h, -(-left // self.hold)))
         vec = self.vec
         vec.load_env(self.env)
         if self.forecast is not None:
@@ -122,11 +139,12 @@ class SamplingPlanner:
         return best
 
     def _returns(self, seqs: np.ndarray) -> np.ndarray:
-        """Sum of each row's rewards over its sequence (K, h, dim), -inf after a failure."""
+        """Sum of each row's rewards over its sequence (K, h, dim), each action held `hold`
+        steps; -inf after a failure."""
         total = np.zeros(self.k)
         alive = np.ones(self.k, dtype=bool)
-        for j in range(seqs.shape[1]):
-            _, r, term, trunc, info = self.vec.step(seqs[:, j])
+        for j in range(seqs.shape[1] * self.hold):
+            _, r, term, trunc, info = self.vec.step(seqs[:, j // self.hold])
             total += np.where(alive, r, 0.0)
             failed = info.get("numerical_failure", np.zeros(self.k, bool)) & alive
             total[failed] = -np.inf

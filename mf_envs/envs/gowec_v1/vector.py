@@ -165,9 +165,13 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         return arrays
 
     def _load_live(self, i: int, env: Any) -> None:
-        """`_load` and the episode's step count (the sea's clock is steps x control_dt)."""
+        """`_load`, the episode's step count (the sea's clock is steps x control_dt) and the
+        env's linear PTO gains (`GOWECV1Env.set_pto`; the template's, shared by all rows)."""
         super()._load_live(i, env)
         self._steps[i] = env._steps
+        pto = env.model.p.pto
+        if (pto[0], pto[1]) != tuple(self.template.model.p.pto[:2]):
+            self.template.set_pto(float(pto[0]), float(pto[1]))
 
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
         env, sea, draws, ptr = self.template, self.sea, self._draws, self._ptr
