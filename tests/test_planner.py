@@ -69,9 +69,10 @@ def test_the_oracles_planned_return_is_delivered(env_id, kw):
         assert got == pytest.approx(planned, rel=1e-12, abs=1e-12)
 
 
-def test_the_causal_planner_does_not_read_the_sea_ahead():
-    """Two episodes with the same past and different seas ahead: the causal MPC acts the same
-    in both, the oracle does not."""
+@pytest.mark.parametrize("base", [None, "scheduled_lqr"])
+def test_the_causal_planner_does_not_read_the_sea_ahead(base):
+    """Two episodes with the same past and different seas ahead: the causal MPC (guided by a
+    baseline or not) acts the same in both, the oracle does not."""
     kw = {"episode_seconds": 30.0}
     actions = {}
     for causal in (True, False):
@@ -84,10 +85,12 @@ def test_the_causal_planner_does_not_read_the_sea_ahead():
             if perturb:  # another sea after now
                 i_now = int(round(10.0 / u.scene.table_dt))
                 u.rows.tab[0, i_now + 1 :] *= -1.0
-            ctrl = SamplingPlanner(env, horizon=10, samples=16, iterations=2, causal=causal)
-            actions[causal, perturb] = ctrl.predict(obs)[0]
-    assert np.array_equal(actions[True, False], actions[True, True])
-    assert not np.array_equal(actions[False, False], actions[False, True])
+            ctrl = SamplingPlanner(env, horizon=10, samples=16, iterations=2, causal=causal,
+                                   base=base)  # fmt: skip
+            actions[causal, perturb] = (ctrl.predict(obs)[0], ctrl.planned)
+    assert np.array_equal(actions[True, False][0], actions[True, True][0])
+    assert actions[True, False][1] == actions[True, True][1]  # the same expected return
+    assert actions[False, False][1] != actions[False, True][1]  # the oracle sees the change
 
 
 def test_ar_forecast_continues_a_sinusoid():
@@ -99,3 +102,15 @@ def test_ar_forecast_continues_a_sinusoid():
     x = np.sin(1.1 * t + 0.3)
     ahead = ar_forecast(x, 10, order=4)
     assert np.allclose(ahead, np.sin(1.1 * (t[-1] + 0.2 * np.arange(1, 11)) + 0.3), atol=1e-8)
+
+
+def test_one_row_guided_by_a_baseline_is_that_baseline():
+    """With one row, candidate 0 is the baseline's own continuation (a copy of it closing its
+    loop on a row that continues the episode): the planner then plays the baseline's actions,
+    bit for bit, so a guided plan is never worse than the baseline over its horizon."""
+    from mf_envs.controllers import make_baseline
+
+    env = gym.make("GyroStabilizer-JONSWAP-v0", episode_seconds=4.0)
+    base = _rollout(env, make_baseline(env, "scheduled_lqr"), 5)
+    ctrl = SamplingPlanner(env, horizon=3, samples=1, replan=1, base="scheduled_lqr")
+    assert np.array_equal(_rollout(env, ctrl, 5), base)

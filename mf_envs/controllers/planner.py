@@ -10,8 +10,9 @@ Search: the cross-entropy method (Rubinstein 1999; as in PETS, Chua et al. 2018)
 rounds of K Gaussian sequences (clipped to [-1, 1]) around a mean, refitted to the best
 `elite` fraction; row 0 is always the mean itself (so K = 1 plays the mean: the warm start, or
 `init` at the first step); the mean is warm-started from the last plan shifted by the steps
-played, its last action repeated. Rollouts stop at the episode's end (no autoreset enters a
-score) and a row that fails numerically scores -inf.
+played, its last action repeated, or with a guiding baseline (`base`) from that baseline's
+own continuation, the shifted last plan then being candidate 1. Rollouts stop at the episode's
+end (no autoreset enters a score) and a row that fails numerically scores -inf.
 
 What it knows (`causal`):
 - oracle (`causal=False`): the episode's whole sea, because each env's sea is a deterministic
@@ -39,13 +40,16 @@ class SamplingPlanner:
 
     horizon H (knots of `hold` control steps each: a sequence is H actions, each held `hold`
     steps), samples K (rows), iterations (CEM rounds per replan), elite (fraction refitted),
-    replan (knots played per plan, <= H), std (initial sampling std of
+    replan (knots played per plan, at most H), std (initial sampling std of
     an action in [-1, 1]), init (the first plan's constant action), seed (the sampler's
     generator), causal (module doc), num_threads (the vector env's row blocks), base (a
-    baseline kind that acts only through the env's drive settings at its reset, e.g.
-    FloatingGOWEC's `efficient_pto`, whose linear PTO gains `load_env` copies into the rows:
-    the planner's torque then adds to that drive law; ValueError if the base commands a
-    nonzero action)."""
+    baseline kind that guides the search: at each replan a copy of it, in its live state, is
+    rolled over the horizon on one more row, and its actions (at each knot's start) are the
+    CEM's initial mean and candidate 0, so the plan is never worse than the baseline over
+    the horizon; a baseline acting through the drive's settings, as FloatingGOWEC's
+    `efficient_pto` (its linear PTO, which `load_env` copies into the rows), guides with its
+    zero torque and keeps its drive law under the planner's torque).
+    """
 
     def __init__(
         self,
@@ -67,13 +71,13 @@ class SamplingPlanner:
 
         from mf_envs._validate import check_int, check_range
 
-        self.env = env.unwrapped
+        self.env, self._wrapped = env.unwrapped, env
         spec = env.spec if env.spec is not None else self.env.spec
         self.h = check_int("horizon", horizon, 1)
         self.k = check_int("samples", samples, 1)
         self.iterations = check_int("iterations", iterations, 1)
         self.hold = check_int("hold", hold, 1)
-        self.replan = check_int("replan", replan, 1, self.h)
+        self.replan = min(check_int("replan", replan, 1), self.h)
         self.elite = max(1, round(check_range("elite", elite, 0.0, 1.0) * self.k))
         self.std0 = check_range("std", std, 0.0, 2.0)
         self.init = check_range("init", init, -1.0, 1.0)
@@ -84,18 +88,20 @@ class SamplingPlanner:
         self.vec.reset(seed=0)
         self.dim = self.env.action_space.shape[0]
         self.forecast = _forecast_of(self.env) if self.causal else None
-        self.base = None
+        self.base = self.guide_env = None
         if base is not None:
             from mf_envs.controllers import make_baseline
 
             self.base = make_baseline(env, base)
+            self.guide_env = gym.make_vec(spec.id, num_envs=1, num_threads=1,
+                                          vectorization_mode="vector_entry_point",
+                                          **kwargs).unwrapped  # fmt: skip
+            self.guide_env.reset(seed=0)
         self.reset()
 
     def reset(self) -> None:
         if self.base is not None and self.env._last_obs is not None:  # after the env's reset
             self.base.reset()
-            if np.any(self.base.predict(self.env._last_obs)[0] != 0.0):
-                raise ValueError("base: acts through its actions; only drive-setting bases")
         self.rng = np.random.default_rng(self.seed)
         self.mean = np.full((self.h, self.dim), self.init)
         self.queue: list[np.ndarray] = []
@@ -107,6 +113,8 @@ class SamplingPlanner:
             self.queue = list(np.repeat(plan[: self.replan], self.hold, axis=0))
             self.mean = np.concatenate([plan[self.replan :],
                                         np.repeat(plan[-1:], self.replan, axis=0)])  # fmt: skip
+        if self.base is not None:  # the baseline's state follows the episode (after the plan)
+            self.base.predict(obs)
         return self.queue.pop(0).astype(np.float32), None
 
     def _plan(self) -> np.ndarray:
@@ -116,14 +124,19 @@ class SamplingPlanner:
         vec = self.vec
         vec.load_env(self.env)
         if self.forecast is not None:
-            self.forecast(vec, self.env, h)
+            self.forecast(vec, self.env, h * self.hold)
         start = vec.snapshot()
         mean, std = self.mean[:h].copy(), np.full((h, self.dim), self.std0)
+        warm = mean.copy()  # the last plan, shifted: candidate 1 of the first round
+        if self.base is not None:
+            mean = self._guide(h)
         best, best_ret = mean.copy(), -np.inf
         for it in range(self.iterations):
             noise = self.rng.standard_normal((self.k, h, self.dim))
             seqs = np.clip(mean[None] + std[None] * noise, -1.0, 1.0)
             seqs[0] = np.clip(mean, -1.0, 1.0)
+            if it == 0 and self.base is not None and self.k > 1:
+                seqs[1] = np.clip(warm, -1.0, 1.0)
             seqs = seqs.astype(np.float32).astype(np.float64)  # the env's float32 actions
             if it:
                 vec.restore(start)
@@ -137,6 +150,30 @@ class SamplingPlanner:
         if h < self.h:  # the episode's last steps: pad (never played)
             best = np.concatenate([best, np.repeat(best[-1:], self.h - h, axis=0)])
         return best
+
+    def _guide(self, h: int) -> np.ndarray:
+        """The baseline's actions (h, dim) over the next h knots from the env's state: a copy of
+        it (the env itself not copied) closing its loop on the guide row."""
+        import copy
+
+        env, row = self.env, self.guide_env
+        keep = (env, self._wrapped, self.vec, row)
+        guide = copy.deepcopy(self.base, {id(x): x for x in keep})
+        row.load_env(env)
+        if self.forecast is not None:  # the causal planner's guide sees the forecast sea too
+            self.forecast(row, env, h * self.hold)
+        obs = env._last_obs
+        out = np.zeros((h, self.dim))
+        for j in range(h * self.hold):
+            a = np.asarray(guide.predict(obs)[0], dtype=np.float64).reshape(self.dim)
+            if j % self.hold == 0:
+                out[j // self.hold] = a
+            obs, _, term, trunc, _ = row.step(a[None])
+            obs = obs[0]
+            if term[0] or trunc[0]:
+                out[j // self.hold + 1 :] = a
+                break
+        return out
 
     def _returns(self, seqs: np.ndarray) -> np.ndarray:
         """Sum of each row's rewards over its sequence (K, h, dim), each action held `hold`
