@@ -216,3 +216,31 @@ def test_the_grid_covers_every_headline_id_with_its_budgets():
     assert per[("FloatingGOWEC-JONSWAP-v0", "sbx_sac")] == {1_000_000}
     assert per[("Eel-v0", "ppo")] == {1_000_000} and ("Eel-v0", "sbx_sac") not in per
     assert len(grid) == 5 * (2 * 3 + 3 * 1) and len(rb.TRAIN_SEEDS) == 5
+
+
+def test_the_oracle_reference_sets_the_headroom(tmp_path):
+    """A reference record named "oracle" enters the results on the normalised scale and its
+    id's headroom is oracle - best baseline, stated in the generated block beside the ceiling."""
+    from mf_envs.benchmarks import rl_results as res
+
+    env_id = "GyroStabilizer-JONSWAP-v0"
+    base = {
+        "env_id": env_id,
+        "seed": None,
+        "budget": None,
+        "score_name": "rms_roll_reduction",
+        "test_seeds": [1, 2],
+        "returns": [0.0, 0.0],
+    }
+    for kind, name, scores in (("zero", "zero", [0.0, 0.0]), ("baseline", "lqr", [0.8, 0.9]),
+                               ("baseline", "pid", [0.7, 0.7]),
+                               ("reference", "oracle", [0.9, 1.0])):  # fmt: skip
+        res.write_record(tmp_path, {**base, "kind": kind, "name": name, "scores": scores})
+    result = res.collect(tmp_path)
+    a = result["ids"][env_id]
+    assert a["best_baseline"] == "lqr" and a["oracle"] == pytest.approx(0.95)
+    assert a["headroom"] == pytest.approx(0.95 - 0.85)
+    (oracle,) = [r for r in result["rows"] if r["name"] == "oracle"]
+    assert oracle["normalised"] == pytest.approx(0.95 / 0.85)
+    block = res.markdown(result, "r.json", [])
+    assert "headroom = oracle - best baseline = 0.1" in block and "ceiling 1" in block

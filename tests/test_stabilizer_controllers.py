@@ -97,9 +97,39 @@ def test_lqr_gain_and_poles():
     assert ctrl.A[1, 3] == pytest.approx(-m.nh / m.j_eff)
 
 
+@pytest.mark.parametrize("env_id", [ENV_ID, "GyroStabilizer-JONSWAP-v0"])
+def test_tuned_and_scheduled_lqr_close_stable_loops(env_id):
+    """Both gains of the default (the tuned LQR and the schedule's roll-rate weighting) and
+    every blend the schedule uses close stable loops A - B K on the linearised plant."""
+    ctrl = make_baseline(gym.make(env_id))
+    assert type(ctrl).__name__ == "ScheduledLQR"
+    for s in np.linspace(0.0, 1.0, 21):  # the schedule's blends (s = 0, 1: the two designs)
+        eig = np.linalg.eigvals(ctrl.A - ctrl.B @ (ctrl.gain + s * (ctrl.gain_high - ctrl.gain)))
+        assert np.all(eig.real < 0.0), (s, eig)
+    assert not np.allclose(ctrl.gain, ctrl.gain_high)
+
+
+@pytest.mark.parametrize("ratio, high", [(0.6, True), (1.0, False), (1.6, False)])
+def test_the_schedule_measures_the_period_of_a_sinusoidal_roll(ratio, high):
+    """Fed a sinusoidal roll of period T (and its exact rate), the schedule's measured mean
+    zero-crossing period 2 pi sqrt(<r^2>/<r'^2>) tends to T, and it takes the high-frequency
+    gains only below 0.75 of the natural roll period."""
+    ctrl = make_baseline(gym.make(ENV_ID), "scheduled_lqr")
+    period = ratio * ctrl.t_n
+    w, dt = 2.0 * np.pi / period, ctrl.m.dt
+    for k in range(int(240.0 / dt)):
+        t = k * dt
+        obs = np.array([0.05 * np.sin(w * t), 0.05 * w * np.cos(w * t), 0, 0, 0, 0], np.float32)
+        ctrl.predict(obs)
+    assert ctrl.period == pytest.approx(period, rel=0.02)
+    assert ctrl.high is high
+
+
 def test_kinds_registered():
     # the default (the strongest) first
-    assert baseline_kinds(ENV_ID) == ["lqr", "continuous", "pid", "rate", "sinusoidal"]
+    assert baseline_kinds(ENV_ID) == [
+        "scheduled_lqr", "continuous", "lqr", "pid", "rate", "sinusoidal"
+    ]  # fmt: skip
     with pytest.raises(ValueError, match="period"):
         make_baseline(gym.make(ENV_ID), "sinusoidal", period=-1.0)
 

@@ -32,6 +32,7 @@ import numpy as np
 
 SEEDS = tuple(range(20_000, 20_005))
 RESULTS = Path("docs/results/headline.json")
+REFERENCES = Path("docs/results/references.json")  # `benchmarks.references` (the oracle)
 BEGIN, END = "<!-- headline-table: begin (generated) -->", "<!-- headline-table: end -->"
 
 
@@ -151,14 +152,34 @@ def run(out: Path = RESULTS, seeds: tuple[int, ...] = SEEDS) -> dict[str, Any]:
     return result
 
 
-def _cell(r: dict[str, Any]) -> str:
-    """The score column: mean over the seeds (min-max), against the ceiling."""
+def oracle_scores(refs: dict[str, Any] | None, env_id: str, seeds: list[int]) -> Any:
+    """The oracle reference's scores of `env_id` on `seeds` from a references file's content
+    (`benchmarks.references`), None if it has none on every one of them."""
+    rows = [r for r in (refs or {}).get("rows", []) if r["env_id"] == env_id
+            and (r["kind"], r["name"]) == ("reference", "oracle")]  # fmt: skip
+    if not rows:
+        return None
+    by_seed = dict(zip(rows[0]["test_seeds"], rows[0]["scores"]))
+    return np.array([by_seed[s] for s in seeds]) if set(seeds) <= set(by_seed) else None
+
+
+def _cell(r: dict[str, Any], oracle: Any = None) -> str:
+    """The score column: mean over the seeds (min-max), against the ceiling; with the oracle's
+    scores on the same seeds, the headroom (oracle - this baseline) in place of the ceiling's
+    percentage."""
     x = np.asarray(r["scores"], float)
     spread = f"{x.min():.3f}-{x.max():.3f}" if len(x) > 1 else ""
     if r["score"] == "rms_roll_reduction":
+        if oracle is not None:
+            return (f"RMS roll reduction {x.mean():.3f} ({spread}); oracle {oracle.mean():.3f}: "
+                    f"headroom {oracle.mean() - x.mean():.3f} (ceiling 1)")  # fmt: skip
         return f"RMS roll reduction {x.mean():.3f} ({spread}) of 1 (loose)"
     if r["score"] == "net_power_of_ceiling":
         kw = np.asarray(r["ceilings"]) * x / 1e3
+        if oracle is not None:
+            ko = np.asarray(r["ceilings"]) * oracle / 1e3
+            return (f"net power {kw.mean():.1f} kW ({kw.min():.1f} to {kw.max():.1f}); oracle "
+                    f"{ko.mean():.1f} kW: headroom {ko.mean() - kw.mean():.1f} kW")  # fmt: skip
         return (f"net power {kw.mean():.1f} kW ({kw.min():.1f} to {kw.max():.1f}): "
                 f"{100 * x.mean():.1f} % of a loose ceiling")  # fmt: skip
     if r["score"] == "power_ratio":
@@ -168,8 +189,9 @@ def _cell(r: dict[str, Any]) -> str:
     return f"{mm.mean():.3g} mm/s ({mm.min():.3g}-{mm.max():.3g}); no ceiling derived"
 
 
-def table(result: dict[str, Any]) -> str:
-    """The README's env table (markdown) from a results file's content."""
+def table(result: dict[str, Any], refs: dict[str, Any] | None = None) -> str:
+    """The README's env table (markdown) from a results file's content, with the oracle's
+    headroom where the references file's content `refs` has it."""
     by_id = {r["env_id"]: r for r in result["rows"]}
     n = len(result["rows"][0]["seeds"])
     lines = [
@@ -180,10 +202,14 @@ def table(result: dict[str, Any]) -> str:
     ]
     for row in ROWS:
         r = by_id[row.env_id]
+        cell = _cell(r, oracle_scores(refs, row.env_id, r["seeds"]))
         lines.append(f"| `{row.env_id}` | {row.system} | {row.observation} | {row.action} | "
-                     f"`{r['baseline']}` | {_cell(r)} |")  # fmt: skip
+                     f"`{r['baseline']}` | {cell} |")  # fmt: skip
     lines.append(f"\nGenerated from [{RESULTS}]({RESULTS}) (`{result['command']}`, "
-                 f"mf_envs {result['version']}, {result['date']}).")  # fmt: skip
+                 f"mf_envs {result['version']}, {result['date']})"
+                 + (f" and [{REFERENCES}]({REFERENCES}) (the oracle: a planner that knows "
+                    "the episode's sea; headroom = oracle - the default baseline)"
+                    if refs else "") + ".")  # fmt: skip
     lines.append(END)
     return "\n".join(lines)
 
@@ -201,13 +227,16 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--out", type=Path, help="measure every row and write this results file")
     p.add_argument("--results", type=Path, default=RESULTS, help="results file for --readme")
     p.add_argument("--readme", type=Path, help="regenerate this README's table from the results")
+    p.add_argument("--references", type=Path, default=REFERENCES,
+                   help="the references file (the oracle's headroom) for --readme")  # fmt: skip
     p.add_argument("--check", action="store_true", help="with --readme: only check it is current")
     a = p.parse_args(argv)
     if a.out is not None:
         run(a.out)
     if a.readme is not None:
         text = a.readme.read_text()
-        new = splice(text, table(json.loads(a.results.read_text())))
+        refs = json.loads(a.references.read_text()) if a.references.is_file() else None
+        new = splice(text, table(json.loads(a.results.read_text()), refs))
         if a.check:
             if new != text:
                 print(f"{a.readme}: its table differs from {a.results}; regenerate with --readme")

@@ -21,7 +21,9 @@ A reference enters by writing a record of kind "reference" with its scores on th
 seeds into `records/<env_id>/`; `collect` puts it on the normalised scale with the rest.
 
 The results file (`results.json`): {"schema", "budget_scale", "ids": {env_id: {score_name,
-zero, best_baseline, best}}, "rows": [records + "score" (mean over test conditions) and
+zero, best_baseline, best, oracle (the reference "oracle"'s mean: what perfect information
+achieves; nan without), headroom (oracle - best)}}, "rows": [records + "score" (mean over
+test conditions) and
 "normalised" ((score - zero) / (best - zero): 0 = the zero action, 1 = the best classical
 baseline, per id from the means over the test conditions)]}.
 """
@@ -40,6 +42,7 @@ from mf_envs._files import inside, make_dirs, read_regular, write_atomic
 
 SCHEMA = "mf-envs-rl-benchmark/1"
 KINDS = ("baseline", "reference", "zero", "random", "learner")
+ORACLE = ("reference", "oracle")  # the practical ceiling: `benchmarks.references`' oracle
 MAX_RECORD_BYTES = 1 << 20
 BEGIN, END = "<!-- rl-benchmark: begin (generated) -->", "<!-- rl-benchmark: end -->"
 
@@ -93,9 +96,12 @@ def collect(out: Path, budget_scale: float = 1.0) -> dict[str, Any]:
         zero = [np.mean(r["scores"]) for r in mine if r["kind"] == "zero"]
         base = {r["name"]: float(np.mean(r["scores"])) for r in mine if r["kind"] == "baseline"}
         best = max(base, key=base.get) if base else None
+        oracle = [np.mean(r["scores"]) for r in mine if (r["kind"], r["name"]) == ORACLE]
         ids[env_id] = {"score_name": mine[0]["score_name"],
                        "zero": float(zero[0]) if zero else math.nan,
-                       "best_baseline": best, "best": base.get(best, math.nan)}  # fmt: skip
+                       "best_baseline": best, "best": base.get(best, math.nan),
+                       "oracle": float(oracle[0]) if oracle else math.nan}  # fmt: skip
+        ids[env_id]["headroom"] = ids[env_id]["oracle"] - ids[env_id]["best"]
     for r in rows:
         a = ids[r["env_id"]]
         r["score"] = float(np.mean(r["scores"]))
@@ -260,15 +266,31 @@ def markdown(result: dict[str, Any], source: str, images: list[str]) -> str:
              "Across ids (normalised: 0 = zero action, 1 = best classical baseline):", "",
              aggregate_table(result)]  # fmt: skip
     for env_id, a in result["ids"].items():
+        oracle = a.get("oracle", math.nan)
+        ref = (f"; oracle {oracle:.4g} beside the analytic ceiling {_ceiling(env_id):.4g}: "
+               f"headroom = oracle - best baseline = {oracle - a['best']:.3g} (normalised "
+               f"{normalise(oracle, a['zero'], a['best']) - 1.0:.3g})"
+               if math.isfinite(oracle) else "")  # fmt: skip
         parts += [
             "",
             f"**{env_id}** ({a['score_name']}; best baseline `{a['best_baseline']}` "
-            f"{a['best']:.4g}, zero action {a['zero']:.4g}):",
+            f"{a['best']:.4g}, zero action {a['zero']:.4g}{ref}):",
             "",
             id_table(result, env_id),
         ]
     parts += [""] + [f"![{Path(i).stem}]({i})" for i in images] + [END]
     return "\n".join(parts)
+
+
+def _ceiling(env_id: str) -> float:
+    """The analytic ceiling of `env_id`'s task on its score's scale (nan: none derived)."""
+    from mf_envs.benchmarks.rl_tasks import TASKS
+
+    for make in TASKS.values():
+        task = make()
+        if task.env_id == env_id:
+            return float(task.ceiling)
+    return math.nan
 
 
 def splice(text: str, block: str, begin: str = BEGIN, end: str = END) -> str:

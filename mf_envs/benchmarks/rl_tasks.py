@@ -187,10 +187,11 @@ class ZeroAction(RandomAction):
         return np.zeros(self.space.shape, self.space.dtype), None
 
 
-def episode(task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Any = None) -> dict:
-    """The metrics of one test episode of `kind` (a baseline, "random", "zero", or the policy in
-    folder `run`) in the scene `kwargs` from `reset(seed=seed)` (`evaluate.run_episode`: its
-    metrics, "return" included), plus "ceiling": the id's ceiling for that scene (nan without)."""
+def episode(task: Task, kwargs: dict[str, Any], kind: Any, seed: int, run: Any = None) -> dict:
+    """The metrics of one test episode of `kind` (a baseline, "random", "zero", a factory
+    `kind(env) -> controller` (a reference, `benchmarks.references`), or the policy in folder
+    `run`) in the scene `kwargs` from `reset(seed=seed)` (`evaluate.run_episode`: its metrics,
+    "return" included), plus "ceiling": the id's ceiling for that scene (nan without)."""
     import gymnasium as gym
 
     from mf_envs.controllers import make_baseline
@@ -202,6 +203,8 @@ def episode(task: Task, kwargs: dict[str, Any], kind: str, seed: int, run: Any =
     try:
         if run is not None:
             ctrl: Any = load_policy(task.env_id, run)
+        elif callable(kind):
+            ctrl = kind(env)
         elif kind in ("random", "zero"):
             ctrl = (RandomAction if kind == "random" else ZeroAction)(env.action_space, seed)
         else:
@@ -243,10 +246,10 @@ _REFERENCE: dict[tuple[str, str, int], float] = {}
 
 
 def test_episodes(
-    task: Task, kind: str, run: Any = None, seeds: tuple[int, ...] = TEST_SEEDS
+    task: Task, kind: Any, run: Any = None, seeds: tuple[int, ...] = TEST_SEEDS
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(score, episode return) of `kind` (a baseline, "random", "zero", or the policy in `run`)
-    on each test seed's condition (`test_kwargs`)."""
+    """(score, episode return) of `kind` (as `episode`'s) on each test seed's condition
+    (`test_kwargs`)."""
     scores, returns = [], []
     for s in seeds:
         kw = test_kwargs(task, s)

@@ -41,6 +41,7 @@ from gymnasium.vector.utils import batch_space
 from mf_envs._validate import as_action, check_int
 from mf_envs.envs._drawn_rows import DrawnRows
 from mf_envs.envs._rows import RowBlocks
+from mf_envs.envs._snapshot import SnapshotRows
 
 # rows per thread below which more threads do not pay (`resolve_threads`' automatic choice)
 MIN_ROWS_PER_THREAD = {"light": 128, "heavy": 1}
@@ -80,7 +81,7 @@ def parse_autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
         ) from None
 
 
-class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
+class BatchedVectorEnv(DrawnRows, SnapshotRows, VectorEnv, metaclass=abc.ABCMeta):
     """Base class (kwargs: num_envs, autoreset_mode, render_mode None, num_threads: blocks of
     rows stepped at once, None = automatic, `resolve_threads`; the rest go to the single env):
     subclasses set `single_env_cls`, allocate their batch arrays in `_alloc(n)`,
@@ -176,6 +177,12 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
         generator exactly what the single env's `reset()` draws; None: no fast path, reset
         row by row through the template."""
         return None
+
+    # ------------------------------------------------------------------ snapshots
+    def _state_arrays(self) -> dict[str, np.ndarray]:
+        """Subclass hook: every batch array a step reads or writes, by name (the arrays
+        themselves, not copies): what `snapshot` copies and `restore` writes back in place."""
+        raise NotImplementedError(f"{type(self).__name__} has no snapshot")
 
     # ------------------------------------------------------------------ resets
     def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):

@@ -27,7 +27,12 @@ def observation_layout(n: int) -> ObsLayout:
     """The observation of an eel with n control points (2 n + 6 slots)."""
     tail = (
         Field("tail_angle", "rad", 3.5, "tail frame angle - mean frame angle (wrapped)"),
-        Field("tail_rate", "rad/s", TAIL_RATE_OBS_LIMIT, "rate of the tail's frame angle",
-              scale=TAIL_RATE_UNIT),
+        Field(
+            "tail_rate",
+            "rad/s",
+            TAIL_RATE_OBS_LIMIT,
+            "rate of the tail's frame angle",
+            scale=TAIL_RATE_UNIT,
+        ),
     )
     return beam_layout(n, "mean frame angle", VELOCITY_OBS_LIMIT, tail)

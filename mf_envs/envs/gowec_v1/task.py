@@ -71,8 +71,9 @@ NET_POWER_CEILING = Ceiling(
 # --algos` (baselines only; 20 frozen test seeds 20000-20019, 120 s, the second half scored)
 HEADROOM_JONSWAP = (
     "the best baselines (`efficient_pto`, `passive_damper`) net 2.2 % of the ceiling (IQM "
-    "0.022 [0.015, 0.029]; about 2.9 kW mean against 127-139 kW): far below 90 %, but the "
-    "ceiling is loose (`tight=False`), so the gap overstates what is left to learn"
+    "0.022 [0.015, 0.029]; about 2.9 kW mean against 127-139 kW), but the ceiling is loose "
+    "(`tight=False`): headroom = the oracle's 3.92 kW - the baseline's 3.31 kW on the first "
+    "five test seeds = 0.61 kW (`benchmarks.references`, docs/benchmark.md)"
 )
 HEADROOM_REGULAR = (
     "`efficient_pto` nets 13.3 % of the ceiling (30.8 kW against 231 kW, where the generators' "

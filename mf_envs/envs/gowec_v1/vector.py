@@ -157,6 +157,22 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         self._escale[i] = env.energy_scale
         self._steps[i] = 0
 
+    def _state_arrays(self) -> dict[str, np.ndarray]:
+        """The rows' arrays a step reads or writes (`snapshot`): state, sea, counters."""
+        arrays = {f"sea_{k}": a for k, a in self.sea.items()}
+        arrays.update(Y=self.Y, steps=self._steps, escale=self._escale, vals=self._vals,
+                      fresh=self._fresh, ok=self._ok)  # fmt: skip
+        return arrays
+
+    def _load_live(self, i: int, env: Any) -> None:
+        """`_load`, the episode's step count (the sea's clock is steps x control_dt) and the
+        env's linear PTO gains (`GOWECV1Env.set_pto`; the template's, shared by all rows)."""
+        super()._load_live(i, env)
+        self._steps[i] = env._steps
+        pto = env.model.p.pto
+        if (pto[0], pto[1]) != tuple(self.template.model.p.pto[:2]):
+            self.template.set_pto(float(pto[0]), float(pto[1]))
+
     def _batch_reset(self, idx: np.ndarray) -> dict[str, Any] | None:
         env, sea, draws, ptr = self.template, self.sea, self._draws, self._ptr
         if sea["om"].shape[1] != env.wave.omegas.shape[0] or not self._predrawn(idx):

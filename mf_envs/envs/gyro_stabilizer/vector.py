@@ -117,6 +117,10 @@ class GyroStabilizerVectorEnv(PredrawnResets, BatchedVectorEnv):
         for key in ("t", "y", "R", "P", "tab", "out", "dt", "n_sub", "steps"):
             getattr(b, key)[i] = getattr(env.rows, key)[0]
 
+    def _state_arrays(self) -> dict[str, np.ndarray]:
+        """The rows' arrays a step reads or writes (`snapshot`); `last` is the base's `_obs`."""
+        return {k: getattr(self.b, k) for k in self.b._fields if k != "last"}
+
     def state_nbytes(self) -> int:
         """Bytes of the per-env batch state (physics arrays, observations, info columns)."""
         return int(sum(a.nbytes for a in self.b)) + self._draws.nbytes
