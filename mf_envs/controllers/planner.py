@@ -168,8 +168,8 @@ class SamplingPlanner:
             a = np.asarray(guide.predict(obs)[0], dtype=np.float64).reshape(self.dim)
             if j % self.hold == 0:
                 out[j // self.hold] = a
-            obs, _, term, trunc, _ = row.step(a[None])
-            obs = obs[0]
+            batch, _, term, trunc, _ = row.step(a[None])
+            obs = batch.reshape(env.observation_space.shape)  # the guide row's observation
             if term[0] or trunc[0]:
                 out[j // self.hold + 1 :] = a
                 break

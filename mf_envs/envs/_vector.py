@@ -21,7 +21,9 @@ rewards, flags and batched infos, bit for bit) for the same seeds:
   m}`), as in `SyncVectorEnv`;
 - infos: Gymnasium's batched layout, {key: (N,) array, "_key": (N,) bool mask}, nested dicts
   (`reward_terms`) batched recursively;
-- domain randomisation in the rows (`randomize_rows`): `mf_envs.envs._drawn_rows`.
+- domain randomisation in the rows (`randomize_rows`): `mf_envs.envs._drawn_rows`;
+- snapshots of the rows for planners (`snapshot`, `restore`, `load_env`):
+  `mf_envs.envs._snapshot`.
 
 Rendering is not supported (`render_mode` must be None): render a single env instead.
 """
@@ -41,6 +43,7 @@ from gymnasium.vector.utils import batch_space
 from mf_envs._validate import as_action, check_int
 from mf_envs.envs._drawn_rows import DrawnRows
 from mf_envs.envs._rows import RowBlocks
+from mf_envs.envs._snapshot import RowSnapshots
 
 # rows per thread below which more threads do not pay (`resolve_threads`' automatic choice)
 MIN_ROWS_PER_THREAD = {"light": 128, "heavy": 1}
@@ -80,7 +83,7 @@ def parse_autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
         ) from None
 
 
-class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
+class BatchedVectorEnv(RowSnapshots, DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
     """Base class (kwargs: num_envs, autoreset_mode, render_mode None, num_threads: blocks of
     rows stepped at once, None = automatic, `resolve_threads`; the rest go to the single env):
     subclasses set `single_env_cls`, allocate their batch arrays in `_alloc(n)`,
@@ -176,78 +179,6 @@ class BatchedVectorEnv(DrawnRows, VectorEnv, metaclass=abc.ABCMeta):
         generator exactly what the single env's `reset()` draws; None: no fast path, reset
         row by row through the template."""
         return None
-
-    # ------------------------------------------------------------------ snapshots
-    def _state_arrays(self) -> dict[str, np.ndarray]:
-        """Subclass hook: every batch array a step reads or writes, by name (the arrays
-        themselves, not copies): what `snapshot` copies and `restore` writes back in place."""
-        raise NotImplementedError(f"{type(self).__name__} has no snapshot")
-
-    def _load_live(self, i: int, env: gym.Env) -> None:
-        """Subclass hook: copy the single env `env`'s current (mid-episode) state into row i
-        (`load_env`); the default is `_load` with `env` as the template."""
-        template, self.template = self.template, env
-        try:
-            self._load(i)
-        finally:
-            self.template = template
-
-    def snapshot(self) -> dict[str, Any]:
-        """A copy of the whole batch state: the rows' arrays (`_state_arrays`: physics state,
-        sea, step counters), the last observations and done flags, each row's generator state
-        and pre-drawn resets. `restore(s)` puts it back, after which the same actions give the
-        same bits as from the moment of the snapshot (a planner rolls rows forward and rewinds).
-        Not with `randomize_rows` (its draws are not copied)."""
-        if not self._is_reset:
-            raise gym.error.ResetNeeded("call reset() before snapshot()")
-        if self._draws_of_rows is not None:
-            raise ValueError("snapshot: not supported with randomize_rows")
-        snap: dict[str, Any] = {k: a.copy() for k, a in self._state_arrays().items()}
-        snap.update(_obs=self._obs.copy(), _done=self._done.copy())
-        snap["_rngs"] = [None if r is None else r.bit_generator.state for r in self._rngs]
-        if hasattr(self, "_draws"):  # `_predraw.PredrawnResets`
-            snap.update(_draws=self._draws.copy(), _ptr=self._ptr.copy(), _snap=list(self._snap))
-        return snap
-
-    def restore(self, snap: Mapping[str, Any]) -> None:
-        """Write a `snapshot()` of this env back (in place, so the compiled kernels' views stay
-        valid); ValueError if it comes from a vector env of other shapes or kind."""
-        arrays = {**self._state_arrays(), "_obs": self._obs, "_done": self._done}
-        if hasattr(self, "_draws"):
-            arrays.update(_draws=self._draws, _ptr=self._ptr)
-        for key, a in arrays.items():
-            if key not in snap or np.shape(snap[key]) != a.shape:
-                raise ValueError(f"snap: not a snapshot of this vector env (key {key!r})")
-            np.copyto(a, snap[key])
-        for i, state in enumerate(snap["_rngs"]):
-            if state is None:
-                self._rngs[i] = None
-            else:
-                if self._rngs[i] is None:
-                    self._rngs[i] = np.random.Generator(np.random.PCG64())
-                self._rngs[i].bit_generator.state = state
-        if hasattr(self, "_draws"):
-            self._snap = list(snap["_snap"])
-        self._is_reset = True
-
-    def load_env(self, env: gym.Env, rows: Any = None) -> None:
-        """Copy a single env's current state (mid-episode: physics, sea realisation, step
-        count) into `rows` (an index array or slice; None: all), so the rows continue its
-        episode: the same actions give them the single env's rewards, bit for bit, as long as
-        the single env was built with this vector env's kwargs and has no sensor model. Their
-        generators are not touched (they only draw at a reset)."""
-        env = getattr(env, "unwrapped", env)
-        if not isinstance(env, self.single_env_cls):
-            raise ValueError(f"env: expected a {self.single_env_cls.__name__}, got {env!r}")
-        if self._draws_of_rows is not None:
-            raise ValueError("env: load_env is not supported with randomize_rows")
-        idx = np.arange(self.num_envs)[slice(None) if rows is None else rows]
-        for i in np.atleast_1d(idx):
-            self._load_live(int(i), env)
-            if env._last_obs is not None:
-                self._obs[i] = env._last_obs
-        self._done[idx] = False
-        self._is_reset = True
 
     # ------------------------------------------------------------------ resets
     def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
