@@ -84,3 +84,13 @@ def test_loaded_rows_take_the_single_envs_pto():
     for _ in range(10):
         r = env.step(zero)[1]
         assert np.all(v.step(np.zeros((2, 1), np.float32))[1] == r)
+
+
+def test_a_vector_env_without_state_arrays_refuses_snapshot_and_restore():
+    """GOWEC-v0's rows keep no snapshot: both calls say so instead of copying half a state."""
+    v = _vec("GOWEC-v0", {}, 2).unwrapped
+    v.reset(seed=0)
+    with pytest.raises(TypeError, match="snapshot"):
+        v.snapshot()
+    with pytest.raises(TypeError, match="restore"):
+        v.restore({})

@@ -25,8 +25,20 @@ class SnapshotRows:
     single_env_cls: type
     num_envs: int
 
-    _state_arrays: Any  # () -> {name: the batch's state array}
+    # a vector env that supports snapshots defines `_state_arrays()`: every batch array a step
+    # reads or writes, by name (the arrays themselves, not copies), what `snapshot` copies and
+    # `restore` writes back in place; None: no snapshots (`_arrays` says so)
+    _state_arrays: Any = None
     _load: Any  # (row) -> None: the template env's state into the row
+
+    def _arrays(self, what: str) -> dict[str, np.ndarray]:
+        """`_state_arrays()`; TypeError naming `what` for a vector env without it."""
+        if self._state_arrays is None:
+            raise TypeError(
+                f"{type(self).__name__}.{what}: this vector env keeps no snapshot of its rows "
+                "(GyroStabilizer-v0's and FloatingGOWEC-v0's do)"
+            )
+        return self._state_arrays()
 
     def _load_live(self, i: int, env: gym.Env) -> None:
         """Subclass hook: copy the single env `env`'s current (mid-episode) state into row i
@@ -47,7 +59,7 @@ class SnapshotRows:
             raise gym.error.ResetNeeded("call reset() before snapshot()")
         if self._draws_of_rows is not None:
             raise ValueError("snapshot: not supported with randomize_rows")
-        snap: dict[str, Any] = {k: a.copy() for k, a in self._state_arrays().items()}
+        snap: dict[str, Any] = {k: a.copy() for k, a in self._arrays("snapshot").items()}
         snap.update(_obs=self._obs.copy(), _done=self._done.copy())
         snap["_rngs"] = [None if r is None else r.bit_generator.state for r in self._rngs]
         if hasattr(self, "_draws"):  # `_predraw.PredrawnResets`
@@ -57,7 +69,7 @@ class SnapshotRows:
     def restore(self, snap: Mapping[str, Any]) -> None:
         """Write a `snapshot()` of this env back (in place, so the compiled kernels' views stay
         valid); ValueError if it comes from a vector env of other shapes or kind."""
-        arrays = {**self._state_arrays(), "_obs": self._obs, "_done": self._done}
+        arrays = {**self._arrays("restore"), "_obs": self._obs, "_done": self._done}
         if hasattr(self, "_draws"):
             arrays.update(_draws=self._draws, _ptr=self._ptr)
         for key, a in arrays.items():

@@ -178,12 +178,6 @@ class BatchedVectorEnv(DrawnRows, SnapshotRows, VectorEnv, metaclass=abc.ABCMeta
         row by row through the template."""
         return None
 
-    # ------------------------------------------------------------------ snapshots
-    def _state_arrays(self) -> dict[str, np.ndarray]:
-        """Subclass hook: every batch array a step reads or writes, by name (the arrays
-        themselves, not copies): what `snapshot` copies and `restore` writes back in place."""
-        raise NotImplementedError(f"{type(self).__name__} has no snapshot")
-
     # ------------------------------------------------------------------ resets
     def _reset_one(self, i: int, seed: int | None, options: dict[str, Any] | None):
         if self._draws_of_rows is not None:
