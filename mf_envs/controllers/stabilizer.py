@@ -165,12 +165,12 @@ class LQRStabilizer:
         self.z = 0.0
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
-        return self._act(self.gain, obs), None
+        return self._act(self.gain, OBS.physical(obs)), None
 
     def _act(self, gain: np.ndarray, obs: np.ndarray) -> np.ndarray:
-        """The action of the state feedback u = -gain x (limits, the drive integral's copy)."""
+        """The action of the state feedback u = -gain x (limits, the drive integral's copy) on
+        the observation in SI (`OBS.physical`)."""
         m = self.m
-        obs = OBS.physical(obs)  # SI
         x = np.array([obs[_ROLL], obs[_ROLL_RATE], obs[_PHI], obs[_PHI_RATE], self.z])
         x = x[: gain.shape[1]].astype(np.float64)
         cmd = -float(gain[0] @ x)
@@ -242,7 +242,7 @@ class ScheduledLQR(LQRStabilizer):
             lo, hi = self.band
             self.s = min(max((hi - self.period) / (hi - lo), 0.0), 1.0)
         gain = self.gain + self.s * (self.gain_high - self.gain)
-        return self._act(gain, obs), None
+        return self._act(gain, x), None
 
 
 class RollRateLaw:

@@ -55,7 +55,6 @@ def observe(roll, y, R, out):
     return True
 
 
-_ROLL = spec.OBS.index("roll")
 # info columns written by step_rows / reset_rows: spec.INFO_KEYS up to drive_energy, then the
 # two reward terms and the time (named, from the spec's keys)
 COLS = spec.INFO_KEYS[: spec.INFO_KEYS.index("drive_energy") + 1]
@@ -148,7 +147,7 @@ def _row_tail(i, e0, b, task, ob, c):
         for k in range(ob.shape[0]):
             ob[k] = b.last[i, k]
     energy = yi[K.E_STATE] - e0
-    q = np.float64(ob[_ROLL]) * _SCALE[_ROLL] / task.roll_scale
+    q = roll / task.roll_scale  # the true roll (float64), whatever the observation shows
     c[C_RROLL], c[C_REFFORT] = -(q * q), -task.effort_weight * energy
     rew = c[C_RROLL] + c[C_REFFORT]
     _info_row(c, roll, yi, oi, energy)
