@@ -202,9 +202,9 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
     for _ in range(POWER_RETRIES):
         if not (limited and ok > 0.0 and acc[0] > max_work * (1.0 + POWER_TOLERANCE)):
             break
-        if s_prev > 0.0:  # W(s) = s A + s^2 B through the last two attempts, if B >= 0
-            b_fit = (acc[0] / frac - w_prev / s_prev) / (frac - s_prev)
-            if b_fit >= 0.0 and frac != s_prev:
+        if s_prev > 0.0 and frac != s_prev:  # W(s) = s A + s^2 B through the last two
+            b_fit = (acc[0] / frac - w_prev / s_prev) / (frac - s_prev)  # attempts, if B >= 0
+            if b_fit >= 0.0:
                 b = b_fit
         s_prev, w_prev = frac, acc[0]
         a = (acc[0] - frac * frac * b) / frac  # the model through the work done
