@@ -51,22 +51,12 @@ BOUNDS = ((5.0, 50.0), (0.4, 2.0), (0.2, 1.5))  # a [1/m], lambda / L, T [s]
 
 class TravellingWave(Serpenoid):
     """kappa#(S_j, t) (module docstring) plus a bias [1/m]: the serpentine's serpenoid
-    (`controllers.serpentine.Serpenoid`, the wave running head to tail) times the envelope."""
+    (`controllers.serpentine.Serpenoid`, the wave running head to tail) with the anguilliform
+    envelope, head_ratio r = HEAD_RATIO by default."""
 
     def __init__(self, env: Any, amplitude: float = WAVE[0], wavelength: float = WAVE[1],
-                 period: float = WAVE[2]) -> None:  # fmt: skip
-        super().__init__(env, amplitude, wavelength, period)
-        s = np.linspace(0.0, 1.0, self.base.n_ctrl)  # S / L
-        self.envelope = HEAD_RATIO + (1.0 - HEAD_RATIO) * (1.0 - s)
-
-    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
-        del deterministic
-        self.k += 1
-        t = self.k * self.dt
-        wave = np.sin(self.phase - 2.0 * math.pi * t / self.period)
-        kappa = self.amplitude * self.envelope * wave
-        a = np.clip((kappa + self.bias(obs)) * self.scale, -1.0, 1.0)
-        return a.astype(np.float32), None
+                 period: float = WAVE[2], head_ratio: float = HEAD_RATIO) -> None:  # fmt: skip
+        super().__init__(env, amplitude, wavelength, period, head_ratio)
 
 
 class HeadingWave(TravellingWave):
@@ -77,14 +67,14 @@ class HeadingWave(TravellingWave):
 
     def __init__(self, env: Any, gain: float = 10.0, max_bias: float = 10.0,
                  amplitude: float | None = None, wavelength: float | None = None,
-                 period: float | None = None) -> None:  # fmt: skip
+                 period: float | None = None, head_ratio: float = HEAD_RATIO) -> None:  # fmt: skip
         self.gain = check_range("gain", gain, 0.0, 1e3)  # 1/m per rad
         self.max_bias = check_range("max_bias", max_bias, 0.0, 1e3)  # 1/m
         layout = env.unwrapped.obs_layout
         self.i_sin, self.i_cos = layout.index("sin_heading"), layout.index("cos_heading")
         given = (amplitude, wavelength, period)
         a, lam, per = (x if x is not None else y for x, y in zip(given, FAST))
-        super().__init__(env, a, lam, per)
+        super().__init__(env, a, lam, per, head_ratio)
 
     def reset(self) -> None:
         super().reset()

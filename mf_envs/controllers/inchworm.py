@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brute, minimize
 
-from mf_envs._validate import check_int, check_positive, positive_scalar
+from mf_envs._validate import check_int, check_positive, check_range, positive_scalar
 from mf_envs.controllers import register
 from mf_envs.envs.inchworm.task import DECLARATION
 from mf_envs.physics.actuators.curvature import RateLimitedLag
@@ -245,9 +245,13 @@ def heat_cool(
     t_heat: float = VALIDATION_HEAT,
     t_cool: float = VALIDATION_COOL,
     duty_off: float = 0.0,
+    lag: float = 0.0,
+    grip_shift: float = 0.0,
 ) -> WireGait:
-    """Square wave of the SMA wires (`open_loop.heat_cool_gait`): all groups at duty 1 for t_heat
-    [s], then at duty_off for t_cool [s]; Eq. 102 grips. Defaults: the validation timing."""
+    """Square wave of the SMA wires (`open_loop.heat_cool_gait`): every group at duty 1 for
+    t_heat [s], then at duty_off for t_cool [s], group j lag periods after group 0; Eq. 102
+    grips: the head grips while group 0 is heated, grip_shift periods later (0: in phase).
+    Defaults: the validation timing, the groups together."""
     base = env.unwrapped
     if not base.sma:
         raise ValueError("effects: heat_cool drives the SMA wires; the scene has no 'sma_wires'")
@@ -255,11 +259,14 @@ def heat_cool(
     check_positive("t_cool", t_cool)
     if not 0.0 <= duty_off <= 1.0:
         raise ValueError(f"duty_off: must lie in [0, 1], got {duty_off}")
-    fn = heat_cool_gait(float(t_heat), float(t_cool), base.n_ctrl, float(duty_off))
+    lag = check_range("lag", lag, -1.0, 1.0)
+    shift = check_range("grip_shift", grip_shift, -1.0, 1.0)
+    fn = heat_cool_gait(float(t_heat), float(t_cool), base.n_ctrl, float(duty_off), lag)
+    period = float(t_heat + t_cool)
     # the head grips while the wires are heated, the tail while they cool (Eq. 102 on the
     # command: the wires' kappa# follows it with the thermal lag)
-    gait = WireGait(env, lambda t, _k, _m: fn(t), float(t_heat + t_cool),
-                    lambda t: bool(fn(t)[0] == 1.0))  # fmt: skip
+    gait = WireGait(env, lambda t, _k, _m: fn(t), period,
+                    lambda t: bool(fn(t - shift * period)[0] == 1.0))  # fmt: skip
     gait.t_heat, gait.t_cool, gait.duty_off = float(t_heat), float(t_cool), float(duty_off)
     return gait
 

@@ -41,10 +41,12 @@ ELASTICA_COEFFICIENTS = np.array([3.4e-3, 3.3e-3, 4.2e-3, 2.6e-3, 3.6e-3, 3.5e-3
 
 
 class Serpenoid:
-    """kappa#(S_j, t) = a sin(2 pi (L - S_j) / lambda - 2 pi t / T) + bias (module docstring)."""
+    """kappa#(S_j, t) = a e(S_j) sin(2 pi (L - S_j) / lambda - 2 pi t / T) + bias (module
+    docstring), the envelope e(S) = r + (1 - r) (L - S) / L growing from r at the head to 1 at
+    the tail (head_ratio r = 1: the uniform serpenoid)."""
 
     def __init__(self, env: Any, amplitude: float = ELASTICA[0], wavelength: float = ELASTICA[1],
-                 period: float = ELASTICA[2]) -> None:  # fmt: skip
+                 period: float = ELASTICA[2], head_ratio: float = 1.0) -> None:  # fmt: skip
         base = env.unwrapped
         self.base = base
         self.amplitude = check_range("amplitude", amplitude, 0.0, 1e3)
@@ -54,6 +56,8 @@ class Serpenoid:
         self.scale = 1.0 / float(base.max_curvature)
         s = np.linspace(0.0, 1.0, base.n_ctrl)  # S / L
         self.phase = 2.0 * math.pi * (1.0 - s) / self.wavelength
+        r = check_range("head_ratio", head_ratio, 0.0, 1.0)
+        self.envelope = r + (1.0 - r) * (1.0 - s)  # exactly 1 for r = 1
         self.reset()
 
     def reset(self) -> None:
@@ -68,7 +72,8 @@ class Serpenoid:
         del deterministic
         self.k += 1
         t = self.k * self.dt
-        kappa = self.amplitude * np.sin(self.phase - 2.0 * math.pi * t / self.period)
+        wave = np.sin(self.phase - 2.0 * math.pi * t / self.period)
+        kappa = self.amplitude * self.envelope * wave
         a = np.clip((kappa + self.bias(obs)) * self.scale, -1.0, 1.0)
         return a.astype(np.float32), None
 
@@ -78,12 +83,12 @@ class HeadingSerpenoid(Serpenoid):
 
     def __init__(self, env: Any, gain: float = 8.0, max_bias: float = 8.0,
                  amplitude: float = TUNED[0], wavelength: float = TUNED[1],
-                 period: float = TUNED[2]) -> None:  # fmt: skip
+                 period: float = TUNED[2], head_ratio: float = 1.0) -> None:  # fmt: skip
         self.gain = check_range("gain", gain, 0.0, 1e3)  # 1/m per rad
         self.max_bias = check_range("max_bias", max_bias, 0.0, 1e3)  # 1/m
         layout = env.unwrapped.obs_layout
         self.i_sin, self.i_cos = layout.index("sin_heading"), layout.index("cos_heading")
-        super().__init__(env, amplitude, wavelength, period)
+        super().__init__(env, amplitude, wavelength, period, head_ratio)
 
     def reset(self) -> None:
         super().reset()

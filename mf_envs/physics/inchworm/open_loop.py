@@ -114,15 +114,20 @@ def run_open_loop(
 
 
 # ---------------------------------------------------------------------- SMA duty gaits
-def heat_cool_gait(t_heat: float, t_cool: float, n: int, duty_off: float = 0.0) -> DutyFn:
+def heat_cool_gait(
+    t_heat: float, t_cool: float, n: int, duty_off: float = 0.0, lag: float = 0.0
+) -> DutyFn:
     """Every wire group at duty 1 for t_heat [s], then at duty_off (0: the current off; > 0:
-    kept warm) for t_cool [s]: the SMA inchworm's square wave (period t_heat + t_cool)."""
+    kept warm) for t_cool [s]: the SMA inchworm's square wave (period t_heat + t_cool). lag: group
+    j's square wave starts j lag periods after group 0's (0: all groups together; a heat wave
+    along the body otherwise)."""
     period = t_heat + t_cool
+    delays = lag * period * np.arange(n)
 
     def duty(t: float) -> np.ndarray:
-        phase = t % period
-        phase = 0.0 if phase > period - 1e-9 else phase  # snap round-off at the switches
-        return np.full(n, 1.0 if phase < t_heat - 1e-9 else duty_off)
+        phase = (t - delays) % period
+        phase = np.where(phase > period - 1e-9, 0.0, phase)  # snap round-off at the switches
+        return np.where(phase < t_heat - 1e-9, 1.0, duty_off)
 
     return duty
 

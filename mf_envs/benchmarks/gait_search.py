@@ -1,0 +1,177 @@
+"""Best-known gaits of the soft robots: a global search over a richer gait family than the
+baselines', on training conditions, scored on the RL benchmark's test conditions as a
+reference (a best-known gait, not a bound).
+
+    python -m mf_envs.benchmarks.gait_search                      # search every robot
+    python -m mf_envs.benchmarks.gait_search --ids Eel-v0 --budget 4 --out g.json
+    python -m mf_envs.benchmarks.references --refs best_gait --out bench_rl  # score (test seeds)
+
+Protocol (docs/benchmark.md, "References"):
+- **Families** (`FAMILIES`): the serpentine's heading-feedback serpenoid and the eel's heading
+  wave with all their parameters free (amplitude, wavelength, period, the heading loop's gain
+  and bias limit) plus an amplitude envelope growing from `head_ratio` at the head to 1 at the
+  tail; the SMA inchworm's heat-cool square wave with a heat wave along the body (`lag`: group
+  j heated j lag periods after group 0) and the grip's phase free (`grip_shift`). The defaults
+  of each family are the id's default baseline or its stored tuning, so the search starts
+  from it (its first candidate).
+- **Objective**: the benchmark's score (`rl_tasks.score_episode`: speed towards the target,
+  m/s) averaged over the training conditions `TUNE_SEEDS` (draws of the declared randomisation
+  ranges, `rl_tasks.test_kwargs`; never a test seed 20000-20019).
+- **Search**: scipy's differential evolution (popsize 5 per dimension, `--budget` generations,
+  seed 0, no polish), the default baseline's parameters as its first candidate. The result is
+  stored in `BEST` (the command writes the numbers and the training score to a JSON file).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from mf_envs._files import make_dirs, write_atomic
+
+TUNE_SEEDS = tuple(range(6))
+RESULTS = Path("docs/results/gaits.json")
+
+
+@dataclass(frozen=True)
+class Family:
+    """A gait family: the controller `make(env, **params)`, its search space {name: (lo, hi)}
+    and its start (the default baseline's values)."""
+
+    make: Callable[..., Any]
+    space: dict[str, tuple[float, float]]
+    start: dict[str, float]
+
+
+def _serpentine(env: Any, **p: float) -> Any:
+    from mf_envs.controllers.serpentine import HeadingSerpenoid
+
+    return HeadingSerpenoid(env, **p)
+
+
+def _eel(env: Any, **p: float) -> Any:
+    from mf_envs.controllers.eel import HeadingWave
+
+    return HeadingWave(env, **p)
+
+
+def _inchworm(env: Any, **p: float) -> Any:
+    from mf_envs.controllers.inchworm import heat_cool
+
+    return heat_cool(env, **p)
+
+
+def families() -> dict[str, Family]:
+    """The gait family of each soft robot (module doc), its start the default baseline."""
+    from mf_envs.controllers import eel, inchworm, serpentine
+
+    return {
+        "Serpentine-v0": Family(
+            _serpentine,
+            {"amplitude": (5.0, 25.0), "wavelength": (0.5, 2.0), "period": (0.5, 4.0),
+             "gain": (0.0, 30.0), "max_bias": (0.0, 20.0), "head_ratio": (0.2, 1.0)},
+            dict(zip(("amplitude", "wavelength", "period"), serpentine.TUNED),
+                 gain=8.0, max_bias=8.0, head_ratio=1.0),
+        ),
+        "Eel-v0": Family(
+            _eel,
+            {"amplitude": (5.0, 50.0), "wavelength": (0.4, 2.0), "period": (0.2, 1.5),
+             "gain": (0.0, 30.0), "max_bias": (0.0, 20.0), "head_ratio": (0.05, 1.0)},
+            dict(zip(("amplitude", "wavelength", "period"), eel.FAST),
+                 gain=10.0, max_bias=10.0, head_ratio=eel.HEAD_RATIO),
+        ),
+        "Inchworm-v0": Family(
+            _inchworm,
+            {"t_heat": (0.3, 4.0), "t_cool": (0.2, 3.0), "duty_off": (0.0, 0.5),
+             "lag": (-0.5, 0.5), "grip_shift": (-0.5, 0.5)},
+            dict(zip(("t_heat", "t_cool", "duty_off"), inchworm.TUNED_SMA),
+                 lag=0.0, grip_shift=0.0),
+        ),
+    }  # fmt: skip
+
+
+# the search's result (`python -m mf_envs.benchmarks.gait_search`, module doc): per id the
+# parameters of the best gait found and its training score (m/s)
+BEST: dict[str, dict[str, float]] = {}
+
+
+def best_factory(env_id: str) -> Callable[[Any], Any]:
+    """The best gait found for `env_id` (`BEST`) as a factory env -> controller."""
+    if env_id not in BEST:
+        raise ValueError(f"env_id: no best-known gait stored for {env_id!r}; run the search")
+    fam = families()[env_id]
+    params = {k: v for k, v in BEST[env_id].items() if k in fam.space}
+    return lambda env: fam.make(env, **params)
+
+
+def mean_score(env_id: str, params: dict[str, float], seeds: Sequence[int]) -> float:
+    """The benchmark's mean score of the gait `params` of `env_id`'s family on the conditions
+    of `seeds` (`rl_tasks.test_episodes`)."""
+    from mf_envs.benchmarks.rl_tasks import HEADLINE, TASKS, test_episodes
+
+    fam = families()[env_id]
+    task = TASKS[HEADLINE[env_id]]()
+    scores, _ = test_episodes(task, lambda env: fam.make(env, **params), seeds=tuple(seeds))
+    return float(np.mean(scores))
+
+
+def search(env_id: str, budget: int = 6, seeds: Sequence[int] = TUNE_SEEDS) -> dict[str, Any]:
+    """Differential evolution over the family of `env_id` (module doc): the best parameters,
+    their training score, the start's, and the number of episodes run."""
+    from scipy.optimize import differential_evolution
+    from tqdm import tqdm
+
+    fam = families()[env_id]
+    names = list(fam.space)
+    bounds = list(fam.space.values())
+    calls = [0]
+    popsize = 5
+    bar = tqdm(total=(budget + 1) * popsize * len(names), desc=env_id, unit="gait")
+
+    def loss(x: np.ndarray) -> float:
+        calls[0] += 1
+        bar.update()
+        try:
+            return -mean_score(env_id, dict(zip(names, map(float, x))), seeds)
+        except ValueError:  # a combination the controller refuses (none within the bounds)
+            return 0.0
+
+    x0 = np.array([fam.start[n] for n in names])
+    res = differential_evolution(loss, bounds, popsize=popsize, maxiter=budget, seed=0,
+                                 polish=False, x0=x0, tol=1e-6)  # fmt: skip
+    bar.close()
+    best = dict(zip(names, map(float, res.x)))
+    return {"env_id": env_id, "params": best, "train_score": -float(res.fun),
+            "start": fam.start, "start_score": mean_score(env_id, fam.start, seeds),
+            "episodes": calls[0] * len(seeds), "seeds": list(seeds),
+            "generations": budget, "popsize": popsize}  # fmt: skip
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ids = sorted(families())
+    p.add_argument("--ids", nargs="+", choices=ids, default=ids)
+    p.add_argument("--budget", type=int, default=6, help="generations of the search")
+    p.add_argument("--out", type=Path, default=RESULTS)
+    a = p.parse_args(argv)
+    results = json.loads(a.out.read_text()) if a.out.is_file() else {}
+    for env_id in a.ids:
+        results[env_id] = search(env_id, a.budget)
+        print(json.dumps(results[env_id]), flush=True)
+        results[env_id]["command"] = "python -m mf_envs.benchmarks.gait_search " + " ".join(
+            argv if argv is not None else sys.argv[1:]
+        )
+        make_dirs(a.out.parent, a.out.parent)
+        write_atomic(a.out, json.dumps(results, indent=1) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,78 @@
+"""The soft robots' best-known gaits (`benchmarks.gait_search`) and the gait families' new
+parameters.
+
+Independent truth: a time shift (a heat wave delays group j by exactly j lag periods), the
+envelope's closed form at the head and the tail, the families' start reproducing the default
+baselines' scores, and the search's own bookkeeping (its best is re-scored to the same value,
+never below its start, inside its bounds)."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import mf_envs  # noqa: F401  (registers the ids)
+from mf_envs.benchmarks import gait_search as gs
+from mf_envs.benchmarks import rl_tasks
+from mf_envs.controllers import baseline_kinds
+from mf_envs.controllers.serpentine import Serpenoid
+from mf_envs.physics.inchworm.open_loop import heat_cool_gait
+
+
+def test_heat_wave_delays_each_group_by_its_lag():
+    t_heat, t_cool, lag = 1.3, 0.9, 0.25
+    period = t_heat + t_cool
+    fn, together = (
+        heat_cool_gait(t_heat, t_cool, 4, 0.1, lag),
+        heat_cool_gait(t_heat, t_cool, 4, 0.1),
+    )
+    for t in np.linspace(0.01, 3 * period, 97):
+        d = fn(t)
+        for j in range(4):
+            assert d[j] == together(t - j * lag * period)[0]
+    assert set(np.unique([fn(t) for t in np.linspace(0, period, 50)])) <= {0.1, 1.0}
+
+
+def test_serpenoid_envelope_grows_from_head_ratio_to_one():
+    env = gym.make("Serpentine-v0")
+    env.reset(seed=0)
+    r = 0.4
+    ctrl = Serpenoid(env, amplitude=10.0, wavelength=1.0, period=2.0, head_ratio=r)
+    assert ctrl.envelope[0] == pytest.approx(1.0)  # S = 0: the tail
+    assert ctrl.envelope[-1] == pytest.approx(r)  # S = L: the head
+    uniform = Serpenoid(env, amplitude=10.0, wavelength=1.0, period=2.0)
+    assert np.all(uniform.envelope == 1.0)
+    a, b = ctrl.predict(None)[0], uniform.predict(None)[0]
+    np.testing.assert_allclose(a, b * ctrl.envelope, rtol=1e-6, atol=1e-7)
+    with pytest.raises(ValueError, match="head_ratio"):
+        Serpenoid(env, head_ratio=1.5)
+
+
+@pytest.mark.parametrize("env_id", sorted(gs.families()))
+def test_family_start_is_the_default_baseline(env_id):
+    task = rl_tasks.TASKS[rl_tasks.HEADLINE[env_id]]()
+    default = baseline_kinds(env_id)[0]
+    base, _ = rl_tasks.test_episodes(task, default, seeds=(3,))
+    assert gs.mean_score(env_id, gs.families()[env_id].start, (3,)) == pytest.approx(
+        float(base[0]), rel=1e-9, abs=1e-12
+    )
+
+
+@pytest.mark.slow
+def test_search_keeps_its_start_and_rescores_its_best():
+    res = gs.search("Eel-v0", budget=0, seeds=(1,))
+    fam = gs.families()["Eel-v0"]
+    assert res["train_score"] >= res["start_score"] - 1e-12
+    for name, (lo, hi) in fam.space.items():
+        assert lo <= res["params"][name] <= hi
+    assert gs.mean_score("Eel-v0", res["params"], (1,)) == pytest.approx(res["train_score"])
+
+
+@pytest.mark.parametrize("env_id", sorted(gs.BEST))
+def test_stored_best_gait_beats_its_start_on_training_conditions(env_id):
+    best = gs.BEST[env_id]
+    fam = gs.families()[env_id]
+    params = {k: v for k, v in best.items() if k in fam.space}
+    assert gs.mean_score(env_id, params, gs.TUNE_SEEDS) == pytest.approx(best["train_score"])
+    assert best["train_score"] > gs.mean_score(env_id, fam.start, gs.TUNE_SEEDS)
