@@ -1,13 +1,15 @@
-"""References that bound the headroom of the marine headline ids: the oracle and the causal MPC,
-scored on the RL benchmark's test conditions and written as its "reference" records.
+"""References that bound the headroom: the oracle and the causal MPC of the marine headline ids,
+the soft robots' best-known gaits, scored on the RL benchmark's test conditions and written as
+its "reference" records.
 
     python -m mf_envs.benchmarks.references --out bench_rl                  # every reference
     python -m mf_envs.benchmarks.references --refs oracle --ids GyroStabilizer-JONSWAP-v0 \\
         --test-seeds 3 --out smoke
 
-Each reference (`REFERENCES`) is a `controllers.planner.SamplingPlanner` with the budget
-below, scored exactly as the baselines (`rl_tasks.test_episodes`: the task's test seeds and
-scene, its score); its record (`rl_results`, kind "reference") goes into `<out>/records/<id>/`
+Each marine reference (`REFERENCES`) is a `controllers.planner.SamplingPlanner` with the
+budget below, each soft robot's `best_gait` the gait `benchmarks.gait_search` found; all are
+scored exactly as the baselines (`rl_tasks.test_episodes`: the task's test seeds and scene,
+its score); its record (`rl_results`, kind "reference") goes into `<out>/records/<id>/`
 beside the baselines' and learners', so `rl_results.collect` puts it on the normalised scale
 (0 = the zero action, 1 = the best classical baseline) and states the headroom: oracle - best
 baseline. `docs/results/references.json` is the copy the README's table and docs cite.
@@ -52,6 +54,14 @@ REFERENCES: dict[str, dict[str, str]] = {
     "FloatingGOWEC-JONSWAP-v0": {
         "oracle": "the episode's whole sea and the env's state; plans on the env's own rows",
     },
+    **{
+        soft: {
+            "best_gait": "what the default baseline observes; the gait family's parameters "
+            "found by a global search on training conditions (`gait_search`): a best-known "
+            "gait, not a bound"
+        }
+        for soft in ("Serpentine-v0", "Eel-v0", "Inchworm-v0")
+    },
 }
 
 
@@ -61,6 +71,10 @@ def factory(env_id: str, name: str) -> Callable[[Any], Any]:
 
     if name not in REFERENCES.get(env_id, {}):
         raise ValueError(f"refs: no reference {name!r} for {env_id}")
+    if name == "best_gait":
+        from mf_envs.benchmarks.gait_search import best_factory
+
+        return best_factory(env_id)
     kw = dict(PLANNER.get((env_id, name), PLANNER[env_id]), causal=name == "mpc")
     return lambda env: SamplingPlanner(env, **kw)
 
@@ -80,8 +94,13 @@ def score(env_id: str, name: str, out: Path, seeds: tuple[int, ...], command: st
     rec = {"env_id": env_id, "kind": "reference", "name": name, "seed": None, "budget": None,
            "score_name": task.score_name, "test_seeds": list(seeds), "scores": scores.tolist(),
            "returns": returns.tolist(), "knows": REFERENCES[env_id][name],
-           "planner": dict(PLANNER.get((env_id, name), PLANNER[env_id])),
            **_stamp(command)}  # fmt: skip
+    if name == "best_gait":
+        from mf_envs.benchmarks.gait_search import BEST
+
+        rec["gait"] = dict(BEST[env_id])
+    else:
+        rec["planner"] = dict(PLANNER.get((env_id, name), PLANNER[env_id]))
     res.write_record(out, rec)
     return rec
 
@@ -104,7 +123,8 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--ids", nargs="+", choices=sorted(REFERENCES), default=sorted(REFERENCES))
-    p.add_argument("--refs", nargs="+", choices=("oracle", "mpc"), default=["oracle", "mpc"])
+    refs = ("oracle", "mpc", "best_gait")
+    p.add_argument("--refs", nargs="+", choices=refs, default=list(refs))
     p.add_argument("--out", type=Path, default=Path("bench_rl"))
     p.add_argument("--test-seeds", type=int, default=len(TEST_SEEDS))
     p.add_argument("--results", type=Path, help="write the references' copy here too")
