@@ -8,6 +8,8 @@ never below its start, inside its bounds)."""
 
 from __future__ import annotations
 
+import json
+
 import gymnasium as gym
 import numpy as np
 import pytest
@@ -77,3 +79,33 @@ def test_stored_best_gait_beats_its_start_on_training_conditions(env_id):
     params = {k: v for k, v in best.items() if k in fam.space}
     assert gs.mean_score(env_id, params, gs.TUNE_SEEDS) == pytest.approx(best["train_score"])
     assert best["train_score"] > gs.mean_score(env_id, fam.start, gs.TUNE_SEEDS)
+
+
+def test_references_copy_keeps_the_ids_it_was_not_given(tmp_path):
+    """The references' results file gains the soft robots' rows without losing the marine ids'
+    (scored in another folder, on other test seeds)."""
+    from mf_envs.benchmarks import references, rl_results
+
+    def records(out, env_id, seeds, kinds):
+        for kind, name, score in kinds:
+            rl_results.write_record(out, {"env_id": env_id, "kind": kind, "name": name,
+                                          "seed": None, "budget": None, "score_name": "s",
+                                          "test_seeds": list(seeds),
+                                          "scores": [score] * len(seeds)})  # fmt: skip
+
+    marine = [("zero", "zero", 0.0), ("baseline", "lqr", 0.8), ("reference", "oracle", 0.9)]
+    soft = [("zero", "zero", 0.0), ("baseline", "heading", 0.05), ("reference", "best_gait", 0.06)]
+    records(tmp_path / "a", "GyroStabilizer-JONSWAP-v0", (1, 2), marine)
+    records(tmp_path / "b", "Eel-v0", (3, 4, 5), soft)
+    dest = tmp_path / "refs.json"
+    references.copy_results(tmp_path / "a", dest)
+    references.copy_results(tmp_path / "b", dest)
+    got = json.loads(dest.read_text())
+    assert sorted(got["ids"]) == ["Eel-v0", "GyroStabilizer-JONSWAP-v0"]
+    assert got["ids"]["GyroStabilizer-JONSWAP-v0"]["headroom"] == pytest.approx(0.1)
+    names = {(r["env_id"], r["name"]) for r in got["rows"]}
+    assert ("GyroStabilizer-JONSWAP-v0", "oracle") in names and ("Eel-v0", "best_gait") in names
+    eel = next(r for r in got["rows"] if r["name"] == "best_gait")
+    assert eel["normalised"] == pytest.approx(1.2)  # (0.06 - 0) / (0.05 - 0)
+    references.copy_results(tmp_path / "b", dest)  # again: the Eel rows replaced, not doubled
+    assert len(json.loads(dest.read_text())["rows"]) == len(got["rows"])

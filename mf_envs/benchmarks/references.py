@@ -107,12 +107,19 @@ def score(env_id: str, name: str, out: Path, seeds: tuple[int, ...], command: st
 
 def copy_results(out: Path, dest: Path = RESULTS) -> Path:
     """`dest`: every reference record under `out` with the same ids' baseline, zero and best
-    (`rl_results.collect`), the file the README's table reads."""
+    (`rl_results.collect`), the file the README's table reads; the ids `dest` already holds
+    and `out` does not keep their rows (the marine references and the soft robots' gaits
+    can be scored in different folders)."""
     from mf_envs.benchmarks import rl_results as res
 
     result = res.collect(out)
     rows = [r for r in result["rows"] if r["kind"] in ("reference", "baseline", "zero")]
-    keep = {"schema": result["schema"], "ids": result["ids"], "rows": rows}
+    keep = {"schema": result["schema"], "ids": dict(result["ids"]), "rows": rows}
+    if dest.is_file():
+        old = json.loads(dest.read_text())
+        others = {i: v for i, v in old["ids"].items() if i not in keep["ids"]}
+        keep["ids"] = dict(sorted({**others, **keep["ids"]}.items()))
+        keep["rows"] = [r for r in old["rows"] if r["env_id"] in others] + rows
     make_dirs(dest.parent, dest.parent)
     return write_atomic(dest, json.dumps(keep, indent=1, default=float) + "\n")
 
