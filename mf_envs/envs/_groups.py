@@ -1,0 +1,84 @@
+"""Grouped constructor kwargs: an env takes related kwargs as one dataclass (GOWEC-v0's
+`gyro=GOWECParams(...)` and `sea=Sea(...)`), a dict of its fields, or as before one flat kwarg
+per field (`rotor_speed=`, `wave_period=`): the flat names stay, as aliases of the fields.
+
+`flatten` turns what was given into the flat kwargs the env's `build` reads (defaults from the
+dataclass); `list_aliases` gives the constructor a signature listing the aliases as keyword-only
+parameters, so `inspect` (help(), `train.config`, `train.randomize`, `train.provenance`) sees
+every kwarg it can pass."""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+from collections.abc import Callable, Mapping
+from typing import Any
+
+
+@dataclasses.dataclass(frozen=True)
+class Group:
+    """The kwarg `name` takes a `cls` (a dataclass whose every field has a default), a dict of
+    some of its fields, or None (its defaults); `aliases` maps each flat kwarg to its field."""
+
+    name: str
+    cls: type
+    aliases: Mapping[str, str]
+
+    def defaults(self) -> dict[str, Any]:
+        """flat kwarg -> the default of its field."""
+        base = self.cls()
+        return {alias: getattr(base, field) for alias, field in self.aliases.items()}
+
+    def flatten(self, value: Any, flat: Mapping[str, Any]) -> dict[str, Any]:
+        """The flat kwargs of the group given as `value`, each overridden by its alias in
+        `flat` when given there too (as gym.make's kwargs override a spec's); ValueError naming
+        the group for anything but a `cls`, a dict of its fields, or None."""
+        fields = {f.name for f in dataclasses.fields(self.cls)}
+        if value is None:
+            value = {}
+        if isinstance(value, self.cls):
+            value = {name: getattr(value, name) for name in fields}
+        if not isinstance(value, Mapping):
+            raise ValueError(
+                f"{self.name}: expected a {self.cls.__name__}, a dict of its fields or None, "
+                f"got {value!r}"
+            )
+        unknown = sorted(set(value) - fields, key=str)
+        if unknown:
+            raise ValueError(f"{self.name}: unknown fields {unknown}; it takes {sorted(fields)}")
+        out = self.defaults()
+        for alias, field in self.aliases.items():
+            if field in value:
+                out[alias] = value[field]
+            if alias in flat:
+                out[alias] = flat[alias]
+        return out
+
+
+def flatten(groups: tuple[Group, ...], given: Mapping[str, Any], flat: Mapping[str, Any],
+            owner: str) -> dict[str, Any]:  # fmt: skip
+    """Every group's flat kwargs (`Group.flatten`; `given`: group name -> value), `flat` the
+    aliases given; TypeError naming any other keyword, as Python's for `owner`'s call."""
+    known = {alias for g in groups for alias in g.aliases}
+    unknown = sorted(set(flat) - known)
+    if unknown:
+        raise TypeError(f"{owner}() got unexpected keyword arguments {unknown}")
+    out: dict[str, Any] = {}
+    for g in groups:
+        out.update(g.flatten(given.get(g.name), flat))
+    return out
+
+
+def grouped_signature(init: Callable[..., Any], groups: tuple[Group, ...]) -> inspect.Signature:
+    """`init`'s signature with its **kwargs replaced by each alias as a keyword-only parameter
+    defaulting to its field's default."""
+    params = [p for p in inspect.signature(init).parameters.values() if p.kind is not p.VAR_KEYWORD]
+    for g in groups:
+        for alias, default in g.defaults().items():
+            params.append(inspect.Parameter(alias, inspect.Parameter.KEYWORD_ONLY, default=default))
+    return inspect.Signature(params)
+
+
+def list_aliases(cls: type, groups: tuple[Group, ...]) -> None:
+    """Set `cls.__init__`'s `__signature__` to `grouped_signature` (what `inspect` reports)."""
+    cls.__init__.__signature__ = grouped_signature(cls.__init__, groups)  # type: ignore[misc]
