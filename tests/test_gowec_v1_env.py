@@ -351,3 +351,27 @@ def test_seas_beyond_the_range_are_met_in_survival(sea):
         steps += 1
         done = term or trunc
     assert not term and steps == u.max_steps
+
+
+def test_grouped_sea_is_the_flat_kwargs():
+    from mf_envs.envs.gowec.build import Sea as GOWECSea
+    from mf_envs.envs.gowec_v1.build import Sea
+
+    def rollout(**kwargs):
+        env = gym.make("FloatingGOWEC-v0", **kwargs)
+        out = [env.reset(seed=1)[0]]
+        for k in range(30):
+            obs, r, *_ = env.step(np.array([np.sin(0.2 * k)], dtype=np.float32))
+            out.append(np.append(obs, r))
+        env.close()
+        return np.concatenate(out)
+
+    flat = rollout(significant_wave_height=1.5, peak_period=7.0, gamma=2.0)
+    grouped = rollout(sea=Sea(significant_wave_height=1.5, peak_period=7.0, gamma=2.0))
+    mixed = rollout(sea={"peak_period": 5.0, "gamma": 2.0}, significant_wave_height=1.5,
+                    peak_period=7.0)  # fmt: skip
+    assert np.array_equal(flat, grouped) and np.array_equal(flat, mixed)
+    with pytest.raises(ValueError, match=r"^sea: expected a mf_envs\.envs\.gowec_v1\.build\.Sea"):
+        gym.make("FloatingGOWEC-v0", sea=GOWECSea())  # GOWEC-v0's: no Hs, Tp, spectrum
+    with pytest.raises(ValueError, match="^peak_period: "):
+        gym.make("FloatingGOWEC-v0", sea={"peak_period": -1.0})

@@ -2,8 +2,8 @@
 `gyro=GOWECParams(...)` and `sea=Sea(...)`), a dict of its fields, or as before one flat kwarg
 per field (`rotor_speed=`, `wave_period=`): the flat names stay, as aliases of the fields.
 
-`flatten` turns what was given into the flat kwargs the env's `build` reads (defaults from the
-dataclass); `list_aliases` gives the constructor a signature listing the aliases as keyword-only
+`kwargs_of` turns what was given into the flat kwargs the env's `build` reads (defaults from
+the dataclass); `list_aliases` gives the constructor a signature listing the aliases as keyword-only
 parameters, so `inspect` (help(), `train.config`, `train.randomize`, `train.provenance`) sees
 every kwarg it can pass."""
 
@@ -36,12 +36,12 @@ class Group:
         fields = {f.name for f in dataclasses.fields(self.cls)}
         if value is None:
             value = {}
-        if isinstance(value, self.cls):
+        if type(value) is self.cls:
             value = {name: getattr(value, name) for name in fields}
         if not isinstance(value, Mapping):
             raise ValueError(
-                f"{self.name}: expected a {self.cls.__name__}, a dict of its fields or None, "
-                f"got {value!r}"
+                f"{self.name}: expected a {self.cls.__module__}.{self.cls.__qualname__}, a dict "
+                f"of its fields or None, got {value!r}"
             )
         unknown = sorted(set(value) - fields, key=str)
         if unknown:
@@ -55,18 +55,20 @@ class Group:
         return out
 
 
-def flatten(groups: tuple[Group, ...], given: Mapping[str, Any], flat: Mapping[str, Any],
-            owner: str) -> dict[str, Any]:  # fmt: skip
-    """Every group's flat kwargs (`Group.flatten`; `given`: group name -> value), `flat` the
-    aliases given; TypeError naming any other keyword, as Python's for `owner`'s call."""
+def kwargs_of(local_vars: Mapping[str, Any], groups: tuple[Group, ...], owner: str) -> dict:
+    """The flat kwargs of a constructor from its `locals()`: its own arguments (not self,
+    render_mode, the groups, nor `aliases`, the **kwargs holding the aliases given) and every
+    group's flat kwargs (`Group.flatten`); TypeError naming any keyword that is no alias, as
+    Python's for `owner`'s call."""
+    own = {k: v for k, v in local_vars.items() if k not in ("self", "render_mode", "__class__")}
+    flat = own.pop("aliases")
     known = {alias for g in groups for alias in g.aliases}
     unknown = sorted(set(flat) - known)
     if unknown:
         raise TypeError(f"{owner}() got unexpected keyword arguments {unknown}")
-    out: dict[str, Any] = {}
     for g in groups:
-        out.update(g.flatten(given.get(g.name), flat))
-    return out
+        own.update(g.flatten(own.pop(g.name), flat))
+    return own
 
 
 def grouped_signature(init: Callable[..., Any], groups: tuple[Group, ...]) -> inspect.Signature:

@@ -36,8 +36,6 @@ MAX_GIMBAL_RATE, MAX_BUOY_RATE = spec.MAX_GIMBAL_RATE, spec.MAX_BUOY_RATE
 # which the buoy rates of a spectrum grow without bound with the spectral cut-off. Regular waves
 # default to the seed's point buoy (r = 0), so that analytic_max_power() is Eq. 95 exactly.
 BUOY_RADIUS = 2.5
-# the constructor's locals that are not `build.build`'s kwargs (the groups: flattened)
-_NOT_BUILT = ("self", "render_mode", "__class__", "aliases", "sea", "gyro")
 
 
 class GOWECEnv(MFEnv):
@@ -149,8 +147,7 @@ class GOWECEnv(MFEnv):
         render_mode: str | None = None,
         **aliases: Any,
     ) -> None:
-        kw = {k: v for k, v in locals().items() if k not in _NOT_BUILT}
-        kw.update(_groups.flatten(build.GROUPS, {"sea": sea, "gyro": gyro}, aliases, "GOWECEnv"))
+        kw = _groups.kwargs_of(locals(), build.GROUPS, "GOWECEnv")
         self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, control_dt=self.wave_period / self.steps_per_period,
                          physics_dt=physics_dt, render_mode=render_mode)  # fmt: skip

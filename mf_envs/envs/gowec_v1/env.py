@@ -10,6 +10,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs import _groups
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import build, spec
 from mf_envs.envs.gowec_v1.rows import observe_at, step_one
@@ -89,12 +90,15 @@ class GOWECV1Env(MFEnv):
     survival (`info["survival"]`; held 30 s after the trigger, the whole episode for the sea).
 
     ## Arguments
+    `sea` (a `build.Sea` or a dict of its fields) groups the sea's arguments; each field keeps its
+    flat kwarg (`wave_` + amplitude, period, direction; else its name) as an overriding alias.
+
     | argument | default | meaning |
     |---|---|---|
     | device | "iswec_class" | named device (`hydro/devices.py`); None kwargs take its values |
-    | wave_amplitude, wave_period, wave_direction | 1 m, 6 s, pi/2 | regular wave (Eq. 89) |
-    | significant_wave_height, peak_period | None, 6 s | irregular sea (Hs, Tp) if Hs is set |
-    | spectrum, gamma, n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
+    | sea.amplitude, .period, .direction | 1 m, 6 s, pi/2 | regular wave (Eq. 89) |
+    | sea.significant_wave_height, .peak_period | None, 6 s | irregular sea (Hs, Tp) if Hs is set |
+    | sea.spectrum, .gamma, .n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
     | rotor_inertia, rotor_speed | device (1.2e4 kg m^2, 250 rpm) | rotor J3 (kg m^2), psi' |
     | gyro_units | device (2) | 2: the seed's mirrored pair (phi, -phi; spins +-psi'); 1: one |
     | generator_efficiency, motor_efficiency | device (0.9), = generator | eta_g, eta_m |
@@ -111,7 +115,7 @@ class GOWECV1Env(MFEnv):
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency.
     - v0 (0.5): the ISWEC-class device by default, surge and heave, Morison drag, wave ramp,
       pitch limit, shutdown charge, the wave elevation in the observation; later the gimbal's
-      end stops and the survival supervisor (the pitch limit no longer ends episodes).
+      end stops and the survival supervisor (the pitch limit no longer ends episodes); `sea`.
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
@@ -120,14 +124,7 @@ class GOWECV1Env(MFEnv):
 
     def __init__(
         self,
-        wave_amplitude: float = 1.0,
-        wave_period: float = 6.0,
-        wave_direction: float = math.pi / 2,
-        significant_wave_height: float | None = None,
-        peak_period: float = 6.0,
-        spectrum: str = "jonswap",
-        gamma: float = 3.3,
-        n_components: int = 64,
+        sea: build.Sea | dict | None = None,
         device: str = DEFAULT_DEVICE,
         rotor_inertia: float | None = None,
         rotor_speed: float | None = None,
@@ -150,8 +147,9 @@ class GOWECV1Env(MFEnv):
         effects: Any = None,
         max_episode_steps: int | None = None,
         render_mode: str | None = None,
+        **aliases: Any,
     ) -> None:
-        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        kw = _groups.kwargs_of(locals(), build.GROUPS, "GOWECV1Env")
         self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, render_mode=render_mode,
                          control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
@@ -348,3 +346,4 @@ class GOWECV1Env(MFEnv):
 
 
 GOWECV1Env.__doc__ = (GOWECV1Env.__doc__ or "").replace("OBSERVATION_TABLE", spec.OBS_DOC)
+_groups.list_aliases(GOWECV1Env, build.GROUPS)  # the aliases of `sea` in the signature
