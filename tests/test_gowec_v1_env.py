@@ -353,9 +353,9 @@ def test_seas_beyond_the_range_are_met_in_survival(sea):
     assert not term and steps == u.max_steps
 
 
-def test_grouped_sea_is_the_flat_kwargs():
+def test_grouped_sea_and_pto_are_the_flat_kwargs():
     from mf_envs.envs.gowec.build import Sea as GOWECSea
-    from mf_envs.envs.gowec_v1.build import Sea
+    from mf_envs.envs.gowec_v1.build import PTO, Sea
 
     def rollout(**kwargs):
         env = gym.make("FloatingGOWEC-v0", **kwargs)
@@ -366,11 +366,14 @@ def test_grouped_sea_is_the_flat_kwargs():
         env.close()
         return np.concatenate(out)
 
-    flat = rollout(significant_wave_height=1.5, peak_period=7.0, gamma=2.0)
-    grouped = rollout(sea=Sea(significant_wave_height=1.5, peak_period=7.0, gamma=2.0))
+    flat = rollout(significant_wave_height=1.5, peak_period=7.0, gamma=2.0,
+                   max_generator_torque=1e5, motor_efficiency=0.8)  # fmt: skip
+    grouped = rollout(sea=Sea(significant_wave_height=1.5, peak_period=7.0, gamma=2.0),
+                      pto=PTO(max_torque=1e5, motor_efficiency=0.8))  # fmt: skip
     mixed = rollout(sea={"peak_period": 5.0, "gamma": 2.0}, significant_wave_height=1.5,
-                    peak_period=7.0)  # fmt: skip
+                    peak_period=7.0, pto={"max_torque": 1e5}, motor_efficiency=0.8)  # fmt: skip
     assert np.array_equal(flat, grouped) and np.array_equal(flat, mixed)
+    assert not np.array_equal(flat, rollout(significant_wave_height=1.5, peak_period=7.0))
     with pytest.raises(ValueError, match=r"^sea: expected a mf_envs\.envs\.gowec_v1\.build\.Sea"):
         gym.make("FloatingGOWEC-v0", sea=GOWECSea())  # GOWEC-v0's: no Hs, Tp, spectrum
     with pytest.raises(ValueError, match="^peak_period: "):

@@ -1,7 +1,8 @@
 """FloatingGOWEC-v0's kwargs -> typed physics parameters, never the env: `build(kw)` validates the
 sea, the power take-off and the limits into a `Scene`; `floating_model` makes the buoy's
 `FloatingModel` (hull, gyroscope pair, PTO, radiation and viscous damping per the effects).
-The grouped kwarg `sea=` (`Sea`) and its flat aliases: `GROUPS` (`envs._groups`)."""
+The grouped kwargs `sea=` (`Sea`), `pto=` (`PTO`) and their flat aliases: `GROUPS`
+(`envs._groups`)."""
 
 from __future__ import annotations
 
@@ -43,9 +44,30 @@ class Sea(gowec_build.Sea):
     spectrum: str = "jonswap"
 
 
+@dataclasses.dataclass(frozen=True)
+class PTO:
+    """FloatingGOWEC-v0's power take-off hardware (the `pto=` kwarg; its control law is
+    `set_pto`): generator and motor efficiencies, torque (N m) and power (W) limits per unit,
+    the running loss of all units while spinning (W). None: the device's value (`DEVICE_KWARGS`;
+    motor_efficiency: the generator's)."""
+
+    generator_efficiency: float | None = None
+    motor_efficiency: float | None = None
+    max_torque: float | None = None
+    max_power: float | None = None
+    rotor_loss: float | None = None
+
+
 IRREGULAR = ("significant_wave_height", "peak_period", "spectrum")
 SEA = Group("sea", Sea, {**gowec_build.SEA.aliases, **{name: name for name in IRREGULAR}})
-GROUPS = (SEA,)
+PTO_GROUP = Group(
+    "pto",
+    PTO,
+    {"generator_efficiency": "generator_efficiency", "motor_efficiency": "motor_efficiency",
+     "max_generator_torque": "max_torque", "max_generator_power": "max_power",
+     "rotor_loss": "rotor_loss"},
+)  # fmt: skip
+GROUPS = (SEA, PTO_GROUP)
 
 
 @dataclasses.dataclass(frozen=True)

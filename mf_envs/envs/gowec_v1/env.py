@@ -90,8 +90,9 @@ class GOWECV1Env(MFEnv):
     survival (`info["survival"]`; held 30 s after the trigger, the whole episode for the sea).
 
     ## Arguments
-    `sea` (a `build.Sea` or a dict of its fields) groups the sea's arguments; each field keeps its
-    flat kwarg (`wave_` + amplitude, period, direction; else its name) as an overriding alias.
+    `sea` (a `build.Sea`) groups the sea's arguments, `pto` (a `build.PTO`) the generators'; either
+    also a dict of fields. Each field keeps its flat kwarg as an overriding alias (`wave_` +
+    amplitude, period, direction; `max_generator_` + torque, power; else the field's name).
 
     | argument | default | meaning |
     |---|---|---|
@@ -101,9 +102,9 @@ class GOWECV1Env(MFEnv):
     | sea.spectrum, .gamma, .n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
     | rotor_inertia, rotor_speed | device (1.2e4 kg m^2, 250 rpm) | rotor J3 (kg m^2), psi' |
     | gyro_units | device (2) | 2: the seed's mirrored pair (phi, -phi; spins +-psi'); 1: one |
-    | generator_efficiency, motor_efficiency | device (0.9), = generator | eta_g, eta_m |
-    | max_generator_torque, max_generator_power | device (150 kN m, 130 kW) | PTO limits per unit |
-    | rotor_loss | device (3000 W) | running loss of all units while spinning |
+    | pto.generator_efficiency, .motor_efficiency | device (0.9), = generator | eta_g, eta_m |
+    | pto.max_torque, .max_power | device (150 kN m, 130 kW) | PTO limits per unit |
+    | pto.rotor_loss | device (3000 W) | running loss of all units while spinning |
     | viscous_damping | device (0; seed buoy 5 % of critical) | linear damping (N m s/rad) |
     | drag_coefficient | device (1) | Morison C_d of keel plate and side |
     | pitch_limit, wave_ramp | device (20 deg, 10 s) | survival tilt (rad), wave ramp (s) |
@@ -115,7 +116,7 @@ class GOWECV1Env(MFEnv):
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency.
     - v0 (0.5): the ISWEC-class device by default, surge and heave, Morison drag, wave ramp,
       pitch limit, shutdown charge, the wave elevation in the observation; later the gimbal's
-      end stops and the survival supervisor (the pitch limit no longer ends episodes); `sea`.
+      end stops and the survival supervisor (the pitch limit no longer ends episodes); `sea`, `pto`.
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
@@ -126,14 +127,10 @@ class GOWECV1Env(MFEnv):
         self,
         sea: build.Sea | dict | None = None,
         device: str = DEFAULT_DEVICE,
+        pto: build.PTO | dict | None = None,
         rotor_inertia: float | None = None,
         rotor_speed: float | None = None,
         gyro_units: int | None = None,
-        generator_efficiency: float | None = None,
-        motor_efficiency: float | None = None,
-        max_generator_torque: float | None = None,
-        max_generator_power: float | None = None,
-        rotor_loss: float | None = None,
         viscous_damping: float | None = None,
         drag_coefficient: float | None = None,
         pitch_limit: float | None = None,
@@ -346,4 +343,4 @@ class GOWECV1Env(MFEnv):
 
 
 GOWECV1Env.__doc__ = (GOWECV1Env.__doc__ or "").replace("OBSERVATION_TABLE", spec.OBS_DOC)
-_groups.list_aliases(GOWECV1Env, build.GROUPS)  # the aliases of `sea` in the signature
+_groups.list_aliases(GOWECV1Env, build.GROUPS)  # the aliases of `sea`, `pto` in the signature
