@@ -43,6 +43,7 @@ ENV_IDS = available_env_ids()
 NOT_A_NUMBER = {
     "effects", "render_mode", "hull", "coupling", "friction_coefficients", "gimbal_inertia",
     "ship_inertia", "soil", "spectrum", "form", "gimbal_drive", "wave_spreading", "sea", "gyro",
+    "pto", "drive",
 }  # fmt: skip
 # values that are never a real number: each must be refused by every real-number kwarg
 NEVER_A_NUMBER: dict[str, Any] = {
