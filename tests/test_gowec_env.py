@@ -242,10 +242,15 @@ def test_grouped_sea_and_gyro_are_the_flat_kwargs():
 
     flat = _rollout(wave_period=7.0, wave_amplitude=0.8, rotor_speed=400.0, gamma=2.0)
     grouped = _rollout(sea=Sea(period=7.0, amplitude=0.8, gamma=2.0), gyro={"rotor_speed": 400.0})
-    mixed = _rollout(sea={"period": 5.0, "amplitude": 0.8, "gamma": 2.0}, wave_period=7.0,
-                     gyro=GOWECParams(rotor_speed=1.0), rotor_speed=400.0)  # fmt: skip
+    mixed = _rollout(sea={"amplitude": 0.8, "gamma": 2.0}, wave_period=7.0,
+                     gyro=GOWECParams(rotor_speed=400.0), rotor_speed=400.0)  # fmt: skip
     for a, b, c in zip(flat, grouped, mixed, strict=True):
         assert np.array_equal(a, b) and np.array_equal(a, c)
+    # a field given both ways with two values (a variant's flat kwarg, a user's group): refused
+    with pytest.raises(ValueError, match=r"^wave_period: given twice, wave_period=7\.0 and sea"):
+        gym.make("GOWEC-v0", sea={"period": 5.0}, wave_period=7.0)
+    with pytest.raises(ValueError, match="^rotor_speed: given twice"):
+        gym.make("GOWEC-v0", gyro=GOWECParams(), rotor_speed=400.0)
 
 
 def test_grouped_kwargs_reject_what_they_do_not_take():

@@ -370,7 +370,7 @@ def test_grouped_sea_and_pto_are_the_flat_kwargs():
                    max_generator_torque=1e5, motor_efficiency=0.8)  # fmt: skip
     grouped = rollout(sea=Sea(significant_wave_height=1.5, peak_period=7.0, gamma=2.0),
                       pto=PTO(max_torque=1e5, motor_efficiency=0.8))  # fmt: skip
-    mixed = rollout(sea={"peak_period": 5.0, "gamma": 2.0}, significant_wave_height=1.5,
+    mixed = rollout(sea={"peak_period": 7.0, "gamma": 2.0}, significant_wave_height=1.5,
                     peak_period=7.0, pto={"max_torque": 1e5}, motor_efficiency=0.8)  # fmt: skip
     assert np.array_equal(flat, grouped) and np.array_equal(flat, mixed)
     assert not np.array_equal(flat, rollout(significant_wave_height=1.5, peak_period=7.0))
@@ -378,3 +378,6 @@ def test_grouped_sea_and_pto_are_the_flat_kwargs():
         gym.make("FloatingGOWEC-v0", sea=GOWECSea())  # GOWEC-v0's: no Hs, Tp, spectrum
     with pytest.raises(ValueError, match="^peak_period: "):
         gym.make("FloatingGOWEC-v0", sea={"peak_period": -1.0})
+    # the JONSWAP variant's flat Hs and a user's sea with another: refused, naming it
+    with pytest.raises(ValueError, match="^significant_wave_height: given twice"):
+        gym.make("FloatingGOWEC-JONSWAP-v0", sea={"significant_wave_height": 2.0})

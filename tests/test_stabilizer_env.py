@@ -233,10 +233,12 @@ def test_grouped_drive_is_the_flat_kwargs():
 
     flat = rollout(gimbal_drive="electric", max_gimbal_torque=5000.0, drive_bandwidth=15.0)
     grouped = rollout(drive=Drive(kind="electric", max_torque=5000.0, bandwidth=15.0))
-    mixed = rollout(drive={"kind": "brake", "bandwidth": 15.0}, gimbal_drive="electric",
+    mixed = rollout(drive={"kind": "electric", "bandwidth": 15.0}, gimbal_drive="electric",
                     max_gimbal_torque=5000.0)  # fmt: skip
     assert np.array_equal(flat, grouped) and np.array_equal(flat, mixed)
     assert not np.array_equal(flat, rollout())  # the preset's brake
+    with pytest.raises(ValueError, match="^gimbal_drive: given twice"):
+        gym.make(ENV_ID, drive={"kind": "brake"}, gimbal_drive="electric")
     with pytest.raises(ValueError, match=r"^drive: unknown fields \['torque'\]"):
         gym.make(ENV_ID, drive={"torque": 1.0})
     with pytest.raises(ValueError, match="^max_gimbal_torque: "):

@@ -30,9 +30,10 @@ class Group:
         return {alias: getattr(base, field) for alias, field in self.aliases.items()}
 
     def flatten(self, value: Any, flat: Mapping[str, Any]) -> dict[str, Any]:
-        """The flat kwargs of the group given as `value`, each overridden by its alias in
-        `flat` when given there too (as gym.make's kwargs override a spec's); ValueError naming
-        the group for anything but a `cls`, a dict of its fields, or None."""
+        """The flat kwargs of the group given as `value` and of its aliases given in `flat`;
+        ValueError naming the group for anything but a `cls`, a dict of its fields, or None, and
+        naming the alias for a field given both ways with two values (a registered variant's
+        flat kwarg and a user's group, say: neither silently wins)."""
         fields = {f.name for f in dataclasses.fields(self.cls)}
         if value is None:
             value = {}
@@ -51,8 +52,21 @@ class Group:
             if field in value:
                 out[alias] = value[field]
             if alias in flat:
+                if field in value and not _same(value[field], flat[alias]):
+                    raise ValueError(
+                        f"{alias}: given twice, {alias}={flat[alias]!r} and "
+                        f"{self.name}.{field}={value[field]!r}; give one"
+                    )
                 out[alias] = flat[alias]
         return out
+
+
+def _same(a: Any, b: Any) -> bool:
+    """Whether two values of a field agree (an array against anything else: no)."""
+    try:
+        return bool(a is b or a == b)
+    except (TypeError, ValueError):
+        return False
 
 
 def kwargs_of(local_vars: Mapping[str, Any], groups: tuple[Group, ...], owner: str) -> dict:

@@ -94,7 +94,7 @@ class GOWECEnv(MFEnv):
     ## Arguments
     `sea` (a `build.Sea` or a dict of its fields) groups the wave's arguments, `gyro` (a
     `physics.gowec.GOWECParams` or a dict of its fields) the gyroscope's; each field keeps its
-    flat kwarg as an alias (`wave_period=7.0`), which overrides the field when both are given.
+    flat kwarg as an alias (`wave_period=7.0`; a field given both ways must agree).
 
     | Argument | Default | Meaning |
     |---|---|---|

@@ -91,8 +91,8 @@ class GOWECV1Env(MFEnv):
 
     ## Arguments
     `sea` (a `build.Sea`) groups the sea's arguments, `pto` (a `build.PTO`) the generators'; either
-    also a dict of fields. Each field keeps its flat kwarg as an overriding alias (`wave_` +
-    amplitude, period, direction; `max_generator_` + torque, power; else the field's name).
+    also a dict of fields. Each field keeps its flat kwarg as an alias (both given: must agree):
+    `wave_` + amplitude, period, direction; `max_generator_` + torque, power; else its name.
 
     | argument | default | meaning |
     |---|---|---|
