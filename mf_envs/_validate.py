@@ -86,6 +86,20 @@ def check_nonnegative(name: str, value: Any) -> np.ndarray:
     return arr
 
 
+def check_fields(obj: Any, label: str = "{}", **kinds: Iterable[str]) -> None:
+    """Validate a parameter dataclass's fields by table, in the order given: each keyword is a
+    check (`finite`, `positive`, `nonnegative`) and names the fields it applies to, e.g.
+    `check_fields(self, positive=("mass", "length"), finite=("phase",))`. A field is named in
+    the ValueError as `label.format(field)` (its public parameter, e.g.
+    "friction_coefficients['{}']")."""
+    for kind, names in kinds.items():
+        check = _FIELD_CHECKS.get(kind)
+        if check is None:
+            raise TypeError(f"check_fields: unknown check {kind!r} (one of {tuple(_FIELD_CHECKS)})")
+        for name in names:
+            check(label.format(name), getattr(obj, name))
+
+
 def check_shape(name: str, value: Any, shape: tuple[int, ...]) -> np.ndarray:
     """Finite float64 array of exactly `shape`."""
     arr = check_finite(name, value)
@@ -180,3 +194,10 @@ def _scalar(name: str, arr: np.ndarray) -> float:
     if np.ndim(arr) != 0:
         raise ValueError(f"{name}: expected a number, got an array of shape {np.shape(arr)}")
     return float(arr)
+
+
+_FIELD_CHECKS = {
+    "finite": check_finite,
+    "positive": check_positive,
+    "nonnegative": check_nonnegative,
+}

@@ -42,7 +42,8 @@ ENV_IDS = available_env_ids()
 # kwargs that take something other than one real number (names, tuples, dicts, presets)
 NOT_A_NUMBER = {
     "effects", "render_mode", "hull", "coupling", "friction_coefficients", "gimbal_inertia",
-    "ship_inertia", "soil", "spectrum", "form", "gimbal_drive", "wave_spreading",
+    "ship_inertia", "soil", "spectrum", "form", "gimbal_drive", "wave_spreading", "sea", "gyro",
+    "pto", "drive",
 }  # fmt: skip
 # values that are never a real number: each must be refused by every real-number kwarg
 NEVER_A_NUMBER: dict[str, Any] = {

@@ -223,3 +223,50 @@ def test_overspeed_trip_ends_a_motored_episode_but_not_the_baselines():
         if truncated:
             break
     assert peak < 0.5 * env.unwrapped.max_gimbal_rate
+
+
+def _rollout(**kwargs):
+    env = gym.make("GOWEC-v0", **kwargs)
+    obs, _ = env.reset(seed=3)
+    out = [obs]
+    for k in range(40):
+        obs, r, *_ = env.step(np.array([np.sin(0.3 * k)], dtype=np.float32))
+        out.append(np.append(obs, r))
+    env.close()
+    return out
+
+
+def test_grouped_sea_and_gyro_are_the_flat_kwargs():
+    from mf_envs.envs.gowec.build import Sea
+    from mf_envs.physics.gowec import GOWECParams
+
+    flat = _rollout(wave_period=7.0, wave_amplitude=0.8, rotor_speed=400.0, gamma=2.0)
+    grouped = _rollout(sea=Sea(period=7.0, amplitude=0.8, gamma=2.0), gyro={"rotor_speed": 400.0})
+    mixed = _rollout(sea={"amplitude": 0.8, "gamma": 2.0}, wave_period=7.0,
+                     gyro=GOWECParams(rotor_speed=400.0), rotor_speed=400.0)  # fmt: skip
+    for a, b, c in zip(flat, grouped, mixed, strict=True):
+        assert np.array_equal(a, b) and np.array_equal(a, c)
+    # a field given both ways with two values (a variant's flat kwarg, a user's group): refused
+    with pytest.raises(ValueError, match=r"^wave_period: given twice, wave_period=7\.0 and sea"):
+        gym.make("GOWEC-v0", sea={"period": 5.0}, wave_period=7.0)
+    with pytest.raises(ValueError, match="^rotor_speed: given twice"):
+        gym.make("GOWEC-v0", gyro=GOWECParams(), rotor_speed=400.0)
+
+
+def test_grouped_kwargs_reject_what_they_do_not_take():
+    import inspect
+
+    from mf_envs.envs.gowec.env import GOWECEnv
+
+    with pytest.raises(TypeError, match="wave_height"):
+        GOWECEnv(wave_height=1.0)
+    with pytest.raises(ValueError, match=r"^sea: unknown fields \['height'\]"):
+        GOWECEnv(sea={"height": 1.0})
+    with pytest.raises(ValueError, match=r"^gyro: expected a mf_envs\.physics\.gowec.*GOWECParams"):
+        GOWECEnv(gyro=5.0)
+    with pytest.raises(ValueError, match="^wave_period: must be in"):
+        GOWECEnv(sea={"period": 0.1})
+    params = inspect.signature(GOWECEnv).parameters
+    assert params["wave_period"].default == 6.0
+    assert params["rotor_transverse_inertia"].default is None
+    assert not any(p.kind is p.VAR_KEYWORD for p in params.values())

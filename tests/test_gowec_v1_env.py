@@ -351,3 +351,33 @@ def test_seas_beyond_the_range_are_met_in_survival(sea):
         steps += 1
         done = term or trunc
     assert not term and steps == u.max_steps
+
+
+def test_grouped_sea_and_pto_are_the_flat_kwargs():
+    from mf_envs.envs.gowec.build import Sea as GOWECSea
+    from mf_envs.envs.gowec_v1.build import PTO, Sea
+
+    def rollout(**kwargs):
+        env = gym.make("FloatingGOWEC-v0", **kwargs)
+        out = [env.reset(seed=1)[0]]
+        for k in range(30):
+            obs, r, *_ = env.step(np.array([np.sin(0.2 * k)], dtype=np.float32))
+            out.append(np.append(obs, r))
+        env.close()
+        return np.concatenate(out)
+
+    flat = rollout(significant_wave_height=1.5, peak_period=7.0, gamma=2.0,
+                   max_generator_torque=1e5, motor_efficiency=0.8)  # fmt: skip
+    grouped = rollout(sea=Sea(significant_wave_height=1.5, peak_period=7.0, gamma=2.0),
+                      pto=PTO(max_torque=1e5, motor_efficiency=0.8))  # fmt: skip
+    mixed = rollout(sea={"peak_period": 7.0, "gamma": 2.0}, significant_wave_height=1.5,
+                    peak_period=7.0, pto={"max_torque": 1e5}, motor_efficiency=0.8)  # fmt: skip
+    assert np.array_equal(flat, grouped) and np.array_equal(flat, mixed)
+    assert not np.array_equal(flat, rollout(significant_wave_height=1.5, peak_period=7.0))
+    with pytest.raises(ValueError, match=r"^sea: expected a mf_envs\.envs\.gowec_v1\.build\.Sea"):
+        gym.make("FloatingGOWEC-v0", sea=GOWECSea())  # GOWEC-v0's: no Hs, Tp, spectrum
+    with pytest.raises(ValueError, match="^peak_period: "):
+        gym.make("FloatingGOWEC-v0", sea={"peak_period": -1.0})
+    # the JONSWAP variant's flat Hs and a user's sea with another: refused, naming it
+    with pytest.raises(ValueError, match="^significant_wave_height: given twice"):
+        gym.make("FloatingGOWEC-JONSWAP-v0", sea={"significant_wave_height": 2.0})

@@ -217,3 +217,29 @@ def test_unstable_steps_refused():
         gym.make(ENV_ID, control_dt=1e3, physics_dt=0.01)
     env = gym.make(ENV_ID, gimbal_drive="torque", gimbal_loop_gain=1e4)  # default dt adapts
     assert env.unwrapped.physics_dt <= 0.5 * 2.8 * 14.33 * 2 / 1e4 * 1.01
+
+
+def test_grouped_drive_is_the_flat_kwargs():
+    from mf_envs.envs.gyro_stabilizer.spec import Drive
+
+    def rollout(**kwargs):
+        env = gym.make(ENV_ID, **kwargs)
+        out = [env.reset(seed=2)[0]]
+        for k in range(40):
+            obs, r, *_ = env.step(np.array([np.sin(0.3 * k)], dtype=np.float32))
+            out.append(np.append(obs, r))
+        env.close()
+        return np.concatenate(out)
+
+    flat = rollout(gimbal_drive="electric", max_gimbal_torque=5000.0, drive_bandwidth=15.0)
+    grouped = rollout(drive=Drive(kind="electric", max_torque=5000.0, bandwidth=15.0))
+    mixed = rollout(drive={"kind": "electric", "bandwidth": 15.0}, gimbal_drive="electric",
+                    max_gimbal_torque=5000.0)  # fmt: skip
+    assert np.array_equal(flat, grouped) and np.array_equal(flat, mixed)
+    assert not np.array_equal(flat, rollout())  # the preset's brake
+    with pytest.raises(ValueError, match="^gimbal_drive: given twice"):
+        gym.make(ENV_ID, drive={"kind": "brake"}, gimbal_drive="electric")
+    with pytest.raises(ValueError, match=r"^drive: unknown fields \['torque'\]"):
+        gym.make(ENV_ID, drive={"torque": 1.0})
+    with pytest.raises(ValueError, match="^max_gimbal_torque: "):
+        gym.make(ENV_ID, drive=Drive(max_torque=-1.0))

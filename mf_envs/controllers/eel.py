@@ -22,7 +22,6 @@ The open-loop gaits ignore the observation; `heading` reads only its heading slo
 
 from __future__ import annotations
 
-import argparse
 import math
 from typing import Any
 
@@ -31,7 +30,7 @@ from scipy.optimize import minimize
 
 from mf_envs._validate import check_range
 from mf_envs.controllers import register
-from mf_envs.controllers.serpentine import HeadingSerpenoid, Serpenoid
+from mf_envs.controllers.serpentine import HeadingSerpenoid, Serpenoid, tuning_cli
 from mf_envs.envs.eel.build import HEAD_RATIO  # curvature amplitude at the head / at the tail
 from mf_envs.envs.eel.task import DECLARATION
 
@@ -180,15 +179,7 @@ register(ENV_ID, "eel", lambda env, **kw: TravellingWave(env, *EEL, **kw))
 
 def main(argv: list[str] | None = None) -> None:
     """`--tune`: run `tune` for speed and for Froude efficiency on the default env."""
-    import gymnasium as gym
-
-    import mf_envs  # noqa: F401  (registers the envs)
-
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--tune", action="store_true")
-    parser.add_argument("--max-evals", type=int, default=60)
-    args = parser.parse_args(argv)
-    env = gym.make(ENV_ID)
+    env, args = tuning_cli(ENV_ID, __doc__, 60, argv)
     for name, x in (("WAVE", WAVE), ("FAST", FAST), ("EFFICIENT", EFFICIENT)):
         print(name, x, gait_stats(env, x))
     if args.tune:

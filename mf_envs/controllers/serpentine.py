@@ -167,17 +167,23 @@ register(ENV_ID, "tuned", lambda env, **kw: Serpenoid(env, *TUNED, **kw))
 register(ENV_ID, "elastica_muscles", ElasticaMuscles)
 
 
-def main(argv: list[str] | None = None) -> None:
-    """`--tune`: run `tune` on the default env and print the constants."""
+def tuning_cli(env_id: str, doc: str, max_evals: int, argv: list[str] | None) -> tuple:
+    """A gait module's command line: `--tune` (run its tuner), `--max-evals` (default
+    `max_evals`); returns the default env of `env_id` and the parsed arguments."""
     import gymnasium as gym
 
     import mf_envs  # noqa: F401  (registers the envs)
 
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(description=doc.split("\n")[0])
     parser.add_argument("--tune", action="store_true")
-    parser.add_argument("--max-evals", type=int, default=40)
+    parser.add_argument("--max-evals", type=int, default=max_evals)
     args = parser.parse_args(argv)
-    env = gym.make(ENV_ID)
+    return gym.make(env_id), args
+
+
+def main(argv: list[str] | None = None) -> None:
+    """`--tune`: run `tune` on the default env and print the constants."""
+    env, args = tuning_cli(ENV_ID, __doc__, 40, argv)
     print("elastica", ELASTICA, "speed", gait_speed(env, ELASTICA))
     print("stored TUNED", TUNED, "speed", gait_speed(env, TUNED))
     if args.tune:

@@ -1,7 +1,7 @@
 """The compiled configuration and pieces the beam robots' rows share (`Serpentine-v0` on the
 ground, `Eel-v0` in water; their `rows.py` hold the step and the observation): `Cfg`, packed by
 `pack_cfg`; the centre-of-mass kernel `body_state`; the map of control-point curvatures to the
-Gauss points `to_gauss`."""
+Gauss points `to_gauss`; the observation's curvature slots `observe_curvature`."""
 
 from __future__ import annotations
 
@@ -86,6 +86,18 @@ def to_gauss(interp, c0, c1, k0, k1):
                 a += interp[4 * e + g, j] * c0[j]
                 b += interp[4 * e + g, j] * c1[j]
             k0[e, g], k1[e, g] = a, b
+
+
+@numba.njit(cache=True, nogil=True)
+def observe_curvature(d, cmd, cfg, gap, out):
+    """The observation's curvature slots: kappa L at the n control points into out[:n], the
+    command cmd (n,) over max_curvature into out[n + gap:2 n + gap] (the robot's own slots
+    between them)."""
+    le, ce, cxi, length = cfg.body.le, cfg.ce, cfg.cxi, cfg.length
+    n = cmd.shape[0]
+    for j in range(n):
+        out[j] = el.kappa_at(d, 6 * ce[j], le[ce[j]], cxi[j]) * length
+        out[n + gap + j] = cmd[j] / cfg.max_curvature
 
 
 @numba.njit(cache=True, nogil=True)

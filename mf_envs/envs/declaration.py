@@ -34,6 +34,7 @@ __all__ = [
     "declaration",
     "declarations",
     "refresh",
+    "shipped",
     "task_declarations",
 ]
 
@@ -216,6 +217,26 @@ class EnvDeclaration:
     def vector_installed(self) -> bool:
         entry = self.vector_entry_point
         return entry is not None and _module_exists(entry.split(":")[0])
+
+
+def shipped(env_id: str, package: str, env_class: str, name: str, demos: bool = True) -> dict:
+    """`env_id` and the modules of an env shipped in mf_envs, as its package and its baselines
+    are laid out (docs/adding_an_env.md): `entry_point` `<package>.env:<env_class>`,
+    `vector_entry_point` `<package>.vector:<Name>VectorEnv` (`env_class` `<Name>Env`),
+    `baselines` `mf_envs.controllers.<name>` and, with `demos`, `bench` and `demo`
+    `mf_envs.benchmarks.controllers.<name>`, `mf_envs.benchmarks.demos.<name>` (else None).
+    For `EnvDeclaration(**shipped(...), ...)`."""
+    if not env_class.endswith("Env"):
+        raise ValueError(f"env_class: {env_class!r} is not named '<Name>Env'")
+    benchmarks = "mf_envs.benchmarks"
+    return {
+        "env_id": env_id,
+        "entry_point": f"{package}.env:{env_class}",
+        "vector_entry_point": f"{package}.vector:{env_class[:-3]}VectorEnv",
+        "baselines": f"mf_envs.controllers.{name}",
+        "bench": f"{benchmarks}.controllers.{name}" if demos else None,
+        "demo": f"{benchmarks}.demos.{name}" if demos else None,
+    }
 
 
 def base_metrics(

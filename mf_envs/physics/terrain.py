@@ -63,6 +63,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from mf_envs._validate import (
+    check_fields,
     check_finite,
     check_nonnegative,
     check_positive,
@@ -199,9 +200,7 @@ class TerrainContact:
     normal_damping: float = 0.0
 
     def __post_init__(self) -> None:
-        check_positive("width", self.width)
-        check_finite("ground_z", self.ground_z)
-        check_positive("reg_depth", self.reg_depth)
+        check_fields(self, positive=("width", "reg_depth"), finite=("ground_z",))
         check_nonnegative("normal_damping", self.normal_damping)
 
     def pressure(self, sinkage: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

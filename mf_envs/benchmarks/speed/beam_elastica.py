@@ -126,47 +126,30 @@ def _static(quick: bool) -> list[dict]:
     n_pe = max(pe)
     err_pe, sec_pe = pe[n_pe]
     n_eq = min(n for n, (err, _) in ours.items() if err <= err_pe)
+
+    def row(case: str, n: int, ref: str, ref_sec: float, ref_err: float) -> dict:
+        """Our beam of n elements against a reference run of ref_sec s and error ref_err."""
+        err, sec = ours[n]
+        variant = f"mf_envs C1 beam n_el={n} (err {err:.1e} L)"
+        return _row(
+            case, variant, 1 / sec, ref, 1 / ref_sec, our_error=err, reference_error=ref_err
+        )
+
     rows = []
     for n, (err, sec) in sorted(pe.items()):
-        rows.append(
-            _row(
-                "static_cantilever",
-                f"mf_envs C1 beam n_el={n_tol} (err {ours[n_tol][0]:.1e} L)",
-                1 / ours[n_tol][1],
-                f"PyElastica n={n} damped to rest (err {err:.1e} L)",
-                1 / sec,
-                our_error=ours[n_tol][0],
-                reference_error=err,
-            )
-        )
-    rows.append(
-        _row(
-            "static_cantilever_equal_accuracy",
-            f"mf_envs C1 beam n_el={n_eq} (err {ours[n_eq][0]:.1e} L)",
-            1 / ours[n_eq][1],
-            f"PyElastica n={n_pe} (err {err_pe:.1e} L)",
-            1 / sec_pe,
-            our_error=ours[n_eq][0],
-            reference_error=err_pe,
-        )
-    )
+        ref = f"PyElastica n={n} damped to rest (err {err:.1e} L)"
+        rows.append(row("static_cantilever", n_tol, ref, sec, err))
+    ref = f"PyElastica n={n_pe} (err {err_pe:.1e} L)"
+    rows.append(row("static_cantilever_equal_accuracy", n_eq, ref, sec_pe, err_pe))
     ns = np.array(sorted(pe))
     order = -np.polyfit(np.log(ns), np.log([pe[n][0] for n in ns]), 1)[0]
     cost = np.polyfit(np.log(ns), np.log([pe[n][1] for n in ns]), 1)[0]
     n_need = n_pe * (err_pe / TOL) ** (1 / order)
     sec_need = sec_pe * (n_need / n_pe) ** cost
-    rows.append(
-        _row(
-            "static_cantilever_1e-4",
-            f"mf_envs C1 beam n_el={n_tol} (err {ours[n_tol][0]:.1e} L)",
-            1 / ours[n_tol][1],
-            f"PyElastica EXTRAPOLATED n~{n_need:.0f} (order {order:.2f}, "
-            f"time ~ n^{cost:.2f}) to 1e-4 L",
-            1 / sec_need,
-            our_error=ours[n_tol][0],
-            reference_error=TOL,
-        )
+    ref = (
+        f"PyElastica EXTRAPOLATED n~{n_need:.0f} (order {order:.2f}, time ~ n^{cost:.2f}) to 1e-4 L"
     )
+    rows.append(row("static_cantilever_1e-4", n_tol, ref, sec_need, TOL))
     return rows
 
 

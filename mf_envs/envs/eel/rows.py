@@ -85,12 +85,9 @@ def scratch(model, n_ctrl: int) -> tuple:
 @numba.njit(cache=True, nogil=True)
 def observe_row(d, v, cmd, cfg, body, out):
     """The observation into out (float32, 2 n + 6) and the body state into body (5,)."""
-    le, ce, cxi, length = cfg.body.le, cfg.ce, cfg.cxi, cfg.length
-    n = cmd.shape[0]
-    for j in range(n):
-        out[j] = el.kappa_at(d, 6 * ce[j], le[ce[j]], cxi[j]) * length
-        out[n + 6 + j] = cmd[j] / cfg.max_curvature
-    br.body_state(d, v, le, cfg.nz, cfg.npsi, body)
+    br.observe_curvature(d, cmd, cfg, 6, out)
+    n, length = cmd.shape[0], cfg.length
+    br.body_state(d, v, cfg.body.le, cfg.nz, cfg.npsi, body)
     rel = body[4] - cfg.target
     out[n] = math.sin(rel)
     out[n + 1] = math.cos(rel)

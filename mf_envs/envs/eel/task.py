@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from mf_envs.envs.declaration import shipped
 from mf_envs.envs.serpentine.task import DECLARATION as SERPENTINE
 
 # the serpentine's declaration (metrics: speed after the first quarter of the episode, energy per
@@ -11,11 +12,8 @@ from mf_envs.envs.serpentine.task import DECLARATION as SERPENTINE
 # same reward structure on the same beam; its own ids, baselines and randomised parameters
 DECLARATION = replace(
     SERPENTINE,
-    env_id="Eel-v0",
-    entry_point="mf_envs.envs.eel.env:EelEnv",
-    vector_entry_point="mf_envs.envs.eel.vector:EelVectorEnv",
+    **shipped("Eel-v0", __package__, "EelEnv", "eel", demos=False),
     max_episode_steps=500,  # the default episode: 10 s of 0.02 s
-    baselines="mf_envs.controllers.eel",
     randomize={"drag_normal": (0.7, 1.3), "youngs_modulus": (0.7, 1.3)},
     choices={},
     shifts={

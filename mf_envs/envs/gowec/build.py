@@ -1,6 +1,7 @@
 """GOWEC-v0's kwargs -> typed physics parameters, never the env: `build(kw)` validates the wave,
 the gyroscope and the generator limits into a `Scene`; `own_length` turns `n_periods` or
-`episode_seconds` into control steps."""
+`episode_seconds` into control steps. The grouped kwargs `sea=` (`Sea`) and `gyro=`
+(`GOWECParams`) and their flat aliases: `GROUPS` (`envs._groups`)."""
 
 from __future__ import annotations
 
@@ -9,10 +10,36 @@ import math
 from typing import Any
 
 from mf_envs._validate import check_int, check_nonnegative, check_range, check_shape
+from mf_envs.envs._groups import Group
 from mf_envs.envs.base import MAX_EPISODE_STEPS, MIN_DT
 from mf_envs.physics import gowec as gw
 
 DEFAULT_N_PERIODS = 20
+
+
+@dataclasses.dataclass(frozen=True)
+class Sea:
+    """GOWEC-v0's wave (the `sea=` kwarg): a regular wave of amplitude a (m), period T (s) and
+    direction theta (rad, Eq. 89: pi/2 head-on); with the `irregular_waves` effect a JONSWAP sea
+    of Hs = 2 sqrt(2) a and Tp = T, peak enhancement `gamma`, `n_components` components.
+    Validated by `build` (the ValueError names the field's flat alias, `SEA`)."""
+
+    amplitude: float = 1.0
+    period: float = 6.0
+    direction: float = math.pi / 2
+    n_components: int = 64
+    gamma: float = 3.3
+
+
+SEA = Group(
+    "sea",
+    Sea,
+    {"wave_amplitude": "amplitude", "wave_period": "period", "wave_direction": "direction",
+     "n_components": "n_components", "gamma": "gamma"},
+)  # fmt: skip
+GYRO_FIELDS = ("rotor_inertia", "rotor_speed", "rotor_transverse_inertia", "gimbal_inertia")
+GYRO = Group("gyro", gw.GOWECParams, {name: name for name in GYRO_FIELDS})
+GROUPS = (SEA, GYRO)
 
 
 @dataclasses.dataclass(frozen=True)

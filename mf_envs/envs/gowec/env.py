@@ -11,6 +11,7 @@ from gymnasium import spaces
 from mf_envs._validate import (
     check_range,
 )
+from mf_envs.envs import _groups
 from mf_envs.envs._rows import ONE_ROW, SINGLE
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec import build, rows, spec
@@ -91,13 +92,22 @@ class GOWECEnv(MFEnv):
     numerical failure (`info["numerical_failure"]`). The baselines stay below 18 rad/s.
 
     ## Arguments
+    `sea` (a `build.Sea` or a dict of its fields) groups the wave's arguments, `gyro` (a
+    `physics.gowec.GOWECParams` or a dict of its fields) the gyroscope's; each field keeps its
+    flat kwarg as an alias (`wave_period=7.0`; a field given both ways must agree).
+
     | Argument | Default | Meaning |
     |---|---|---|
-    | rotor_inertia | 49.66 kg m^2 | polar J3 of the rotor (Seakeeper 26, Table 3-1), <= 1e6 |
-    | rotor_speed | 523.6 rad/s | psi' (5000 rpm), abs <= 1e4; 0 = rotor off |
-    | wave_amplitude | 1.0 m | a in (0, 30] (irregular: Hs = 2 sqrt 2 a, Eq. 16) |
-    | wave_period | 6.0 s | T in [0.5, 60] (irregular: peak period) |
-    | wave_direction | pi/2 | theta of Eq. 89 in [-2 pi, 2 pi] (pi/2 head-on) |
+    | sea.amplitude, wave_amplitude | 1.0 m | a in (0, 30] (irregular: Hs = 2 sqrt 2 a, Eq. 16) |
+    | sea.period, wave_period | 6.0 s | T in [0.5, 60] (irregular: peak period) |
+    | sea.direction, wave_direction | pi/2 | theta of Eq. 89 in [-2 pi, 2 pi] (pi/2 head-on) |
+    | sea.n_components, sea.gamma | 64, 3.3 | irregular sea (JONSWAP), <= 4096, gamma in [1, 20] |
+    | (aliases n_components, gamma) | | |
+    | gyro.rotor_inertia | 49.66 kg m^2 | polar J3 of the rotor (Seakeeper 26, Table 3-1), <= 1e6 |
+    | gyro.rotor_speed | 523.6 rad/s | psi' (5000 rpm), abs <= 1e4; 0 = rotor off |
+    | gyro.gimbal_inertia | (5, 5, 5) kg m^2 | with the `gimbal_inertia` effect |
+    | gyro.rotor_transverse_inertia | Ja/2 | with the `gimbal_inertia` effect |
+    | (aliases: the field names) | | |
     | max_generator_torque | 10000 N m | action scale |
     | max_gimbal_rate | 60 rad/s | overspeed trip (ends the episode) and observation bound |
     | episode_seconds | None | episode length (s); None: n_periods wave periods |
@@ -105,16 +115,14 @@ class GOWECEnv(MFEnv):
     | max_episode_steps | None | or the episode length in control steps |
     | steps_per_period | 300 | control steps per wave period (control_dt = T / this) |
     | physics_dt | 0.01 s | RK4 substep (rounded to divide the control step; <= 1e4 per step) |
-    | gimbal_inertia | (5, 5, 5) kg m^2 | with the `gimbal_inertia` effect |
-    | rotor_transverse_inertia | Ja/2 | with the `gimbal_inertia` effect |
-    | n_components, gamma | 64, 3.3 | irregular sea (JONSWAP), <= 4096, gamma in [1, 20] |
     | buoy_radius | None | waterplane radius (m), None: 0 (point buoy) for regular waves, |
     |             |      | 2.5 m with irregular_waves |
     | effects | gyroscopic, buoy_rocking, wave_2d | also gimbal_inertia, irregular_waves |
 
     ## Version History
     * v0: initial version; reward reference floored (positive for every direction, rotor off),
-      `episode_seconds`, strict reset options.
+      `episode_seconds`, strict reset options; the grouped `sea` and `gyro` (flat kwargs kept as
+      aliases; same physics).
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
@@ -125,27 +133,21 @@ class GOWECEnv(MFEnv):
 
     def __init__(
         self,
-        rotor_inertia: float = _P.rotor_inertia,
-        rotor_speed: float = _P.rotor_speed,
-        wave_amplitude: float = 1.0,
-        wave_period: float = 6.0,
-        wave_direction: float = math.pi / 2,
+        sea: build.Sea | dict | None = None,
+        gyro: gw.GOWECParams | dict | None = None,
         max_generator_torque: float = 10000.0,
         n_periods: int | None = None,
         max_gimbal_rate: float = MAX_GIMBAL_RATE,
         effects: Any = None,
         steps_per_period: int = 300,
         physics_dt: float = 0.01,
-        gimbal_inertia: Any = _P.gimbal_inertia,
-        rotor_transverse_inertia: float | None = None,
-        n_components: int = 64,
-        gamma: float = 3.3,
         buoy_radius: float | None = None,
         episode_seconds: float | None = None,
         max_episode_steps: int | None = None,
         render_mode: str | None = None,
+        **aliases: Any,
     ) -> None:
-        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        kw = _groups.kwargs_of(locals(), build.GROUPS, "GOWECEnv")
         self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, control_dt=self.wave_period / self.steps_per_period,
                          physics_dt=physics_dt, render_mode=render_mode)  # fmt: skip
@@ -287,3 +289,7 @@ class GOWECEnv(MFEnv):
             self.wave, self._t, self.wave_period, self.wave_direction, R, phi,
             self.model.psid, self.buoy_radius, text,
         )  # fmt: skip
+
+
+# the flat aliases of `sea` and `gyro` as keyword-only parameters of the signature
+_groups.list_aliases(GOWECEnv, build.GROUPS)

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric
+from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, shipped
 
 
 def episode_metrics(
@@ -25,11 +25,8 @@ def episode_metrics(
 
 
 DECLARATION = EnvDeclaration(
-    env_id="GOWEC-v0",
-    entry_point="mf_envs.envs.gowec.env:GOWECEnv",
-    vector_entry_point="mf_envs.envs.gowec.vector:GOWECVectorEnv",
+    **shipped("GOWEC-v0", __package__, "GOWECEnv", "gowec"),
     max_episode_steps=6000,  # the default episode: 20 wave periods of 300 steps
-    baselines="mf_envs.controllers.gowec",
     metric=Metric("power_ratio", True, "1"),
     episode_metrics=episode_metrics,
     info_keys=("power", "gimbal_angle", "gimbal_rate", "buoy_rate", "wave_elevation"),
@@ -43,8 +40,6 @@ DECLARATION = EnvDeclaration(
     # 6000-step episodes (20 wave periods x 300 steps): a horizon of a wave period, gamma 0.995
     rllib={"gamma": 0.995, "lambda_": 0.98, "minibatch_size": 512, "timesteps": 300_000},
     vector_target=(1024, 1.0e6),
-    bench="mf_envs.benchmarks.controllers.gowec",
-    demo="mf_envs.benchmarks.demos.gowec",
     role="easy",
     summary="the dissertation's GOWEC (Sec. 3.2): prescribed buoy rocking, regular wave",
     ceiling=Ceiling(

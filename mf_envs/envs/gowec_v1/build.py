@@ -1,6 +1,8 @@
 """FloatingGOWEC-v0's kwargs -> typed physics parameters, never the env: `build(kw)` validates the
 sea, the power take-off and the limits into a `Scene`; `floating_model` makes the buoy's
-`FloatingModel` (hull, gyroscope pair, PTO, radiation and viscous damping per the effects)."""
+`FloatingModel` (hull, gyroscope pair, PTO, radiation and viscous damping per the effects).
+The grouped kwargs `sea=` (`Sea`), `pto=` (`PTO`) and their flat aliases: `GROUPS`
+(`envs._groups`)."""
 
 from __future__ import annotations
 
@@ -12,6 +14,8 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_choice, check_int, check_range
+from mf_envs.envs._groups import Group
+from mf_envs.envs.gowec import build as gowec_build
 from mf_envs.envs.gowec_v1 import spec
 from mf_envs.physics import waves
 from mf_envs.physics.gowec import GOWECParams
@@ -25,6 +29,45 @@ EPISODE_SECONDS = 120.0  # s, the default episode (6000 steps of the default 0.0
 DEVICE_KWARGS = ("rotor_inertia", "rotor_speed", "gyro_units", "generator_efficiency",
                  "max_generator_torque", "max_generator_power", "rotor_loss",
                  "drag_coefficient", "pitch_limit", "wave_ramp")  # fmt: skip
+
+
+@dataclasses.dataclass(frozen=True)
+class Sea(gowec_build.Sea):
+    """FloatingGOWEC-v0's sea (the `sea=` kwarg): GOWEC-v0's regular wave (amplitude m, period s,
+    direction rad) or, when `significant_wave_height` (m) is set, an irregular sea of that Hs
+    and `peak_period` (s) from `spectrum` ("jonswap" with peak enhancement `gamma`, or
+    "pierson_moskowitz") in `n_components` components. Validated by `build` (the ValueError
+    names the field's flat alias, `SEA`)."""
+
+    significant_wave_height: float | None = None
+    peak_period: float = 6.0
+    spectrum: str = "jonswap"
+
+
+@dataclasses.dataclass(frozen=True)
+class PTO:
+    """FloatingGOWEC-v0's power take-off hardware (the `pto=` kwarg; its control law is
+    `set_pto`): generator and motor efficiencies, torque (N m) and power (W) limits per unit,
+    the running loss of all units while spinning (W). None: the device's value (`DEVICE_KWARGS`;
+    motor_efficiency: the generator's)."""
+
+    generator_efficiency: float | None = None
+    motor_efficiency: float | None = None
+    max_torque: float | None = None
+    max_power: float | None = None
+    rotor_loss: float | None = None
+
+
+IRREGULAR = ("significant_wave_height", "peak_period", "spectrum")
+SEA = Group("sea", Sea, {**gowec_build.SEA.aliases, **{name: name for name in IRREGULAR}})
+PTO_GROUP = Group(
+    "pto",
+    PTO,
+    {"generator_efficiency": "generator_efficiency", "motor_efficiency": "motor_efficiency",
+     "max_generator_torque": "max_torque", "max_generator_power": "max_power",
+     "rotor_loss": "rotor_loss"},
+)  # fmt: skip
+GROUPS = (SEA, PTO_GROUP)
 
 
 @dataclasses.dataclass(frozen=True)

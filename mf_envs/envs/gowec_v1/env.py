@@ -10,6 +10,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs import _groups
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gowec_v1 import build, spec
 from mf_envs.envs.gowec_v1.rows import observe_at, step_one
@@ -89,17 +90,21 @@ class GOWECV1Env(MFEnv):
     survival (`info["survival"]`; held 30 s after the trigger, the whole episode for the sea).
 
     ## Arguments
+    `sea` (a `build.Sea`) groups the sea's arguments, `pto` (a `build.PTO`) the generators'; either
+    also a dict of fields. Each field keeps its flat kwarg as an alias (both given: must agree):
+    `wave_` + amplitude, period, direction; `max_generator_` + torque, power; else its name.
+
     | argument | default | meaning |
     |---|---|---|
     | device | "iswec_class" | named device (`hydro/devices.py`); None kwargs take its values |
-    | wave_amplitude, wave_period, wave_direction | 1 m, 6 s, pi/2 | regular wave (Eq. 89) |
-    | significant_wave_height, peak_period | None, 6 s | irregular sea (Hs, Tp) if Hs is set |
-    | spectrum, gamma, n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
+    | sea.amplitude, .period, .direction | 1 m, 6 s, pi/2 | regular wave (Eq. 89) |
+    | sea.significant_wave_height, .peak_period | None, 6 s | irregular sea (Hs, Tp) if Hs is set |
+    | sea.spectrum, .gamma, .n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
     | rotor_inertia, rotor_speed | device (1.2e4 kg m^2, 250 rpm) | rotor J3 (kg m^2), psi' |
     | gyro_units | device (2) | 2: the seed's mirrored pair (phi, -phi; spins +-psi'); 1: one |
-    | generator_efficiency, motor_efficiency | device (0.9), = generator | eta_g, eta_m |
-    | max_generator_torque, max_generator_power | device (150 kN m, 130 kW) | PTO limits per unit |
-    | rotor_loss | device (3000 W) | running loss of all units while spinning |
+    | pto.generator_efficiency, .motor_efficiency | device (0.9), = generator | eta_g, eta_m |
+    | pto.max_torque, .max_power | device (150 kN m, 130 kW) | PTO limits per unit |
+    | pto.rotor_loss | device (3000 W) | running loss of all units while spinning |
     | viscous_damping | device (0; seed buoy 5 % of critical) | linear damping (N m s/rad) |
     | drag_coefficient | device (1) | Morison C_d of keel plate and side |
     | pitch_limit, wave_ramp | device (20 deg, 10 s) | survival tilt (rad), wave ramp (s) |
@@ -111,7 +116,7 @@ class GOWECV1Env(MFEnv):
     - v1: floating buoy, BEM coefficients, two-way coupling, PTO efficiency.
     - v0 (0.5): the ISWEC-class device by default, surge and heave, Morison drag, wave ramp,
       pitch limit, shutdown charge, the wave elevation in the observation; later the gimbal's
-      end stops and the survival supervisor (the pitch limit no longer ends episodes).
+      end stops and the survival supervisor (the pitch limit no longer ends episodes); `sea`, `pto`.
     """
 
     obs_layout = spec.OBS  # the named observation layout (`envs._spec.ObsLayout`)
@@ -120,23 +125,12 @@ class GOWECV1Env(MFEnv):
 
     def __init__(
         self,
-        wave_amplitude: float = 1.0,
-        wave_period: float = 6.0,
-        wave_direction: float = math.pi / 2,
-        significant_wave_height: float | None = None,
-        peak_period: float = 6.0,
-        spectrum: str = "jonswap",
-        gamma: float = 3.3,
-        n_components: int = 64,
+        sea: build.Sea | dict | None = None,
         device: str = DEFAULT_DEVICE,
+        pto: build.PTO | dict | None = None,
         rotor_inertia: float | None = None,
         rotor_speed: float | None = None,
         gyro_units: int | None = None,
-        generator_efficiency: float | None = None,
-        motor_efficiency: float | None = None,
-        max_generator_torque: float | None = None,
-        max_generator_power: float | None = None,
-        rotor_loss: float | None = None,
         viscous_damping: float | None = None,
         drag_coefficient: float | None = None,
         pitch_limit: float | None = None,
@@ -150,8 +144,9 @@ class GOWECV1Env(MFEnv):
         effects: Any = None,
         max_episode_steps: int | None = None,
         render_mode: str | None = None,
+        **aliases: Any,
     ) -> None:
-        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        kw = _groups.kwargs_of(locals(), build.GROUPS, "GOWECV1Env")
         self._set_scene(build.build(kw))  # the kwargs, validated, as physics parameters
         super().__init__(effects=effects, render_mode=render_mode,
                          control_dt=check_range("control_dt", control_dt, 1e-4, 10.0),
@@ -348,3 +343,4 @@ class GOWECV1Env(MFEnv):
 
 
 GOWECV1Env.__doc__ = (GOWECV1Env.__doc__ or "").replace("OBSERVATION_TABLE", spec.OBS_DOC)
+_groups.list_aliases(GOWECV1Env, build.GROUPS)  # the aliases of `sea`, `pto` in the signature

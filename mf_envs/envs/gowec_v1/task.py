@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant
+from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant, shipped
 from mf_envs.physics.waves import group_velocity, wavenumber
 
 
@@ -81,11 +81,8 @@ HEADROOM_REGULAR = (
 )
 
 DECLARATION = EnvDeclaration(
-    env_id="FloatingGOWEC-v0",
-    entry_point="mf_envs.envs.gowec_v1.env:GOWECV1Env",
-    vector_entry_point="mf_envs.envs.gowec_v1.vector:GOWECV1VectorEnv",
+    **shipped("FloatingGOWEC-v0", __package__, "GOWECV1Env", "gowec_v1"),
     max_episode_steps=6000,  # the default episode: 120 s of 0.02 s
-    baselines="mf_envs.controllers.gowec_v1",
     metric=Metric("capture_width", True, "m"),
     episode_metrics=episode_metrics,
     info_keys=(
@@ -130,6 +127,4 @@ DECLARATION = EnvDeclaration(
             headroom=HEADROOM_JONSWAP,
         ),
     ),
-    bench="mf_envs.benchmarks.controllers.gowec_v1",
-    demo="mf_envs.benchmarks.demos.gowec_v1",
 )

@@ -12,6 +12,7 @@ Arguments of `GyroStabilizerEnv` handled here (SI units):
 | hull | None | `Hull`, "yacht" (default), "mss_naval_vessel" or a dict of Hull fields |
 | coupling | None | `ship.coupling.SwayRollYaw`; None/True: MSS's navalvessel.m coefficients
 with hull "mss_naval_vessel", off for other hulls; False: off |
+| drive (`spec.Drive`), its flat aliases (`spec.DRIVE`): | | |
 | gimbal_drive | None | brake (Seakeeper preset), electric (seed preset), damper, pendulous,
 spring, kinematic ("servo" = kinematic, "torque" = electric: the v0 names) |
 | gimbal_loop_gain | None | K_p of the rate loop, N m s/rad (sets drive_bandwidth) |

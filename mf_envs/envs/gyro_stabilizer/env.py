@@ -10,6 +10,7 @@ import numpy as np
 from gymnasium import spaces
 
 from mf_envs._validate import check_range
+from mf_envs.envs import _groups
 from mf_envs.envs._rows import ONE_ROW, SINGLE
 from mf_envs.envs.base import MFEnv
 from mf_envs.envs.gyro_stabilizer import build, render, rows, spec
@@ -131,8 +132,8 @@ class GyroStabilizerEnv(MFEnv):
     | control_dt | 0.05 | s |
     | physics_dt | None | s; default and RK4 limit: `spec.PHYSICS_DT_NOTE` |
     | form | "exact" | "seed": Eqs. 123-128 as printed |
-    | servo_time_constant | 0.05 | s |
-    | gimbal_drive | None | "brake" (7000), "electric" (seed); drive arguments: `build` doc |
+    | drive | None | `spec.Drive` or a dict of its fields (kind "brake" (7000), "electric" (seed), |
+    |  |  | servo_time_constant 0.05 s, ...: `build` doc); flat aliases: `spec.DRIVE` |
     | heading, ship_speed, wave_spreading | pi/2, 0, None | seas: `build` module doc |
     | significant_wave_height | 0.6 | m (irregular_waves, JONSWAP, peak period = wave_period) |
     | effective_slope | None | r_eff of the wave roll moment (hull field; yacht 0.7) |
@@ -174,14 +175,7 @@ class GyroStabilizerEnv(MFEnv):
         control_dt: float = 0.05,
         physics_dt: float | None = None,
         form: str = "exact",
-        servo_time_constant: float = 0.05,
-        gimbal_drive: str | None = None,
-        gimbal_loop_gain: float | None = None,
-        max_gimbal_torque: float | None = None,
-        max_drive_power: float | None = None,
-        drive_bandwidth: float = 20.0,
-        gimbal_damping: float | None = None,
-        gimbal_stiffness: float | None = None,
+        drive: spec.Drive | dict | None = None,
         hull: Hull | str | dict | None = None,
         coupling: SwayRollYaw | bool | None = None,
         heading: float = math.pi / 2,
@@ -200,8 +194,9 @@ class GyroStabilizerEnv(MFEnv):
         sensor_delay_time: float = 0.1,
         max_episode_steps: int | None = None,
         render_mode: str | None = None,
+        **aliases: Any,
     ) -> None:
-        kw = {k: v for k, v in locals().items() if k not in ("self", "render_mode", "__class__")}
+        kw = _groups.kwargs_of(locals(), (spec.DRIVE,), "GyroStabilizerEnv")
         scene = build.build(kw, DEFAULT_EFFECTS)  # the kwargs, validated, as physics parameters
         super().__init__(effects=scene.effects, control_dt=control_dt,
                          physics_dt=scene.physics_dt, render_mode=render_mode)  # fmt: skip
@@ -337,3 +332,6 @@ class GyroStabilizerEnv(MFEnv):
             R, phi, t = self._frame_state
             note = "  (last finite state)"
         return render.draw(R, phi, t, self.gyro.rotor_speed, self.n_gyros, note)
+
+
+_groups.list_aliases(GyroStabilizerEnv, (spec.DRIVE,))  # `drive`'s aliases in the signature

@@ -1,16 +1,19 @@
 """GyroStabilizer-v0's env concerns, declared once: observation layout, reward terms, info keys,
-failure contract. The step itself (physics, observation, reward terms, info columns) is one
-compiled function, `rows.step_rows`, and the reset one more, `rows.reset_row`: the single env
-(`GyroStabilizerEnv`, env.py) is row 0 of a batch of one, the native vector env (vector.py) runs
-the same functions on N rows.
+failure contract, the grouped kwarg `drive=` (`Drive`, its flat aliases `DRIVE`). The step
+itself (physics, observation, reward terms, info columns) is one compiled function,
+`rows.step_rows`, and the reset one more, `rows.reset_row`: the single env (`GyroStabilizerEnv`,
+env.py) is row 0 of a batch of one, the native vector env (vector.py) runs the same functions on
+N rows.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
+from mf_envs.envs._groups import Group
 from mf_envs.envs._spec import Field, ObsLayout
 
 # the observation's fixed units of roll and roll rate (`_spec.Field.scale`): a stabilised hull
@@ -93,3 +96,28 @@ def precession_command(action, max_precession_rate: float):
     """The precession-rate command (rad/s) of an action in [-1, 1] (scalar or (N,) array): the
     one scaling, for the single and the vector env."""
     return action * max_precession_rate
+
+
+@dataclasses.dataclass(frozen=True)
+class Drive:
+    """The gimbal drive (the `drive=` kwarg, or a dict of its fields; `build` doc); None: the
+    preset's. kind "servo" and "torque" are the v0 names of "kinematic" and "electric"."""
+
+    kind: str | None = None  # brake (Seakeeper), electric (seed), damper, pendulous, spring, ...
+    servo_time_constant: float = 0.05  # s, of the kinematic servo
+    loop_gain: float | None = None  # K_p of the rate loop, N m s/rad (sets bandwidth)
+    max_torque: float | None = None  # N m (seed 0.1 H; Seakeeper brake relief, electric H p_d)
+    max_power: float | None = None  # W, motoring (seed 1000; Seakeeper H p_d r_cap)
+    bandwidth: float = 20.0  # rad/s, of the rate loop
+    damping: float | None = None  # brake c, N m s/rad (passive default n H^2 / sqrt(C44 J))
+    stiffness: float | None = None  # m g l (pendulous) or spring k, N m/rad (default J_g w_n^2)
+
+
+DRIVE = Group(
+    "drive",
+    Drive,
+    {"gimbal_drive": "kind", "servo_time_constant": "servo_time_constant",
+     "gimbal_loop_gain": "loop_gain", "max_gimbal_torque": "max_torque",
+     "max_drive_power": "max_power", "drive_bandwidth": "bandwidth", "gimbal_damping": "damping",
+     "gimbal_stiffness": "stiffness"},
+)  # fmt: skip

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant
+from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant, shipped
 
 SETTLE = 10.0  # s: metrics (RMS roll) skip the start-up transient, benches and evaluate alike
 
@@ -60,11 +60,8 @@ HEADROOM_RESONANCE = (
 )
 
 DECLARATION = EnvDeclaration(
-    env_id="GyroStabilizer-v0",
-    entry_point="mf_envs.envs.gyro_stabilizer.env:GyroStabilizerEnv",
-    vector_entry_point="mf_envs.envs.gyro_stabilizer.vector:GyroStabilizerVectorEnv",
+    **shipped("GyroStabilizer-v0", __package__, "GyroStabilizerEnv", "stabilizer"),
     max_episode_steps=600,  # the default episode: 30 s of 0.05 s
-    baselines="mf_envs.controllers.stabilizer",
     metric=Metric("rms_roll", False, "rad"),
     episode_metrics=episode_metrics,
     info_keys=(
@@ -106,6 +103,4 @@ DECLARATION = EnvDeclaration(
             headroom=HEADROOM_JONSWAP,
         ),
     ),
-    bench="mf_envs.benchmarks.controllers.stabilizer",
-    demo="mf_envs.benchmarks.demos.stabilizer",
 )

@@ -116,6 +116,18 @@ def _recenter(d, xo, i, length):
 
 
 @numba.njit(cache=True, nogil=True)
+def _open_row(i, action, d_all, work, cfg, before, xo, cmd, duty, grip):
+    """Row i's control step begins (cfg as `step_rows`): its command from `action`
+    (`_command`: cmd, duty, grip), its position before (`_before`); returns its dofs d, whether
+    the head grips and its Newton scratch."""
+    vec, ab, wk, piv, kap = work
+    grips_head = _command(action, cmd.shape[0], cfg[1], cfg[0], cmd, duty, grip)
+    d = d_all[i]
+    _before(before, i, xo, d)
+    return d, grips_head, (vec[i], ab[i], wk[i], piv[i], kap[i])
+
+
+@numba.njit(cache=True, nogil=True)
 def _finish_row(i, d, xo, kc_i, second, head_i, cfg, vec_i, ab_i, out):
     """Row i after its step (cfg, out as `step_rows`): kappa# at the Gauss points from the
     realised kc_i, the elastic energy, the observation (`second`: the block after the
@@ -142,18 +154,15 @@ def step_rows(lo, hi, active, actions, state, work, cfg, out):
     (x_origin, local x), obs (N, 2 n + 6) float32, elastic energy (N,), centerline (N, P, 2),
     kappa# at the Gauss points (N, n_el, 4))."""
     d_all, xo, lag, kc, g, slip, cmd_all, head = state
-    vec, ab, wk, piv, kap = work
-    switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc = cfg[:10]
+    vec, ab = work[0], work[1]
+    dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc = cfg[2:10]
     status, rep, before = out[0], out[1], out[2]
     n = cmd_all.shape[1]
     cmd, duty, grip = np.empty(n), np.empty(n), np.empty(2)
     for i in range(lo, hi):
         if not active[i]:
             continue
-        grips_head = _command(actions[i], n, max_curv, switching, cmd, duty, grip)
-        d = d_all[i]
-        _before(before, i, xo, d)
-        sc = (vec[i], ab[i], wk[i], piv[i], kap[i])
+        d, grips_head, sc = _open_row(i, actions[i], d_all, work, cfg, before, xo, cmd, duty, grip)
         st = qs.drive_step(
             (d, lag[i], kc[i], g[i], slip[i]), cmd, grip, dt, min_sub, act, feet, s_ctrl,
             gauss_s, f_ext, bc, sc, rep[i],
@@ -179,8 +188,8 @@ def step_rows_grip(lo, hi, active, actions, state, work, cfg, out):
     out = (status, report (N, qs.N_GRIP_REPORT), before (N, 3) = (x_origin, local x of the
     tail, local x of the head), obs, elastic energy, centerline, kappa# at the Gauss points)."""
     d_all, xo, lag, kc, ft, sma, cmd_all, head, duty_all = state
-    vec, ab, wk, piv, kap = work
-    switching, max_curv, dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc = cfg[:10]
+    vec, ab = work[0], work[1]
+    dt, min_sub, act, feet, s_ctrl, gauss_s, f_ext, bc = cfg[2:10]
     is_sma, tobs = cfg[13], cfg[14]
     status, rep, before = out[0], out[1], out[2]
     n = cmd_all.shape[1]
@@ -188,10 +197,7 @@ def step_rows_grip(lo, hi, active, actions, state, work, cfg, out):
     for i in range(lo, hi):
         if not active[i]:
             continue
-        grips_head = _command(actions[i], n, max_curv, switching, cmd, duty, grip)
-        d = d_all[i]
-        _before(before, i, xo, d)
-        sc = (vec[i], ab[i], wk[i], piv[i], kap[i])
+        d, grips_head, sc = _open_row(i, actions[i], d_all, work, cfg, before, xo, cmd, duty, grip)
         st = qs.grip_step(
             (d, lag[i], kc[i], ft[i], sma[i]), duty if is_sma else cmd, grip, dt, min_sub, act,
             feet, s_ctrl, gauss_s, f_ext, bc, sc, rep[i],

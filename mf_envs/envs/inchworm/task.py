@@ -6,7 +6,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from mf_envs.envs.declaration import EnvDeclaration, Metric
+from mf_envs.envs.declaration import EnvDeclaration, Metric, shipped
 
 
 def episode_metrics(
@@ -27,11 +27,8 @@ def episode_metrics(
 
 
 DECLARATION = EnvDeclaration(
-    env_id="Inchworm-v0",
-    entry_point="mf_envs.envs.inchworm.env:InchwormEnv",
-    vector_entry_point="mf_envs.envs.inchworm.vector:InchwormVectorEnv",
+    **shipped("Inchworm-v0", __package__, "InchwormEnv", "inchworm"),
     max_episode_steps=400,  # the default episode: 40 s of 0.1 s
-    baselines="mf_envs.controllers.inchworm",
     metric=Metric("tail_advance_per_step", True, "m"),
     episode_metrics=episode_metrics,
     info_keys=("x_head", "x_tail", "centerline"),
@@ -53,8 +50,6 @@ DECLARATION = EnvDeclaration(
     vector_target=(64, 5.0e3),
     single_target=("steps_per_s", 1000.0),
     vector_n_max=256,  # ~1 ms per worm step: 8192 worms take seconds per step
-    bench="mf_envs.benchmarks.controllers.inchworm",
-    demo="mf_envs.benchmarks.demos.inchworm",
     slow=True,
     role="headline",
     summary="the SMA inchworm of Wang et al. 2014 (PDMS body, SMA wires, gripping feet)",

@@ -24,7 +24,6 @@ import numpy as np
 from mf_envs.envs import _beam_rows as br
 from mf_envs.envs.serpentine.spec import VELOCITY_UNIT
 from mf_envs.physics.actuators.kernels import lag_at
-from mf_envs.physics.beam import element as el
 from mf_envs.physics.serpentine.kernels import _scratch as _kernel_scratch
 from mf_envs.physics.serpentine.kernels import advance_linear, quad_tables
 
@@ -58,15 +57,12 @@ def scratch(model, n_ctrl: int) -> tuple:
 @numba.njit(cache=True, nogil=True)
 def observe_row(d, v, cmd, cfg, body, out):
     """The observation into out (float32, 2 n + 4) and the body state into body (5,)."""
-    le, ce, cxi, length = cfg.body.le, cfg.ce, cfg.cxi, cfg.length
-    n = cmd.shape[0]
-    for j in range(n):
-        out[j] = el.kappa_at(d, 6 * ce[j], le[ce[j]], cxi[j]) * length
-        out[n + 4 + j] = cmd[j] / cfg.max_curvature
+    br.observe_curvature(d, cmd, cfg, 4, out)
+    n, length = cmd.shape[0], cfg.length
     rel = d[d.shape[0] - 1] - cfg.target
     out[n] = math.sin(rel)
     out[n + 1] = math.cos(rel)
-    br.body_state(d, v, le, cfg.nz, cfg.npsi, body)
+    br.body_state(d, v, cfg.body.le, cfg.nz, cfg.npsi, body)
     c, s = math.cos(body[4]), math.sin(body[4])
     unit = length * VELOCITY_UNIT  # m/s (the slots' fixed unit, `spec.VELOCITY_UNIT` L/s)
     out[n + 2] = (c * body[2] + s * body[3]) / unit

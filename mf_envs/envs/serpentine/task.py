@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from mf_envs.envs.declaration import EnvDeclaration, Metric
+from mf_envs.envs.declaration import EnvDeclaration, Metric, shipped
 
 WARMUP_SHARE = 0.25  # share of the episode left out of `speed` (the gait starts from rest)
 
@@ -31,11 +31,8 @@ def episode_metrics(
 
 
 DECLARATION = EnvDeclaration(
-    env_id="Serpentine-v0",
-    entry_point="mf_envs.envs.serpentine.env:SerpentineEnv",
-    vector_entry_point="mf_envs.envs.serpentine.vector:SerpentineVectorEnv",
+    **shipped("Serpentine-v0", __package__, "SerpentineEnv", "serpentine", demos=False),
     max_episode_steps=400,  # the default episode: 20 s of 0.05 s
-    baselines="mf_envs.controllers.serpentine",
     metric=Metric("speed", True, "m/s"),
     episode_metrics=episode_metrics,
     info_keys=("x", "y", "heading", "speed", "actuation_energy", "actuation_net_work", "time"),

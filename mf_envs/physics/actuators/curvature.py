@@ -53,7 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mf_envs._validate import check_positive
+from mf_envs._validate import check_fields, check_positive
 from mf_envs.physics.actuators import kernels
 from mf_envs.physics.beam import GAUSS_W, BeamModel
 
@@ -72,8 +72,7 @@ class ActuatorParams:
     name: str = "SMA wire (Flexinol-class)"
 
     def __post_init__(self) -> None:
-        check_positive("actuator_time_constant", self.time_constant)
-        check_positive("actuator_rate_limit", self.rate_limit)
+        check_fields(self, label="actuator_{}", positive=("time_constant", "rate_limit"))
         check_positive("efficiency", self.efficiency)
         if self.efficiency > 1.0:
             raise ValueError(f"efficiency: must be <= 1, got {self.efficiency}")

@@ -43,6 +43,7 @@ up to settings.max_halvings; beyond that NewtonDivergence names the time and the
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -234,27 +235,14 @@ def time_step(
 
 
 def newmark_step(
-    model: BeamModel,
-    state: NewmarkState,
-    dt: float,
-    kappa_end: np.ndarray,
-    f_end: np.ndarray,
-    fixed: np.ndarray,
-    settings: NewtonSettings = DEFAULT_SETTINGS,
-    extra: ExtraLoad | None = None,
-    kappa_start: np.ndarray | None = None,
-    f_start: np.ndarray | None = None,
-    beta: float = BETA,
-    gamma: float = GAMMA,
+    *args: Any, beta: float = BETA, gamma: float = GAMMA, **kwargs: Any
 ) -> NewmarkState:
     """One Newmark step (the seed's Eqs. 90-92, beta = 1/4, gamma = 1/2 by default; see the
-    module docstring for its instability). beta must be (gamma + 1/2)^2 / 4."""
+    module docstring for its instability): `time_step` with `time_step`'s arguments but
+    `scheme`. beta must be (gamma + 1/2)^2 / 4."""
     if abs(beta - (gamma + 0.5) ** 2 / 4.0) > 1e-12:
         raise ValueError(f"beta: must be (gamma + 1/2)^2 / 4, got {beta!r}")
-    scheme = TimeScheme("newmark", newmark_gamma=gamma)
-    return time_step(
-        model, state, dt, kappa_end, f_end, fixed, settings, extra, kappa_start, f_start, scheme
-    )
+    return time_step(*args, scheme=TimeScheme("newmark", newmark_gamma=gamma), **kwargs)
 
 
 def initial_acceleration(

@@ -58,13 +58,22 @@ def accelerations(
     qdot: ArrayLike,
     theta_sharp: ArrayLike | None = None,
     loads: dict[str, Any] | None = None,
+    reference: bool = False,
 ) -> NDArray[np.float64]:
     """q_dd (n_dof,) from Eq. 28a; `loads` are keyword arguments of `generalized_loads`.
 
-    Evaluated by the compiled `eom_kernel`; `accelerations_reference` is the plain numpy route.
+    Evaluated by the compiled `eom_kernel`; with `reference`, assembled term by term with the
+    numpy functions of `multilink` instead (the plain numpy route, `accelerations_reference`).
     """
     q = np.asarray(q, dtype=np.float64)
     qdot = np.asarray(qdot, dtype=np.float64)
+    if reference:
+        rhs = actuation_forces(params, theta_sharp) + generalized_loads(params, q, **(loads or {}))
+        rhs -= stiffness_matrix(params) @ q + velocity_forces(params, q, qdot)
+        if params.joint_damping > 0.0:
+            D = _difference(params)
+            rhs -= params.joint_damping * (D.T @ (D @ qdot))
+        return np.linalg.solve(mass_matrix(params, q), rhs)
     ctc, colsum = chain_constants(params)
     off = np.zeros(params.n_joints)
     if theta_sharp is not None:
@@ -91,22 +100,10 @@ def accelerations(
     )
 
 
-def accelerations_reference(
-    params: ChainParams,
-    q: ArrayLike,
-    qdot: ArrayLike,
-    theta_sharp: ArrayLike | None = None,
-    loads: dict[str, Any] | None = None,
-) -> NDArray[np.float64]:
-    """q_dd from Eq. 28a assembled term by term with the numpy functions of `multilink`."""
-    q = np.asarray(q, dtype=np.float64)
-    qdot = np.asarray(qdot, dtype=np.float64)
-    rhs = actuation_forces(params, theta_sharp) + generalized_loads(params, q, **(loads or {}))
-    rhs -= stiffness_matrix(params) @ q + velocity_forces(params, q, qdot)
-    if params.joint_damping > 0.0:
-        D = _difference(params)
-        rhs -= params.joint_damping * (D.T @ (D @ qdot))
-    return np.linalg.solve(mass_matrix(params, q), rhs)
+def accelerations_reference(*args: Any, **kwargs: Any) -> NDArray[np.float64]:
+    """q_dd from Eq. 28a assembled term by term with the numpy functions of `multilink`:
+    `accelerations(..., reference=True)` (same arguments)."""
+    return accelerations(*args, reference=True, **kwargs)
 
 
 def total_energy(params: ChainParams, q: ArrayLike, qdot: ArrayLike) -> float:

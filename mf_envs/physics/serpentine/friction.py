@@ -32,7 +32,7 @@ import numba
 import numpy as np
 
 from mf_envs._jit import kernel
-from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs._validate import check_fields, check_positive
 from mf_envs.physics.beam.banded import HALF_BW
 from mf_envs.physics.beam.element import GAUSS_W, GAUSS_XI, N_GAUSS, _shape_into
 
@@ -56,10 +56,8 @@ class BellyFriction:
     couple_damping: float = 0.0
 
     def __post_init__(self) -> None:
-        for name in ("mu_forward", "mu_backward", "mu_lateral", "c_tangential", "c_normal"):
-            check_nonnegative(name, getattr(self, name))
-        check_nonnegative("drag_rate", self.drag_rate)
-        check_nonnegative("couple_damping", self.couple_damping)
+        coefficients = ("mu_forward", "mu_backward", "mu_lateral", "c_tangential", "c_normal")
+        check_fields(self, nonnegative=(*coefficients, "drag_rate", "couple_damping"))
         check_positive("slip_speed", self.slip_speed)
 
     @property

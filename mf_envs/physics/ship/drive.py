@@ -69,8 +69,7 @@ from numpy.typing import NDArray
 from mf_envs._jit import kernel
 from mf_envs._validate import (
     check_choice,
-    check_nonnegative,
-    check_positive,
+    check_fields,
     nonnegative_scalar,
     positive_scalar,
 )
@@ -122,14 +121,10 @@ class DriveParams:
 
     def __post_init__(self) -> None:
         check_choice("kind", self.kind, DRIVE_KINDS)
-        for name in ("rate_cap", "cap_torque", "stop_stiffness", "stop_damping"):
-            check_nonnegative(name, getattr(self, name))
-        for name in ("max_torque", "max_rate", "max_power", "bandwidth", "damping_ratio"):
-            check_positive(name, getattr(self, name))
-        for name in ("feedforward", "damping", "stiffness"):
-            check_nonnegative(name, getattr(self, name))
-        check_positive("max_angle", self.max_angle)
-        check_positive("stop_time", self.stop_time)
+        limits = ("max_torque", "max_rate", "max_power", "max_angle", "stop_time")
+        check_fields(self, positive=(*limits, "bandwidth", "damping_ratio"))
+        cap_and_stops = ("rate_cap", "cap_torque", "stop_stiffness", "stop_damping")
+        check_fields(self, nonnegative=(*cap_and_stops, "feedforward", "damping", "stiffness"))
         if self.feedforward > 1.0:
             raise ValueError(f"feedforward: must be in [0, 1], got {self.feedforward!r}")
 

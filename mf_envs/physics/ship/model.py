@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 
 from mf_envs._validate import (
     check_choice,
+    check_fields,
     check_finite,
     check_int,
     check_nonnegative,
@@ -108,13 +109,8 @@ class GimbalDrive:
 
     def __post_init__(self) -> None:
         check_choice("mode", self.mode, ("servo", "sinusoidal", "continuous", "torque"))
-        check_finite("amplitude", self.amplitude)
-        check_finite("frequency", self.frequency)
-        check_finite("phase", self.phase)
-        check_positive("servo_time_constant", self.servo_time_constant)
-        check_positive("max_rate", self.max_rate)
-        check_positive("max_angle", self.max_angle)
-        check_positive("stop_time", self.stop_time)
+        check_fields(self, finite=("amplitude", "frequency", "phase"))
+        check_fields(self, positive=("servo_time_constant", "max_rate", "max_angle", "stop_time"))
 
 
 @dataclass(frozen=True)
@@ -128,10 +124,8 @@ class WaveLoad:
     heave_force: float = 0.0
 
     def __post_init__(self) -> None:
-        check_finite("moment_amplitude", self.moment_amplitude)
+        check_fields(self, finite=("moment_amplitude", "phase", "heave_force"))
         check_positive("period", self.period)
-        check_finite("phase", self.phase)
-        check_finite("heave_force", self.heave_force)
 
 
 def pack_params(

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs._validate import check_fields, check_nonnegative
 from mf_envs.physics.ship.drive import (
     DC,
     DCS,
@@ -65,8 +65,7 @@ class RollGimbal:
     roll_damping: float = 0.0
 
     def __post_init__(self) -> None:
-        check_positive("gimbal_inertia", self.gimbal_inertia)
-        check_positive("roll_inertia", self.roll_inertia)
+        check_fields(self, positive=("gimbal_inertia", "roll_inertia"))
         check_nonnegative("angular_momentum", self.angular_momentum)
 
 

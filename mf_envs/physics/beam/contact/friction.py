@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs._validate import check_fields
 
 FORWARD, BACKWARD = 1, -1
 
@@ -48,10 +48,9 @@ class FrictionParams:
     release_time: float = 0.2
 
     def __post_init__(self) -> None:
-        for name in ("grip_forward", "grip_backward", "slide_forward", "slide_backward"):
-            check_nonnegative(f"friction_coefficients['{name}']", getattr(self, name))
-        check_positive("grip_time_constant", self.engage_time)
-        check_positive("grip_time_constant", self.release_time)
+        coefficients = ("grip_forward", "grip_backward", "slide_forward", "slide_backward")
+        check_fields(self, label="friction_coefficients['{}']", nonnegative=coefficients)
+        check_fields(self, label="grip_time_constant", positive=("engage_time", "release_time"))
 
     @property
     def coefficients(self) -> np.ndarray:

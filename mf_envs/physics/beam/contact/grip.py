@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from mf_envs._validate import check_nonnegative, check_positive
+from mf_envs._validate import check_fields, check_nonnegative, check_positive
 
 SLIDE_MU = 0.1
 
@@ -57,10 +57,9 @@ class GripLaw:
         check_positive("width", self.width)
         if self.threshold + self.width > 1.0:
             raise ValueError(f"threshold: threshold + width must be <= 1, got {self}")
-        for name in ("mu_slide", "grip_forward", "grip_backward"):  # 0: frictionless
-            check_nonnegative(name, getattr(self, name))
-        for name in ("v_slide", "v_grip"):
-            check_positive(name, getattr(self, name))
+        # a coefficient 0: frictionless
+        check_fields(self, nonnegative=("mu_slide", "grip_forward", "grip_backward"))
+        check_fields(self, positive=("v_slide", "v_grip"))
         if min(self.grip_forward, self.grip_backward) < self.mu_slide:
             raise ValueError("grip_forward: gripping coefficients must not be below mu_slide")
 
@@ -93,8 +92,7 @@ class GripFeetParams:
     release_time: float = 0.5
 
     def __post_init__(self) -> None:
-        check_positive("grip_time_constant", self.engage_time)
-        check_positive("grip_time_constant", self.release_time)
+        check_fields(self, label="grip_time_constant", positive=("engage_time", "release_time"))
 
 
 def split_velocity(law: GripLaw, rate: float, g_tail: float, g_head: float, normal) -> float:

@@ -159,12 +159,7 @@ def from_capytaine(
         stiffness=C,
         inertia=hull.inertia(rho),
         mass=hull.mass(rho),
-        rho=rho,
-        g=g,
-        radius=hull.radius,
-        draft=hull.draft,
-        zg=hull.zg,
-        name=f"capytaine cylinder r={hull.radius} d={hull.draft}",
+        **_provenance(hull, rho, g),
     )
 
 
@@ -198,14 +193,21 @@ def three_dof_from_capytaine(
         hydrostatic_stiffness=np.asarray(C, dtype=float),
         mass_matrix=np.diag([m, m, hull.inertia(rho)]),
         water_depth=float(water_depth),
-        rho=rho,
-        g=g,
-        radius=hull.radius,
-        draft=hull.draft,
-        zg=hull.zg,
         gyration=hull.gyration,
-        name=f"capytaine cylinder r={hull.radius} d={hull.draft} h={water_depth}",
+        **_provenance(hull, rho, g, f" h={water_depth}"),
     )
+
+
+def _provenance(hull: CylinderHull, rho: float, g: float, depth: str = "") -> dict[str, Any]:
+    """The fields a coefficient set records of what it was solved for: water, hull, a name."""
+    return {
+        "rho": rho,
+        "g": g,
+        "radius": hull.radius,
+        "draft": hull.draft,
+        "zg": hull.zg,
+        "name": f"capytaine cylinder r={hull.radius} d={hull.draft}{depth}",
+    }
 
 
 def solve_depth(
