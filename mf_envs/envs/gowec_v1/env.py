@@ -99,7 +99,7 @@ class GOWECV1Env(MFEnv):
     | gyro_units | device (2) | 2: the seed's mirrored pair (phi, -phi; spins +-psi'); 1: one |
     | generator_efficiency, motor_efficiency | device (0.9), = generator | eta_g, eta_m |
     | max_generator_torque, max_generator_power | device (150 kN m, 130 kW) | PTO limits per unit |
-    | rotor_loss | device (3000 W) | running loss of all units while spinning |
+    | rotor_loss | device (None: speed-dependent, 3 kW at 250 rpm) | running loss, all units (W) |
     | viscous_damping | device (0; seed buoy 5 % of critical) | linear damping (N m s/rad) |
     | drag_coefficient | device (1) | Morison C_d of keel plate and side |
     | pitch_limit, wave_ramp | device (20 deg, 10 s) | survival tilt (rad), wave ramp (s) |
@@ -260,8 +260,23 @@ class GOWECV1Env(MFEnv):
         return SURVIVAL_LATCHED if height > DEVICES[self.device].max_operating_height else 0.0
 
     def rotor_loss_power(self) -> float:
-        """Rotor loss (W) while the rotor spins, else 0."""
-        return self.rotor_loss * (self.model.psid != 0.0)
+        """Running loss (W) of all units while the rotors spin, else 0: `rotor_loss` if given,
+        else the device's speed-dependent `flywheel_loss` at the current speed (`flywheel`)."""
+        psid = self.model.psid
+        if self.rotor_loss is not None:
+            return self.rotor_loss * (psid != 0.0)
+        return self.model.units * DEVICES[self.device].flywheel_loss.power(psid)
+
+    def set_rotor_speed(self, speed: float) -> None:
+        """Set the flywheels' speed psi' (rad/s), as ISWEC sets it per sea state (a supervisor
+        setting, held for the episode like `set_pto`'s gains): the gyroscopic coupling
+        H = J psi' and the running loss follow, and the end stops' cushion is re-sized for the
+        new H. The change's kinetic energy is not charged (as the spool-up). The reward's
+        scale (`energy_scale`) stays the constructor's."""
+        s = check_range("rotor_speed", speed, -1e4, 1e4)
+        dev, p = DEVICES[self.device], self.model.p
+        self.model.set_rotor_speed(s, dev.cushion(p.gyro[1] + p.gyro[3], p.gyro[0] * s))
+        self.set_pto(float(p.pto[0]), float(p.pto[1]))  # the substeps for the new cushion
 
     def spool_up_energy(self) -> float:
         """Kinetic energy (J) the rotors' motors put in to reach speed, n 1/2 J psi'^2: reported,
