@@ -15,19 +15,21 @@ from mf_envs.physics.gowec.hydro.devices import DEVICES, ISWEC_FLYWHEEL_LOSS
 SEA = dict(significant_wave_height=1.0, peak_period=6.0)
 
 
-def test_loss_model_through_its_figure():
-    """The model fitted through (speed, total, windage) returns them; friction grows as w,
-    windage as w^3 (half the speed: friction / 2, windage / 8)."""
+def test_loss_model_through_its_figures():
+    """The model fitted through (speed, friction, viscous, windage) returns them; the terms grow
+    as w, w^2 and w^3 (half the speed: / 2, / 4, / 8); the ISWEC-class unit's is 1.5 kW at
+    250 rpm (3 kW for the pair, the fixed figure of before), 37 N m of it bearing friction."""
     w = 250.0 * RPM
-    m = FlywheelLoss.through(w, 1500.0, 100.0)
+    m = FlywheelLoss.through(w, 900.0, 500.0, 100.0)
     assert m.power(w) == pytest.approx(1500.0, rel=1e-12)
     assert m.power(-w) == m.power(w)
-    assert m.power(w / 2) == pytest.approx(1400.0 / 2 + 100.0 / 8, rel=1e-12)
+    assert m.power(w / 2) == pytest.approx(900.0 / 2 + 500.0 / 4 + 100.0 / 8, rel=1e-12)
     assert ISWEC_FLYWHEEL_LOSS.power(w) == pytest.approx(1500.0, rel=1e-12)
-    with pytest.raises(ValueError, match="total"):
-        FlywheelLoss.through(w, 100.0, 200.0)
+    assert ISWEC_FLYWHEEL_LOSS.friction_torque == pytest.approx(36.99, abs=0.01)
+    with pytest.raises(ValueError, match="speed"):
+        FlywheelLoss.through(0.0, 100.0, 0.0, 0.0)
     with pytest.raises(ValueError, match="friction_torque"):
-        FlywheelLoss(-1.0, 0.0)
+        FlywheelLoss(-1.0, 0.0, 0.0)
 
 
 @pytest.mark.parametrize("rpm", [250.0, 120.0, 60.0])

@@ -102,7 +102,8 @@ def episode(kind: str, seed: int, seconds: float, **kw: Any) -> dict:
         done = term or trunc
     out = dict(Pe=pe / max(n, 1), Pm=pm / max(n, 1), terminated=bool(term),
                survival=surv / max(n, 1), c=float(getattr(ctrl, "c", 0.0)),
-               k=float(getattr(ctrl, "k", 0.0)), max_gimbal=phi, stroke=u.gimbal_stroke(),
+               k=float(getattr(ctrl, "k", 0.0)), speed_rpm=abs(u.model.psid) * 30.0 / math.pi,
+               max_gimbal=phi, stroke=u.gimbal_stroke(),
                steps=steps, max_steps=u.max_steps,
                predicted=float(getattr(ctrl, "prediction", {}).get("net_W", math.nan)))  # fmt: skip
     env.close()

@@ -259,10 +259,11 @@ class GOWECV1Env(MFEnv):
         height = 2.0 * self.wave_amplitude * (math.sqrt(2.0) if self.irregular else 1.0)
         return SURVIVAL_LATCHED if height > DEVICES[self.device].max_operating_height else 0.0
 
-    def rotor_loss_power(self) -> float:
+    def rotor_loss_power(self, speed: float | None = None) -> float:
         """Running loss (W) of all units while the rotors spin, else 0: `rotor_loss` if given,
-        else the device's speed-dependent `flywheel_loss` at the current speed (`flywheel`)."""
-        psid = self.model.psid
+        else the device's speed-dependent `flywheel_loss` at `speed` (rad/s; default the
+        current speed, `flywheel`)."""
+        psid = self.model.psid if speed is None else float(speed)
         if self.rotor_loss is not None:
             return self.rotor_loss * (psid != 0.0)
         return self.model.units * DEVICES[self.device].flywheel_loss.power(psid)
