@@ -283,11 +283,14 @@ def scheduled_speeds(raw: Any) -> np.ndarray:
     """The flywheel speeds (rad/s) the schedule chooses among: SPEEDS values, geometric between
     the device's `rotor_speed_range`, with the sign of the env's spin; only the current speed
     when the loss is a fixed figure (`rotor_loss` given: slowing down would save nothing),
-    the rotor is off, or the device has no speed range."""
+    the rotor is off, or the device has no speed range; only the slowest in a sea beyond the
+    operating range (met in survival from the reset: no power to make, only the loss)."""
     psid = float(raw.model.psid)
     lo, hi = DEVICES[raw.device].rotor_speed_range
     if raw.rotor_loss is not None or psid == 0.0 or not 0.0 < lo < hi < math.inf:
         return np.array([psid])
+    if raw.survival_at_reset() > 0.0:  # a sea beyond the range: the PTO stays unloaded
+        return np.array([math.copysign(lo, psid)])  # the slowest, cheapest speed
     return math.copysign(1.0, psid) * np.geomspace(lo, hi, SPEEDS)
 
 

@@ -10,8 +10,10 @@
   a cylinder: docs/gowec_v1.md). What is chosen, not published (docs/gowec_v1.md says why):
   the flywheel (a steel disc 2.4 m across and 0.35 m thick, J = 1.2e4 kg m^2 at 250 rpm,
   H = 3.14e5 N m s per unit), the gimbal frame's inertia, the PTO limits (50 kN m and 100 kW
-  per unit), the running loss (1.5 kW per unit: bearings by SKF's friction model plus seals
-  and windage in the evacuated casing), 90 % drive efficiency each way, drag coefficient 1, the
+  per unit), the running loss (1.5 kW per unit at the rated 250 rpm: bearings by SKF's friction
+  model plus seals and windage in the evacuated casing, growing with speed, `flywheel`) and the
+  speed range the baseline schedules the flywheels over (50-250 rpm), 90 % drive efficiency
+  each way, drag coefficient 1, the
   gimbal's end stops (+-70 deg, 10 deg of cushion), the survival brake and the operating range
   (sea height <= 2.5 m).
 - ``"seed_buoy"``: the device of mf_envs 0.1-0.4: the 5 m cylinder of GOWEC-v0's irregular
