@@ -168,9 +168,8 @@ class GOWECV1Env(MFEnv):
         self.max_steps, self.episode_seconds = self._seconds_episode(episode_seconds,
             max_episode_steps, build.EPISODE_SECONDS)  # fmt: skip
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
-        self.preview_times, self.observation_space = build.observation(
-            self.max_gimbal_rate, wave_preview
-        )
+        self.preview_times, self.observation_space = build.observation(self.max_gimbal_rate,
+                                                                       wave_preview)  # fmt: skip
         self.energy_scale = 1.0 / (self.reference_power() * self.control_dt)
         self.wave: waves.WaveField = waves.regular_wave(self.wave_amplitude, self.wave_period,
                                                         self.wave_direction)  # fmt: skip
@@ -254,48 +253,36 @@ class GOWECV1Env(MFEnv):
         return bool(self.state[self.model.survival_index()] > 0.0)
 
     def survival_at_reset(self) -> float:
-        """The supervisor's timer (s) at a reset: latched for the episode when the sea (Hs, or
-        a regular wave's height 2 a) is above the device's operating range, else 0."""
+        """Supervisor's timer (s) at reset: latched if Hs (or 2 a) is above the range, else 0."""
         height = 2.0 * self.wave_amplitude * (math.sqrt(2.0) if self.irregular else 1.0)
         return SURVIVAL_LATCHED if height > DEVICES[self.device].max_operating_height else 0.0
 
     def rotor_loss_power(self, speed: float | None = None) -> float:
-        """Running loss (W) of all units while the rotors spin, else 0: `rotor_loss` if given,
-        else the device's speed-dependent `flywheel_loss` at `speed` (rad/s; default the
-        current speed, `flywheel`)."""
-        psid = self.model.psid if speed is None else float(speed)
-        if self.rotor_loss is not None:
-            return self.rotor_loss * (psid != 0.0)
-        return self.model.units * DEVICES[self.device].flywheel_loss.power(psid)
+        """Running loss (W) of all units at `speed` (rad/s; default now): `running_loss`."""
+        w = self.model.psid if speed is None else float(speed)
+        return DEVICES[self.device].running_loss(w, self.model.units, self.rotor_loss)
 
     def set_rotor_speed(self, speed: float) -> None:
-        """Set the flywheels' speed psi' (rad/s), as ISWEC sets it per sea state (a supervisor
-        setting, held for the episode like `set_pto`'s gains): the gyroscopic coupling
-        H = J psi' and the running loss follow, and the end stops' cushion is re-sized for the
-        new H. The change's kinetic energy is not charged (as the spool-up). The reward's
-        scale (`energy_scale`) stays the constructor's."""
-        s = check_range("rotor_speed", speed, -1e4, 1e4)
-        dev, p = DEVICES[self.device], self.model.p
-        self.model.set_rotor_speed(s, dev.cushion(p.gyro[1] + p.gyro[3], p.gyro[0] * s))
+        """The flywheels' speed psi' (rad/s) for the episode, set per sea as ISWEC does (like
+        `set_pto`'s gains; docs/gowec_v1.md): H = J psi', the loss and the cushion follow."""
+        s, p = check_range("rotor_speed", speed, -1e4, 1e4), self.model.p
+        self.model.set_rotor_speed(s, DEVICES[self.device].cushion(p.gyro[1] + p.gyro[3],
+                                                                    p.gyro[0] * s))  # fmt: skip
         self.set_pto(float(p.pto[0]), float(p.pto[1]))  # the substeps for the new cushion
 
     def spool_up_energy(self) -> float:
-        """Kinetic energy (J) the rotors' motors put in to reach speed, n 1/2 J psi'^2: reported,
-        not charged (a device spins up once, then runs for weeks; the running loss is charged)."""
-        p = self.model.p
-        return 0.5 * self.model.units * p.gyro[0] * p.psid**2
+        """Kinetic energy (J) of the rotors at speed, n 1/2 J psi'^2: reported, not charged."""
+        return 0.5 * self.model.units * self.model.p.gyro[0] * self.model.psid**2
 
     def shutdown_energy(self, steps: Any) -> Any:
-        """Energy (J) a failure is charged for the steps left after `steps` (int or array): the
-        most the device could draw over them, rotor loss + n P_max / eta_m (the drive limits
-        |M_g phi'| <= P_max): no continuation costs more, so ending early never pays."""
+        """Energy (J) a failure is charged for the steps left after `steps` (int or array): rotor
+        loss + n P_max / eta_m, the most any continuation could draw (ending early never pays)."""
         rate = self.rotor_loss_power() + self.model.units * self.max_generator_power / self.eta_m
         return rate * self.control_dt * np.maximum(self.max_steps - steps, 0)
 
     @property
     def _consts(self) -> tuple:
-        """(rotor loss W, obs bounds, (max gimbal rate, stroke), the survival timer's index),
-        rebuilt when the attributes they come from change (e.g. domain randomisation)."""
+        """(rotor loss W, obs bounds, (max gimbal rate, stroke), survival timer index), cached."""
         sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
         if self._consts_key != key:
             lim = (self.max_gimbal_rate, self.gimbal_stroke())
@@ -317,12 +304,9 @@ class GOWECV1Env(MFEnv):
                                     self.wave_direction, self.spectrum, self.gamma,
                                     self.n_components, float(self.hull.omega[-1]), rng)  # fmt: skip
         self.model.set_sea(self.wave)
-        self.state = self.model.initial_state(
-            opts.get("buoy_pitch", 0.0),
-            opts.get("buoy_roll", 0.0),
-            opts.get("gimbal_angle", float(rng.uniform(-0.1, 0.1))),
-            opts.get("gimbal_rate", 0.0),
-        )
+        phi0 = opts.get("gimbal_angle", float(rng.uniform(-0.1, 0.1)))
+        self.state = self.model.initial_state(opts.get("buoy_pitch", 0.0),
+            opts.get("buoy_roll", 0.0), phi0, opts.get("gimbal_rate", 0.0))  # fmt: skip
         self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
         self.state[self.model.survival_index()] = self.survival_at_reset()

@@ -99,6 +99,13 @@ class FloatingDevice:
         """The surge/heave/pitch table of the hull (None for a pitch-only file)."""
         return ThreeDofCoefficients.load(self.hull_file) if self.three_dof else None
 
+    def running_loss(self, speed: float, units: int, fixed: float | None = None) -> float:
+        """Running loss (W) of `units` flywheels at `speed` (rad/s; 0 when stopped): `fixed`
+        (W, all units) if given, else units x `flywheel_loss` at that speed."""
+        if fixed is not None or self.flywheel_loss is None:
+            return float(fixed or 0.0) * (speed != 0.0)
+        return units * self.flywheel_loss.power(speed)
+
     @property
     def angular_momentum(self) -> float:
         """H = J psi' of one unit (N m s)."""
