@@ -137,7 +137,7 @@ def test_net_power_ceiling_charges_the_losses():
     env.reset(seed=20_000)
     u = env.unwrapped
     rated = u.model.units * u.max_generator_power
-    expect = u.eta_g * min(absorbed_power_bound(env), rated) - u.rotor_loss
+    expect = u.eta_g * min(absorbed_power_bound(env), rated) - u.rotor_loss_power()
     assert net_power_ceiling(env) == pytest.approx(expect, rel=1e-12)
     assert declaration("FloatingGOWEC-JONSWAP-v0").ceiling.of(env) == net_power_ceiling(env)
     # another seed draws another sea: another ceiling

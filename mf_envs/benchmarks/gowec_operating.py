@@ -11,6 +11,8 @@ model, the share of time in survival, the largest gimbal angle against the strok
 episodes ended early.
 
     python -m mf_envs.benchmarks.gowec_operating --seeds 5 --seconds 300 > table.md
+    python -m mf_envs.benchmarks.gowec_operating --seeds 10 --kinds efficient_pto \
+        --json docs/results/gowec_operating.json > table.md     # the default baseline alone
 """
 
 from __future__ import annotations
@@ -46,11 +48,14 @@ def seas() -> list[tuple[str, dict[str, Any]]]:
     return out
 
 
-def rows(seeds: tuple[int, ...], seconds: float) -> list[dict[str, Any]]:
+def rows(seeds: tuple[int, ...], seconds: float, kinds: tuple[str, ...] = KINDS,
+         progress: bool = False) -> list[dict[str, Any]]:  # fmt: skip
     """One row per sea and controller: means over the seeds, the lowest seed's net power."""
+    from tqdm import tqdm
+
     out = []
-    for label, kw in seas():
-        for kind in KINDS:
+    for label, kw in tqdm(seas(), desc="seas", disable=not progress):
+        for kind in kinds:
             runs = [episode(kind, s, seconds, **kw) for s in seeds]
             out.append(dict(
                 sea=label, kind=kind, seeds=list(seeds), seconds=seconds,
@@ -62,13 +67,17 @@ def rows(seeds: tuple[int, ...], seconds: float) -> list[dict[str, Any]]:
                 max_gimbal_deg=math.degrees(max(r["max_gimbal"] for r in runs)),
                 stroke_deg=math.degrees(runs[0]["stroke"]),
                 ended_early=int(sum(r["terminated"] for r in runs)),
+                speed_rpm=[r["speed_rpm"] for r in runs],
             ))  # fmt: skip
     return out
 
 
 def table(rs: list[dict[str, Any]]) -> str:
-    """Markdown: per sea, efficient_pto and passive_damper side by side (kW)."""
+    """Markdown: per sea, efficient_pto and passive_damper side by side (kW), or the default
+    baseline alone (`speed_table`) when the damper was not run."""
     by = {(r["sea"], r["kind"]): r for r in rs}
+    if not any(k == KINDS[1] for _, k in by):
+        return speed_table(rs)
     lines = ["| sea | efficient: realised (min) / predicted kW | damper: realised (min) / "
              "predicted kW | survival | max gimbal (deg) | ended early |",
              "|---|---|---|---|---|---|"]  # fmt: skip
@@ -84,13 +93,34 @@ def table(rs: list[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
+def speed_table(rs: list[dict[str, Any]]) -> str:
+    """Markdown: per sea, the default baseline's realised net power (mean, lowest seed), its
+    prediction, the flywheel speeds it chose, survival, the largest gimbal swing, early ends."""
+    lines = ["| sea | realised kW (lowest seed) | predicted kW | flywheel rpm (min-max) | "
+             "survival | max gimbal (deg) | ended early |",
+             "|---|---|---|---|---|---|---|"]  # fmt: skip
+    for e in rs:
+        if e["kind"] != KINDS[0]:
+            continue
+        lines.append(
+            f"| {e['sea']} | {e['net_W'] / 1e3:.2f} ({e['net_min_W'] / 1e3:.2f}) | "
+            f"{e['predicted_W'] / 1e3:.2f} | {min(e['speed_rpm']):.0f}-{max(e['speed_rpm']):.0f} |"
+            f" {e['survival']:.2f} | {e['max_gimbal_deg']:.0f} of {e['stroke_deg']:.0f} | "
+            f"{e['ended_early']} |"
+        )
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--seeds", type=int, default=5, help="seeds per sea (3000..)")
     ap.add_argument("--seconds", type=float, default=300.0, help="scored time per seed (s)")
+    ap.add_argument("--first-seed", type=int, default=3000, help="seeds first..first+seeds-1")
+    ap.add_argument("--kinds", default=",".join(KINDS), help="controllers, comma-separated")
     ap.add_argument("--json", default=None, help="also write the rows here")
     a = ap.parse_args(argv)
-    rs = rows(tuple(range(3000, 3000 + a.seeds)), a.seconds)
+    seeds = tuple(range(a.first_seed, a.first_seed + a.seeds))
+    rs = rows(seeds, a.seconds, tuple(a.kinds.split(",")), progress=True)
     if a.json:
         with open(a.json, "w") as f:
             json.dump(rs, f, indent=1)

@@ -41,7 +41,9 @@ KINDS = ("pll", "efficient_pto")
 def run(kind: str, scale: float, sea: dict, seed: int, seconds: float) -> dict:
     """Net electrical and mechanical power (W) over the last half of one episode (the bench's
     `episode`), and the gyro-to-wave moment ratio of the device with H scaled by `scale`."""
-    kw = dict(rotor_inertia=DEVICES["iswec_class"].rotor_inertia * scale, **sea)
+    kw = dict(
+        rotor_inertia=DEVICES["iswec_class"].rotor_inertia * scale, rotor_loss=3000.0, **sea
+    )  # the 3 kW loss of 250 rpm held: a fixed loss, no speed schedule
     r = episode(kind, seed, seconds, **kw)
     u = gym.make(ENV_ID, **kw).unwrapped
     w = 2.0 * math.pi / u.wave_period

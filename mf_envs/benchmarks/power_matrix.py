@@ -102,7 +102,9 @@ def episode(kind: str, seed: int, seconds: float, **kw: Any) -> dict:
         done = term or trunc
     out = dict(Pe=pe / max(n, 1), Pm=pm / max(n, 1), terminated=bool(term),
                survival=surv / max(n, 1), c=float(getattr(ctrl, "c", 0.0)),
-               k=float(getattr(ctrl, "k", 0.0)), max_gimbal=phi, stroke=u.gimbal_stroke(),
+               k=float(getattr(ctrl, "k", 0.0)), speed_rpm=abs(u.model.psid) * 30.0 / math.pi,
+               loss_W=u.rotor_loss_power(),
+               max_gimbal=phi, stroke=u.gimbal_stroke(),
                steps=steps, max_steps=u.max_steps,
                predicted=float(getattr(ctrl, "prediction", {}).get("net_W", math.nan)))  # fmt: skip
     env.close()
@@ -130,6 +132,8 @@ def matrix(hs=HS, te=TE, seeds=SEEDS, seconds: float = 1200.0, kind: str = "effi
                          cwr=float(pm.mean()) / J / HULL_WIDTH,
                          survival=float(np.mean([x["survival"] for x in runs])),
                          terminated=float(np.mean([x["terminated"] for x in runs])),
+                         speed_rpm=[x["speed_rpm"] for x in runs],
+                         loss_W=float(np.mean([x["loss_W"] for x in runs])),
                          seeds=list(seeds), seconds=seconds))  # fmt: skip
     return rows
 

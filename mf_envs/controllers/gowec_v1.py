@@ -25,7 +25,11 @@ and the matched linear PTO.
   M_g phi'), inside the drive's limits and the swings the model is trusted to: a global grid
   search over (c, k) polished by a bounded scalar search on c (`pto_search`). The reactive
   setting is taken only where its prediction is positive and clearly above the damper's;
-  the search's record (predicted power) is the controller's `prediction`.
+  the search's record (predicted power) is the controller's `prediction`. With a
+  speed-dependent flywheel loss (the ISWEC-class device) both also set the **flywheel speed**
+  per sea, as ISWEC does: the same search at each speed of a grid over the device's speed range
+  (`speed_search`: H = J psi' and the loss change with it), the best kept, so a small sea runs a
+  slower, cheaper flywheel.
 """
 
 from __future__ import annotations
@@ -38,20 +42,25 @@ import numpy as np
 from mf_envs.controllers import register
 from mf_envs.controllers.gowec import PLLController, SquareWaveController
 from mf_envs.envs.gowec_v1.task import DECLARATION
+from mf_envs.physics.gowec.hydro.devices import DEVICES
 
 ENV_ID = DECLARATION.env_id
 
 
-def matched_pto(env: Any, period: float | None = None) -> tuple[float, float]:
+def matched_pto(
+    env: Any, period: float | None = None, angular_momentum: float | None = None
+) -> tuple[float, float]:
     """(c*, k*) (N m s/rad, N m/rad) for the env's hull and gyro at `period` (default: the
-    env's wave/peak period); module docstring."""
+    env's wave/peak period) and a rotor of `angular_momentum` H (N m s; default the env's
+    J psi'); module docstring."""
     raw = env.unwrapped
     w = 2.0 * math.pi / float(raw.wave_period if period is None else period)
     hull, p = raw.hull, raw.model.p
     A, B, _ = hull.at(w)
     R = B + p.viscous
     Xh = w * (raw.model.pitch_inertia() + A) - hull.stiffness / w
-    H2 = raw.model.units * (p.gyro[0] * p.psid) ** 2  # n units in parallel: n H^2 / Z_g
+    H = p.gyro[0] * p.psid if angular_momentum is None else angular_momentum
+    H2 = raw.model.units * H**2  # n units in parallel: n H^2 / Z_g
     Ig = p.gyro[1] + p.gyro[3]
     Z2 = R * R + Xh * Xh
     return H2 * R / Z2, w * w * Ig - w * H2 * Xh / Z2
@@ -81,13 +90,15 @@ class LinearModel:
         self.X = raw.model.hull_excitation(om) * amp
         coef = np.array([hull.at(float(w))[:2] for w in om])
         self.A, self.B = coef[:, 0], coef[:, 1]
-        self.H = p.gyro[0] * p.psid
+        self.speed, self.H = p.psid, p.gyro[0] * p.psid
+        self.loss = raw.rotor_loss_power()
         self.Ig = p.gyro[1] + p.gyro[3]
         self.n = raw.model.units
         self.K = _drag_k(raw)
         span = 2.0 * math.pi / om[0] if om.size == 1 else 1200.0
         t = np.linspace(0.0, span, 256 if om.size == 1 else 4000, endpoint=False)
-        self.e = np.exp(-1j * np.outer(t, om))
+        wt = np.outer(om, t)  # Re(z e^{-i w t}) = Re z cos(w t) + Im z sin(w t): one real product
+        self.e = np.ascontiguousarray(np.vstack([np.cos(wt), np.sin(wt)]))  # (2 n, samples)
         self.q = 1.0 if om.size == 1 else 0.99  # the excursions' peak: the 99th percentile
         self.Zc, self.Zs = np.zeros(om.size, complex), np.ones(om.size, complex)
         three = raw.model.three
@@ -106,58 +117,77 @@ class LinearModel:
             X1 = at(three.excitation[:, 0]) * amp
             self.X = self.X - self.Zc * X1 / self.Zs  # the surge's share taken out of pitch
 
-    def response(self, c: float, k: float) -> tuple[np.ndarray, np.ndarray]:
+    def at_speed(self, speed: float) -> LinearModel:
+        """This model with the flywheels at `speed` (rad/s): H = J psi' and the running loss
+        at that speed (`GOWECV1Env.rotor_loss_power`); the sea's coefficients are kept."""
+        self.speed = float(speed)
+        self.H = self.raw.model.p.gyro[0] * self.speed
+        self.loss = self.raw.rotor_loss_power(self.speed)
+        return self
+
+    def response(self, c: Any, k: Any) -> tuple[np.ndarray, np.ndarray]:
         """Complex amplitudes (e^{-i w t}) of the hull's pitch rate and one gimbal's rate
-        (rad/s) under the linear PTO (c, k), in the sea's e^{-i w t} convention: hull impedance
+        (rad/s) under the linear PTO (c, k) (scalars, or arrays (m,) of m settings: then
+        (m, n_components)), in the sea's e^{-i w t} convention: hull impedance
         Z_h = B + b - i (w (I + A) - C / w) with b the linear viscous plus the drag's stochastic
         linearisation sqrt(8 / pi) K sigma (regular sea: 8 / (3 pi) K |theta'|), n units of
         load H^2 / Z_g, Z_g = c - i (w I_g - k / w); with surge free (the 3-dof table) the
         surge-pitch coupling Z_c = B15 - i w A15 eliminated through the surge impedance
         Z_s = B11 - i (w (m + A11) - K_mooring / w): Z_h - Z_c^2 / Z_s and X5 - Z_c X1 / Z_s."""
         raw, om, H = self.raw, self.om, self.H
+        scalar = np.ndim(c) == 0
+        c = np.atleast_1d(np.asarray(c, float))[:, None]
+        k = np.broadcast_to(np.atleast_1d(np.asarray(k, float))[:, None], c.shape)
         Zg = c - 1j * (om * self.Ig - k / om)
-        b = 0.0
         Zr = (
             self.B
             + raw.model.p.viscous
             - 1j * (om * (raw.model.pitch_inertia() + self.A) - raw.hull.stiffness / om)
             - self.Zc * self.Zc / self.Zs
         )  # surge eliminated (zero without surge)
+        b = np.zeros((c.shape[0], 1))
         for _ in range(30):
             th = self.X / (Zr + b + self.n * H * H / Zg)
             if om.size == 1:
-                b_new = 8.0 / (3.0 * math.pi) * self.K * abs(th[0])
+                b_new = 8.0 / (3.0 * math.pi) * self.K * np.abs(th)
             else:
-                sigma = math.sqrt(0.5 * float(np.sum(abs(th) ** 2)))  # RMS pitch rate
+                sigma = np.sqrt(0.5 * np.sum(np.abs(th) ** 2, axis=1, keepdims=True))  # RMS
                 b_new = math.sqrt(8.0 / math.pi) * self.K * sigma
-            if abs(b_new - b) <= 1e-6 * (b + 1.0):
+            if np.all(np.abs(b_new - b) <= 1e-6 * (b + 1.0)):
                 break
             b = 0.5 * (b + b_new)
-        return th, H * th / Zg
+        ph = H * th / Zg
+        return (th[0], ph[0]) if scalar else (th, ph)
 
     def predict(self, c: float, k: float) -> dict[str, float]:
         """The prediction under (c, k): `net_W`, the mean net electrical power (W) of n units'
         M_g phi' = (c phi' + k phi) phi' (generator efficiency when positive, 1 / motor
-        efficiency when negative, less the rotor loss), and `excess`, the largest of the peak
-        torque, power, gimbal swing and hull tilt over the drive's limits, MAX_LINEAR_GIMBAL
-        and PITCH_MARGIN x the survival tilt (<= 1: inside them all)."""
+        efficiency when negative, less the rotor loss at the model's speed), and `excess`, the
+        largest of the peak torque, power, gimbal swing and hull tilt over the drive's limits,
+        MAX_LINEAR_GIMBAL and PITCH_MARGIN x the survival tilt (<= 1: inside them all);
+        `speed`, the flywheels' (rad/s)."""
+        return self.predict_many(np.array([c]), np.array([k]))[0]
+
+    def predict_many(self, c: np.ndarray, k: np.ndarray) -> list[dict[str, float]]:
+        """`predict` of each setting (c[i], k[i]) (arrays (m,)), computed together."""
         raw, om = self.raw, self.om
         th, ph = self.response(c, k)
-        rate = (self.e @ ph).real
-        angle = (self.e @ (ph / (-1j * om))).real
-        pitch = (self.e @ (th / (-1j * om))).real
-        torque = c * rate + k * angle
+        z = np.concatenate([ph, ph / (-1j * om), th / (-1j * om)])  # rates to angles
+        rate, angle, pitch = np.split(np.hstack([z.real, z.imag]) @ self.e, 3)  # (m, samples)
+        torque = c[:, None] * rate + k[:, None] * angle
         P = self.n * torque * rate
         el = np.where(P > 0.0, P * raw.eta_g, P / raw.eta_m)
         q = self.q
-        excess = max(
-            np.quantile(np.abs(torque), q) / raw.max_generator_torque,
-            np.quantile(np.abs(torque * rate), q) / max(raw.max_generator_power, 1e-9),
-            np.quantile(np.abs(angle), q) / MAX_LINEAR_GIMBAL,
-            np.quantile(np.abs(pitch), q) / (PITCH_MARGIN * raw.pitch_limit),
-        )
-        return {"c": c, "k": k, "net_W": float(np.mean(el)) - raw.rotor_loss_power(),
-                "excess": float(excess)}  # fmt: skip
+        excess = np.max(
+            [np.quantile(np.abs(torque), q, axis=1) / raw.max_generator_torque,
+             np.quantile(np.abs(torque * rate), q, axis=1) / max(raw.max_generator_power, 1e-9),
+             np.quantile(np.abs(angle), q, axis=1) / MAX_LINEAR_GIMBAL,
+             np.quantile(np.abs(pitch), q, axis=1) / (PITCH_MARGIN * raw.pitch_limit)],
+            axis=0,
+        )  # fmt: skip
+        net = np.mean(el, axis=1) - self.loss
+        return [{"c": float(ci), "k": float(ki), "net_W": float(n), "excess": float(x),
+                 "speed": self.speed} for ci, ki, n, x in zip(c, k, net, excess)]  # fmt: skip
 
 
 def linear_response(raw: Any, c: float, k: float) -> tuple[np.ndarray, np.ndarray]:
@@ -194,7 +224,9 @@ def _best(cands: list[dict[str, float]]) -> dict[str, float]:
     return min(cands, key=lambda r: r["excess"])
 
 
-def pto_search(raw: Any, passive: bool = False) -> dict[str, float]:
+def pto_search(
+    raw: Any, passive: bool = False, model: LinearModel | None = None
+) -> dict[str, float]:
     """The linear PTO of the highest predicted net electrical power inside the limits
     (`LinearModel.predict`), by a global grid search over the gains, polished by a bounded
     scalar search on c around the grid's best: c on 41 log-spaced values over five decades
@@ -203,12 +235,13 @@ def pto_search(raw: Any, passive: bool = False) -> dict[str, float]:
     (the damper). The reactive PTO is kept only where its prediction is positive and
     REACTIVE_GAIN x above the damper's (the model is linear and the reactive branch the one it
     predicts least well); otherwise, and wherever the prediction is negative, the damper's
-    setting. Returns the chosen record: c, k, net_W (the prediction), excess, passive_W (the
+    setting. `model`: the sea's `LinearModel` (default: a new one at the env's flywheel speed).
+    Returns the chosen record: c, k, net_W (the prediction), excess, speed, passive_W (the
     damper's prediction)."""
     from scipy.optimize import minimize_scalar
 
-    model = LinearModel(raw)
-    c0, k0 = matched_pto(raw)
+    model = LinearModel(raw) if model is None else model
+    c0, k0 = matched_pto(raw, angular_momentum=model.H)
     c0 = max(c0, 1.0)
     kc = centring_stiffness(raw)
     cs = np.geomspace(c0 / 300.0, c0 * 300.0, 41)
@@ -228,18 +261,61 @@ def pto_search(raw: Any, passive: bool = False) -> dict[str, float]:
         p = model.predict(math.exp(res.x), k)
         return p if p["excess"] <= max(r["excess"], 1.0) and p["net_W"] >= r["net_W"] else r
 
-    damper = polish(_best([model.predict(float(c), kc) for c in cs]))
+    damper = polish(_best(model.predict_many(cs, np.full(cs.size, kc))))
     best = damper
     if not passive:
         ks = abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period)
-        grid = [model.predict(float(c), kc + s) for s in np.linspace(0.0, 4.0, 12)[1:] * ks
-                for c in cs]  # fmt: skip
+        grid = [r for s in np.linspace(0.0, 4.0, 12)[1:] * ks
+                for r in model.predict_many(cs, np.full(cs.size, kc + s))]  # fmt: skip
         reactive = polish(_best(grid + [damper]))
         gain = reactive["net_W"] - damper["net_W"]
         if (reactive["excess"] <= 1.0 and reactive["net_W"] > 0.0
                 and gain > (REACTIVE_GAIN - 1.0) * abs(damper["net_W"])):  # fmt: skip
             best = reactive
     return dict(best, k=float(best["k"]), passive_W=damper["net_W"])
+
+
+SPEEDS = 9  # the speed schedule's grid: geometric over the device's speed range
+REFINE = 3  # bisections of the speed where the limits bind between two grid speeds
+
+
+def scheduled_speeds(raw: Any) -> np.ndarray:
+    """The flywheel speeds (rad/s) the schedule chooses among: SPEEDS values, geometric between
+    the device's `rotor_speed_range`, with the sign of the env's spin; only the current speed
+    when the loss is a fixed figure (`rotor_loss` given: slowing down would save nothing),
+    the rotor is off, or the device has no speed range; only the slowest in a sea beyond the
+    operating range (met in survival from the reset: no power to make, only the loss)."""
+    psid = float(raw.model.psid)
+    lo, hi = DEVICES[raw.device].rotor_speed_range
+    if raw.rotor_loss is not None or psid == 0.0 or not 0.0 < lo < hi < math.inf:
+        return np.array([psid])
+    if raw.survival_at_reset() > 0.0:  # a sea beyond the range: the PTO stays unloaded
+        return np.array([math.copysign(lo, psid)])  # the slowest, cheapest speed
+    return math.copysign(1.0, psid) * np.geomspace(lo, hi, SPEEDS)
+
+
+def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
+    """The flywheel speed and linear PTO of the highest predicted net electrical power inside
+    the limits: `pto_search` at each of `scheduled_speeds` on the sea's linear model (H = J psi'
+    and the running loss at each speed), the best kept (`_best`); where the next slower grid
+    speed predicts more but breaks a limit, REFINE bisections (geometric) between the two keep
+    the best inside the limits. ISWEC sets its flywheel speed with the PTO per sea state
+    (module doc). Returns `pto_search`'s record with `speed` (rad/s)."""
+    model = LinearModel(raw)
+    grid = [pto_search(raw, passive, model.at_speed(float(w))) for w in scheduled_speeds(raw)]
+    best = _best(grid)
+    i = next(j for j, r in enumerate(grid) if r is best)
+    if best["excess"] <= 1.0 and i > 0 and grid[i - 1]["net_W"] > best["net_W"]:
+        # the limits bind between the grid's speeds: bisect towards the slower one
+        lo, hi = grid[i - 1]["speed"], best["speed"]
+        for _ in range(REFINE):
+            mid = math.copysign(math.sqrt(lo * hi), hi)
+            r = pto_search(raw, passive, model.at_speed(mid))
+            if r["excess"] <= 1.0:
+                best, hi = (r if r["net_W"] > best["net_W"] else best), mid
+            else:
+                lo = mid
+    return best
 
 
 def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
@@ -260,9 +336,11 @@ class EfficientPTOController:
         self.prediction: dict[str, float] = {}
 
     def reset(self) -> None:
-        self.prediction = pto_search(self.env.unwrapped, self.passive)
+        raw = self.env.unwrapped
+        self.prediction = speed_search(raw, self.passive)
         self.c, self.k = self.prediction["c"], self.prediction["k"]
-        self.env.unwrapped.set_pto(self.c, self.k)
+        raw.set_rotor_speed(self.prediction["speed"])
+        raw.set_pto(self.c, self.k)
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
         return np.zeros(1, dtype=np.float32), None

@@ -85,7 +85,7 @@ class Scene:
     eta_m: float  # motor efficiency
     max_generator_torque: float  # N m
     max_generator_power: float  # W, per unit (the drive's limit, set in the model)
-    rotor_loss: float  # W
+    rotor_loss: float | None  # W, all units (None: the device's `flywheel_loss` at the speed)
     max_gimbal_rate: float  # rad/s
     device: str  # `devices.DEVICES` key
     drag_coefficient: float  # quadratic drag C_d (0 = none)
@@ -125,7 +125,8 @@ def build(kw: dict[str, Any]) -> Scene:
         spectrum, gamma, n_components, eta_g, eta_m,
         check_range("max_generator_torque", kw["max_generator_torque"], 0.0),
         check_range("max_generator_power", kw["max_generator_power"], 0.0),
-        check_range("rotor_loss", kw["rotor_loss"], 0.0, 1e7),
+        None if kw["rotor_loss"] is None
+        else check_range("rotor_loss", kw["rotor_loss"], 0.0, 1e7),
         check_range("max_gimbal_rate", kw["max_gimbal_rate"], 1e-6),
         kw["device"], check_range("drag_coefficient", kw["drag_coefficient"], 0.0, 100.0),
         check_range("pitch_limit", kw["pitch_limit"], 1e-3, 1.0),

@@ -104,7 +104,7 @@ class GOWECV1Env(MFEnv):
     | gyro_units | device (2) | 2: the seed's mirrored pair (phi, -phi; spins +-psi'); 1: one |
     | pto.generator_efficiency, .motor_efficiency | device (0.9), = generator | eta_g, eta_m |
     | pto.max_torque, .max_power | device (150 kN m, 130 kW) | PTO limits per unit |
-    | pto.rotor_loss | device (3000 W) | running loss of all units while spinning |
+    | pto.rotor_loss | device (None: by speed, 3 kW at 250 rpm) | running loss, all units (W) |
     | viscous_damping | device (0; seed buoy 5 % of critical) | linear damping (N m s/rad) |
     | drag_coefficient | device (1) | Morison C_d of keel plate and side |
     | pitch_limit, wave_ramp | device (20 deg, 10 s) | survival tilt (rad), wave ramp (s) |
@@ -163,9 +163,8 @@ class GOWECV1Env(MFEnv):
         self.max_steps, self.episode_seconds = self._seconds_episode(episode_seconds,
             max_episode_steps, build.EPISODE_SECONDS)  # fmt: skip
         self.action_space = spaces.Box(-1.0, 1.0, (1,), np.float32)
-        self.preview_times, self.observation_space = build.observation(
-            self.max_gimbal_rate, wave_preview
-        )
+        self.preview_times, self.observation_space = build.observation(self.max_gimbal_rate,
+                                                                       wave_preview)  # fmt: skip
         self.energy_scale = 1.0 / (self.reference_power() * self.control_dt)
         self.wave: waves.WaveField = waves.regular_wave(self.wave_amplitude, self.wave_period,
                                                         self.wave_direction)  # fmt: skip
@@ -249,32 +248,36 @@ class GOWECV1Env(MFEnv):
         return bool(self.state[self.model.survival_index()] > 0.0)
 
     def survival_at_reset(self) -> float:
-        """The supervisor's timer (s) at a reset: latched for the episode when the sea (Hs, or
-        a regular wave's height 2 a) is above the device's operating range, else 0."""
+        """Supervisor's timer (s) at reset: latched if Hs (or 2 a) is above the range, else 0."""
         height = 2.0 * self.wave_amplitude * (math.sqrt(2.0) if self.irregular else 1.0)
         return SURVIVAL_LATCHED if height > DEVICES[self.device].max_operating_height else 0.0
 
-    def rotor_loss_power(self) -> float:
-        """Rotor loss (W) while the rotor spins, else 0."""
-        return self.rotor_loss * (self.model.psid != 0.0)
+    def rotor_loss_power(self, speed: float | None = None) -> float:
+        """Running loss (W) of all units at `speed` (rad/s; default now): `running_loss`."""
+        w = self.model.psid if speed is None else float(speed)
+        return DEVICES[self.device].running_loss(w, self.model.units, self.rotor_loss)
+
+    def set_rotor_speed(self, speed: float) -> None:
+        """The flywheels' speed psi' (rad/s) for the episode, set per sea as ISWEC does (like
+        `set_pto`'s gains; docs/gowec_v1.md): H = J psi', the loss and the cushion follow."""
+        s, p = check_range("rotor_speed", speed, -1e4, 1e4), self.model.p
+        self.model.set_rotor_speed(s, DEVICES[self.device].cushion(p.gyro[1] + p.gyro[3],
+                                                                    p.gyro[0] * s))  # fmt: skip
+        self.set_pto(float(p.pto[0]), float(p.pto[1]))  # the substeps for the new cushion
 
     def spool_up_energy(self) -> float:
-        """Kinetic energy (J) the rotors' motors put in to reach speed, n 1/2 J psi'^2: reported,
-        not charged (a device spins up once, then runs for weeks; the running loss is charged)."""
-        p = self.model.p
-        return 0.5 * self.model.units * p.gyro[0] * p.psid**2
+        """Kinetic energy (J) of the rotors at speed, n 1/2 J psi'^2: reported, not charged."""
+        return 0.5 * self.model.units * self.model.p.gyro[0] * self.model.psid**2
 
     def shutdown_energy(self, steps: Any) -> Any:
-        """Energy (J) a failure is charged for the steps left after `steps` (int or array): the
-        most the device could draw over them, rotor loss + n P_max / eta_m (the drive limits
-        |M_g phi'| <= P_max): no continuation costs more, so ending early never pays."""
+        """Energy (J) a failure is charged for the steps left after `steps` (int or array): rotor
+        loss + n P_max / eta_m, the most any continuation could draw (ending early never pays)."""
         rate = self.rotor_loss_power() + self.model.units * self.max_generator_power / self.eta_m
         return rate * self.control_dt * np.maximum(self.max_steps - steps, 0)
 
     @property
     def _consts(self) -> tuple:
-        """(rotor loss W, obs bounds, (max gimbal rate, stroke), the survival timer's index),
-        rebuilt when the attributes they come from change (e.g. domain randomisation)."""
+        """(rotor loss W, obs bounds, (max gimbal rate, stroke), survival timer index), cached."""
         sp, key = self.observation_space, (self.rotor_loss, self.max_gimbal_rate, self.model.psid)
         if self._consts_key != key:
             lim = (self.max_gimbal_rate, self.gimbal_stroke())
@@ -296,12 +299,9 @@ class GOWECV1Env(MFEnv):
                                     self.wave_direction, self.spectrum, self.gamma,
                                     self.n_components, float(self.hull.omega[-1]), rng)  # fmt: skip
         self.model.set_sea(self.wave)
-        self.state = self.model.initial_state(
-            opts.get("buoy_pitch", 0.0),
-            opts.get("buoy_roll", 0.0),
-            opts.get("gimbal_angle", float(rng.uniform(-0.1, 0.1))),
-            opts.get("gimbal_rate", 0.0),
-        )
+        phi0 = opts.get("gimbal_angle", float(rng.uniform(-0.1, 0.1)))
+        self.state = self.model.initial_state(opts.get("buoy_pitch", 0.0),
+            opts.get("buoy_roll", 0.0), phi0, opts.get("gimbal_rate", 0.0))  # fmt: skip
         self._t = 0.0
         info = self._info(0.0, 0.0, 0.0)
         self.state[self.model.survival_index()] = self.survival_at_reset()

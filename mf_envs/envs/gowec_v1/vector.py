@@ -166,9 +166,12 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
 
     def _load_live(self, i: int, env: Any) -> None:
         """`_load`, the episode's step count (the sea's clock is steps x control_dt) and the
-        env's linear PTO gains (`GOWECV1Env.set_pto`; the template's, shared by all rows)."""
+        env's flywheel speed and linear PTO gains (`GOWECV1Env.set_rotor_speed`, `set_pto`;
+        the template's, shared by all rows)."""
         super()._load_live(i, env)
         self._steps[i] = env._steps
+        if env.model.psid != self.template.model.psid:
+            self.template.set_rotor_speed(env.model.psid)
         pto = env.model.p.pto
         if (pto[0], pto[1]) != tuple(self.template.model.p.pto[:2]):
             self.template.set_pto(float(pto[0]), float(pto[1]))

@@ -10,8 +10,10 @@
   a cylinder: docs/gowec_v1.md). What is chosen, not published (docs/gowec_v1.md says why):
   the flywheel (a steel disc 2.4 m across and 0.35 m thick, J = 1.2e4 kg m^2 at 250 rpm,
   H = 3.14e5 N m s per unit), the gimbal frame's inertia, the PTO limits (50 kN m and 100 kW
-  per unit), the running loss (1.5 kW per unit: bearings by SKF's friction model plus seals
-  and windage in the evacuated casing), 90 % drive efficiency each way, drag coefficient 1, the
+  per unit), the running loss (1.5 kW per unit at the rated 250 rpm: bearings by SKF's friction
+  model plus seals and windage in the evacuated casing, growing with speed, `flywheel`) and the
+  speed range the baseline schedules the flywheels over (50-250 rpm), 90 % drive efficiency
+  each way, drag coefficient 1, the
   gimbal's end stops (+-70 deg, 10 deg of cushion), the survival brake and the operating range
   (sea height <= 2.5 m).
 - ``"seed_buoy"``: the device of mf_envs 0.1-0.4: the 5 m cylinder of GOWEC-v0's irregular
@@ -31,6 +33,7 @@ import numpy as np
 
 from mf_envs.physics.constants import RPM
 from mf_envs.physics.end_stops import size_cushion
+from mf_envs.physics.gowec.flywheel import FlywheelLoss
 from mf_envs.physics.gowec.hydro import DEFAULT_HULL_FILE, HullCoefficients
 from mf_envs.physics.gowec.hydro.three_dof import ISWEC_HULL_FILE, ThreeDofCoefficients
 
@@ -54,7 +57,7 @@ class FloatingDevice:
     rotor_speed: float  # rad/s
     gimbal_inertia: tuple[float, float, float]  # kg m^2 (gimbal frame, per unit)
     gyro_units: int
-    rotor_loss: float  # W, all units
+    rotor_loss: float | None  # W, all units (None: `flywheel_loss` at the speed, x units)
     max_generator_torque: float  # N m per unit
     max_generator_power: float  # W per unit
     generator_efficiency: float
@@ -72,6 +75,8 @@ class FloatingDevice:
     brake_damping: float = 0.0  # N m s/rad per unit, the survival brake
     survival_hold: float = 30.0  # s
     max_operating_height: float = math.inf  # m
+    flywheel_loss: FlywheelLoss | None = None  # speed-dependent loss per unit (`flywheel`)
+    rotor_speed_range: tuple[float, float] = (0.0, math.inf)  # rad/s, the speed schedule's
 
     def cushion(self, gimbal_inertia: float, angular_momentum: float) -> dict[str, float]:
         """The end stops' PTO fields (`gimbal.PTO_NAMES`) for a gimbal + rotor inertia about
@@ -93,6 +98,13 @@ class FloatingDevice:
     def three_dof_table(self) -> ThreeDofCoefficients | None:
         """The surge/heave/pitch table of the hull (None for a pitch-only file)."""
         return ThreeDofCoefficients.load(self.hull_file) if self.three_dof else None
+
+    def running_loss(self, speed: float, units: int, fixed: float | None = None) -> float:
+        """Running loss (W) of `units` flywheels at `speed` (rad/s; 0 when stopped): `fixed`
+        (W, all units) if given, else units x `flywheel_loss` at that speed."""
+        if fixed is not None or self.flywheel_loss is None:
+            return float(fixed or 0.0) * (speed != 0.0)
+        return units * self.flywheel_loss.power(speed)
 
     @property
     def angular_momentum(self) -> float:
@@ -118,19 +130,27 @@ def pitch_hull(c: ThreeDofCoefficients) -> HullCoefficients:
 # the ISWEC-class flywheel: a plain steel disc 2.4 m across and 0.35 m thick would be 12.4 t and
 # 8.95e3 kg m^2; with a heavier rim (chosen; docs/gowec_v1.md):
 ISWEC_ROTOR_INERTIA = 1.2e4  # kg m^2
-ISWEC_ROTOR_SPEED = 250.0 * RPM  # rad/s (chosen)
+ISWEC_ROTOR_SPEED = 250.0 * RPM  # rad/s (chosen): the rated (largest) speed
+# the running loss per unit at 250 rpm, 1.5 kW as before (docs/gowec_v1.md): the bearings'
+# load friction 0.97 kW (SKF's M = 1/2 mu F d = 37 N m), windage 0.1 kW (Daily & Nece 1960 for the
+# disc in air at 1 atm, a 6 cm gap: an upper bound in the evacuated casing), the rest (0.43 kW)
+# the lubricant's and seals' viscous drag (chosen split; `flywheel` module doc)
+_BEARINGS = 0.5 * 0.0018 * 137e3 * 0.3 * ISWEC_ROTOR_SPEED  # W: mu 0.0018, F 137 kN, d 0.3 m
+ISWEC_FLYWHEEL_LOSS = FlywheelLoss.through(ISWEC_ROTOR_SPEED, _BEARINGS, 1400.0 - _BEARINGS, 100.0)
+ISWEC_SPEED_RANGE = (50.0 * RPM, ISWEC_ROTOR_SPEED)  # rad/s, the schedule's (chosen)
 
 DEVICES: dict[str, FloatingDevice] = {
     "iswec_class": FloatingDevice(
         name="iswec_class", hull_file=ISWEC_HULL_FILE, three_dof=True,
         rotor_inertia=ISWEC_ROTOR_INERTIA, rotor_speed=ISWEC_ROTOR_SPEED,
-        gimbal_inertia=(4000.0, 4000.0, 4000.0), gyro_units=2, rotor_loss=3000.0,
+        gimbal_inertia=(4000.0, 4000.0, 4000.0), gyro_units=2, rotor_loss=None,
         max_generator_torque=1.5e5, max_generator_power=1.3e5, generator_efficiency=0.9,
         drag_coefficient=1.0, viscous_fraction=0.0, pitch_limit=math.radians(20.0),
         wave_ramp=10.0, mooring_stiffness=3.0e3,
         effects=("gyroscopic", "radiation", "viscous_damping", "quadratic_drag", "surge_heave"),
         physics_dt=0.02, stop_angle=math.radians(70.0), brake_damping=5.0e5,
-        max_operating_height=2.5,
+        max_operating_height=2.5, flywheel_loss=ISWEC_FLYWHEEL_LOSS,
+        rotor_speed_range=ISWEC_SPEED_RANGE,
     ),
     "seed_buoy": FloatingDevice(
         name="seed_buoy", hull_file=DEFAULT_HULL_FILE, three_dof=False,

@@ -55,13 +55,14 @@ class FloatingModel:
             [gyro.rotor_inertia, gyro.transverse, *gyro.gimbal_inertia, units], dtype=float
         )
         self._packed: tuple | None = None  # `_args`' cache
+        self._spin_on = bool(gyroscopic)
         self.sp = np.zeros(sea.SP_LEN)  # drag off, no ramp (`set_drag`, `set_ramp`)
         self.drag_coefficient = 0.0
         self.mooring_stiffness = 0.0  # N/m (`set_translation`)
         self.p = fl.FloatingParams(
             inertia=np.array([hull.inertia + hull.added_mass_inf, Iz]),
             gyro=g,
-            psid=float(gyro.rotor_speed) if gyroscopic else 0.0,
+            psid=float(gyro.rotor_speed) if gyroscopic else 0.0,  # `set_rotor_speed`
             stiffness=float(hull.stiffness),
             viscous=float(viscous_damping),
             Ar=np.ascontiguousarray(self.fit.A, dtype=float),
@@ -165,6 +166,17 @@ class FloatingModel:
     def set_pto(self, damping: float, stiffness: float) -> None:
         """Linear PTO gains c (N m s/rad) and k (N m/rad) of the drive's inner loop."""
         self.p.pto[0], self.p.pto[1] = float(damping), float(stiffness)
+
+    def set_rotor_speed(self, speed: float, pto: dict[str, float]) -> None:
+        """The flywheels' spin psi' (rad/s; held by their motors, the gyroscopic coupling
+        H = J psi' follows) and the PTO fields that depend on it (`gimbal.PTO_NAMES`: the
+        cushion sized for H). With the `gyroscopic` effect off the rotor stays stopped."""
+        pv = self.p.pto.copy()
+        for name, value in pto.items():
+            pv[gimbal.PTO_NAMES.index(name)] = float(value)
+        psid = float(speed) if self._spin_on else 0.0
+        self.p = dataclasses.replace(self.p, psid=psid, pto=pv)
+        self._packed = None
 
     # ------------------------------------------------------------------ state
     def initial_state(
