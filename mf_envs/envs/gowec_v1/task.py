@@ -70,10 +70,11 @@ NET_POWER_CEILING = Ceiling(
 # measured with `python -m mf_envs.benchmarks.rl_benchmark --task gowec_irregular|gowec_regular
 # --algos` (baselines only; 20 frozen test seeds 20000-20019, 120 s, the second half scored)
 HEADROOM_JONSWAP = (
-    "the best baselines (`efficient_pto`, `passive_damper`) net 2.2 % of the ceiling (IQM "
-    "0.022 [0.015, 0.029]; about 2.9 kW mean against 127-139 kW), but the ceiling is loose "
-    "(`tight=False`): headroom = the oracle's 3.92 kW - the baseline's 3.31 kW on the first "
-    "five test seeds = 0.61 kW (`benchmarks.references`, docs/benchmark.md)"
+    "the best baselines (`efficient_pto`, `passive_damper`: one controller on this sea, with "
+    "the flywheel speed scheduled per sea) net 3.5 % of the ceiling on the first five test "
+    "seeds (4.9 kW against 132-141 kW), and the ceiling is loose (`tight=False`); the oracle "
+    "(`benchmarks.references`, budgeted for the fixed-speed device) nets 4.4 kW, below the "
+    "baseline, so no practical headroom is established yet (docs/benchmark.md)"
 )
 HEADROOM_REGULAR = (
     "`efficient_pto` nets 13.3 % of the ceiling (30.8 kW against 231 kW, where the generators' "
