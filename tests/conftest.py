@@ -13,7 +13,28 @@
 
 from __future__ import annotations
 
+import gymnasium as gym
+import numpy as np
+import pytest
 from hypothesis import settings
 
 settings.register_profile("mf_envs", deadline=None)
 settings.load_profile("mf_envs")
+
+
+@pytest.fixture
+def sine_rollout():
+    """`run(env_id, seed, steps, w, **kwargs)`: the observations and rewards of `steps` steps of
+    the action sin(w k) from `reset(seed)` of `gym.make(env_id, **kwargs)`, concatenated (for
+    comparing two ways of building the same env)."""
+
+    def run(env_id: str, seed: int, steps: int, w: float, **kwargs) -> np.ndarray:
+        env = gym.make(env_id, **kwargs)
+        out = [env.reset(seed=seed)[0]]
+        for k in range(steps):
+            obs, r, *_ = env.step(np.array([np.sin(w * k)], dtype=np.float32))
+            out.append(np.append(obs, r))
+        env.close()
+        return np.concatenate(out)
+
+    return run

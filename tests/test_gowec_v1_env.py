@@ -353,18 +353,12 @@ def test_seas_beyond_the_range_are_met_in_survival(sea):
     assert not term and steps == u.max_steps
 
 
-def test_grouped_sea_and_pto_are_the_flat_kwargs():
+def test_grouped_sea_and_pto_are_the_flat_kwargs(sine_rollout):
     from mf_envs.envs.gowec.build import Sea as GOWECSea
     from mf_envs.envs.gowec_v1.build import PTO, Sea
 
     def rollout(**kwargs):
-        env = gym.make("FloatingGOWEC-v0", **kwargs)
-        out = [env.reset(seed=1)[0]]
-        for k in range(30):
-            obs, r, *_ = env.step(np.array([np.sin(0.2 * k)], dtype=np.float32))
-            out.append(np.append(obs, r))
-        env.close()
-        return np.concatenate(out)
+        return sine_rollout("FloatingGOWEC-v0", 1, 30, 0.2, **kwargs)
 
     flat = rollout(significant_wave_height=1.5, peak_period=7.0, gamma=2.0,
                    max_generator_torque=1e5, motor_efficiency=0.8)  # fmt: skip

@@ -219,17 +219,11 @@ def test_unstable_steps_refused():
     assert env.unwrapped.physics_dt <= 0.5 * 2.8 * 14.33 * 2 / 1e4 * 1.01
 
 
-def test_grouped_drive_is_the_flat_kwargs():
+def test_grouped_drive_is_the_flat_kwargs(sine_rollout):
     from mf_envs.envs.gyro_stabilizer.spec import Drive
 
     def rollout(**kwargs):
-        env = gym.make(ENV_ID, **kwargs)
-        out = [env.reset(seed=2)[0]]
-        for k in range(40):
-            obs, r, *_ = env.step(np.array([np.sin(0.3 * k)], dtype=np.float32))
-            out.append(np.append(obs, r))
-        env.close()
-        return np.concatenate(out)
+        return sine_rollout(ENV_ID, 2, 40, 0.3, **kwargs)
 
     flat = rollout(gimbal_drive="electric", max_gimbal_torque=5000.0, drive_bandwidth=15.0)
     grouped = rollout(drive=Drive(kind="electric", max_torque=5000.0, bandwidth=15.0))
