@@ -7,13 +7,13 @@ reference (a best-known gait, not a bound).
     python -m mf_envs.benchmarks.references --refs best_gait --out bench_rl  # score (test seeds)
 
 Protocol (docs/benchmark.md, "References"):
-- **Families** (`FAMILIES`): the serpentine's heading-feedback serpenoid and the eel's heading
+- **Families** (`families()`): the serpentine's heading-feedback serpenoid and the eel's heading
   wave with all their parameters free (amplitude, wavelength, period, the heading loop's gain
   and bias limit) plus an amplitude envelope growing from `head_ratio` at the head to 1 at the
   tail; the SMA inchworm's heat-cool square wave with a heat wave along the body (`lag`: group
   j heated j lag periods after group 0) and the grip's phase free (`grip_shift`). The defaults
   of each family are the id's default baseline or its stored tuning, so the search starts
-  from it (its first candidate).
+  from it (and scores it first).
 - **Objective**: the benchmark's score (`rl_tasks.score_episode`: speed towards the target,
   m/s) averaged over the training conditions `TUNE_SEEDS` (draws of the declared randomisation
   ranges, `rl_tasks.test_kwargs`; never a test seed 20000-20019).
@@ -27,8 +27,8 @@ Protocol (docs/benchmark.md, "References"):
   nothing better returns the baseline's gait. A global
   differential evolution (scipy, 6 generations of 30) found nothing better than the eel's
   start: random gaits of this family are far worse than the tuned one, so the search refines
-  it. The result is stored in `BEST` (the command writes the numbers and the training score
-  to a JSON file).
+  it. The result is stored in `BEST`; the command writes every robot's numbers, finalists and
+  scores to `--out` (docs/results/gaits.json is the run behind `BEST`).
 """
 
 from __future__ import annotations
