@@ -185,32 +185,30 @@ def search(env_id: str, budget: int = 150, seeds: Sequence[int] = TUNE_SEEDS) ->
     opts = {"bounds": [0.0, 1.0], "seed": SEARCH_SEED, "maxfevals": budget, "verbose": -9,
             "verb_log": 0, "verb_disp": 0, "tolfun": 1e-7}  # fmt: skip
     es = cma.CMAEvolutionStrategy(u0, SIGMA0, opts)
-    start_score = mean_score(env_id, fam.start, seeds)
-    tried: list[tuple[float, np.ndarray]] = [(start_score, u0)]
+    start = (mean_score(env_id, fam.start, seeds), dict(fam.start))
+    tried = [start]  # (training score, parameters) of every gait scored
     with tqdm(total=budget, desc=env_id, unit="gait") as bar:
         while not es.stop():
             us = es.ask()
-            scores = [mean_score(env_id, params(u), seeds) for u in us]
+            gaits = [params(u) for u in us]
+            scores = [mean_score(env_id, g, seeds) for g in gaits]
             es.tell(us, [-v for v in scores])
             bar.update(len(us))
-            tried += zip(scores, us)
+            tried += zip(scores, gaits)
     # the finalists: the FINALISTS best on the training conditions and the start, the winner
     # the best of them on the validation conditions
-    start = tried[0]
-    tried.sort(key=lambda su: -su[0])
-    finalists = tried[:FINALISTS] + ([start] if all(u is not start[1] for _, u in
-                                                     tried[:FINALISTS]) else [])  # fmt: skip
-    valid = [mean_score(env_id, params(u), VALIDATION_SEEDS) for _, u in finalists]
+    best = sorted(tried, key=lambda sg: -sg[0])[:FINALISTS]
+    finalists = best + ([start] if all(g is not start[1] for _, g in best) else [])
+    valid = [mean_score(env_id, g, VALIDATION_SEEDS) for _, g in finalists]
     k = int(np.argmax(valid))
-    return {"env_id": env_id, "params": params(finalists[k][1]),
+    return {"env_id": env_id, "params": finalists[k][1],
             "train_score": finalists[k][0], "validation_score": valid[k],
-            "start": fam.start, "start_score": start_score,
-            "start_validation_score": mean_score(env_id, fam.start, VALIDATION_SEEDS),
+            "start": fam.start, "start_score": start[0],
+            "start_validation_score": valid[finalists.index(start)],
             "finalists": [{"train": t, "validation": v} for (t, _), v in zip(finalists, valid)],
-            "episodes": (es.countevals + 1) * len(seeds) + (len(finalists) + 1)
-            * len(VALIDATION_SEEDS), "seeds": list(seeds),
-            "validation_seeds": list(VALIDATION_SEEDS), "evaluations": es.countevals,
-            "sigma0": SIGMA0}  # fmt: skip
+            "episodes": len(tried) * len(seeds) + len(finalists) * len(VALIDATION_SEEDS),
+            "seeds": list(seeds), "validation_seeds": list(VALIDATION_SEEDS),
+            "evaluations": es.countevals, "sigma0": SIGMA0}  # fmt: skip
 
 
 def main(argv: Sequence[str] | None = None) -> int:
