@@ -193,8 +193,12 @@ def wire_groups(
     try:
         sizing = size_wires(params.youngs_modulus, params.width, params.height, max_curvature,
                             diameter, lever, alloy)  # fmt: skip
-    except ValueError as exc:
-        raise ValueError(f"max_curvature: {str(exc).split(': ', 1)[1]}") from None
+    except ValueError:
+        raise ValueError(
+            f"max_curvature, wire_lever_arm: the wires' strain max_curvature x wire_lever_arm "
+            f"= {max_curvature * lever:.4f} exceeds the repeatable {alloy.repeatable_strain[1]} "
+            f"of {alloy.name} (lower one of them)"
+        ) from None
     if ambient >= alloy.martensite_finish:
         raise ValueError(
             f"ambient_temperature: {ambient} degC is not below Mf = {alloy.martensite_finish} "
