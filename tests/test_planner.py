@@ -114,3 +114,43 @@ def test_one_row_guided_by_a_baseline_is_that_baseline():
     base = _rollout(env, make_baseline(env, "scheduled_lqr"), 5)
     ctrl = SamplingPlanner(env, horizon=3, samples=1, replan=1, base="scheduled_lqr")
     assert np.array_equal(_rollout(env, ctrl, 5), base)
+
+
+def test_the_floating_forecast_reads_only_the_past_and_fits_it():
+    """FloatingGOWEC's causal forecast (`causal_forecast_floating`) reads the incident elevation
+    only up to now (the env's sea is wrapped so that a later time raises), and the rows' fitted
+    sea reproduces the measured record, the independent truth, over the last 30 s to within
+    10 % of its RMS (6.9 % measured, seed 3: the fit's ridge keeps it smooth enough to
+    continue)."""
+    from mf_envs.controllers.planner import causal_forecast_floating
+    from mf_envs.physics.gowec.hydro.batch import elevation
+
+    env = gym.make("FloatingGOWEC-v0", significant_wave_height=1.5, peak_period=7.0,
+                   episode_seconds=120.0)  # fmt: skip
+    env.reset(seed=3)
+    for _ in range(3000):  # 60 s of past
+        env.step(np.zeros(1, np.float32))
+    u = env.unwrapped
+    now, wave = u._steps * u.control_dt, u.wave
+
+    class PastOnly:
+        def __getattr__(self, name):
+            return getattr(wave, name)
+
+        def elevation(self, t):
+            assert np.max(t) <= now + 1e-9, "the forecast read the sea ahead"
+            return wave.elevation(t)
+
+    u.wave = PastOnly()
+    vec = gym.make_vec("FloatingGOWEC-v0", num_envs=2, vectorization_mode="vector_entry_point",
+                       significant_wave_height=1.5, peak_period=7.0,
+                       episode_seconds=120.0).unwrapped  # fmt: skip
+    vec.reset(seed=0)
+    vec.load_env(u)
+    causal_forecast_floating(vec, u, 300)
+    u.wave = wave
+    t = now - np.linspace(0.0, 30.0, 301)
+    s = vec.sea
+    fit = np.array([elevation(x, s["amp"][1], s["om"][1], s["eps"][1]) for x in t])
+    true = wave.elevation(t)
+    assert np.sqrt(np.mean((fit - true) ** 2)) < 0.1 * np.sqrt(np.mean(true**2))

@@ -21,8 +21,9 @@ What it knows (`causal`):
   Not a controller a device could run: it reads the env's state, not the observation.
 - causal MPC (`causal=True`): the same rows, but their future sea is replaced at each replan
   by a forecast (`causal_forecast_stabilizer` below: the excitation met up to now, a linear
-  autoregressive predictor beyond it): it still reads the env's physical state (a perfect
-  state estimate) and the sea's past, but not the sea ahead.
+  autoregressive predictor beyond it; `causal_forecast_floating`: the elevation at the hull
+  met up to now and its AR continuation, fitted as a sea): it still reads the env's physical
+  state (a perfect state estimate) and the sea's past, but not the sea ahead.
 
 Hand-written (CEM is ten lines; no maintained library plans on an external batched simulator
 without a copy of its model), on the env's own kernels: one source of the dynamics.
@@ -30,6 +31,7 @@ without a copy of its model), on the env's own kernels: one source of the dynami
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -197,10 +199,13 @@ class SamplingPlanner:
 
 def _forecast_of(env: Any) -> Any:
     """The causal forecast of the env's module (module doc); ValueError if it has none."""
+    from mf_envs.envs.gowec_v1.env import GOWECV1Env
     from mf_envs.envs.gyro_stabilizer.env import GyroStabilizerEnv
 
     if isinstance(env, GyroStabilizerEnv) and "irregular_waves" in env.effects:
         return causal_forecast_stabilizer
+    if isinstance(env, GOWECV1Env) and env.irregular:
+        return causal_forecast_floating
     raise ValueError(f"causal: no forecast for {type(env).__name__} in this sea")
 
 
@@ -208,6 +213,7 @@ def _forecast_of(env: Any) -> Any:
 AR_DT = 0.2  # s: the predictor's sampling (the sea's peak periods are 3-6 s)
 AR_ORDER = 16  # past samples per prediction (3.2 s)
 AR_MEMORY = 60.0  # s of past the predictor is fitted on, at each replan
+FIT_RIDGE = 1e-3  # the floating forecast's harmonic fit: ridge / mean diagonal of A^T A
 
 
 def ar_forecast(past: np.ndarray, steps: int, order: int = AR_ORDER) -> np.ndarray:
@@ -246,3 +252,55 @@ def causal_forecast_stabilizer(vec: Any, env: Any, horizon: int) -> None:
         past = tab[past_idx, col]
         ahead = np.concatenate([[tab[i_now, col]], ar_forecast(past, span)])
         vec.b.tab[:, fine, col] = np.interp(fine, coarse, ahead)
+
+
+def causal_forecast_floating(vec: Any, env: Any, horizon: int) -> None:
+    """FloatingGOWEC-v0 in irregular seas: every row's sea is replaced by a sea fitted to the
+    elevation at the hull, measured up to now and forecast beyond it. The elevation of the last
+    AR_MEMORY seconds (sampled every AR_DT, divided by the start-up ramp where it is above 1/2)
+    is extended over the planning horizon by `ar_forecast`; the record and its forecast are
+    then fitted, by least squares with a small ridge, by a sum of harmonics of the predictor's
+    own frequencies (as many as the env's components, at the centres of equal bins over
+    [0.3, 3] x the sea's peak frequency: the operator knows the sea state, not the realisation's
+    frequencies), and the hull's excitation, drag and translation loads of that sea
+    (`FloatingModel.set_sea` on a copy of the env's model) go into every row. The rows' rollouts
+    never read past the forecast window."""
+    import copy
+
+    from mf_envs.physics.gowec.hydro.sea import ramp
+    from mf_envs.physics.waves import WaveField, wavenumber
+
+    wave, dt = env.wave, env.control_dt
+    now = env._steps * dt
+    t = now - AR_DT * np.arange(round(AR_MEMORY / AR_DT), -1, -1)
+    t = t[t >= 0.0]
+    tramp = float(env.model.sp[1])
+    t = t[np.array([ramp(x, tramp) > 0.5 for x in t], dtype=bool)]
+    eta = wave.elevation(t)  # the probe's record (elevation x ramp) / ramp
+    n_ahead = int(np.ceil(horizon * dt / AR_DT)) + 1
+    ahead = ar_forecast(eta, n_ahead)
+    t_all = np.concatenate([t, now + AR_DT * np.arange(1, n_ahead + 1)])
+    e_all = np.concatenate([eta, ahead])
+    m = wave.omegas.shape[0]
+    wp = 2.0 * math.pi / float(env.wave_period)
+    edges = np.linspace(0.3 * wp, 3.0 * wp, m + 1)
+    om = 0.5 * (edges[1:] + edges[:-1])
+    A = np.concatenate([np.cos(np.outer(t_all, om)), np.sin(np.outer(t_all, om))], axis=1)
+    if t_all.size:
+        ridge = FIT_RIDGE * np.trace(A.T @ A) / A.shape[1]
+        x = np.linalg.solve(A.T @ A + ridge * np.eye(A.shape[1]), A.T @ e_all)
+    else:
+        x = np.zeros(2 * m)
+    # a cos(-w t + eps) = a cos(eps) cos(w t) + a sin(eps) sin(w t)
+    amp, eps = np.hypot(x[:m], x[m:]), np.arctan2(x[m:], x[:m])
+    three = env.model.three
+    depth = float(three.water_depth) if three is not None else math.inf
+    fit = WaveField(amp, om, eps, wavenumber(om, depth), wave.direction, wave.buoy_radius)
+    model = getattr(vec, "_forecast_model", None)
+    if model is None:
+        model = vec._forecast_model = copy.deepcopy(env.model)
+    model.set_sea(fit)
+    row = (om, amp, eps, model._cp, model._cr, model._dk)
+    for key, value in zip(("om", "amp", "eps", "cp", "cr", "dk"), row):
+        vec.sea[key][:] = 0.0
+        vec.sea[key][:, :m] = value
