@@ -23,14 +23,13 @@ and the matched linear PTO.
   response of hull + gyro units to every wave component, the quadratic drag by stochastic
   (Lorentz) linearisation, the electrical power from the synthesised time signal of
   M_g phi'), inside the drive's limits and the swings the model is trusted to: a global grid
-  search over (c, k) polished by a local search (`pto_search`). `efficient_pto` may stiffen
-  the spring (never soften it: the branch the model predicts worst) where the prediction is
-  positive and above the damper's; the search's record (predicted power) is the
-  controller's `prediction`. With a
+  search over (c, k) polished by a bounded scalar search on c (`pto_search`). The reactive
+  setting is taken only where its prediction is positive and clearly above the damper's;
+  the search's record (predicted power) is the controller's `prediction`. With a
   speed-dependent flywheel loss (the ISWEC-class device) both also set the **flywheel speed**
   per sea, as ISWEC does: the same search at each speed of a grid over the device's speed range
-  (`speed_search`: H = J psi' and the loss change with it), the damper's best kept, so a small
-  sea runs a slower, cheaper flywheel; `efficient_pto` then searches its spring at that speed.
+  (`speed_search`: H = J psi' and the loss change with it), the best kept, so a small sea runs a
+  slower, cheaper flywheel.
 """
 
 from __future__ import annotations
@@ -200,7 +199,7 @@ MAX_LINEAR_GIMBAL = 0.6  # rad: gimbal swing the linearisation is trusted to (co
 PITCH_MARGIN = 0.75  # predicted peak tilt kept below this fraction of the survival tilt
 CENTRING = 0.25  # minimum spring k >= CENTRING I_g w^2: without one a gimbal swinging ~1 rad
 # drifts to +-pi/2, where the gyroscopic torque H theta' cos(phi) vanishes, and stays there
-REACTIVE_SPRINGS = 24  # the reactive grid's springs (`pto_search`)
+REACTIVE_GAIN = 1.1  # the reactive PTO only where it is predicted > 10 % above the damper
 
 
 def net_electrical_power(raw: Any, c: float, k: float) -> float:
@@ -231,15 +230,14 @@ def pto_search(
     """The linear PTO of the highest predicted net electrical power inside the limits
     (`LinearModel.predict`), by a global grid search over the gains, polished by a bounded
     scalar search on c around the grid's best: c on 41 log-spaced values over five decades
-    about the mechanical match's c* (`matched_pto`); `passive`: k = k_c only (the damper; k_c
-    the centring spring, `centring_stiffness`). Otherwise also the reactive PTO, a stiffer
-    spring k = k_c + s (s on REACTIVE_SPRINGS log-spaced values from k_c / 10 to
-    4 (|k*| + c* w)), polished in both gains (Nelder-Mead on log c, log s); stiffening only:
-    a softer spring than k_c (a negative s) is the branch the linear model predicts worst (the
-    gimbal as a near-free spring detunes the hull). The reactive PTO is kept where its
-    prediction is positive and above the damper's, else the damper. `model`: the sea's
-    `LinearModel` (default: at the env's flywheel speed). Returns the chosen record: c, k,
-    net_W (the prediction), excess, speed, passive_W (the damper's prediction)."""
+    about the mechanical match's c* (`matched_pto`), k = k_c + s (k_c the centring spring,
+    `centring_stiffness`; s on 12 values from 0 to 4 (|k*| + c* w)); `passive`: k = k_c only
+    (the damper). The reactive PTO is kept only where its prediction is positive and
+    REACTIVE_GAIN x above the damper's (the model is linear and the reactive branch the one it
+    predicts least well); otherwise, and wherever the prediction is negative, the damper's
+    setting. `model`: the sea's `LinearModel` (default: a new one at the env's flywheel speed).
+    Returns the chosen record: c, k, net_W (the prediction), excess, speed, passive_W (the
+    damper's prediction)."""
     from scipy.optimize import minimize_scalar
 
     model = LinearModel(raw) if model is None else model
@@ -250,8 +248,13 @@ def pto_search(
 
     def polish(r: dict[str, float]) -> dict[str, float]:
         k = r["k"]
+
+        def cost(x: float) -> float:
+            q = model.predict(math.exp(x), k)
+            return -q["net_W"] + 1e9 * max(q["excess"] - 1.0, 0.0)
+
         res = minimize_scalar(
-            lambda x: _cost(model, math.exp(x), k),
+            cost,
             bounds=(math.log(r["c"]) - 0.2, math.log(r["c"]) + 0.2), method="bounded",
             options={"xatol": 1e-3},
         )  # fmt: skip
@@ -261,35 +264,15 @@ def pto_search(
     damper = polish(_best(model.predict_many(cs, np.full(cs.size, kc))))
     best = damper
     if not passive:
-        top = 4.0 * (abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period))
-        grid = [r for s in np.geomspace(0.1 * kc, max(top, kc), REACTIVE_SPRINGS)
+        ks = abs(k0) + c0 * 2.0 * math.pi / float(raw.wave_period)
+        grid = [r for s in np.linspace(0.0, 4.0, 12)[1:] * ks
                 for r in model.predict_many(cs, np.full(cs.size, kc + s))]  # fmt: skip
-        reactive = _best(grid + [damper])
-        if reactive["k"] > kc:
-            reactive = _polish_spring(model, reactive, kc)
+        reactive = polish(_best(grid + [damper]))
+        gain = reactive["net_W"] - damper["net_W"]
         if (reactive["excess"] <= 1.0 and reactive["net_W"] > 0.0
-                and reactive["net_W"] > damper["net_W"]):  # fmt: skip
+                and gain > (REACTIVE_GAIN - 1.0) * abs(damper["net_W"])):  # fmt: skip
             best = reactive
     return dict(best, k=float(best["k"]), passive_W=damper["net_W"])
-
-
-def _polish_spring(model: LinearModel, r: dict[str, float], kc: float) -> dict[str, float]:
-    """`r` (a reactive grid point, k > kc) polished in (log c, log (k - kc)) by Nelder-Mead on
-    the model's net power inside the limits; `r` itself where that finds nothing better."""
-    from scipy.optimize import minimize
-
-    x0 = [math.log(r["c"]), math.log(r["k"] - kc)]
-    opts = {"xatol": 1e-3, "fatol": 1.0, "maxfev": 80}
-    res = minimize(lambda x: _cost(model, math.exp(x[0]), kc + math.exp(x[1])), x0,
-                   method="Nelder-Mead", options=opts)  # fmt: skip
-    q = model.predict(math.exp(res.x[0]), kc + math.exp(res.x[1]))
-    return q if q["excess"] <= max(r["excess"], 1.0) and q["net_W"] > r["net_W"] else r
-
-
-def _cost(model: LinearModel, c: float, k: float) -> float:
-    """The searches' objective: minus the predicted net power, plus a wall past the limits."""
-    q = model.predict(c, k)
-    return -q["net_W"] + 1e9 * max(q["excess"] - 1.0, 0.0)
 
 
 SPEEDS = 9  # the speed schedule's grid: geometric over the device's speed range
@@ -313,21 +296,13 @@ def scheduled_speeds(raw: Any) -> np.ndarray:
 
 def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
     """The flywheel speed and linear PTO of the highest predicted net electrical power inside
-    the limits: the damper's `pto_search` at each of `scheduled_speeds` on the sea's linear
-    model (H = J psi' and the running loss at each speed), the best kept (`_best`); where the
-    next slower grid speed predicts more but breaks a limit, REFINE bisections (geometric)
-    between the two keep the best inside the limits. ISWEC sets its flywheel speed with the PTO
-    per sea state (module doc). Not `passive`: then the reactive search (`pto_search`) at that
-    speed (the speed is the damper's: a spring searched at every speed costs ten times more).
-    Returns `pto_search`'s record with `speed` (rad/s)."""
+    the limits: `pto_search` at each of `scheduled_speeds` on the sea's linear model (H = J psi'
+    and the running loss at each speed), the best kept (`_best`); where the next slower grid
+    speed predicts more but breaks a limit, REFINE bisections (geometric) between the two keep
+    the best inside the limits. ISWEC sets its flywheel speed with the PTO per sea state
+    (module doc). Returns `pto_search`'s record with `speed` (rad/s)."""
     model = LinearModel(raw)
-    best = _damper_speed(raw, model)
-    return best if passive else pto_search(raw, False, model.at_speed(best["speed"]))
-
-
-def _damper_speed(raw: Any, model: LinearModel) -> dict[str, float]:
-    """The damper's record at its best speed (`speed_search`)."""
-    grid = [pto_search(raw, True, model.at_speed(float(w))) for w in scheduled_speeds(raw)]
+    grid = [pto_search(raw, passive, model.at_speed(float(w))) for w in scheduled_speeds(raw)]
     best = _best(grid)
     i = next(j for j, r in enumerate(grid) if r is best)
     if best["excess"] <= 1.0 and i > 0 and grid[i - 1]["net_W"] > best["net_W"]:
@@ -335,12 +310,18 @@ def _damper_speed(raw: Any, model: LinearModel) -> dict[str, float]:
         lo, hi = grid[i - 1]["speed"], best["speed"]
         for _ in range(REFINE):
             mid = math.copysign(math.sqrt(lo * hi), hi)
-            r = pto_search(raw, True, model.at_speed(mid))
+            r = pto_search(raw, passive, model.at_speed(mid))
             if r["excess"] <= 1.0:
                 best, hi = (r if r["net_W"] > best["net_W"] else best), mid
             else:
                 lo = mid
     return best
+
+
+def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
+    """(c, k) of `pto_search` (N m s/rad, N m/rad)."""
+    r = pto_search(raw, passive)
+    return r["c"], r["k"]
 
 
 class EfficientPTOController:
