@@ -75,7 +75,8 @@ def _scratch(n_dof, n_el, n_ctrl):
 
 
 def scratch(model, n_ctrl: int) -> tuple:
-    """An eel's scratch (no state: every entry is written before it is read): the Newton
+    """An eel's scratch (no state: every entry is written before it is read, but for the
+    Newton predictor's hint, which orders its work and changes no result): the Newton
     solver's (`swimmer.kernels.make_scratch`), four kappa# tables at the Gauss points (n_el, 4),
     the work sums, the new command at the control points (n_ctrl,) and the step's start state
     (2, n_dof) (a step redone under the power limit)."""

@@ -113,39 +113,41 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
     body.load = (nzt, npt, law) (`fluid.shape_tables`, `Water.packed()`), body.th = (theta of
     the water force, theta of the stresses). d, v receive the result, from the predictor of
     `serpentine.kernels` (the constant-velocity configuration, or the start if its residual is
-    far smaller: the start's residual and tangent are formed, the other's residual alone, its
-    tangent only if it is chosen; the same bits as forming both). Converged as the
+    far smaller). Of the two candidates the one the last step chose (sc's hint) is formed with
+    its tangent, the other's residual alone, and its tangent only if it is chosen: the same
+    bits as forming both (the hint orders the work, not the result). Converged as the
     serpentine's: a correction below tol, or, in the quadratic phase, the next one predicted
     below tol / 1000 from the last two. sc: `make_scratch` (no allocation here). Returns the
     Newton iterations, or minus the iterations spent on failure."""
     nzt, npt, law = body.load
     th = body.th[0]
     m_a = law[W_MA]
-    nd = d0.shape[0]
     u_scale, tab, tol = body.quad[2], body.quad[3], body.tol
     work, piv = sc[0], sc[1]
     ab, ab2, cm, buf, buf2, pre, p0 = sc[8], sc[9], sc[10], sc[11], sc[12], sc[15], sc[16]
+    hint = sc[17]
     added_momentum(d0, v0, body.le, nzt, npt, m_a, p0, work, 0.0, 0.0)
     fused.start_strains(d0, body.le, k0, tab, pre)
     fused.scale_band(body.mass, 2.0 / (dt * dt), cm)
     # predictor (`serpentine.kernels`): the start d0 if its residual is below PREDICTOR_RATIO
     # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
-    # iteration's
-    for i in range(nd):
-        d[i] = d0[i]
+    # iteration's. The last step's choice first, with its tangent; the other's residual alone
+    cv_first = hint[0] > 0.0
+    _predictor(d, d0, v0, dt, cv_first)
     _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v, True)
     tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
-    for i in range(nd):
-        d[i] = d0[i] + dt * v0[i]
-    _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v, False)  # its tangent if chosen
+    _predictor(d, d0, v0, dt, not cv_first)
+    _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v, False)
     tail_into(buf2[2], buf2[3], law, buf2[0], ab2, -th, -2.0 * th / dt)
-    n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
-    first = 1  # the last iteration whose residual and tangent are formed already
-    if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
-        first = 0  # d0 + dt v0: formed again, with its tangent, into buf and ab
+    n_first, n_other = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
+    n_start, n_cv = (n_other, n_first) if cv_first else (n_first, n_other)
+    use_cv = not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv))
+    hint[0] = 1.0 if use_cv else 0.0
+    first = 1  # iterations whose residual and tangent are formed already
+    if use_cv == cv_first:
+        _predictor(d, d0, v0, dt, use_cv)
     else:
-        for i in range(nd):
-            d[i] = d0[i]
+        first = 0  # the other one (in d): formed again, with its tangent, into buf and ab
     r, x = buf[0], buf[1]
     back1 = np.inf
     for it in range(1, body.max_iter + 1):
@@ -164,6 +166,13 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
     return -body.max_iter
 
 
+@kernel(forceinline=True)
+def _predictor(d, d0, v0, dt, cv):
+    """d = d0 + dt v0 (cv) or d0: the candidates of `newton_step`'s predictor."""
+    for i in range(d0.shape[0]):
+        d[i] = d0[i] + dt * v0[i] if cv else d0[i]
+
+
 def make_scratch(n_dof: int, n_elements: int) -> tuple:
     """The scratch of `advance_linear` / `run` (the step allocates nothing): the band solver's
     (work, pivots), kappa# at the sub-step ends (n_el, 4) x 2, the states at the sub-step ends
@@ -173,18 +182,19 @@ def make_scratch(n_dof: int, n_elements: int) -> tuple:
 
 @numba.njit(cache=True, nogil=True)
 def _scratch(n_dof, n_elements):
-    ab, ab2, cm, buf, buf2, e11, ke, pre, p0 = newton_scratch(n_dof, n_elements)
+    ab, ab2, cm, buf, buf2, e11, ke, pre, p0, hint = newton_scratch(n_dof, n_elements)
     return (np.empty((n_dof, 3 * HALF_BW + 1)), np.empty(n_dof, np.int64),
             np.empty((n_elements, 4)), np.empty((n_elements, 4)), np.empty(n_dof),
             np.empty(n_dof), np.empty(n_dof), np.empty(n_dof), ab, ab2, cm, buf, buf2, e11,
-            ke, pre, p0)  # fmt: skip
+            ke, pre, p0, hint)  # fmt: skip
 
 
 @numba.njit(cache=True, nogil=True)
 def newton_scratch(n_dof, n_elements):
     """`newton_step`'s arrays (no state: one set serves every row and step): two tangent bands
     and the inertia's, two sets of Newton vectors, the element vectors and matrix, the start's
-    strains, the water's start momentum."""
+    strains, the water's start momentum, and the predictor's hint (1,) (the last choice, 1.0
+    for d0 + dt v0: it orders the predictor's work, no result depends on it)."""
     return (
         np.zeros((N_BAND, n_dof)),
         np.zeros((N_BAND, n_dof)),
@@ -195,6 +205,7 @@ def newton_scratch(n_dof, n_elements):
         np.empty((11, 11)),
         np.empty((n_elements, MAX_QUAD, fused.N_START)),
         np.empty(n_dof),
+        np.zeros(1),
     )
 
 
