@@ -39,7 +39,7 @@ from mf_envs._jit import kernel
 from mf_envs.physics.beam import fused
 from mf_envs.physics.beam.banded import HALF_BW, N_BAND
 from mf_envs.physics.beam.element import GAUSS_W, N_GAUSS
-from mf_envs.physics.serpentine.kernels import MAX_QUAD, PREDICTOR_RATIO
+from mf_envs.physics.serpentine.kernels import MAX_QUAD, predictor_into, start_choice
 from mf_envs.physics.serpentine.stepping import (
     converged,
     correct,
@@ -133,25 +133,23 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
     # times the constant-velocity d0 + dt v0's; its residual and tangent are the first
     # iteration's. The last step's choice first, with its tangent; the other's residual alone
     cv_first = hint[0] > 0.0
-    _predictor(d, d0, v0, dt, cv_first)
+    predictor_into(d, d0, v0, dt, cv_first)
     _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v, True)
     tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
-    _predictor(d, d0, v0, dt, not cv_first)
+    predictor_into(d, d0, v0, dt, not cv_first)
     _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v, False)
     tail_into(buf2[2], buf2[3], law, buf2[0], ab2, -th, -2.0 * th / dt)
     n_first, n_other = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
-    n_start, n_cv = (n_other, n_first) if cv_first else (n_first, n_other)
-    use_cv = not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv))
-    hint[0] = 1.0 if use_cv else 0.0
-    first = 1  # iterations whose residual and tangent are formed already
-    if use_cv == cv_first:
-        _predictor(d, d0, v0, dt, use_cv)
-    else:
-        first = 0  # the other one (in d): formed again, with its tangent, into buf and ab
+    if start_choice(n_first, n_other, cv_first, hint) == cv_first:
+        predictor_into(d, d0, v0, dt, cv_first)
+    else:  # the other (in d), with its tangent
+        buf, ab = buf2, ab2
+        _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v, True)
+        tail_into(buf[2], buf[3], law, buf[0], ab, -th, -2.0 * th / dt)
     r, x = buf[0], buf[1]
     back1 = np.inf
     for it in range(1, body.max_iter + 1):
-        if it > first:
+        if it > 1:
             _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v, True)
             tail_into(buf[2], buf[3], law, r, ab, -th, -2.0 * th / dt)
         if fused.solve(ab, r, work, piv, x) != 0:
@@ -164,13 +162,6 @@ def newton_step(d0, v0, k0, k1, dt, body, d, v, sc):
             return it
         back1 = step
     return -body.max_iter
-
-
-@kernel(forceinline=True)
-def _predictor(d, d0, v0, dt, cv):
-    """d = d0 + dt v0 (cv) or d0: the candidates of `newton_step`'s predictor."""
-    for i in range(d0.shape[0]):
-        d[i] = d0[i] + dt * v0[i] if cv else d0[i]
 
 
 def make_scratch(n_dof: int, n_elements: int) -> tuple:
