@@ -344,6 +344,10 @@ def test_fused_newton_residual_equals_the_beam_and_ground_assemblies(viscous):
         assert np.max(np.abs(buf[0] - r0)) <= 1e-12 * np.max(np.abs(r0))
         assert np.max(np.abs(band_to_dense(ab) - k_dense)) <= 1e-13 * np.max(np.abs(k_dense))
         np.testing.assert_allclose(v_out, v, rtol=1e-15, atol=1e-15)
+        # the residual alone (the predictor's other candidate): the same bits, no tangent
+        r_full, ab_full, other = buf[0].copy(), ab.copy(), sc[14]
+        kernels._residual(d0, v0, d, k0, k1, dt, body, sc, sc[13], other, v_out, False)
+        assert np.array_equal(sc[13][0], r_full) and np.array_equal(ab, ab_full)
         sol = np.empty(nd)
         assert fused.solve(ab, buf[0], work, piv, sol) == 0
         want = np.linalg.solve(k_dense, r0)
@@ -392,3 +396,45 @@ def test_globalised_newton_finds_the_plain_newtons_step():
         out.append((d, v))
     assert np.max(np.abs(out[0][0] - out[1][0]) / m.u_scale) < 1e-9
     assert np.allclose(out[0][1], out[1][1], rtol=1e-6, atol=1e-9)
+
+
+@pytest.mark.parametrize("env_id", ["Serpentine-v0", "Eel-v0"])
+def test_newton_steps_do_not_depend_on_the_predictors_hint(env_id):
+    """The predictor's hint (the last step's choice, kept in the scratch) only orders its work:
+    the crawler's and the swimmer's Newton steps give the same bits from either hint, after a
+    command jump (the start d0 chosen) and along the baseline's smooth gait (d0 + dt v0)."""
+    import gymnasium as gym
+
+    from mf_envs.controllers import make_baseline
+    from mf_envs.envs import _beam_rows as br
+    from mf_envs.physics.serpentine import kernels as crawler
+    from mf_envs.physics.swimmer import kernels as swimmer
+
+    kern = swimmer if env_id == "Eel-v0" else crawler
+    env = gym.make(env_id).unwrapped
+    obs, _ = env.reset(seed=4)
+    ctrl = make_baseline(env)
+    ctrl.reset()
+    cfg, chosen = env.cfg, set()
+    ne = cfg.body.le.shape[0]
+    sc = kern.make_scratch(env.state.shape[1], ne)
+    hint = sc[17] if kern is swimmer else sc[16]
+    rng = np.random.default_rng(0)
+    for step in range(12):
+        d0, v0 = env.state[0].copy(), env.state[1].copy()
+        jump = env.cmd + (
+            0.05 * cfg.max_curvature * rng.uniform(-1, 1, env.cmd.shape) if step % 2 else 0.0
+        )
+        k0, k1 = np.empty((ne, 4)), np.empty((ne, 4))
+        br.to_gauss(cfg.interp, env.cmd, jump, k0, k1)
+        out = []
+        for h in (0.0, 1.0):
+            d, v = np.empty_like(d0), np.empty_like(d0)
+            hint[0] = h
+            its = kern.newton_step(d0, v0, k0, k1, cfg.h, cfg.body, d, v, sc)
+            out.append((its, d, v))
+            chosen.add(hint[0])
+        assert out[0][0] == out[1][0] > 0
+        assert np.array_equal(out[0][1], out[1][1]) and np.array_equal(out[0][2], out[1][2])
+        obs = env.step(ctrl.predict(obs)[0])[0]
+    assert chosen == {0.0, 1.0}  # both starts were chosen

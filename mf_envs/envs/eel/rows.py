@@ -75,7 +75,8 @@ def _scratch(n_dof, n_el, n_ctrl):
 
 
 def scratch(model, n_ctrl: int) -> tuple:
-    """An eel's scratch (no state: every entry is written before it is read): the Newton
+    """An eel's scratch (no state: every entry is written before it is read, but for the
+    Newton predictor's hint, which orders its work and changes no result): the Newton
     solver's (`swimmer.kernels.make_scratch`), four kappa# tables at the Gauss points (n_el, 4),
     the work sums, the new command at the control points (n_ctrl,) and the step's start state
     (2, n_dof) (a step redone under the power limit)."""
@@ -172,7 +173,7 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
     """One control step of one eel in place (module docstring): d, v (n_dof,), cmd (n,) [1/m]
     the previous command, phase (1,) the wave's phase [rad] (action_mode "wave"), action in
     [-1, 1] ((n,) or (3,)); obs (2 n + 6) float32, body (5,), rep (N_REPORT,) the report; sc
-    `scratch` (no state). A failed substep stops the step (rep[REP_OK] = 0). Under the power
+    `scratch`. A failed substep stops the step (rep[REP_OK] = 0). Under the power
     limit (`Wave.max_work` finite), a step whose muscles did more positive work than the limit
     (by more than POWER_TOLERANCE) is redone from its start, at most POWER_RETRIES times, with
     the change scaled by the fraction s of `_work_model` that keeps its work within the limit:
@@ -223,7 +224,7 @@ def step_row(d, v, cmd, phase, action, cfg, sc, body, obs, rep):
 def step_rows(lo, hi, active, actions, state, cmd, phase, cfg, body, obs, rep):
     """`step_row` for the active rows lo <= i < hi: state (N, 2, n_dof) (d, v), cmd (N, n),
     phase (N, 1), actions (N, n or 3), body (N, 5), obs (N, 2 n + 6) float32, rep
-    (N, N_REPORT). One scratch serves the block (it holds no state)."""
+    (N, N_REPORT). One scratch serves the block (no result depends on what it holds)."""
     sc = _scratch(state.shape[2], cfg.body.le.shape[0], cmd.shape[1])
     for i in range(lo, hi):
         if active[i]:

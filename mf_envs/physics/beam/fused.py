@@ -97,11 +97,12 @@ def gather(d, e, out):
 
 
 @kernel(forceinline=True)
-def element_internal(e, deb, le_e, ksh_a, ksh_b, qw, stiff, theta, rate, tab, pre, fe, ke):
+def element_internal(e, deb, le_e, ksh_a, ksh_b, qw, stiff, theta, rate, tab, pre, fe, ke,
+                     tangent=True):  # fmt: skip
     """fe += the element's algorithmic internal force Pbar, ke += dPbar/db (11 x 11, element
-    order) at b = deb (`beam.algorithmic`: stresses at theta, the strain shift
-    -rate (kappa#_b - kappa#_a) in the bending stress, the Kelvin-Voigt damper of
-    `serpentine.kernels`). pre: `start_strains` of configuration a."""
+    order; tangent=False: ke untouched, fe the same bits) at b = deb (`beam.algorithmic`:
+    stresses at theta, the strain shift -rate (kappa#_b - kappa#_a) in the bending stress, the
+    Kelvin-Voigt damper of `serpentine.kernels`). pre: `start_strains` of configuration a."""
     for g in range(qw.shape[0]):
         t = tab[e, g]
         q = pre[e, g]
@@ -131,6 +132,13 @@ def element_internal(e, deb, le_e, ksh_a, ksh_b, qw, stiff, theta, rate, tab, pr
         fz2 = w * (sbar * n1 + cbar * n2)
         fp = w * sig * (u1 * n1 + u2 * n2)
         fk = w * m3
+        for k in range(4):
+            fe[k] += fz1 * t[k]
+            fe[4 + k] += fz2 * t[k]
+        for m in range(3):
+            fe[8 + m] += fp * t[4 + m] + fk * t[7 + m]
+        if not tangent:
+            continue
         # tangent: material Bbar^T D theta B(b) plus the geometric part (`beam.algorithmic._geo`)
         wt = w * theta
         dh00, dh01 = -0.5 * sig * sm, 0.5 * sig * cm
@@ -149,8 +157,6 @@ def element_internal(e, deb, le_e, ksh_a, ksh_b, qw, stiff, theta, rate, tab, pr
         ckk = wt * s2
         for k in range(4):
             dk = t[k]
-            fe[k] += fz1 * dk
-            fe[4 + k] += fz2 * dk
             for m in range(4):
                 dkm = dk * t[m]
                 ke[k, m] += c11 * dkm
@@ -164,22 +170,24 @@ def element_internal(e, deb, le_e, ksh_a, ksh_b, qw, stiff, theta, rate, tab, pr
                 ke[8 + m, k] += cp1 * dkm
                 ke[8 + m, 4 + k] += cp2 * dkm
         for m in range(3):
-            fe[8 + m] += fp * t[4 + m] + fk * t[7 + m]
             for j in range(3):
                 ke[8 + m, 8 + j] += cpp * t[4 + m] * t[4 + j] + ckk * t[7 + m] * t[7 + j]
 
 
 @kernel(forceinline=True)
-def point_load(fe, ke, w, nz, npsi, law, cd, cv):
+def point_load(fe, ke, w, nz, npsi, law, cd, cv, tangent=True):
     """fe -= the nodal force of a line force (f1, f2) at a point (weight w, shape functions nz,
-    npsi), ke += cd dF/dd + cv dF/dv of it, law = (f1, f2, d11, d12, d21, d22, p1, p2) the
-    force and its derivatives (df/dv = ((d11, d12), (d21, d22)), df/dpsi = (p1, p2)), as a
-    point law returns them: `serpentine.friction._add_tangent` without the couple."""
+    npsi), ke += cd dF/dd + cv dF/dv of it (not with tangent=False), law = (f1, f2, d11, d12,
+    d21, d22, p1, p2) the force and its derivatives (df/dv = ((d11, d12), (d21, d22)), df/dpsi
+    = (p1, p2)), as a point law returns them: `serpentine.friction._add_tangent` without the
+    couple."""
     f1, f2, d11, d12, d21, d22, p1, p2 = law
     for i in range(4):
         wi = w * nz[i]
         fe[i] -= wi * f1
         fe[4 + i] -= wi * f2
+        if not tangent:
+            continue
         a11, a12, a21, a22 = cv * wi * d11, cv * wi * d12, cv * wi * d21, cv * wi * d22
         for j in range(4):
             ke[i, j] += a11 * nz[j]
@@ -202,12 +210,15 @@ def clear_element(fe, ke):
 
 
 @kernel(forceinline=True)
-def scatter(e, fe, ke, r, ab):
-    """r -= fe, ab += ke of element e (element order -> global band)."""
+def scatter(e, fe, ke, r, ab, tangent=True):
+    """r -= fe, ab += ke (not with tangent=False) of element e (element order -> global
+    band)."""
     b = 6 * e
     for i in range(11):
         gi = b + LOC[i]
         r[gi] -= fe[i]
+        if not tangent:
+            continue
         for j in range(11):
             gj = b + LOC[j]
             ab[HALF_BW + gi - gj, gj] += ke[i, j]
@@ -234,14 +245,15 @@ def trapezoid_points(d, d0, v0, dt, th, x, v, dth, vth):
 
 
 @kernel(forceinline=True)
-def start_band(cm, x, r, ab):
-    """ab = cm (the banded c_a M of `scale_band`), r -= cm x (row by row of the band:
-    contiguous)."""
+def start_band(cm, x, r, ab, tangent=True):
+    """ab = cm (the banded c_a M of `scale_band`; not with tangent=False), r -= cm x (row by
+    row of the band: contiguous)."""
     nd = x.shape[0]
     for k in range(N_BAND):
         o = k - HALF_BW  # ab[k, j] = K[j + o, j]
-        for j in range(nd):
-            ab[k, j] = cm[k, j]
+        if tangent:
+            for j in range(nd):
+                ab[k, j] = cm[k, j]
         for j in range(max(0, -o), min(nd, nd - o)):
             r[j + o] -= cm[k, j] * x[j]
 

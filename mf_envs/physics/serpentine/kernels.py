@@ -32,7 +32,10 @@ conserves linear momentum; the muscles' work is against the elastic moment only
 
 Predictor: the constant-velocity d_n + dt v_n, or the start configuration d_n if its residual
 (2-norm of R scaled by the dof scales) is below PREDICTOR_RATIO = 0.2 times the former's; the
-chosen one's residual and tangent are the first iteration's, so the choice costs one assembly.
+chosen one's residual and tangent are the first iteration's. The candidate the last step chose
+(a hint in the scratch) is formed first with its tangent, the other's residual alone, and its
+tangent only if it is chosen after all: the choice costs a residual (the same bits as forming
+both in full: the hint orders the work, no result depends on it).
 Under smooth motion (a gait) the constant-velocity start is right; after a command's jump the
 trapezoidal velocity's stiff components (axial, shear, high bending modes) alternate in sign
 from step to step (v_{n+1} = 2 (d_{n+1} - d_n) / dt - v_n), so v_n extrapolates them the wrong
@@ -92,8 +95,9 @@ LINE_HALVINGS, LINE_ITER_FACTOR = 12, 4
 
 
 @kernel
-def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
-    """buf[0] = -R(d), ab = dR/dd (module docstring) at the iterate d of `Body` body: the
+def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v, tangent=True):
+    """buf[0] = -R(d), ab = dR/dd (module docstring; not with tangent=False, buf[0] the same
+    bits) at the iterate d of `Body` body: the
     algorithmic force (`beam.fused.element_internal`, the start's strains in sc's pre) and the
     ground's at (d_th, v_th) element by element, the inertia from sc's cm = (2 / dt^2) M
     (`fused.scale_band`); buf[1] = d - d0 - dt v0, v = v_{n+1}, buf[2:4] = d_th, v_th."""
@@ -108,14 +112,15 @@ def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
     fused.trapezoid_points(d, d0, v0, dt, th, x, v, dth, vth)
     for i in range(d0.shape[0]):
         r[i] = 0.0
-    fused.start_band(cm, x, r, ab)  # r = -c_a M x, ab = c_a M
+    fused.start_band(cm, x, r, ab, tangent)  # r = -c_a M x, ab = c_a M
     on = law[9] > 0.0  # a ground force (effects on)
     cd, cv = -th, -2.0 * th / dt
     nu_v, c_w = law[7], law[8]
     for e in range(le.shape[0]):
         fused.clear_element(fe, ke)
         fused.gather(d, e, db)
-        fused.element_internal(e, db, le[e], k0, k1, qw, stiff, theta_s, rate, tab, pre, fe, ke)
+        fused.element_internal(e, db, le[e], k0, k1, qw, stiff, theta_s, rate, tab, pre, fe, ke,
+                               tangent)  # fmt: skip
         if on:  # `friction.assemble_ground` at (d_th, v_th), tangent -th dF/dd - 2 th / dt dF/dv
             fused.gather(dth, e, de)
             fused.gather(vth, e, ve)
@@ -132,13 +137,14 @@ def _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v):
                 d11 -= nu_v * m_a
                 d22 -= nu_v * m_a
                 law_p = (f1, f2, d11, d12, d21, d22, p1, p2)
-                fused.point_load(fe, ke, w, nz, npsi, law_p, cd, cv)
+                fused.point_load(fe, ke, w, nz, npsi, law_p, cd, cv, tangent)
                 mc = -c_w * w3
                 for i in range(3):
                     fe[8 + i] -= w * npsi[i] * mc
+                for i in range(3 if tangent else 0):
                     for j in range(3):
                         ke[8 + i, 8 + j] -= cv * w * c_w * npsi[i] * npsi[j]
-        fused.scatter(e, fe, ke, r, ab)
+        fused.scatter(e, fe, ke, r, ab, tangent)
 
 
 @numba.njit(cache=True)
@@ -147,23 +153,38 @@ def _predict(d0, v0, k0, k1, dt, body, d, v, sc):
     (with its residual and tangent: the first iteration's); returns (buf, ab, buf2, ab2) with
     the chosen start's residual in buf, ab and the other pair free."""
     buf, ab, pre, buf2, ab2, cm = sc[8], sc[10], sc[11], sc[13], sc[14], sc[15]
-    u_scale, nd = body.quad[3], d0.shape[0]
+    u_scale, hint = body.quad[3], sc[16]
     fused.start_strains(d0, body.le, k0, body.quad[4], pre)
     fused.scale_band(body.mass, 2.0 / (dt * dt), cm)
-    # the start d0 if its residual is below PREDICTOR_RATIO times the constant-velocity
-    # d0 + dt v0's
-    for i in range(nd):
-        d[i] = d0[i]
+    cv_first = hint[0] > 0.0  # the last step's choice first, with its tangent
+    predictor_into(d, d0, v0, dt, cv_first)
     _residual(d0, v0, d, k0, k1, dt, body, sc, buf, ab, v)
-    for i in range(nd):
-        d[i] = d0[i] + dt * v0[i]
-    _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v)
-    n_start, n_cv = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
-    if not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv)):
-        return buf2, ab2, buf, ab
-    for i in range(nd):
-        d[i] = d0[i]
-    return buf, ab, buf2, ab2
+    predictor_into(d, d0, v0, dt, not cv_first)
+    _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v, False)
+    n_first, n_other = fused.scaled_norm2(buf[0], u_scale), fused.scaled_norm2(buf2[0], u_scale)
+    if start_choice(n_first, n_other, cv_first, hint) == cv_first:
+        predictor_into(d, d0, v0, dt, cv_first)
+        return buf, ab, buf2, ab2
+    _residual(d0, v0, d, k0, k1, dt, body, sc, buf2, ab2, v)  # the other, with its tangent
+    return buf2, ab2, buf, ab
+
+
+@kernel(forceinline=True)
+def predictor_into(d, d0, v0, dt, cv):
+    """d = d0 + dt v0 (cv) or d0: the predictor's candidates (module docstring)."""
+    for i in range(d0.shape[0]):
+        d[i] = d0[i] + dt * v0[i] if cv else d0[i]
+
+
+@kernel(forceinline=True)
+def start_choice(n_first, n_other, cv_first, hint):
+    """Whether the predictor starts from d0 + dt v0 (module docstring), from the scaled
+    squared residual norms of the candidate formed first (d0 + dt v0 if cv_first, else d0) and
+    of the other; the choice goes to hint[0] (1.0: d0 + dt v0) for the next step's order."""
+    n_start, n_cv = (n_other, n_first) if cv_first else (n_first, n_other)
+    use_cv = not (n_start < PREDICTOR_RATIO**2 * n_cv or not np.isfinite(n_cv))
+    hint[0] = 1.0 if use_cv else 0.0
+    return use_cv
 
 
 @numba.njit(cache=True)

@@ -31,6 +31,7 @@ def _scratch(n_dof, n_elements):
         np.empty((5, n_dof)),
         np.zeros((N_BAND, n_dof)),
         np.empty((N_BAND, n_dof)),
+        np.zeros(1),
     )
 
 
@@ -39,7 +40,9 @@ def make_scratch(n_dof: int, n_elements: int) -> tuple:
     solver's (work, pivots), kappa# at the sub-step ends, states at the sub-step ends, the
     Newton vectors, four element vectors (11,), the tangent's band, the start's strains
     (`beam.fused.start_strains`), an element matrix, the second predictor's Newton vectors
-    and band, and the band of (2 / dt^2) M (the step allocates nothing)."""
+    and band, the band of (2 / dt^2) M, and the predictor's hint (1,) (the last step's choice,
+    1.0 for d0 + dt v0: it orders the predictor's work, no result depends on it; the step
+    allocates nothing)."""
     return _scratch(int(n_dof), int(n_elements))
 
 
