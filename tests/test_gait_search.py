@@ -66,8 +66,12 @@ def test_serpenoid_wavenumber_standing_and_reversed_waves():
         t = fwd.k * fwd.dt + fwd.dt
         f, b = fwd.predict(None)[0], back.predict(None)[0]
         s = np.linspace(0.0, 1.0, len(f))
-        np.testing.assert_allclose(f, 0.4 * np.sin(0.8 * np.pi * (1 - s) - 2 * np.pi * t / 0.7), atol=1e-6)
-        np.testing.assert_allclose(b, 0.4 * np.sin(-0.8 * np.pi * (1 - s) - 2 * np.pi * t / 0.7), atol=1e-6)
+        np.testing.assert_allclose(
+            f, 0.4 * np.sin(0.8 * np.pi * (1 - s) - 2 * np.pi * t / 0.7), atol=1e-6
+        )
+        np.testing.assert_allclose(
+            b, 0.4 * np.sin(-0.8 * np.pi * (1 - s) - 2 * np.pi * t / 0.7), atol=1e-6
+        )
     with pytest.raises(ValueError, match="wavenumber"):
         Serpenoid(env, wavenumber=float("nan"))
 

@@ -58,10 +58,11 @@ class Serpenoid:
         self.dt = float(base.control_dt)
         self.scale = 1.0 / float(base.max_curvature)
         s = np.linspace(0.0, 1.0, base.n_ctrl)  # S / L
-        if wavenumber is None:
-            wavenumber = 1.0 / positive_scalar("wavelength", wavelength)  # in body lengths
-        self.wavenumber = check_range("wavenumber", wavenumber, -1e3, 1e3)  # L / lambda
-        self.phase = 2.0 * math.pi * (1.0 - s) * self.wavenumber
+        if wavenumber is None:  # divided by the wavelength: the baselines' bits as before
+            self.phase = 2.0 * math.pi * (1.0 - s) / positive_scalar("wavelength", wavelength)
+        else:
+            q = check_range("wavenumber", wavenumber, -1e3, 1e3)  # L / lambda
+            self.phase = 2.0 * math.pi * (1.0 - s) * q
         r = check_range("head_ratio", head_ratio, 0.0, 1.0)
         self.envelope = r + (1.0 - r) * (1.0 - s)  # exactly 1 for r = 1
         self.reset()
