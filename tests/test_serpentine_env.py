@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import mf_envs  # noqa: F401  (registers the envs)
+from mf_envs.benchmarks.accuracy.serpentine import env_speed
 from mf_envs.controllers import make_baseline
 from mf_envs.envs.serpentine.env import SerpentineEnv
 from mf_envs.physics.beam.algorithmic import assemble_algorithmic
@@ -198,31 +199,15 @@ def test_preset_sets_its_scene_and_refuses_a_clash():
         gym.make("Serpentine-v0", preset="pyelastic")
 
 
-def _saturated_wave_speed(**kw) -> float:
-    """Speed [m/s] over 4-10 s of the fast, nearly in-phase gait PPO found (1.6 Hz, wavenumber
-    0.2, amplitude 1.2 max_curvature: at the action bounds a third of the time), open loop from
-    rest, at Serpentine-v0's defaults but `kw`."""
-    from mf_envs.controllers.serpentine import Serpenoid
-
-    env = gym.make(ENV_ID, **kw)
-    obs, _ = _rest(env)
-    ctrl = Serpenoid(env, amplitude=30.0, wavenumber=0.2, period=0.625)
-    for k in range(1, 201):
-        obs, _, term, _, info = env.step(ctrl.predict(obs)[0])
-        assert not term
-        if k == 80:
-            start = np.array([info["x"], info["y"]])
-    return float(np.linalg.norm(np.array([info["x"], info["y"]]) - start) / 6.0)
-
-
 def test_default_discretisation_converges_for_a_fast_saturated_gait():
-    """At the defaults (n_elements, physics_dt) a gait at the action bounds near the body's first
-    bending mode moves within SPEED_TOLERANCE of a run with 2 n_elements and physics_dt / 4
-    (measured 2.3 %; the old defaults, 6 elements at 25 ms, moved it 2.4 times as fast:
-    docs/serpentine.md, "What accuracy costs in time")."""
+    """At the defaults (n_elements, physics_dt) the gait PPO found (`PPO_LIKE`: 1.6 Hz, nearly in
+    phase, at the action bounds a third of the time, near the body's first bending mode; open
+    loop from rest, speed over 4-10 s) moves within SPEED_TOLERANCE of 2 n_elements at
+    physics_dt / 4 (measured 2.3 %; the old defaults, 6 elements at 25 ms, moved it 2.4 times
+    as fast: docs/serpentine.md, "What accuracy costs in time")."""
     sig = inspect.signature(SerpentineEnv.__init__)
     n, dt = sig.parameters["n_elements"].default, sig.parameters["physics_dt"].default
-    coarse = _saturated_wave_speed()
-    fine = _saturated_wave_speed(n_elements=2 * n, physics_dt=dt / 4)
+    coarse, _ = env_speed(n, dt, "saturated")
+    fine, _ = env_speed(2 * n, dt / 4, "saturated")
     assert fine > 0.02  # it crawls
     assert coarse == pytest.approx(fine, rel=SPEED_TOLERANCE)

@@ -36,6 +36,10 @@ ELASTICA = (20.0, 1.0, 2.0)  # a [1/m], lambda / L, T [s]: PyElastica's snake (~
 # gait_speed 0.0598 m/s re-evaluated 2026-11-28 (ELASTICA: 0.0235); a and T sit on their bounds.
 TUNED = (25.0, 1.0387002743484175, 1.0)
 BOUNDS = ((5.0, 25.0), (0.5, 2.0), (1.0, 4.0))  # a [1/m], lambda / L, T [s]
+# the gait PPO found (docs/serpentine.md, "What PPO found": every control point at 1.6 Hz,
+# nearly in phase, at the action bounds a third of the time) as a serpenoid: a [1/m] (1.2
+# max_curvature: saturated), wavenumber L / lambda (the wave head to tail), T [s]
+PPO_LIKE = (30.0, 0.2, 0.625)
 # PyElastica's example's muscle-torque spline coefficients [N m] (`ElasticaMuscles`)
 ELASTICA_COEFFICIENTS = np.array([3.4e-3, 3.3e-3, 4.2e-3, 2.6e-3, 3.6e-3, 3.5e-3])
 
