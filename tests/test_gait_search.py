@@ -77,6 +77,17 @@ def test_serpenoid_wavenumber_standing_and_reversed_waves():
 
 
 @pytest.mark.parametrize("env_id", sorted(gs.families()))
+def test_family_starts_lie_in_the_search_box(env_id):
+    """CMA-ES starts from a start's point in the unit box: every start names every parameter of
+    the family within its range (the serpentine's second start, PPO_LIKE, included)."""
+    fam = gs.families()[env_id]
+    for start in (fam.start, *fam.other_starts):
+        assert set(start) == set(fam.space)
+        for name, (lo, hi) in fam.space.items():
+            assert lo <= start[name] <= hi, name
+
+
+@pytest.mark.parametrize("env_id", sorted(gs.families()))
 def test_family_start_is_the_default_baseline(env_id):
     task = rl_tasks.TASKS[rl_tasks.HEADLINE[env_id]]()
     default = baseline_kinds(env_id)[0]
