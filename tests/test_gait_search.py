@@ -51,6 +51,42 @@ def test_serpenoid_envelope_grows_from_head_ratio_to_one():
         Serpenoid(env, head_ratio=1.5)
 
 
+def test_serpenoid_wavenumber_standing_and_reversed_waves():
+    """q = L / lambda: 1 / wavelength to round-off; q = 0 every control point in phase (a
+    standing wave); -q the wave mirrored along the body (it runs tail to head)."""
+    env = gym.make("Serpentine-v0")
+    env.reset(seed=0)
+    kw = dict(amplitude=10.0, period=0.7)
+    by_q = Serpenoid(env, wavenumber=1 / 1.3, **kw)
+    np.testing.assert_allclose(by_q.phase, Serpenoid(env, wavelength=1.3, **kw).phase, rtol=1e-15)
+    standing, fwd, back = (Serpenoid(env, wavenumber=q, **kw) for q in (0.0, 0.4, -0.4))
+    for _ in range(9):
+        a = standing.predict(None)[0]
+        assert np.all(a == a[0])
+        t = fwd.k * fwd.dt + fwd.dt
+        f, b = fwd.predict(None)[0], back.predict(None)[0]
+        s = np.linspace(0.0, 1.0, len(f))
+        np.testing.assert_allclose(
+            f, 0.4 * np.sin(0.8 * np.pi * (1 - s) - 2 * np.pi * t / 0.7), atol=1e-6
+        )
+        np.testing.assert_allclose(
+            b, 0.4 * np.sin(-0.8 * np.pi * (1 - s) - 2 * np.pi * t / 0.7), atol=1e-6
+        )
+    with pytest.raises(ValueError, match="wavenumber"):
+        Serpenoid(env, wavenumber=float("nan"))
+
+
+@pytest.mark.parametrize("env_id", sorted(gs.families()))
+def test_family_starts_lie_in_the_search_box(env_id):
+    """CMA-ES starts from a start's point in the unit box: every start names every parameter of
+    the family within its range (the serpentine's second start, PPO_LIKE, included)."""
+    fam = gs.families()[env_id]
+    for start in (fam.start, *fam.other_starts):
+        assert set(start) == set(fam.space)
+        for name, (lo, hi) in fam.space.items():
+            assert lo <= start[name] <= hi, name
+
+
 @pytest.mark.parametrize("env_id", sorted(gs.families()))
 def test_family_start_is_the_default_baseline(env_id):
     task = rl_tasks.TASKS[rl_tasks.HEADLINE[env_id]]()

@@ -36,26 +36,37 @@ ELASTICA = (20.0, 1.0, 2.0)  # a [1/m], lambda / L, T [s]: PyElastica's snake (~
 # gait_speed 0.0598 m/s re-evaluated 2026-11-28 (ELASTICA: 0.0235); a and T sit on their bounds.
 TUNED = (25.0, 1.0387002743484175, 1.0)
 BOUNDS = ((5.0, 25.0), (0.5, 2.0), (1.0, 4.0))  # a [1/m], lambda / L, T [s]
+# the gait PPO found (docs/serpentine.md, "What PPO found": every control point at 1.6 Hz,
+# nearly in phase, at the action bounds a third of the time) as a serpenoid: a [1/m] (1.2
+# max_curvature: saturated), wavenumber L / lambda (the wave head to tail), T [s]
+PPO_LIKE = (30.0, 0.2, 0.625)
 # PyElastica's example's muscle-torque spline coefficients [N m] (`ElasticaMuscles`)
 ELASTICA_COEFFICIENTS = np.array([3.4e-3, 3.3e-3, 4.2e-3, 2.6e-3, 3.6e-3, 3.5e-3])
 
 
 class Serpenoid:
-    """kappa#(S_j, t) = a e(S_j) sin(2 pi (L - S_j) / lambda - 2 pi t / T) + bias (module
-    docstring), the envelope e(S) = r + (1 - r) (L - S) / L growing from r at the head to 1 at
-    the tail (head_ratio r = 1: the uniform serpenoid)."""
+    """kappa#(S_j, t) = a e(S_j) sin(2 pi q (L - S_j) / L - 2 pi t / T) + bias (module
+    docstring), clipped to the action bounds; q = L / lambda the wavenumber (`wavenumber`, or
+    1 / `wavelength` in body lengths): q > 0 the wave runs head to tail, q = 0 a standing wave
+    (every point in phase), q < 0 tail to head. The envelope e(S) = r + (1 - r) (L - S) / L
+    grows from r at the head to 1 at the tail (head_ratio r = 1: the uniform serpenoid); an
+    amplitude above max_curvature saturates into a square-topped wave."""
 
     def __init__(self, env: Any, amplitude: float = ELASTICA[0], wavelength: float = ELASTICA[1],
-                 period: float = ELASTICA[2], head_ratio: float = 1.0) -> None:  # fmt: skip
+                 period: float = ELASTICA[2], head_ratio: float = 1.0,
+                 wavenumber: float | None = None) -> None:  # fmt: skip
         base = env.unwrapped
         self.base = base
         self.amplitude = check_range("amplitude", amplitude, 0.0, 1e3)
-        self.wavelength = positive_scalar("wavelength", wavelength)  # in body lengths
         self.period = positive_scalar("period", period)
         self.dt = float(base.control_dt)
         self.scale = 1.0 / float(base.max_curvature)
         s = np.linspace(0.0, 1.0, base.n_ctrl)  # S / L
-        self.phase = 2.0 * math.pi * (1.0 - s) / self.wavelength
+        if wavenumber is None:  # divided by the wavelength: the baselines' bits as before
+            self.phase = 2.0 * math.pi * (1.0 - s) / positive_scalar("wavelength", wavelength)
+        else:
+            q = check_range("wavenumber", wavenumber, -1e3, 1e3)  # L / lambda
+            self.phase = 2.0 * math.pi * (1.0 - s) * q
         r = check_range("head_ratio", head_ratio, 0.0, 1.0)
         self.envelope = r + (1.0 - r) * (1.0 - s)  # exactly 1 for r = 1
         self.reset()
@@ -83,12 +94,13 @@ class HeadingSerpenoid(Serpenoid):
 
     def __init__(self, env: Any, gain: float = 8.0, max_bias: float = 8.0,
                  amplitude: float = TUNED[0], wavelength: float = TUNED[1],
-                 period: float = TUNED[2], head_ratio: float = 1.0) -> None:  # fmt: skip
+                 period: float = TUNED[2], head_ratio: float = 1.0,
+                 wavenumber: float | None = None) -> None:  # fmt: skip
         self.gain = check_range("gain", gain, 0.0, 1e3)  # 1/m per rad
         self.max_bias = check_range("max_bias", max_bias, 0.0, 1e3)  # 1/m
         layout = env.unwrapped.obs_layout
         self.i_sin, self.i_cos = layout.index("sin_heading"), layout.index("cos_heading")
-        super().__init__(env, amplitude, wavelength, period, head_ratio)
+        super().__init__(env, amplitude, wavelength, period, head_ratio, wavenumber)
 
     def reset(self) -> None:
         super().reset()

@@ -72,10 +72,10 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
     | length, radius | 0.35, 0.011 L | body length L, section radius [m] (radius <= L / 10) |
     | youngs_modulus, shear_modulus | 1e6, E / 1.5 | E, G [Pa] in [1e3, 1e12] |
     | density | 1000 | rho [kg/m^3] |
-    | n_elements | 6 | C1 elements, 2..64 |
+    | n_elements | 12 | C1 elements, 2..64 (2 per control interval) |
     | max_curvature | 25 | action scale [1/m], max_curvature L <= 20 |
     | n_control_points | 7 | actuation control points, 2..64 |
-    | control_dt, physics_dt | 0.05, 0.025 | s per step, implicit physics step (1 % in speed) |
+    | control_dt, physics_dt | 0.05, 0.003125 | s per step, implicit physics step (< 5 % in speed) |
     | episode_seconds | None | episode length [s]; None: 20 s (10 periods of the reference gait) |
     | max_episode_steps | None | or the episode length in control steps |
     | friction_coefficient | 0.892 | forward Coulomb mu = L / (T^2 g Fr), T = 2 s, Fr = 0.1 |
@@ -109,11 +109,11 @@ class SerpentineEnv(BeamRobotMixin, MFEnv):
         youngs_modulus: float = 1e6,
         shear_modulus: float | None = None,
         density: float = 1000.0,
-        n_elements: int = 6,
+        n_elements: int = 12,
         max_curvature: float = 25.0,
         n_control_points: int = 7,
         control_dt: float = 0.05,
-        physics_dt: float = 0.025,
+        physics_dt: float = 0.003125,
         episode_seconds: float | None = None,
         friction_coefficient: float = build.MU,
         backward_ratio: float = 1.5,
