@@ -76,6 +76,7 @@ BLOWUP: dict[str, dict[str, Any]] = {
     # fails after 2^6 halvings
     "Serpentine-v0": {
         "youngs_modulus": 1e12,
+        "n_elements": 6,
         "physics_dt": 0.05,
         "max_curvature": 57.0,
         "material_damping": 0.0,
