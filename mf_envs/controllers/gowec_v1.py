@@ -318,12 +318,6 @@ def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
     return best
 
 
-def efficient_pto(raw: Any, passive: bool = False) -> tuple[float, float]:
-    """(c, k) of `pto_search` (N m s/rad, N m/rad)."""
-    r = pto_search(raw, passive)
-    return r["c"], r["k"]
-
-
 class EfficientPTOController:
     """The linear PTO optimised for net electrical power in the sea of the last reset
     (`pto_search`); `passive=True` the best pure damper. Gains set on the drive at reset;
