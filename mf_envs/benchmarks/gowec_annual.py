@@ -25,25 +25,27 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import json
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from mf_envs._files import save_figure
+from mf_envs._files import make_dirs, read_regular, save_figure, write_atomic
 
 HOURS_PER_YEAR = 8766.0  # h, 365.25 days
+MAX_FILE_BYTES = 16 * 2**20  # a scatter CSV or a power matrix json read here
 
 
 def read_scatter(path: Path) -> np.ndarray:
     """(n, 3) array of (hs m, te s, occurrence) rows of a scatter CSV (module doc)."""
+    text = read_regular(path, MAX_FILE_BYTES, "scatter").decode("utf-8", "replace")
     try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
+        rows = list(csv.DictReader(io.StringIO(text, newline="")))
         data = np.array([[float(r["hs"]), float(r["te"]), float(r["occurrence"])]
                          for r in rows], dtype=float)  # fmt: skip
-    except (OSError, KeyError, ValueError, TypeError) as exc:
+    except (csv.Error, KeyError, ValueError, TypeError) as exc:
         raise ValueError(f"scatter: {path} is not a CSV of hs,te,occurrence ({exc})") from exc
     if data.shape[0] == 0 or not np.all(np.isfinite(data)) or np.any(data < 0.0) or \
             data[:, 2].sum() <= 0.0:  # fmt: skip
@@ -117,7 +119,7 @@ def main(argv: list[str] | None = None) -> None:
     from mf_envs.physics.gowec.hydro.devices import DEVICES
 
     dev = DEVICES["iswec_class"]
-    idle = -dev.gyro_units * dev.flywheel_loss.power(dev.rotor_speed_range[0])
+    idle = -dev.running_loss(dev.rotor_speed_range[0], dev.gyro_units)
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scatter", type=Path, required=True, help="CSV hs,te,occurrence")
     ap.add_argument("--matrix", type=Path, default=None, help="power matrix json (else run it)")
@@ -129,11 +131,11 @@ def main(argv: list[str] | None = None) -> None:
     if a.matrix is None:
         rows = power_matrix.matrix()
     else:
-        rows = json.loads(a.matrix.read_text())
+        rows = json.loads(read_regular(a.matrix, MAX_FILE_BYTES, "matrix"))
     result = annual(rows, scatter, a.below, a.above)
     result.update(scatter_file=str(a.scatter), below_W=a.below, above_W=a.above)
-    a.out.mkdir(parents=True, exist_ok=True)
-    (a.out / "gowec_annual.json").write_text(json.dumps(result, indent=1))
+    make_dirs(a.out, a.out)
+    write_atomic(a.out / "gowec_annual.json", json.dumps(result, indent=1))
     plot(result, a.out / "gowec_annual.png")
     print(f"mean net power {result['mean_W'] / 1e3:.2f} kW, {result['MWh_per_year']:.1f} MWh/yr;"
           f" shares {result['shares']}")  # fmt: skip
