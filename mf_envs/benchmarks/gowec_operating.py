@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from mf_envs._files import write_atomic
 from mf_envs.benchmarks.power_matrix import episode
 
 HEIGHTS = (1.0, 1.5, 2.0, 2.5)  # m
@@ -121,9 +122,8 @@ def main(argv: list[str] | None = None) -> None:
     a = ap.parse_args(argv)
     seeds = tuple(range(a.first_seed, a.first_seed + a.seeds))
     rs = rows(seeds, a.seconds, tuple(a.kinds.split(",")), progress=True)
-    if a.json:
-        with open(a.json, "w") as f:
-            json.dump(rs, f, indent=1)
+    if a.json:  # a link or a non-regular file there is refused, not followed
+        write_atomic(a.json, json.dumps(rs, indent=1), "json")
     print(table(rs))
 
 
