@@ -286,11 +286,9 @@ def causal_forecast_floating(vec: Any, env: Any, horizon: int) -> None:
     edges = np.linspace(0.3 * wp, 3.0 * wp, m + 1)
     om = 0.5 * (edges[1:] + edges[:-1])
     A = np.concatenate([np.cos(np.outer(t_all, om)), np.sin(np.outer(t_all, om))], axis=1)
-    if t_all.size:
-        ridge = FIT_RIDGE * np.trace(A.T @ A) / A.shape[1]
-        x = np.linalg.solve(A.T @ A + ridge * np.eye(A.shape[1]), A.T @ e_all)
-    else:
-        x = np.zeros(2 * m)
+    AtA = A.T @ A  # t_all holds the forecast's n_ahead >= 2 samples at least
+    x = np.linalg.solve(AtA + FIT_RIDGE * np.trace(AtA) / AtA.shape[0] * np.eye(2 * m),
+                        A.T @ e_all)  # fmt: skip
     # a cos(-w t + eps) = a cos(eps) cos(w t) + a sin(eps) sin(w t)
     amp, eps = np.hypot(x[:m], x[m:]), np.arctan2(x[m:], x[:m])
     three = env.model.three
