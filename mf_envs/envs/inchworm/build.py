@@ -56,10 +56,13 @@ FRICTION_KEYS = ("grip_forward", "grip_backward", "slide_forward", "slide_backwa
 GRIP_TIME_CONSTANT = 0.5  # s, the feet's engage/release time (presets.GRIP_TIME)
 DEFAULT_EPISODE_STEPS = 400
 ALLOYS = {"HT": FLEXINOL_HT, "LT": FLEXINOL_LT}
-# default effort weight with `sma_wires`: SMA_EFFORT_SCALE / (m_A g L^2) per joule of
-# electrical energy (docs/inchworm.md: an SMA crawler's electrical cost of transport is
-# ~1e4, so the lifting-equivalent weight of the mechanical scenes would drown the progress)
-SMA_EFFORT_SCALE = 1e-4
+# default effort weight with `sma_wires`: MECHANICAL_EFFORT_SCALE x SMA_EFFORT_SCALE /
+# (m_A g L^2) per joule of electrical energy (docs/inchworm.md, "Reward": an SMA crawler's
+# electrical cost of transport is ~4e3, so the mechanical scenes' weight would drown the
+# progress). Sized so that every wire at full duty for a whole default episode costs less
+# than the progress of a crawl at ~0.1 mm/s: a policy that crawls faster returns more than
+# any that stands still, whatever it spends
+SMA_EFFORT_SCALE = 2e-5
 # the mechanical scenes' weight is MECHANICAL_EFFORT_SCALE / (m_A g L^2) and the wires' this
 # times SMA_EFFORT_SCALE: a tenth of the lifting-equivalent weight, so that the return ranks the
 # gaits as their speed does (heat_cool and seed_uniform crawl within 1 % of each other)
