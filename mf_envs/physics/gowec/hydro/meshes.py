@@ -187,7 +187,7 @@ def box_mesh(
     ]
     out = np.array([[0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
     hull = _mirrored_twice(_quarter(parts, out, "box_quarter"), "box")
-    nlx, nly = lid_panels if lid_panels is not None else (max(2, n_length // 2), max(2, n_beam // 2))
+    nlx, nly = lid_panels or (max(2, n_length // 2), max(2, n_beam // 2))
     zl = -0.01 * draft
     lid_q = _grid(np.linspace(-hl, 0.0, nlx + 1), np.linspace(-hb, 0.0, nly + 1),
                   lambda a, b: (a, b, np.full_like(a, zl)))  # fmt: skip
