@@ -27,6 +27,36 @@ from mf_envs.physics.gowec.hydro import BoxHull
 from mf_envs.physics.gowec.hydro.bem import box_coefficients, box_solve
 from mf_envs.physics.gowec.hydro.three_dof import ISWEC_BOX_FILE, ISWEC_BOX_MESH
 
+# the convergence table's quantities: (label, mode index in `bem.BOX_MODES`, kind)
+COMPARED = tuple((f"{k}{i}", "12345".index(i), k) for i in "513" for k in ("A", "B", "X"))
+
+
+def compare(paths: list[Path], lo: float = 0.3, hi: float = 3.0) -> str:
+    """Markdown table of the convergence between `--raw` files of successive mesh levels:
+    panels, CPU time, and per level after the first the largest relative change from the
+    previous level of A, B, abs(X) for pitch, surge, heave over lo..hi rad/s (B relative to
+    its peak where B < 10 % of it: the tail's noise is not a change that matters)."""
+    runs = [dict(np.load(p, allow_pickle=False)) for p in paths]
+    head = "| mesh (n_length, n_beam, n_draft, q) | panels + lid | CPU (s) | "
+    lines = [head + " | ".join(c[0] for c in COMPARED) + " |",
+             "|---|---|---|" + "---|" * len(COMPARED)]  # fmt: skip
+    for prev, r in zip([None, *runs], runs):
+        band = (r["omega"] >= lo - 1e-9) & (r["omega"] <= hi + 1e-9)
+        cells = []
+        for _, i, kind in COMPARED:
+            if prev is None:
+                cells.append("")
+                continue
+            a, b = (np.abs(x[kind][band, i] if kind == "X" else x[kind][band, i, i])
+                    for x in (r, prev))  # fmt: skip
+            scale = np.maximum(np.abs(a), 0.1 * np.abs(a).max()) if kind == "B" else np.abs(a)
+            cells.append(f"{100 * np.max(np.abs(a - b) / scale):.1f} %")
+        m = r["mesh"]
+        label = f"{int(m[0])}, {int(m[1])}, {int(m[2])}, {m[3]:g}"
+        lines.append(f"| {label} | {int(r['panels'])} | {float(r['cpu']):.0f} | "
+                     + " | ".join(cells) + " |")  # fmt: skip
+    return "\n".join(lines)
+
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
@@ -44,7 +74,12 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--headings", type=int, default=10, help="wave directions over 0..pi/2")
     p.add_argument("--mesh", type=float, nargs=4, default=ISWEC_BOX_MESH,
                    help="n_length n_beam n_draft ratio (panels per quarter)")  # fmt: skip
+    p.add_argument("--compare", type=Path, nargs="+", help="--raw files, coarse to fine: "
+                   "print the convergence table and exit")  # fmt: skip
     a = p.parse_args(argv)
+    if a.compare:
+        print(compare(a.compare))
+        return
     hull = BoxHull(a.length, a.beam, a.draft, a.zg, a.gyration, a.roll_gyration)
     omega = np.linspace(a.omega[0], a.omega[1], int(a.omega[2]))
     nl, nb, nd, q = a.mesh
@@ -52,7 +87,7 @@ def main(argv: list[str] | None = None) -> None:
     raw = box_solve(hull, omega, a.depth, (int(nl), int(nb), int(nd), q), a.headings)
     cpu = time.process_time() - t0
     if a.raw is not None:  # every array as solved, before the schema's checks
-        np.savez(a.raw, **raw, omega=omega, cpu=cpu)
+        np.savez(a.raw, **raw, omega=omega, cpu=cpu, mesh=np.array(a.mesh))
     h = box_coefficients(hull, omega, a.depth, raw)
     h.save(a.out)
     print(f"wrote {a.out}: {omega.size} frequencies, {cpu:.0f} s CPU, "

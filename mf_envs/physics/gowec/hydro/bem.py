@@ -234,9 +234,9 @@ def box_solve(
     """The raw BEM arrays of a box about G at finite `water_depth` (m), modes `BOX_MODES`:
     `solve_depth`'s A, B (n, 5, 5), X (n, 5), k (n,) and X_headings (n, n_headings, 5) at
     wave directions evenly spaced over 0..pi/2 (the rest of the circle follows from the two
-    mirror planes), plus A_inf (5, 5) (deep water) and C (6, 6) (the mesh hydrostatics), headings
-    (rad). One run: the headings and the modes are right-hand sides of each frequency's
-    factorised matrix."""
+    mirror planes), plus A_inf (5, 5) (deep water), C (6, 6) (the mesh hydrostatics), headings
+    (rad) and panels (hull + lid). One run: the headings and the modes are right-hand sides of
+    each frequency's factorised matrix."""
     if not (isinstance(n_headings, int) and n_headings >= 3):
         raise ValueError(f"n_headings: must be an integer >= 3, got {n_headings!r}")
     body = box_body(hull, mesh, rho)
@@ -245,6 +245,7 @@ def box_solve(
     out["A_inf"] = solve_limit(body, BOX_MODES, np.inf, rho, g)
     out["C"] = np.asarray(body.compute_hydrostatics(rho=rho, g=g)["hydrostatic_stiffness"], float)
     out["headings"] = beta
+    out["panels"] = np.array(body.mesh_including_lid.nb_faces)  # hull + lid
     return out
 
 
