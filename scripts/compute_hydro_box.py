@@ -11,7 +11,7 @@ hull"). The mesh (`meshes.box_mesh`: n_length, n_beam, n_draft panels per quarte
 `ratio` towards the keel edges, the vertical corners and the waterline) is stored as one quarter
 with the xOz and yOz mirror planes, so each frequency is four quarter-size solves. Green
 functions as the cylinder's (`bem.solve_depth`: Delhommeau, finite depth where k h <= 6).
-Capytaine draws its progress bar per frequency. Output: the `three_dof` schema with the
+A progress bar counts the frequencies. Output: the `three_dof` schema with the
 optional box fields.
 """
 
@@ -22,13 +22,15 @@ import time
 from pathlib import Path
 
 import numpy as np
+from rich.progress import Progress
 
 from mf_envs.physics.gowec.hydro import BoxHull
 from mf_envs.physics.gowec.hydro.bem import box_coefficients, box_solve
 from mf_envs.physics.gowec.hydro.three_dof import ISWEC_BOX_FILE, ISWEC_BOX_MESH
 
 # the convergence table's quantities: (label, mode index in `bem.BOX_MODES`, kind)
-COMPARED = tuple((f"{k}{i}", "12345".index(i), k) for i in "513" for k in ("A", "B", "X"))
+COMPARED = tuple((f"abs(X{i})" if k == "X" else f"{k}{i}{i}", "12345".index(i), k)
+                 for i in "513" for k in ("A", "B", "X"))  # fmt: skip
 
 
 def compare(paths: list[Path], lo: float = 0.3, hi: float = 3.0) -> str:
@@ -74,17 +76,28 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--headings", type=int, default=10, help="wave directions over 0..pi/2")
     p.add_argument("--mesh", type=float, nargs=4, default=ISWEC_BOX_MESH,
                    help="n_length n_beam n_draft ratio (panels per quarter)")  # fmt: skip
+    p.add_argument("--from-raw", type=Path, help="write --out from a --raw file, no solve")
     p.add_argument("--compare", type=Path, nargs="+", help="--raw files, coarse to fine: "
                    "print the convergence table and exit")  # fmt: skip
     a = p.parse_args(argv)
     if a.compare:
         print(compare(a.compare))
         return
+    if a.from_raw:  # the file from a --raw run's arrays, without solving again
+        raw = dict(np.load(a.from_raw, allow_pickle=False))
+        h = box_coefficients(BoxHull(a.length, a.beam, a.draft, a.zg, a.gyration,
+                                     a.roll_gyration), raw["omega"], a.depth, raw)  # fmt: skip
+        h.save(a.out)
+        print(f"wrote {a.out} from {a.from_raw}")
+        return
     hull = BoxHull(a.length, a.beam, a.draft, a.zg, a.gyration, a.roll_gyration)
     omega = np.linspace(a.omega[0], a.omega[1], int(a.omega[2]))
     nl, nb, nd, q = a.mesh
     t0 = time.process_time()
-    raw = box_solve(hull, omega, a.depth, (int(nl), int(nb), int(nd), q), a.headings)
+    with Progress() as bar:  # rich: Capytaine's own dependency
+        task = bar.add_task("BEM, one frequency at a time", total=omega.size)
+        raw = box_solve(hull, omega, a.depth, (int(nl), int(nb), int(nd), q), a.headings,
+                        progress=lambda done, _: bar.update(task, completed=done))  # fmt: skip
     cpu = time.process_time() - t0
     if a.raw is not None:  # every array as solved, before the schema's checks
         np.savez(a.raw, **raw, omega=omega, cpu=cpu, mesh=np.array(a.mesh))
