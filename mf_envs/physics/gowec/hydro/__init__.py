@@ -53,6 +53,17 @@ _SCALARS = (
 )
 
 
+def _check_geometry(hull: Any, names: tuple[str, ...]) -> None:
+    """ValueError naming the field unless each of `names` is a finite number > 0 and zg is
+    finite and above the keel (> -draft)."""
+    for name in names:
+        v = getattr(hull, name)
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ValueError(f"hull.{name}: must be > 0, got {v!r}")
+    if not (math.isfinite(hull.zg) and -hull.draft < hull.zg):
+        raise ValueError(f"hull.zg: must be above the keel (> {-hull.draft}), got {hull.zg}")
+
+
 @dataclass(frozen=True)
 class CylinderHull:
     """A vertical circular cylinder floating upright: radius (m), draft (m), centre of gravity
@@ -65,12 +76,7 @@ class CylinderHull:
     gyration: float = 1.5
 
     def __post_init__(self) -> None:
-        for name in ("radius", "draft", "gyration"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise ValueError(f"hull.{name}: must be > 0, got {v!r}")
-        if not (math.isfinite(self.zg) and -self.draft < self.zg):
-            raise ValueError(f"hull.zg: must be above the keel (> {-self.draft}), got {self.zg}")
+        _check_geometry(self, ("radius", "draft", "gyration"))
 
     @property
     def volume(self) -> float:
@@ -121,12 +127,7 @@ class BoxHull:
     roll_gyration: float = math.sqrt((8.0**2 + 4.5**2) / 12.0)  # 2.648 m
 
     def __post_init__(self) -> None:
-        for name in ("length", "beam", "draft", "gyration", "roll_gyration"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise ValueError(f"hull.{name}: must be > 0, got {v!r}")
-        if not (math.isfinite(self.zg) and -self.draft < self.zg):
-            raise ValueError(f"hull.zg: must be above the keel (> {-self.draft}), got {self.zg}")
+        _check_geometry(self, ("length", "beam", "draft", "gyration", "roll_gyration"))
 
     @property
     def volume(self) -> float:

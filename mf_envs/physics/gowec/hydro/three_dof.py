@@ -189,12 +189,17 @@ def _validate_optional(h: ThreeDofCoefficients) -> None:
         if b.ndim != 1 or b.size < 2 or b[0] != 0.0 or not np.all(np.diff(b) > 0):
             raise ValueError(f"hull {n!r}: headings must start at 0 and increase (rad)")
         shapes["heading_excitation"] = (nw, b.size, 5)
+    _check_shapes(h, shapes)
+
+
+def _check_shapes(h: ThreeDofCoefficients, shapes: dict[str, tuple[int, ...]]) -> None:
+    """ValueError naming the field unless each has its shape and finite values <= 1e20 (SI)."""
     for k, shape in shapes.items():
         v = np.asarray(getattr(h, k))
         if v.shape != shape:
-            raise ValueError(f"hull {n!r}: {k} must have shape {shape}, got {v.shape}")
+            raise ValueError(f"hull {h.name!r}: {k} must have shape {shape}, got {v.shape}")
         if not np.all(np.isfinite(v)) or np.max(np.abs(v)) > 1e20:
-            raise ValueError(f"hull {n!r}: {k} must be finite and |value| <= 1e20 (SI)")
+            raise ValueError(f"hull {h.name!r}: {k} must be finite and |value| <= 1e20 (SI)")
 
 
 def _validate(h: ThreeDofCoefficients) -> None:
@@ -207,12 +212,7 @@ def _validate(h: ThreeDofCoefficients) -> None:
     shapes = dict(wavenumber=om.shape, added_mass=(om.size, m, m), damping=(om.size, m, m),
                   excitation=(om.size, m), added_mass_inf=(m, m), hydrostatic_stiffness=(m, m),
                   mass_matrix=(m, m))  # fmt: skip
-    for k, shape in shapes.items():
-        v = np.asarray(getattr(h, k))
-        if v.shape != shape:
-            raise ValueError(f"hull {n!r}: {k} must have shape {shape}, got {v.shape}")
-        if not np.all(np.isfinite(v)) or np.max(np.abs(v)) > 1e20:
-            raise ValueError(f"hull {n!r}: {k} must be finite and |value| <= 1e20 (SI)")
+    _check_shapes(h, shapes)
     box = math.isfinite(h.length) or math.isfinite(h.beam)  # a box's radius is nan
     positive = ("water_depth", "rho", "g", "draft", "gyration",
                 *(_BOX_SCALARS if box else ("radius",)))  # fmt: skip
