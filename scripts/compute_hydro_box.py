@@ -36,8 +36,9 @@ COMPARED = tuple((f"abs(X{i})" if k == "X" else f"{k}{i}{i}", "12345".index(i), 
 def compare(paths: list[Path], lo: float = 0.3, hi: float = 3.0) -> str:
     """Markdown table of the convergence between `--raw` files of successive mesh levels:
     panels, CPU time, and per level after the first the largest relative change from the
-    previous level of A, B, abs(X) for pitch, surge, heave over lo..hi rad/s (B relative to
-    its peak where B < 10 % of it: the tail's noise is not a change that matters)."""
+    previous level of A, B, abs(X) for pitch, surge, heave over lo..hi rad/s (B and abs(X)
+    relative to 10 % of their peak where they are below it: a change near a zero of the
+    excitation or in the damping's tail is not one that matters)."""
     runs = [dict(np.load(p, allow_pickle=False)) for p in paths]
     head = "| mesh (n_length, n_beam, n_draft, q) | panels + lid | CPU (s) | "
     lines = [head + " | ".join(c[0] for c in COMPARED) + " |",
@@ -51,7 +52,7 @@ def compare(paths: list[Path], lo: float = 0.3, hi: float = 3.0) -> str:
                 continue
             a, b = (np.abs(x[kind][band, i] if kind == "X" else x[kind][band, i, i])
                     for x in (r, prev))  # fmt: skip
-            scale = np.maximum(np.abs(a), 0.1 * np.abs(a).max()) if kind == "B" else np.abs(a)
+            scale = np.abs(a) if kind == "A" else np.maximum(np.abs(a), 0.1 * np.abs(a).max())
             cells.append(f"{100 * np.max(np.abs(a - b) / scale):.1f} %")
         m = r["mesh"]
         label = f"{int(m[0])}, {int(m[1])}, {int(m[2])}, {m[3]:g}"

@@ -66,8 +66,9 @@ def test_the_cylinder_file_reads_unchanged():
 def test_haskind_each_mode(box, band, mode):
     # near field (pressure integral) vs far field (excitation at 10 headings over 0..pi/2,
     # extended to the circle by the two mirror planes), finite depth; where B_ii >= 5 % of its
-    # peak in 0.3-3 rad/s (roll radiates almost nothing below 1 rad/s, heave and pitch almost
-    # nothing above 2.5 rad/s: there the ratio measures round-off, not the mesh)
+    # peak in 0.3-3 rad/s (roll radiates almost nothing below 1.2 rad/s, heave and pitch little
+    # above 2.5 rad/s). Measured: surge 0.977-1.006, sway 0.981-1.009, heave 0.980-1.000, roll
+    # 0.988-1.035, pitch 0.978-1.000 (docs/gowec_v1.md, "ISWEC's box hull")
     i = ALL[mode]
     B = _damping(box, mode)
     ok = band & (B >= 0.05 * B.max())
@@ -99,6 +100,7 @@ def test_mirror_planes_decouple(box):
 def test_reciprocity(box, band):
     # A_ij = A_ji, B_ij = B_ji (Green's theorem); the collocation BEM is not exactly symmetric:
     # the gap relative to sqrt(M_ii M_jj), B where both diagonals are >= 10 % of their peaks
+    # (measured: A15 0.24 %, A24 0.19 %, B15 0.54 %, B24 1.6 %)
     pairs = ((box.added_mass, SURGE, PITCH, box.damping),
              (box.transverse_added_mass, SWAY, ROLL, box.transverse_damping))  # fmt: skip
     for M, i, j, diag in pairs:
@@ -126,8 +128,8 @@ def test_hydrostatics_exact_box(box):
     rg = box.rho * box.g
     C, Ct = box.hydrostatic_stiffness, box.transverse_hydrostatic_stiffness
     assert C[HEAVE, HEAVE] == pytest.approx(rg * 120.0, rel=1e-9)
-    assert C[PITCH, PITCH] == pytest.approx(hull.stiffness(box.rho, box.g), rel=0.005)
-    assert Ct[ROLL, ROLL] == pytest.approx(hull.stiffness(box.rho, box.g, "roll"), rel=0.02)
+    assert C[PITCH, PITCH] == pytest.approx(hull.stiffness(box.rho, box.g), rel=0.001)
+    assert Ct[ROLL, ROLL] == pytest.approx(hull.stiffness(box.rho, box.g, "roll"), rel=0.005)
     assert C[SURGE, SURGE] == 0.0 and Ct[SWAY, SWAY] == 0.0
 
 
@@ -215,7 +217,7 @@ def test_box_mesh_geometry():
 
 
 def test_box_solve_small_mesh():
-    # the pipeline end to end on a coarse mesh at two frequencies (one finite-depth, one deep):
+    # the pipeline end to end on a coarse mesh at four frequencies (finite-depth and deep):
     # shapes, the head-wave column, the mirror zeros, the waterplane
     cpt = pytest.importorskip("capytaine", reason="needs the hydro extra")
     from capytaine.tools.block_circulant_matrices import NestedBlockCirculantMatrix
@@ -227,14 +229,14 @@ def test_box_solve_small_mesh():
     # no-op, and this line the place to notice
     hook = getattr(NestedBlockCirculantMatrix.to_BlockCirculantMatrix, "cache_clear", None)
     assert hook is not None or not cpt.__version__.startswith("3.0"), cpt.__version__
-    hull, om, calls = BoxHull(), np.array([0.8, 2.0]), []
+    hull, om, calls = BoxHull(), np.array([0.6, 0.8, 2.0, 2.4]), []
     raw = box_solve(hull, om, 35.0, (6, 4, 4, 1.0), 4, progress=lambda d, n: calls.append(d))
-    assert calls == [1, 2] and raw["X_headings"].shape == (2, 4, 5)
-    assert raw["A"].shape == raw["B"].shape == (2, 5, 5) and raw["A_inf"].shape == (5, 5)
+    assert calls == [1, 2, 3, 4] and raw["X_headings"].shape == (4, 4, 5)
+    assert raw["A"].shape == raw["B"].shape == (4, 5, 5) and raw["A_inf"].shape == (5, 5)
     assert np.array_equal(raw["X"], raw["X_headings"][:, 0])
     X = np.abs(raw["X_headings"])
     assert np.max(X[:, 0, [1, 3]]) < 1e-9 * X.max()  # no sway or roll in head waves
     assert np.max(X[:, -1, [0, 4]]) < 1e-9 * X.max()  # no surge or pitch in beam waves
     assert raw["C"][2, 2] == pytest.approx(RHO * G * 120.0, rel=1e-3)
     h = box_coefficients(hull, om, 35.0, raw)
-    assert h.transverse_damping.shape == (2, 2, 2) and h.heading_excitation.shape == (2, 4, 5)
+    assert h.transverse_damping.shape == (4, 2, 2) and h.heading_excitation.shape == (4, 4, 5)
