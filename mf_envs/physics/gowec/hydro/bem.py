@@ -7,7 +7,8 @@ frequencies of the interior problem. Conventions: `mf_envs.physics.gowec.hydro`.
 
 `solve` is the mesh-agnostic core (any body, any subset of rigid-body dofs, any depth); it is
 what the WAMIT regression test runs on a sphere and what `from_capytaine` (pitch of a cylinder)
-and `hydro.three_dof_bem` (surge/heave/pitch) run on a cylinder.
+and `hydro.three_dof_bem` (surge/heave/pitch) run on a cylinder; `box_solve` runs it on ISWEC's
+box (five modes, ten headings, one frequency at a time).
 """
 
 from __future__ import annotations
@@ -214,8 +215,8 @@ def three_dof_from_capytaine(
 
 
 def box_body(hull: BoxHull, mesh: tuple[int, int, int, float], rho: float = RHO):
-    """FloatingBody of `hull` on the graded, twice mirror-symmetric mesh (n_length, n_beam,
-    n_draft, ratio) of `meshes.box_mesh` (with its waterplane lid), rotation centre G."""
+    """FloatingBody of `hull` on the twice mirror-symmetric mesh (n_length, n_beam, n_draft,
+    ratio) of `meshes.box_mesh` (with its waterplane lid), rotation centre G."""
     from mf_envs.physics.gowec.hydro.meshes import box_mesh
 
     nl, nb, nd, q = mesh
@@ -360,7 +361,8 @@ def solve_depth(
     object for the deep part; default Capytaine's Delhommeau (tabulated), the same family as
     the finite-depth part. (`deep_green_function`, Liang-Wu-Noblesse, is not used here: on the
     ISWEC-class hull it puts heave damping 16-25 % above the Haskind value at 2.8-3.0 rad/s on
-    every mesh tried, where Delhommeau's agrees to 1-3 %; docs/gowec_v1.md, "Convergence".)"""
+    every mesh tried, where Delhommeau's agrees to 1-3 %; docs/gowec_v1.md, "Convergence".)
+    headings, progress_bar: passed to `solve`."""
     from mf_envs.physics.waves import wavenumber
 
     om = np.asarray(omega, dtype=float)
