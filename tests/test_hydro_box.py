@@ -186,6 +186,10 @@ def test_optional_fields_roundtrip_and_bad_input(box, tmp_path):
         _with(box, headings=box.headings[::-1].copy())
     with pytest.raises(ValueError, match="length"):
         _with(box, length=-1.0)
+    B = box.transverse_damping.copy()
+    B[5, 1, 1] = -1.0
+    with pytest.raises(ValueError, match="transverse_damping diagonal"):
+        _with(box, transverse_damping=B)
     with pytest.raises(ValueError, match="hull.roll_gyration"):
         BoxHull(roll_gyration=0.0)
     with pytest.raises(ValueError, match="axis"):

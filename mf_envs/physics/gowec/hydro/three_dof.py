@@ -225,8 +225,11 @@ def _validate(h: ThreeDofCoefficients) -> None:
     k = np.asarray(h.wavenumber)
     if not np.allclose(om**2, h.g * k * np.tanh(k * h.water_depth), rtol=1e-6):
         raise ValueError(f"hull {n!r}: wavenumber must solve w^2 = g k tanh(k h) at water_depth")
-    if np.any(np.diagonal(h.damping, axis1=1, axis2=2) < -1e-9 * np.max(np.abs(h.damping))):
-        raise ValueError(f"hull {n!r}: damping diagonal must be >= 0 (negative radiation damping)")
-    if np.any(np.diag(h.mass_matrix) <= 0):
-        raise ValueError(f"hull {n!r}: mass_matrix diagonal must be > 0")
     _validate_optional(h)
+    for pre in ("", "transverse_") if h.transverse_damping is not None else ("",):
+        B, M = getattr(h, pre + "damping"), getattr(h, pre + "mass_matrix")
+        if np.any(np.diagonal(B, axis1=1, axis2=2) < -1e-9 * np.max(np.abs(B))):
+            raise ValueError(f"hull {n!r}: {pre}damping diagonal must be >= 0 (negative "
+                             "radiation damping)")  # fmt: skip
+        if np.any(np.diag(M) <= 0):
+            raise ValueError(f"hull {n!r}: {pre}mass_matrix diagonal must be > 0")
