@@ -114,8 +114,8 @@ class BoxHull:
     """A rectangular box floating level: length along x (the head-wave direction), beam along y,
     draft (m), centre of gravity height zg (m, still water line 0), radii of gyration about G for
     pitch (y axis) and roll (x axis) (m). Freely floating: mass = rho V. The default is ISWEC's
-    Pantelleria hull (15 x 8 m, 3.2 m draft; Bracco et al. 2015) with chosen mass properties
-    (none published that could be read): zg = -0.5 m as the cylinder stand-in's, and the
+    Pantelleria hull (15 x 8 m, 3.2 m draft; sources in docs/gowec_v1.md) with chosen mass
+    properties (none published that could be read): zg = -0.5 m as the cylinder stand-in's, and the
     gyration radii of a solid box of the hull's full 4.5 m height, k^2 = (L^2 + H^2) / 12 for
     pitch and (B^2 + H^2) / 12 for roll (docs/gowec_v1.md, "ISWEC's box hull")."""
 
