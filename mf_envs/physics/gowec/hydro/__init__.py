@@ -53,6 +53,17 @@ _SCALARS = (
 )
 
 
+def _check_geometry(hull: Any, names: tuple[str, ...]) -> None:
+    """ValueError naming the field unless each of `names` is a finite number > 0 and zg is
+    finite and above the keel (> -draft)."""
+    for name in names:
+        v = getattr(hull, name)
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ValueError(f"hull.{name}: must be > 0, got {v!r}")
+    if not (math.isfinite(hull.zg) and -hull.draft < hull.zg):
+        raise ValueError(f"hull.zg: must be above the keel (> {-hull.draft}), got {hull.zg}")
+
+
 @dataclass(frozen=True)
 class CylinderHull:
     """A vertical circular cylinder floating upright: radius (m), draft (m), centre of gravity
@@ -65,12 +76,7 @@ class CylinderHull:
     gyration: float = 1.5
 
     def __post_init__(self) -> None:
-        for name in ("radius", "draft", "gyration"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise ValueError(f"hull.{name}: must be > 0, got {v!r}")
-        if not (math.isfinite(self.zg) and -self.draft < self.zg):
-            raise ValueError(f"hull.zg: must be above the keel (> {-self.draft}), got {self.zg}")
+        _check_geometry(self, ("radius", "draft", "gyration"))
 
     @property
     def volume(self) -> float:
@@ -101,6 +107,60 @@ class CylinderHull:
             rho * g * (self.waterplane_inertia + self.volume * self.zb)
             - self.mass(rho) * g * self.zg
         )
+
+
+@dataclass(frozen=True)
+class BoxHull:
+    """A rectangular box floating level: length along x (the head-wave direction), beam along y,
+    draft (m), centre of gravity height zg (m, still water line 0), radii of gyration about G for
+    pitch (y axis) and roll (x axis) (m). Freely floating: mass = rho V. The default is ISWEC's
+    Pantelleria hull (15 x 8 m, 3.2 m draft; sources in docs/gowec_v1.md) with chosen mass
+    properties (none published that could be read): zg = -0.5 m as the cylinder stand-in's, and the
+    gyration radii of a solid box of the hull's full 4.5 m height, k^2 = (L^2 + H^2) / 12 for
+    pitch and (B^2 + H^2) / 12 for roll (docs/gowec_v1.md, "ISWEC's box hull")."""
+
+    length: float = 15.0
+    beam: float = 8.0
+    draft: float = 3.2
+    zg: float = -0.5
+    gyration: float = math.sqrt((15.0**2 + 4.5**2) / 12.0)  # 4.521 m
+    roll_gyration: float = math.sqrt((8.0**2 + 4.5**2) / 12.0)  # 2.648 m
+
+    def __post_init__(self) -> None:
+        _check_geometry(self, ("length", "beam", "draft", "gyration", "roll_gyration"))
+
+    @property
+    def volume(self) -> float:
+        """Displaced volume V = L B d (m^3)."""
+        return self.length * self.beam * self.draft
+
+    @property
+    def waterplane_area(self) -> float:
+        """A_wp = L B (m^2)."""
+        return self.length * self.beam
+
+    def waterplane_inertia(self, axis: str = "pitch") -> float:
+        """Second moment of the waterplane (m^4) about the y axis (pitch, B L^3 / 12) or the
+        x axis (roll, L B^3 / 12)."""
+        if axis not in ("pitch", "roll"):
+            raise ValueError(f"axis: expected 'pitch' or 'roll', got {axis!r}")
+        a, b = (self.beam, self.length) if axis == "pitch" else (self.length, self.beam)
+        return a * b**3 / 12.0
+
+    def mass(self, rho: float = RHO) -> float:
+        """m = rho V (kg), freely floating."""
+        return rho * self.volume
+
+    def inertia(self, rho: float = RHO, axis: str = "pitch") -> float:
+        """Rigid-body inertia about G (kg m^2), m k^2 with k the pitch or roll gyration."""
+        k = self.gyration if axis == "pitch" else self.roll_gyration
+        return self.mass(rho) * k**2
+
+    def stiffness(self, rho: float = RHO, g: float = G, axis: str = "pitch") -> float:
+        """C55 (pitch) or C44 (roll) = rho g (I_wp + V z_B) - m g z_G (N m/rad), z_B = -d/2:
+        exact for a box."""
+        wp = self.waterplane_inertia(axis)
+        return rho * g * (wp - 0.5 * self.volume * self.draft) - self.mass(rho) * g * self.zg
 
 
 MAX_MEMBER_BYTES = 16 << 20  # one array of a hull file (a 1,000-frequency table is 8 KB)

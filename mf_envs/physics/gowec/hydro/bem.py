@@ -7,18 +7,20 @@ frequencies of the interior problem. Conventions: `mf_envs.physics.gowec.hydro`.
 
 `solve` is the mesh-agnostic core (any body, any subset of rigid-body dofs, any depth); it is
 what the WAMIT regression test runs on a sphere and what `from_capytaine` (pitch of a cylinder)
-and `hydro.three_dof_bem` (surge/heave/pitch) run on a cylinder.
+and `hydro.three_dof_bem` (surge/heave/pitch) run on a cylinder; `box_solve` runs it on ISWEC's
+box (five modes, ten headings, one frequency at a time).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mf_envs.physics.gowec.hydro import RHO, CylinderHull, G, HullCoefficients
+from mf_envs.physics.gowec.hydro import RHO, BoxHull, CylinderHull, G, HullCoefficients
 
 # (n_theta, n_side, n_bottom, ratio) of `meshes.cylinder_mesh` for the GOWEC default cylinder
 # (r 2.5 m, d 2 m): 13 824 hull panels, Haskind within 5 % at 0.3-3 rad/s (docs/gowec_v1.md,
@@ -50,12 +52,18 @@ def solve(
     rho: float = RHO,
     g: float = G,
     green_function: Any = None,
+    headings: tuple[float, ...] = (0.0,),
+    progress_bar: bool | None = None,
 ) -> dict[str, np.ndarray]:
     """Radiation and diffraction of `body` for the rigid-body modes (1..6 = surge..yaw) at the
     frequencies omega (rad/s), head waves along +x. Returns float64/complex128 arrays:
     A, B (n, m, m) [i, j] = force on mode i from motion of mode j; X (n, m) excitation per metre
     of wave amplitude (Capytaine's e^{-i w t} convention); k (n,) wavenumber (rad/m).
-    green_function: a Capytaine Green function object (default: Capytaine's Delhommeau)."""
+    green_function: a Capytaine Green function object (default: Capytaine's Delhommeau).
+    headings: wave directions beta (rad from +x towards +y); with more than the head wave the
+    result also has X_headings (n, len(headings), m) (the diffraction problems share each
+    frequency's factorised matrix, so a heading costs a right-hand side, not a solve).
+    progress_bar: Capytaine's (None: its default, on unless CAPYTAINE_PROGRESS_BAR says off)."""
     import capytaine as cpt
     import xarray as xr
 
@@ -67,10 +75,13 @@ def solve(
     if not (water_depth > 0):
         raise ValueError(f"water_depth: must be > 0 (inf = deep), got {water_depth!r}")
     names = [DOF_NAMES[i] for i in modes]
+    beta = [float(b) for b in headings]
+    if not (beta and beta[0] == 0.0 and np.all(np.isfinite(beta))):
+        raise ValueError(f"headings: expected finite angles starting with 0, got {headings!r}")
     test = xr.Dataset(
         coords={
             "omega": om,
-            "wave_direction": [0.0],
+            "wave_direction": beta,
             "radiating_dof": names,
             "influenced_dof": names,
             "rho": rho,
@@ -80,17 +91,22 @@ def solve(
     )
     gf = {} if green_function is None else dict(green_function=green_function)
     solver = cpt.BEMSolver(**gf)
-    ds = solver.fill_dataset(test, body, hydrostatics=False).sel(omega=om)  # input order
+    ds = solver.fill_dataset(test, body, hydrostatics=False, progress_bar=progress_bar)
+    ds = ds.sel(omega=om)  # input order
     order = dict(influenced_dof=names, radiating_dof=names)
     A = ds.added_mass.sel(**order).transpose("omega", "influenced_dof", "radiating_dof")
     B = ds.radiation_damping.sel(**order).transpose("omega", "influenced_dof", "radiating_dof")
-    X = ds.excitation_force.sel(influenced_dof=names, wave_direction=0.0)
-    return dict(
+    X = ds.excitation_force.sel(influenced_dof=names, wave_direction=beta)
+    X = X.transpose("omega", "wave_direction", "influenced_dof").values.astype(np.complex128)
+    out = dict(
         A=A.values.astype(np.float64),
         B=B.values.astype(np.float64),
-        X=X.transpose("omega", "influenced_dof").values.astype(np.complex128),
+        X=X[:, 0],
         k=np.asarray(ds.wavenumber.values, dtype=np.float64),
     )
+    if len(beta) > 1:
+        out["X_headings"] = X
+    return out
 
 
 def deep_green_function():
@@ -198,6 +214,122 @@ def three_dof_from_capytaine(
     )
 
 
+def box_body(hull: BoxHull, mesh: tuple[int, int, int, float], rho: float = RHO):
+    """FloatingBody of `hull` on the twice mirror-symmetric mesh (n_length, n_beam, n_draft,
+    ratio) of `meshes.box_mesh` (with its waterplane lid), rotation centre G."""
+    from mf_envs.physics.gowec.hydro.meshes import box_mesh
+
+    nl, nb, nd, q = mesh
+    hull_mesh, lid = box_mesh(hull.length, hull.beam, hull.draft, int(nl), int(nb), int(nd), q)
+    return rigid_body(hull_mesh, lid, (0.0, 0.0, hull.zg), hull.mass(rho), "iswec_box")
+
+
+def _release_matrices() -> None:
+    """Free the influence matrices Capytaine 3.0 keeps: `NestedBlockCirculantMatrix.
+    to_BlockCirculantMatrix` (the twice mirror-symmetric mesh's S @ sigma) is memoised by a
+    method-level `functools.lru_cache` of 128 entries, which holds every solved frequency's S
+    and its dense macro-blocks alive (measured: +240 MB per frequency at 3 168 panels; the
+    7 184-panel box was killed out of memory after about a dozen frequencies). A no-op where
+    the method has no cache (`tests/test_hydro_box.py` pins the hook)."""
+    from capytaine.tools.block_circulant_matrices import NestedBlockCirculantMatrix
+
+    clear = getattr(NestedBlockCirculantMatrix.to_BlockCirculantMatrix, "cache_clear", None)
+    if clear is not None:
+        clear()
+
+
+BOX_MODES = (1, 2, 3, 4, 5)  # surge, sway, heave, roll, pitch: what `box_solve` computes
+
+
+def box_solve(
+    hull: BoxHull,
+    omega: ArrayLike,
+    water_depth: float,
+    mesh: tuple[int, int, int, float],
+    n_headings: int = 10,
+    rho: float = RHO,
+    g: float = G,
+    progress: Callable[[int, int], None] | None = None,
+) -> dict[str, np.ndarray]:
+    """The raw BEM arrays of a box about G at finite `water_depth` (m), modes `BOX_MODES`:
+    `solve_depth`'s A, B (n, 5, 5), X (n, 5), k (n,) and X_headings (n, n_headings, 5) at
+    wave directions evenly spaced over 0..pi/2 (the rest of the circle follows from the two
+    mirror planes), plus A_inf (5, 5) (deep water), C (6, 6) (the mesh hydrostatics), headings
+    (rad) and panels (hull + lid). One run: the headings and the modes are right-hand sides of
+    each frequency's factorised matrix. Solved one frequency at a time (`_release_matrices`
+    between them); progress(done, total) is called after each."""
+    if not (isinstance(n_headings, int) and n_headings >= 3):
+        raise ValueError(f"n_headings: must be an integer >= 3, got {n_headings!r}")
+    om = np.asarray(omega, dtype=float)
+    body = box_body(hull, mesh, rho)
+    beta = tuple(np.linspace(0.0, 0.5 * np.pi, n_headings))
+    parts = []
+    for i in range(om.size):
+        parts.append(solve_depth(body, om[i : i + 1], BOX_MODES, water_depth, rho, g,
+                                 headings=beta, progress_bar=progress is None))  # fmt: skip
+        _release_matrices()
+        if progress is not None:
+            progress(i + 1, om.size)
+    out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    out["A_inf"] = solve_limit(body, BOX_MODES, np.inf, rho, g)
+    out["C"] = np.asarray(body.compute_hydrostatics(rho=rho, g=g)["hydrostatic_stiffness"], float)
+    out["headings"] = np.asarray(beta)
+    out["panels"] = np.array(body.mesh_including_lid.nb_faces)  # hull + lid
+    return out
+
+
+def _clip_tail(B: np.ndarray, tol: float = 0.01) -> np.ndarray:
+    """B (n, m, m) with negative diagonal values set to 0 where they are within `tol` of the
+    mode's peak (the mesh's noise where a mode radiates almost nothing, e.g. heave of the box
+    at 3.3 rad/s, B33 ~ 1e-3 of its peak); ValueError naming the mode if one is more negative
+    (a failed solve, not noise)."""
+    B = np.array(B, dtype=float)
+    for i in range(B.shape[1]):
+        d = B[:, i, i]
+        if np.any(d < -tol * d.max()):
+            raise ValueError(f"damping: mode index {i} has B_ii < -{tol} x its peak")
+        B[d < 0, i, i] = 0.0
+    return B
+
+
+def box_coefficients(
+    hull: BoxHull, omega: ArrayLike, water_depth: float, raw: dict[str, np.ndarray],
+    rho: float = RHO, g: float = G,
+):  # fmt: skip
+    """`ThreeDofCoefficients` of a box from `box_solve`'s arrays: surge/heave/pitch as the
+    cylinder's (`three_dof_from_capytaine`) plus the optional sway/roll block and the heading
+    table. Mass matrices diag(m, m, I55) and diag(m, I44) about G, m = rho V. Negative
+    B_ii of the table's tail are set to 0 (`_clip_tail`)."""
+    from mf_envs.physics.gowec.hydro.three_dof import MODES, TRANSVERSE_MODES, ThreeDofCoefficients
+
+    m = hull.mass(rho)
+    lon = [BOX_MODES.index(i) for i in MODES]
+    tra = [BOX_MODES.index(i) for i in TRANSVERSE_MODES]
+
+    def block(M: np.ndarray, idx: list[int]) -> np.ndarray:
+        return M[..., idx, :][..., idx]
+
+    def c6(idx: list[int]) -> np.ndarray:  # Capytaine's 6 x 6 is indexed by mode - 1
+        return block(raw["C"], [BOX_MODES[i] - 1 for i in idx])
+
+    A, B = raw["A"], _clip_tail(raw["B"])
+    return ThreeDofCoefficients(
+        omega=np.asarray(omega, dtype=float), wavenumber=raw["k"],
+        added_mass=block(A, lon), damping=block(B, lon), excitation=raw["X"][:, lon],
+        added_mass_inf=block(raw["A_inf"], lon), hydrostatic_stiffness=c6(lon),
+        mass_matrix=np.diag([m, m, hull.inertia(rho)]),
+        water_depth=float(water_depth), rho=rho, g=g, radius=math.nan, draft=hull.draft,
+        zg=hull.zg, gyration=hull.gyration,
+        name=f"capytaine box {hull.length}x{hull.beam} d={hull.draft} h={water_depth}",
+        length=hull.length, beam=hull.beam, roll_gyration=hull.roll_gyration,
+        transverse_added_mass=block(A, tra), transverse_damping=block(B, tra),
+        transverse_added_mass_inf=block(raw["A_inf"], tra),
+        transverse_hydrostatic_stiffness=c6(tra),
+        transverse_mass_matrix=np.diag([m, hull.inertia(rho, "roll")]),
+        headings=raw["headings"], heading_excitation=raw["X_headings"],
+    )  # fmt: skip
+
+
 def _provenance(hull: CylinderHull, rho: float, g: float, depth: str = "") -> dict[str, Any]:
     """The fields a coefficient set records of what it was solved for: water, hull, a name."""
     return {
@@ -219,6 +351,8 @@ def solve_depth(
     g: float = G,
     deep_kh: float = 6.0,
     deep_green: Any = None,
+    headings: tuple[float, ...] = (0.0,),
+    progress_bar: bool | None = None,
 ) -> dict[str, np.ndarray]:
     """`solve` at a finite depth h: Capytaine's finite-depth Green function where k h <= deep_kh,
     a deep-water one where the seabed is deeper than deep_kh / k (its effect on the potential
@@ -227,7 +361,8 @@ def solve_depth(
     object for the deep part; default Capytaine's Delhommeau (tabulated), the same family as
     the finite-depth part. (`deep_green_function`, Liang-Wu-Noblesse, is not used here: on the
     ISWEC-class hull it puts heave damping 16-25 % above the Haskind value at 2.8-3.0 rad/s on
-    every mesh tried, where Delhommeau's agrees to 1-3 %; docs/gowec_v1.md, "Convergence".)"""
+    every mesh tried, where Delhommeau's agrees to 1-3 %; docs/gowec_v1.md, "Convergence".)
+    headings, progress_bar: passed to `solve`."""
     from mf_envs.physics.waves import wavenumber
 
     om = np.asarray(omega, dtype=float)
@@ -236,11 +371,10 @@ def solve_depth(
     k = wavenumber(om, water_depth, g)
     deep = k * water_depth > deep_kh
     parts = []
-    if np.any(~deep):
-        parts.append(solve(body, om[~deep], modes, water_depth, rho, g))
-    if np.any(deep):
-        parts.append(solve(body, om[deep], modes, math.inf, rho, g, deep_green))
-    out = {key: np.concatenate([p[key] for p in parts]) for key in ("A", "B", "X")}
+    for sel, h, gf in ((~deep, water_depth, None), (deep, math.inf, deep_green)):
+        if np.any(sel):
+            parts.append(solve(body, om[sel], modes, h, rho, g, gf, headings, progress_bar))
+    out = {key: np.concatenate([p[key] for p in parts]) for key in parts[0] if key != "k"}
     out["k"] = k
     return out
 

@@ -9,7 +9,11 @@
 - Haskind for surge/heave/pitch in finite depth (`haskind_matrix`) and the largest power the
   three modes absorb together (`max_absorbed_power`; for an axisymmetric hull 3 lambda J / 2 pi:
   lambda J / 2 pi in heave, lambda J / pi in surge and pitch together; Newman 1976, Evans 1976).
-- Hydrostatics: C55 = rho g (I_wp + V z_B) - m g z_G from the geometry (`CylinderHull`).
+- Hydrostatics: C55 = rho g (I_wp + V z_B) - m g z_G from the geometry (`CylinderHull`,
+  `BoxHull`).
+- Haskind for any hull with the xOz and yOz mirror planes (`haskind_headings`, the box): the
+  angular integral of X_i(beta) conj(X_j(beta)) over the whole circle, from the excitation at
+  headings over 0..pi/2 and the modes' mirror parities.
 """
 
 from __future__ import annotations
@@ -72,3 +76,38 @@ def max_absorbed_power(h: ThreeDofCoefficients, rcond: float = 0.05) -> NDArray[
         X = h.excitation[n] * s
         out[n] = 0.125 * float(np.real(np.conj(X) @ Bp @ X))
     return out
+
+
+# Mirror parities of modes 1..5 (surge, sway, heave, roll, pitch): the sign a mode's motion takes
+# under y -> -y (the xOz plane) and under x -> -x (yOz). A body with both planes then has
+# X_i(-beta) = s_y X_i(beta) and X_i(pi - beta) = s_x X_i(beta) (Newman 1977 ch. 6 for the
+# reflection argument).
+MIRROR_PARITY_Y = np.array([1.0, -1.0, 1.0, -1.0, 1.0])
+MIRROR_PARITY_X = np.array([-1.0, 1.0, 1.0, 1.0, -1.0])
+
+
+def full_circle(headings: NDArray, X: NDArray) -> tuple[NDArray, NDArray]:
+    """Headings (m,) evenly spaced over 0..pi/2 and X (n, m, 5) of modes 1..5 -> the 4(m - 1)
+    headings k pi / (2 (m - 1)) over [0, 2 pi) and X (n, 4(m - 1), 5) there, by the mirror
+    parities (`MIRROR_PARITY_Y`, `MIRROR_PARITY_X`). ValueError unless 0..pi/2 evenly."""
+    b = np.asarray(headings, dtype=float)
+    m = b.size
+    if m < 2 or not np.allclose(b, np.linspace(0.0, 0.5 * np.pi, m), rtol=0, atol=1e-12):
+        raise ValueError("headings: expected evenly spaced 0..pi/2")
+    upper = np.concatenate((X, MIRROR_PARITY_X * X[:, -2::-1]), axis=1)  # 0..pi, 2m - 1
+    full = np.concatenate((upper, MIRROR_PARITY_Y * upper[:, -2:0:-1]), axis=1)
+    return np.arange(full.shape[1]) * (b[1] - b[0]), full
+
+
+def haskind_headings(h: ThreeDofCoefficients) -> NDArray[np.float64]:
+    """B_ij (n, 5, 5) of modes 1..5 by the general Haskind relation in finite depth (Newman
+    1962; Falnes 2002 ch. 5), B_ij = k / (8 pi rho g c_g) Re int_0^2pi X_i conj(X_j) dbeta,
+    from the heading table of a twice mirror-symmetric hull (`full_circle`; the periodic
+    trapezoid rule, spectrally accurate for the smooth X(beta))."""
+    if h.headings is None or h.heading_excitation is None:
+        raise ValueError(f"hull {h.name!r}: no heading table (headings, heading_excitation)")
+    beta, X = full_circle(h.headings, h.heading_excitation)
+    step = beta[1] - beta[0]
+    integral = step * np.real(np.einsum("nbi,nbj->nij", X, np.conj(X)))
+    c = h.wavenumber / (8.0 * np.pi * h.rho * h.g * h.group_velocity)
+    return c[:, None, None] * integral

@@ -1,4 +1,4 @@
-"""Axisymmetric panel meshes for the BEM front end (`bem.py`); needs the `hydro` extra.
+"""Panel meshes for the BEM front end (`bem.py`); needs the `hydro` extra.
 
 A body of revolution about z is described by its meridian profile (r, z) from the waterline
 down to the axis; Capytaine's `RotationSymmetricMesh` repeats one wedge of panels `n_theta`
@@ -10,6 +10,22 @@ of a rotating or translating cylinder is singular there (a 270-degree corner, fl
 and the pitch moment about G of a shallow-draft cylinder is a small difference of large
 contributions from the side and the bottom, so the panel error at the corner controls
 B55 and |X5|. Grading: panel sizes grow geometrically away from the corner by `ratio`.
+
+`box_mesh` is a rectangular barge (ISWEC's 15 x 8 m hull) with its two mirror planes (xOz, yOz):
+one quarter of the panels is stored and Capytaine's nested `ReflectionSymmetricMesh` makes the
+influence matrices four quarter-size blocks (Green function evaluated N x N/4 times, four
+(N/4)^3 factorisations instead of one N^3). Panels can be graded towards the keel edges, the
+vertical corners and the waterline (`ratio`).
+
+    quarter stored (x <= 0, y <= 0), seen from above:     and from the side (y = -B/2):
+
+      y=0  +----------------+ x=0                        z=0  +-------------------+ x=0
+           |    bottom      |                                 |   side  (graded   |
+           |  (graded to    |                                 |   to x=-L/2, the  |
+           |   x=-L/2 and   |                                 |   keel and the    |
+           |   y=-B/2)      |                                 |   waterline)      |
+     y=-B/2+----------------+                            z=-d +-------------------+
+         x=-L/2                                             x=-L/2
 """
 
 from __future__ import annotations
@@ -97,3 +113,84 @@ def hemisphere_mesh(radius: float, n_theta: int = 64, n_meridian: int = 24):
     pts = radius * np.stack((np.sin(t), np.zeros_like(t), np.cos(t)), axis=1)
     hull = revolve(pts, n_theta, "hemisphere")
     return hull, lid_mesh(radius, -0.01 * radius, max(2, n_meridian // 2), n_theta)
+
+
+def _grid(a: NDArray, b: NDArray, point) -> tuple[NDArray, NDArray]:
+    """Vertices and quads of the structured grid point(a_i, b_j) (i along a, j along b);
+    quads (a_i, b_j) -> (a_i+1, b_j) -> (a_i+1, b_j+1) -> (a_i, b_j+1)."""
+    A, Bm = np.meshgrid(a, b, indexing="ij")
+    v = np.stack(point(A.ravel(), Bm.ravel()), axis=1)
+    nb = b.size
+    i, j = np.meshgrid(np.arange(a.size - 1), np.arange(nb - 1), indexing="ij")
+    q = (i * nb + j).ravel()
+    return v, np.stack((q, q + nb, q + nb + 1, q + 1), axis=1)
+
+
+def _quarter(parts: list[tuple[NDArray, NDArray]], outward: NDArray, name: str):
+    """Capytaine Mesh of the quarter's faces, each face's quads oriented so that its normal
+    has a positive component along its `outward` row (into the fluid)."""
+    from capytaine.meshes.meshes import Mesh
+
+    verts, faces, off = [], [], 0
+    for (v, f), out in zip(parts, outward):
+        n = np.cross(v[f[0, 1]] - v[f[0, 0]], v[f[0, 3]] - v[f[0, 0]])
+        verts.append(v)
+        faces.append((f if n @ out > 0 else f[:, ::-1]) + off)
+        off += len(v)
+    return Mesh(np.concatenate(verts), np.concatenate(faces), name=name)
+
+
+def _mirrored_twice(quarter, name: str):
+    """The full mesh from its x <= 0, y <= 0 quarter: nested `ReflectionSymmetricMesh`, yOz
+    inside xOz (the nesting Capytaine's solver recognises; as `mesh_parallelepiped`)."""
+    from capytaine.meshes.symmetric_meshes import ReflectionSymmetricMesh
+
+    half = ReflectionSymmetricMesh(quarter, plane="yOz", name=f"half_of_{name}")
+    return ReflectionSymmetricMesh(half, plane="xOz", name=name)
+
+
+def box_mesh(
+    length: float,
+    beam: float,
+    draft: float,
+    n_length: int = 24,
+    n_beam: int = 12,
+    n_draft: int = 10,
+    ratio: float = 1.0,
+    lid_panels: tuple[int, int] | None = None,
+):
+    """(hull, lid) of a floating rectangular box, x along `length`, y along `beam` (m), keel at
+    z = -`draft`, both nested mirror-symmetric (`_mirrored_twice`). Per quarter: n_length panels
+    along x over L/2 and n_beam along y over B/2, graded by `ratio` towards the box's edge (the
+    smallest panels at x = -L/2, y = -B/2); n_draft panels down the walls, graded towards both
+    the waterline and the keel (as `cylinder_profile`'s side). Hull panels:
+    4 (n_length n_draft + n_beam n_draft + n_length n_beam). The lid (the waterplane at
+    z = -0.01 d, for the irregular frequencies) has lid_panels = (along x, along y) uniform panels
+    per quarter (default half the hull's counts). Default ratio 1: on this hull grading made
+    the Haskind check worse, not better (docs/gowec_v1.md, "ISWEC's box hull")."""
+    for k, v in (("length", length), ("beam", beam), ("draft", draft)):
+        if not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{k}: must be > 0, got {v!r}")
+    for k, v in (("n_length", n_length), ("n_beam", n_beam), ("n_draft", n_draft)):
+        if not (isinstance(v, int) and v >= 2):
+            raise ValueError(f"{k}: must be an integer >= 2, got {v!r}")
+    hl, hb = 0.5 * length, 0.5 * beam
+    x = -hl + graded(hl, n_length, ratio)  # -L/2 (fine) .. 0
+    y = -hb + graded(hb, n_beam, ratio)
+    half = n_draft // 2
+    z = np.concatenate((-graded(0.5 * draft, half, ratio),
+                        -draft + graded(0.5 * draft, n_draft - half, ratio)[::-1][1:]))  # fmt: skip
+
+    parts = [
+        _grid(x, z, lambda a, b: (a, np.full_like(a, -hb), b)),  # side wall y = -B/2
+        _grid(y, z, lambda a, b: (np.full_like(a, -hl), a, b)),  # end wall x = -L/2
+        _grid(x, y, lambda a, b: (a, b, np.full_like(a, -draft))),  # bottom
+    ]
+    out = np.array([[0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+    hull = _mirrored_twice(_quarter(parts, out, "box_quarter"), "box")
+    nlx, nly = lid_panels or (max(2, n_length // 2), max(2, n_beam // 2))
+    zl = -0.01 * draft
+    lid_q = _grid(np.linspace(-hl, 0.0, nlx + 1), np.linspace(-hb, 0.0, nly + 1),
+                  lambda a, b: (a, b, np.full_like(a, zl)))  # fmt: skip
+    lid = _mirrored_twice(_quarter([lid_q], np.array([[0.0, 0.0, -1.0]]), "lid_quarter"), "lid")
+    return hull, lid

@@ -23,6 +23,20 @@ File schema (`.npz`, read with `allow_pickle=False`, all arrays float64):
     hydrostatic_stiffness (3, 3)
     mass_matrix      (3, 3)    diag(m, m, m k^2) about G
     water_depth, rho, g, radius, draft, zg, gyration   scalars (m, kg/m^3, m/s^2, m, m, m, m)
+
+Optional (a box hull's file has them, the cylinder's does not; absent = not computed):
+
+    length, beam, roll_gyration   scalars (m): a box's size along x and y and its roll radius of
+                               gyration about G (radius is then nan)
+    transverse_modes (2,)      2, 4 (sway, roll), about G; decoupled from 1, 3, 5 by the xOz
+                               mirror plane
+    transverse_added_mass, transverse_damping   (n, 2, 2)
+    transverse_added_mass_inf, transverse_hydrostatic_stiffness, transverse_mass_matrix (2, 2)
+    headings         (nb,)     wave directions beta (rad, from +x towards +y), 0 first
+    heading_excitation_re, heading_excitation_im   (n, nb, 5)  X of modes 1..5 (surge, sway,
+                               heave, roll, pitch) for a wave travelling towards beta: the
+                               far-field data of the general Haskind relation
+                               (`checks.haskind_headings`); [:, 0, (0, 2, 4)] = excitation
 """
 
 from __future__ import annotations
@@ -42,10 +56,21 @@ ISWEC_HULL_FILE = Path(__file__).with_name("iswec_cylinder_3dof.npz")
 # the file's mesh, (n_theta, n_side, n_bottom, ratio) of `meshes.cylinder_mesh` (docs/gowec_v1.md,
 # "ISWEC-class hull"): 192 x (24 + 48) panels graded 1.04 towards the keel edge
 ISWEC_MESH = (192, 24, 48, 1.04)
+# ISWEC's own hull, the 15 x 8 m box (`hydro.BoxHull`, `scripts/compute_hydro_box.py`), and its
+# mesh (n_length, n_beam, n_draft, ratio) of `meshes.box_mesh`: 4 x (36 x 16 + 20 x 16 + 36 x 20)
+# hull panels of ~0.2 m, ungraded (grading measured worse here; docs/gowec_v1.md, "ISWEC's box
+# hull")
+ISWEC_BOX_FILE = Path(__file__).with_name("iswec_box_3dof.npz")
+ISWEC_BOX_MESH = (36, 20, 16, 1.0)
 MODES = (1, 3, 5)
+TRANSVERSE_MODES = (2, 4)
 _MATRICES = ("added_mass", "damping")
 _FIXED = ("added_mass_inf", "hydrostatic_stiffness", "mass_matrix")
 _SCALARS = ("water_depth", "rho", "g", "radius", "draft", "zg", "gyration")
+_BOX_SCALARS = ("length", "beam", "roll_gyration")
+# optional arrays and their dimensions (transverse block: all or none; headings: both or none)
+_TRANSVERSE = {"transverse_" + k: nd for k, nd in (*((k, 3) for k in _MATRICES),
+                                                   *((k, 2) for k in _FIXED))}  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -68,6 +93,16 @@ class ThreeDofCoefficients:
     zg: float
     gyration: float
     name: str = field(default="hull")
+    length: float = math.nan
+    beam: float = math.nan
+    roll_gyration: float = math.nan
+    transverse_added_mass: NDArray[np.float64] | None = None
+    transverse_damping: NDArray[np.float64] | None = None
+    transverse_added_mass_inf: NDArray[np.float64] | None = None
+    transverse_hydrostatic_stiffness: NDArray[np.float64] | None = None
+    transverse_mass_matrix: NDArray[np.float64] | None = None
+    headings: NDArray[np.float64] | None = None
+    heading_excitation: NDArray[np.complex128] | None = None
 
     def __post_init__(self) -> None:
         _validate(self)
@@ -80,6 +115,15 @@ class ThreeDofCoefficients:
         data["modes"] = np.asarray(MODES, dtype=float)
         data["excitation_re"] = self.excitation.real.astype(float)
         data["excitation_im"] = self.excitation.imag.astype(float)
+        data.update({k: np.asarray(getattr(self, k), float) for k in _BOX_SCALARS
+                     if math.isfinite(getattr(self, k))})  # fmt: skip
+        if self.transverse_added_mass is not None:
+            data.update({k: np.asarray(getattr(self, k), float) for k in _TRANSVERSE})
+            data["transverse_modes"] = np.asarray(TRANSVERSE_MODES, dtype=float)
+        if self.headings is not None:
+            data["headings"] = np.asarray(self.headings, float)
+            data["heading_excitation_re"] = self.heading_excitation.real.astype(float)
+            data["heading_excitation_im"] = self.heading_excitation.imag.astype(float)
         np.savez(path, **data)
 
     @classmethod
@@ -96,7 +140,7 @@ class ThreeDofCoefficients:
             kw["excitation"] = npz_array(z, "excitation_re", 2) + 1j * npz_array(
                 z, "excitation_im", 2
             )
-            return kw
+            return kw | _read_optional(z)
 
         kw = read_npz(path, MAX_MEMBER_BYTES, read, "a 3-dof coefficient file")
         return cls(**kw, name=str(Path(path)))
@@ -113,6 +157,51 @@ class ThreeDofCoefficients:
         return 0.5 * self.rho * self.g * amplitude**2 * self.group_velocity
 
 
+def _read_optional(z: Any) -> dict[str, Any]:
+    """The optional box fields of an open archive (module docstring), those present."""
+    kw: dict[str, Any] = {k: npz_array(z, k, 0) for k in _BOX_SCALARS if k in z.files}
+    if "transverse_modes" in z.files:
+        if not np.array_equal(npz_array(z, "transverse_modes", 1), TRANSVERSE_MODES):
+            raise ValueError(f"transverse_modes: expected {TRANSVERSE_MODES}")
+        kw.update({k: npz_array(z, k, nd) for k, nd in _TRANSVERSE.items()})
+    if "headings" in z.files:
+        kw["headings"] = npz_array(z, "headings", 1)
+        kw["heading_excitation"] = npz_array(z, "heading_excitation_re", 3) + 1j * npz_array(
+            z, "heading_excitation_im", 3
+        )
+    return kw
+
+
+def _validate_optional(h: ThreeDofCoefficients) -> None:
+    """Shapes and values of the optional box fields (all or none of each group)."""
+    n, nw = h.name, np.asarray(h.omega).size
+    present = [getattr(h, k) is not None for k in _TRANSVERSE]
+    if any(present) and not all(present):
+        raise ValueError(f"hull {n!r}: the transverse_* fields go together (all or none)")
+    if (h.headings is None) != (h.heading_excitation is None):
+        raise ValueError(f"hull {n!r}: headings and heading_excitation go together")
+    shapes: dict[str, tuple[int, ...]] = {}
+    if all(present):
+        m = len(TRANSVERSE_MODES)
+        shapes |= {k: (nw, m, m) if nd == 3 else (m, m) for k, nd in _TRANSVERSE.items()}
+    if h.headings is not None:
+        b = np.asarray(h.headings, dtype=float)
+        if b.ndim != 1 or b.size < 2 or b[0] != 0.0 or not np.all(np.diff(b) > 0):
+            raise ValueError(f"hull {n!r}: headings must start at 0 and increase (rad)")
+        shapes["heading_excitation"] = (nw, b.size, 5)
+    _check_shapes(h, shapes)
+
+
+def _check_shapes(h: ThreeDofCoefficients, shapes: dict[str, tuple[int, ...]]) -> None:
+    """ValueError naming the field unless each has its shape and finite values <= 1e20 (SI)."""
+    for k, shape in shapes.items():
+        v = np.asarray(getattr(h, k))
+        if v.shape != shape:
+            raise ValueError(f"hull {h.name!r}: {k} must have shape {shape}, got {v.shape}")
+        if not np.all(np.isfinite(v)) or np.max(np.abs(v)) > 1e20:
+            raise ValueError(f"hull {h.name!r}: {k} must be finite and |value| <= 1e20 (SI)")
+
+
 def _validate(h: ThreeDofCoefficients) -> None:
     n, om = h.name, np.asarray(h.omega, dtype=float)
     if om.ndim != 1 or om.size < 4:
@@ -123,13 +212,11 @@ def _validate(h: ThreeDofCoefficients) -> None:
     shapes = dict(wavenumber=om.shape, added_mass=(om.size, m, m), damping=(om.size, m, m),
                   excitation=(om.size, m), added_mass_inf=(m, m), hydrostatic_stiffness=(m, m),
                   mass_matrix=(m, m))  # fmt: skip
-    for k, shape in shapes.items():
-        v = np.asarray(getattr(h, k))
-        if v.shape != shape:
-            raise ValueError(f"hull {n!r}: {k} must have shape {shape}, got {v.shape}")
-        if not np.all(np.isfinite(v)) or np.max(np.abs(v)) > 1e20:
-            raise ValueError(f"hull {n!r}: {k} must be finite and |value| <= 1e20 (SI)")
-    for k in ("water_depth", "rho", "g", "radius", "draft", "gyration"):
+    _check_shapes(h, shapes)
+    box = math.isfinite(h.length) or math.isfinite(h.beam)  # a box's radius is nan
+    positive = ("water_depth", "rho", "g", "draft", "gyration",
+                *(_BOX_SCALARS if box else ("radius",)))  # fmt: skip
+    for k in positive:
         v = getattr(h, k)
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ValueError(f"hull {n!r}: {k} must be > 0, got {v!r}")
@@ -138,7 +225,11 @@ def _validate(h: ThreeDofCoefficients) -> None:
     k = np.asarray(h.wavenumber)
     if not np.allclose(om**2, h.g * k * np.tanh(k * h.water_depth), rtol=1e-6):
         raise ValueError(f"hull {n!r}: wavenumber must solve w^2 = g k tanh(k h) at water_depth")
-    if np.any(np.diagonal(h.damping, axis1=1, axis2=2) < -1e-9 * np.max(np.abs(h.damping))):
-        raise ValueError(f"hull {n!r}: damping diagonal must be >= 0 (negative radiation damping)")
-    if np.any(np.diag(h.mass_matrix) <= 0):
-        raise ValueError(f"hull {n!r}: mass_matrix diagonal must be > 0")
+    _validate_optional(h)
+    for pre in ("", "transverse_") if h.transverse_damping is not None else ("",):
+        B, M = getattr(h, pre + "damping"), getattr(h, pre + "mass_matrix")
+        if np.any(np.diagonal(B, axis1=1, axis2=2) < -1e-9 * np.max(np.abs(B))):
+            raise ValueError(f"hull {n!r}: {pre}damping diagonal must be >= 0 (negative "
+                             "radiation damping)")  # fmt: skip
+        if np.any(np.diag(M) <= 0):
+            raise ValueError(f"hull {n!r}: {pre}mass_matrix diagonal must be > 0")
