@@ -84,14 +84,12 @@ def main(argv: list[str] | None = None) -> None:
     if a.compare:
         print(compare(a.compare))
         return
+    hull = BoxHull(a.length, a.beam, a.draft, a.zg, a.gyration, a.roll_gyration)
     if a.from_raw:  # the file from a --raw run's arrays, without solving again
         raw = dict(np.load(a.from_raw, allow_pickle=False))
-        h = box_coefficients(BoxHull(a.length, a.beam, a.draft, a.zg, a.gyration,
-                                     a.roll_gyration), raw["omega"], a.depth, raw)  # fmt: skip
-        h.save(a.out)
+        box_coefficients(hull, raw["omega"], a.depth, raw).save(a.out)
         print(f"wrote {a.out} from {a.from_raw}")
         return
-    hull = BoxHull(a.length, a.beam, a.draft, a.zg, a.gyration, a.roll_gyration)
     omega = np.linspace(a.omega[0], a.omega[1], int(a.omega[2]))
     nl, nb, nd, q = a.mesh
     t0 = time.process_time()

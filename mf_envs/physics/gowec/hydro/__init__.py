@@ -64,8 +64,31 @@ def _check_geometry(hull: Any, names: tuple[str, ...]) -> None:
         raise ValueError(f"hull.zg: must be above the keel (> {-hull.draft}), got {hull.zg}")
 
 
+class _FreeFloating:
+    """A wall-sided hull floating freely (m = rho V) with its centre of buoyancy at half the
+    draft: what the cylinder and the box share (each gives `volume`, `draft`, `zg`)."""
+
+    volume: float
+    draft: float
+    zg: float
+
+    @property
+    def zb(self) -> float:
+        """Centre of buoyancy z_B = -d/2 (m)."""
+        return -0.5 * self.draft
+
+    def mass(self, rho: float = RHO) -> float:
+        """m = rho V (kg), freely floating."""
+        return rho * self.volume
+
+    def _restoring(self, waterplane_inertia: float, rho: float, g: float) -> float:
+        """rho g (I_wp + V z_B) - m g z_G (N m/rad): the hydrostatic restoring moment about an
+        axis whose waterplane second moment is I_wp."""
+        return rho * g * (waterplane_inertia + self.volume * self.zb) - self.mass(rho) * g * self.zg
+
+
 @dataclass(frozen=True)
-class CylinderHull:
+class CylinderHull(_FreeFloating):
     """A vertical circular cylinder floating upright: radius (m), draft (m), centre of gravity
     height zg (m, still water line 0, negative below), pitch radius of gyration about G (m).
     Freely floating: mass = rho V."""
@@ -84,18 +107,9 @@ class CylinderHull:
         return math.pi * self.radius**2 * self.draft
 
     @property
-    def zb(self) -> float:
-        """Centre of buoyancy z_B = -d/2 (m)."""
-        return -0.5 * self.draft
-
-    @property
     def waterplane_inertia(self) -> float:
         """I_wp = pi r^4 / 4 (m^4), second moment of the waterplane about a diameter."""
         return 0.25 * math.pi * self.radius**4
-
-    def mass(self, rho: float = RHO) -> float:
-        """m = rho V (kg), freely floating."""
-        return rho * self.volume
 
     def inertia(self, rho: float = RHO) -> float:
         """Rigid-body pitch inertia about G, m k^2 (kg m^2)."""
@@ -103,14 +117,11 @@ class CylinderHull:
 
     def stiffness(self, rho: float = RHO, g: float = G) -> float:
         """C55 = rho g (I_wp + V z_B) - m g z_G (N m/rad), from the geometry alone."""
-        return (
-            rho * g * (self.waterplane_inertia + self.volume * self.zb)
-            - self.mass(rho) * g * self.zg
-        )
+        return self._restoring(self.waterplane_inertia, rho, g)
 
 
 @dataclass(frozen=True)
-class BoxHull:
+class BoxHull(_FreeFloating):
     """A rectangular box floating level: length along x (the head-wave direction), beam along y,
     draft (m), centre of gravity height zg (m, still water line 0), radii of gyration about G for
     pitch (y axis) and roll (x axis) (m). Freely floating: mass = rho V. The default is ISWEC's
@@ -147,10 +158,6 @@ class BoxHull:
         a, b = (self.beam, self.length) if axis == "pitch" else (self.length, self.beam)
         return a * b**3 / 12.0
 
-    def mass(self, rho: float = RHO) -> float:
-        """m = rho V (kg), freely floating."""
-        return rho * self.volume
-
     def inertia(self, rho: float = RHO, axis: str = "pitch") -> float:
         """Rigid-body inertia about G (kg m^2), m k^2 with k the pitch or roll gyration."""
         k = self.gyration if axis == "pitch" else self.roll_gyration
@@ -159,8 +166,7 @@ class BoxHull:
     def stiffness(self, rho: float = RHO, g: float = G, axis: str = "pitch") -> float:
         """C55 (pitch) or C44 (roll) = rho g (I_wp + V z_B) - m g z_G (N m/rad), z_B = -d/2:
         exact for a box."""
-        wp = self.waterplane_inertia(axis)
-        return rho * g * (wp - 0.5 * self.volume * self.draft) - self.mass(rho) * g * self.zg
+        return self._restoring(self.waterplane_inertia(axis), rho, g)
 
 
 MAX_MEMBER_BYTES = 16 << 20  # one array of a hull file (a 1,000-frequency table is 8 KB)

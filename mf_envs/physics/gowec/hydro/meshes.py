@@ -49,6 +49,16 @@ def graded(length: float, n: int, ratio: float) -> NDArray[np.float64]:
     return length * np.concatenate(([0.0], np.cumsum(h))) / h.sum()
 
 
+def wall_stations(draft: float, n: int, ratio: float) -> NDArray[np.float64]:
+    """Depths 0 .. -draft down a vertical wall in n panels (n // 2 above mid-draft), graded by
+    `ratio` towards both ends: the waterline, where the free surface meets the wall, and the keel
+    edge (`graded`)."""
+    half = n // 2
+    upper = graded(0.5 * draft, max(half, 1), ratio)  # from the waterline down to mid-draft
+    lower = graded(0.5 * draft, max(n - half, 1), ratio)  # from the keel up to mid-draft
+    return np.concatenate((-upper, -draft + lower[::-1][1:]))
+
+
 def cylinder_profile(
     radius: float, draft: float, n_side: int, n_bottom: int, ratio: float = 1.1
 ) -> NDArray[np.float64]:
@@ -56,10 +66,7 @@ def cylinder_profile(
     waterline (the order `revolve` needs), graded towards the keel edge (`graded`); the
     waterline end of the side is graded too (smallest panels at both ends of the side, the
     free-surface intersection being the other place where the potential varies fast)."""
-    half = n_side // 2
-    upper = graded(0.5 * draft, max(half, 1), ratio)  # from the waterline down to mid-draft
-    lower = graded(0.5 * draft, max(n_side - half, 1), ratio)  # from the keel up to mid-draft
-    z_side = np.concatenate((-upper, -draft + lower[::-1][1:]))
+    z_side = wall_stations(draft, n_side, ratio)
     r_bot = radius - graded(radius, n_bottom, ratio)[1:]  # keel edge -> axis
     r = np.concatenate((np.full_like(z_side, radius), r_bot))
     z = np.concatenate((z_side, np.full_like(r_bot, -draft)))
@@ -163,7 +170,7 @@ def box_mesh(
     z = -`draft`, both nested mirror-symmetric (`_mirrored_twice`). Per quarter: n_length panels
     along x over L/2 and n_beam along y over B/2, graded by `ratio` towards the box's edge (the
     smallest panels at x = -L/2, y = -B/2); n_draft panels down the walls, graded towards both
-    the waterline and the keel (as `cylinder_profile`'s side). Hull panels:
+    the waterline and the keel (`wall_stations`, as the cylinder's side). Hull panels:
     4 (n_length n_draft + n_beam n_draft + n_length n_beam). The lid (the waterplane at
     z = -0.01 d, for the irregular frequencies) has lid_panels = (along x, along y) uniform panels
     per quarter (default half the hull's counts). Default ratio 1: on this hull grading made
@@ -177,9 +184,7 @@ def box_mesh(
     hl, hb = 0.5 * length, 0.5 * beam
     x = -hl + graded(hl, n_length, ratio)  # -L/2 (fine) .. 0
     y = -hb + graded(hb, n_beam, ratio)
-    half = n_draft // 2
-    z = np.concatenate((-graded(0.5 * draft, half, ratio),
-                        -draft + graded(0.5 * draft, n_draft - half, ratio)[::-1][1:]))  # fmt: skip
+    z = wall_stations(draft, n_draft, ratio)
 
     parts = [
         _grid(x, z, lambda a, b: (a, np.full_like(a, -hb), b)),  # side wall y = -B/2

@@ -113,8 +113,7 @@ class ThreeDofCoefficients:
         for k in ("omega", "wavenumber", *_MATRICES, *_FIXED):
             data[k] = np.asarray(getattr(self, k), dtype=float)
         data["modes"] = np.asarray(MODES, dtype=float)
-        data["excitation_re"] = self.excitation.real.astype(float)
-        data["excitation_im"] = self.excitation.imag.astype(float)
+        data |= _complex_parts("excitation", self.excitation)
         data.update({k: np.asarray(getattr(self, k), float) for k in _BOX_SCALARS
                      if math.isfinite(getattr(self, k))})  # fmt: skip
         if self.transverse_added_mass is not None:
@@ -122,8 +121,7 @@ class ThreeDofCoefficients:
             data["transverse_modes"] = np.asarray(TRANSVERSE_MODES, dtype=float)
         if self.headings is not None:
             data["headings"] = np.asarray(self.headings, float)
-            data["heading_excitation_re"] = self.heading_excitation.real.astype(float)
-            data["heading_excitation_im"] = self.heading_excitation.imag.astype(float)
+            data |= _complex_parts("heading_excitation", self.heading_excitation)
         np.savez(path, **data)
 
     @classmethod
@@ -137,9 +135,7 @@ class ThreeDofCoefficients:
                 kw[k] = npz_array(z, k, nd)
             if not np.array_equal(npz_array(z, "modes", 1), MODES):
                 raise ValueError(f"modes: expected {MODES}")
-            kw["excitation"] = npz_array(z, "excitation_re", 2) + 1j * npz_array(
-                z, "excitation_im", 2
-            )
+            kw["excitation"] = _read_complex(z, "excitation", 2)
             return kw | _read_optional(z)
 
         kw = read_npz(path, MAX_MEMBER_BYTES, read, "a 3-dof coefficient file")
@@ -157,6 +153,16 @@ class ThreeDofCoefficients:
         return 0.5 * self.rho * self.g * amplitude**2 * self.group_velocity
 
 
+def _complex_parts(name: str, x: NDArray[np.complex128]) -> dict[str, NDArray[np.float64]]:
+    """A complex array as the file stores it: `name`_re and `name`_im, float64."""
+    return {f"{name}_re": x.real.astype(float), f"{name}_im": x.imag.astype(float)}
+
+
+def _read_complex(z: Any, name: str, ndim: int) -> NDArray[np.complex128]:
+    """`name`_re + 1j `name`_im of an open archive (`npz_array`'s checks on each)."""
+    return npz_array(z, f"{name}_re", ndim) + 1j * npz_array(z, f"{name}_im", ndim)
+
+
 def _read_optional(z: Any) -> dict[str, Any]:
     """The optional box fields of an open archive (module docstring), those present."""
     kw: dict[str, Any] = {k: npz_array(z, k, 0) for k in _BOX_SCALARS if k in z.files}
@@ -166,9 +172,7 @@ def _read_optional(z: Any) -> dict[str, Any]:
         kw.update({k: npz_array(z, k, nd) for k, nd in _TRANSVERSE.items()})
     if "headings" in z.files:
         kw["headings"] = npz_array(z, "headings", 1)
-        kw["heading_excitation"] = npz_array(z, "heading_excitation_re", 3) + 1j * npz_array(
-            z, "heading_excitation_im", 3
-        )
+        kw["heading_excitation"] = _read_complex(z, "heading_excitation", 3)
     return kw
 
 
