@@ -259,6 +259,32 @@ def test_efficient_pto_is_never_below_the_damper(sea):
             assert p["k"] > d["k"]
 
 
+def test_passive_damper_keeps_the_rated_speed_and_the_schedule_pays_in_a_small_sea():
+    """In a small sea (JONSWAP Hs 1 m, Tp 6 s, unseen seed 3002) `passive_damper` runs the
+    flywheels at the rated speed the env was built with and `efficient_pto` slower, where their
+    running loss is lower (`DEVICES[...].running_loss`): it nets more than the damper over the
+    last half of 200 s, and both stay in operation (no early end)."""
+    net, speed = {}, {}
+    for kind in ("efficient_pto", "passive_damper"):
+        env = gym.make("FloatingGOWEC-v0", episode_seconds=200.0, max_episode_steps=10_000,
+                       significant_wave_height=1.0, peak_period=6.0)  # fmt: skip
+        c = make_baseline(env, kind)
+        obs, _ = env.reset(seed=3002)
+        c.reset()
+        raw = env.unwrapped
+        speed[kind], rated = float(raw.model.psid), float(raw.model.gyro.rotor_speed)
+        P, done = [], False
+        while not done:
+            obs, _, term, trunc, info = env.step(c.predict(obs)[0])
+            P.append(info["power"])
+            done = term or trunc
+        assert not term
+        net[kind] = float(np.mean(P[len(P) // 2 :]))
+    assert speed["passive_damper"] == rated
+    assert speed["efficient_pto"] < 0.8 * rated
+    assert net["efficient_pto"] > net["passive_damper"]
+
+
 def test_render_rgb_array():
     env = gym.make("FloatingGOWEC-v0", render_mode="rgb_array", episode_seconds=1.0)
     env.reset(seed=0)

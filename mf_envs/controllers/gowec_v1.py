@@ -26,10 +26,12 @@ and the matched linear PTO.
   search over (c, k) polished by a bounded scalar search on c (`pto_search`). The reactive
   setting is taken only where its prediction is positive and clearly above the damper's;
   the search's record (predicted power) is the controller's `prediction`. With a
-  speed-dependent flywheel loss (the ISWEC-class device) both also set the **flywheel speed**
-  per sea, as ISWEC does: the same search at each speed of a grid over the device's speed range
-  (`speed_search`: H = J psi' and the loss change with it), the best kept, so a small sea runs a
-  slower, cheaper flywheel.
+  speed-dependent flywheel loss (the ISWEC-class device) `efficient_pto` also sets the
+  **flywheel speed** per sea, as ISWEC does: the same search at each speed of a grid over the
+  device's speed range (`speed_search`: H = J psi' and the loss change with it), the best
+  kept, so a small sea runs a slower, cheaper flywheel. `passive_damper` keeps the flywheels
+  at the rated speed the env was built with: a passive PTO, its damping set per sea and
+  nothing else.
 """
 
 from __future__ import annotations
@@ -319,10 +321,10 @@ def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
 
 
 class EfficientPTOController:
-    """The linear PTO optimised for net electrical power in the sea of the last reset
-    (`pto_search`); `passive=True` the best pure damper. Gains set on the drive at reset;
-    `prediction` holds the search's record (predicted net power, W) to set beside the
-    realised one."""
+    """The linear PTO and flywheel speed optimised for net electrical power in the sea of the
+    last reset (`speed_search`); `passive=True` the best pure damper at each speed. Gains and
+    speed set on the drive at reset; `prediction` holds the search's record (predicted net
+    power, W) to set beside the realised one."""
 
     def __init__(self, env: Any, passive: bool = False) -> None:
         self.env, self.passive = env, passive
@@ -330,10 +332,13 @@ class EfficientPTOController:
         self.prediction: dict[str, float] = {}
 
     def reset(self) -> None:
+        self._apply(speed_search(self.env.unwrapped, self.passive))
+
+    def _apply(self, prediction: dict[str, float]) -> None:
         raw = self.env.unwrapped
-        self.prediction = speed_search(raw, self.passive)
-        self.c, self.k = self.prediction["c"], self.prediction["k"]
-        raw.set_rotor_speed(self.prediction["speed"])
+        self.prediction = prediction
+        self.c, self.k = prediction["c"], prediction["k"]
+        raw.set_rotor_speed(prediction["speed"])
         raw.set_pto(self.c, self.k)
 
     def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
@@ -341,11 +346,19 @@ class EfficientPTOController:
 
 
 class PassiveDamperController(EfficientPTOController):
-    """The best pure damper (k = the centring spring) for net electrical power
-    (`pto_search`)."""
+    """A passive PTO: the best pure damper (k = the centring spring) for net electrical power
+    (`pto_search`, passive) with the flywheels at the speed the env was built with (the
+    device's rated `rotor_speed`), nothing scheduled but the damping per sea. `efficient_pto`
+    is this damper plus what an ISWEC-style drive adds: the flywheel speed chosen per sea and
+    a spring where the model predicts one pays."""
 
     def __init__(self, env: Any) -> None:
         super().__init__(env, passive=True)
+
+    def reset(self) -> None:
+        raw = self.env.unwrapped
+        raw.set_rotor_speed(float(raw.model.gyro.rotor_speed))
+        self._apply(dict(pto_search(raw, passive=True), speed=float(raw.model.psid)))
 
 
 class LinearPTOController:

@@ -70,8 +70,8 @@ NET_POWER_CEILING = Ceiling(
 # measured with `python -m mf_envs.benchmarks.rl_benchmark --task gowec_irregular|gowec_regular
 # --algos` (baselines only; 20 frozen test seeds 20000-20019, 120 s, the second half scored)
 HEADROOM_JONSWAP = (
-    "the best baselines (`efficient_pto`, `passive_damper`: one controller on this sea, with "
-    "the flywheel speed scheduled per sea) net 3.5 % of the ceiling on the first five test "
+    "the best baseline (`efficient_pto`, with the flywheel speed scheduled per sea) nets "
+    "3.5 % of the ceiling on the first five test "
     "seeds (4.9 kW against 132-141 kW), and the ceiling is loose (`tight=False`): headroom = "
     "the oracle's 5.9 kW - the baseline's 4.9 kW = 1.0 kW (`benchmarks.references`, "
     "docs/benchmark.md)"
