@@ -337,12 +337,13 @@ def test_full_torque_meets_the_cushioned_stops_inside_the_stroke(action):
 
 @pytest.mark.parametrize("sea", [dict(significant_wave_height=3.5, peak_period=7.0),
                                  dict(wave_amplitude=2.0, wave_period=8.0)])  # fmt: skip
-def test_seas_beyond_the_range_are_met_in_survival(sea):
+@pytest.mark.parametrize("device", ["iswec_class", "iswec_box"])
+def test_seas_beyond_the_range_are_met_in_survival(sea, device):
     """A sea higher than the ISWEC-class operating range (Hs, or the regular wave's height,
     above 2.5 m): the device is in survival from the reset to the end, the episode runs to its
     end with the gimbal inside its stroke, the PTO harvests nothing and the net power is the
-    flywheels' running loss."""
-    env = gym.make("FloatingGOWEC-v0", episode_seconds=120, **sea)
+    flywheels' running loss. On the cylinder and on ISWEC's box."""
+    env = gym.make("FloatingGOWEC-v0", episode_seconds=120, device=device, **sea)
     u = env.unwrapped
     _, info = env.reset(seed=3002)
     assert info["survival"]

@@ -176,7 +176,7 @@ class GOWECV1Env(MFEnv):
 
     # ------------------------------------------------------------------ public quantities
     def hydrostatic_stiffness(self) -> float:
-        """C55 (N m/rad) of the hull (pitch = roll, axisymmetric)."""
+        """C55 (N m/rad) of the hull's pitch (= roll on a cylinder; a box's C44: model.p)."""
         return float(self.hull.stiffness)
 
     def natural_period(self) -> float:
