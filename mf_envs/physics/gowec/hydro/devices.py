@@ -59,7 +59,7 @@ class FloatingDevice:
 
     name: str
     hull_file: Path
-    three_dof: bool  # the hull file is a surge/heave/pitch table (`three_dof`), pitch used
+    three_dof: bool  # a surge/heave/pitch table (`three_dof`): pitch, and roll if it has sway/roll
     rotor_inertia: float  # kg m^2 (axial, per unit)
     rotor_speed: float  # rad/s
     gimbal_inertia: tuple[float, float, float]  # kg m^2 (gimbal frame, per unit)
