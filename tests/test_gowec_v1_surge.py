@@ -52,10 +52,10 @@ def _frequency_domain(m: FloatingModel, w: float, surge: bool):
     )
     M, _, _, _ = fl.mass_and_rhs(np.zeros(3), np.zeros(3), m.p.inertia, m.p.gyro, 0.0)
     In = M[0, 0]
-    g55, x55 = _G(m.p.Ar, m.p.Br[:, None], m.p.Cr, w)
+    g55, x55 = _G(m.p.Ar[0], m.p.Br[0, :, None], m.p.Cr[0], w)
     iw = -1j * w
     if not surge:
-        Al = X(2) * A_WAVE / (-(w**2) * In + m.p.stiffness + g55 * iw)
+        Al = X(2) * A_WAVE / (-(w**2) * In + m.p.stiffness[0] + g55 * iw)
         return -Al, 0.0, 0.0, {"x55": x55[:, 0] * iw * (-Al)}
     tp, As, Bs, Cs = m._tr
     o = [int(tp[i]) for i in (fl.TP_O11, fl.TP_O15, fl.TP_O51, fl.TP_O33, fl.TP_NT)]
@@ -66,7 +66,7 @@ def _frequency_domain(m: FloatingModel, w: float, surge: bool):
     Z = np.array(
         [
             [-(w**2) * M1 + k + blocks["11"][0] * iw, -(w**2) * a15 + blocks["15"][0] * iw],
-            [-(w**2) * a15 + blocks["51"][0] * iw, -(w**2) * In + m.p.stiffness + g55 * iw],
+            [-(w**2) * a15 + blocks["51"][0] * iw, -(w**2) * In + m.p.stiffness[0] + g55 * iw],
         ]
     )
     S, Al = np.linalg.solve(Z, np.array([X(0), X(2)]) * A_WAVE)
@@ -90,7 +90,7 @@ def _time_domain(m: FloatingModel, w: float, surge: bool):
     theta, s and z against Re(amplitude e^{-i w t})."""
     Th, S, Z, st = _frequency_domain(m, w, surge)
     y = m.initial_state()
-    nr = m.p.Ar.shape[0]
+    nr = m.p.Ar.shape[1]
     y[0], y[3] = Th.real, (-1j * w * Th).real
     y[6 : 6 + nr] = st["x55"].real
     if surge:
@@ -156,7 +156,7 @@ def test_fitted_rao_near_the_table_rao():
         M, _, _, _ = fl.mass_and_rhs(np.zeros(3), np.zeros(3), m.p.inertia, m.p.gyro, 0.0)
         In = M[0, 0] - m.p.inertia[0] + three.mass_matrix[2, 2]
         Mm = np.diag([three.mass_matrix[0, 0], In])
-        Cm = np.diag([m.mooring_stiffness, m.p.stiffness])
+        Cm = np.diag([m.mooring_stiffness, m.p.stiffness[0]])
         X = np.array([np.interp(w, three.omega, three.excitation[:, i].real)
                       + 1j * np.interp(w, three.omega, three.excitation[:, i].imag)
                       for i in (0, 2)])  # fmt: skip

@@ -397,7 +397,8 @@ def test_gowec_compiled_resets_equal_sync(mode: AutoresetMode) -> None:
     _compiled_resets_match_sync("GOWEC-v0", kw, mode, {"gimbal_angle": 0.05}, buffer)
 
 
-GOWEC_V1_SCENES = [{}, {"wave_direction": 0.4, "gyro_units": 1, "wave_amplitude": 0.3}]
+GOWEC_V1_SCENES = [{}, {"wave_direction": 0.4, "gyro_units": 1, "wave_amplitude": 0.3},
+                   {"device": "iswec_box", "wave_direction": 1.2}]  # fmt: skip
 
 
 @pytest.mark.parametrize("scene", GOWEC_V1_SCENES)

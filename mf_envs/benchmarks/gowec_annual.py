@@ -116,11 +116,13 @@ def plot(result: dict[str, Any], path: Path) -> Path:
 
 def main(argv: list[str] | None = None) -> None:
     from mf_envs.benchmarks import power_matrix
-    from mf_envs.physics.gowec.hydro.devices import DEVICES
+    from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
 
-    dev = DEVICES["iswec_class"]
-    idle = -dev.running_loss(dev.rotor_speed_range[0], dev.gyro_units)
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--device", default=DEFAULT_DEVICE, choices=sorted(DEVICES),
+                    help="FloatingGOWEC-v0's device (the matrix run here)")  # fmt: skip
+    dev = DEVICES[ap.parse_known_args(argv)[0].device]
+    idle = -dev.running_loss(dev.rotor_speed_range[0], dev.gyro_units)
     ap.add_argument("--scatter", type=Path, required=True, help="CSV hs,te,occurrence")
     ap.add_argument("--matrix", type=Path, default=None, help="power matrix json (else run it)")
     ap.add_argument("--out", type=Path, default=Path("."), help="folder for the json and png")
@@ -129,7 +131,7 @@ def main(argv: list[str] | None = None) -> None:
     a = ap.parse_args(argv)
     scatter = read_scatter(a.scatter)
     if a.matrix is None:
-        rows = power_matrix.matrix()
+        rows = power_matrix.matrix(device=dev.name)
     else:
         rows = json.loads(read_regular(a.matrix, MAX_FILE_BYTES, "matrix"))
     result = annual(rows, scatter, a.below, a.above)

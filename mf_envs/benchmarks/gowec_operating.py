@@ -13,6 +13,7 @@ episodes ended early.
     python -m mf_envs.benchmarks.gowec_operating --seeds 5 --seconds 300 > table.md
     python -m mf_envs.benchmarks.gowec_operating --seeds 10 --kinds efficient_pto \
         --json docs/results/gowec_operating.json > table.md     # the default baseline alone
+    python -m mf_envs.benchmarks.gowec_operating --device iswec_box ...   # another device
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ import numpy as np
 
 from mf_envs._files import write_atomic
 from mf_envs.benchmarks.power_matrix import episode
+from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE
 
 HEIGHTS = (1.0, 1.5, 2.0, 2.5)  # m
 PERIODS = (5.0, 6.0, 7.0, 8.0)  # s
@@ -50,16 +52,17 @@ def seas() -> list[tuple[str, dict[str, Any]]]:
 
 
 def rows(seeds: tuple[int, ...], seconds: float, kinds: tuple[str, ...] = KINDS,
-         progress: bool = False) -> list[dict[str, Any]]:  # fmt: skip
-    """One row per sea and controller: means over the seeds, the lowest seed's net power."""
+         progress: bool = False, **env_kw: Any) -> list[dict[str, Any]]:  # fmt: skip
+    """One row per sea and controller: means over the seeds, the lowest seed's net power;
+    env_kw go to every env (e.g. device)."""
     from tqdm import tqdm
 
     out = []
     for label, kw in tqdm(seas(), desc="seas", disable=not progress):
         for kind in kinds:
-            runs = [episode(kind, s, seconds, **kw) for s in seeds]
+            runs = [episode(kind, s, seconds, **kw, **env_kw) for s in seeds]
             out.append(dict(
-                sea=label, kind=kind, seeds=list(seeds), seconds=seconds,
+                sea=label, kind=kind, seeds=list(seeds), seconds=seconds, **env_kw,
                 net_W=float(np.mean([r["Pe"] for r in runs])),
                 net_min_W=float(min(r["Pe"] for r in runs)),
                 predicted_W=float(np.mean([r["predicted"] for r in runs])),
@@ -119,9 +122,10 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--first-seed", type=int, default=3000, help="seeds first..first+seeds-1")
     ap.add_argument("--kinds", default=",".join(KINDS), help="controllers, comma-separated")
     ap.add_argument("--json", default=None, help="also write the rows here")
+    ap.add_argument("--device", default=DEFAULT_DEVICE, help="FloatingGOWEC-v0's device")
     a = ap.parse_args(argv)
     seeds = tuple(range(a.first_seed, a.first_seed + a.seeds))
-    rs = rows(seeds, a.seconds, tuple(a.kinds.split(",")), progress=True)
+    rs = rows(seeds, a.seconds, tuple(a.kinds.split(",")), progress=True, device=a.device)
     if a.json:  # a link or a non-regular file there is refused, not followed
         write_atomic(a.json, json.dumps(rs, indent=1), "json")
     print(table(rs))

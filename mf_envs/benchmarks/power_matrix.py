@@ -14,6 +14,7 @@ ratio over the hull's width (12 m), the share of time in survival and of episode
 failure.
 
     python -m mf_envs.benchmarks.power_matrix --out docs/img   # ~10 min on 2 cores
+    python -m mf_envs.benchmarks.power_matrix --device iswec_box --out DIR   # another device
 
 writes `gowec_power_matrix.json` and `.png` there and prints a Markdown table.
 The spectrum and energy flux are the package's own (`physics.waves`: the sea is drawn inside
@@ -134,7 +135,7 @@ def matrix(hs=HS, te=TE, seeds=SEEDS, seconds: float = 1200.0, kind: str = "effi
                          terminated=float(np.mean([x["terminated"] for x in runs])),
                          speed_rpm=[x["speed_rpm"] for x in runs],
                          loss_W=float(np.mean([x["loss_W"] for x in runs])),
-                         seeds=list(seeds), seconds=seconds))  # fmt: skip
+                         seeds=list(seeds), seconds=seconds, **kw))  # fmt: skip
     return rows
 
 
@@ -178,7 +179,8 @@ def plot(rows: list[dict], path: Path) -> Path:
     ax.set_xlabel("energy period Te (s)")
     ax.set_ylabel("significant wave height Hs (m)")
     r0 = rows[0]
-    ax.set_title(f"FloatingGOWEC-v0 (ISWEC-class): net electrical power, {r0['kind']}\n"
+    ax.set_title(f"FloatingGOWEC-v0 ({r0.get('device', 'iswec_class')}): net electrical "
+                 f"power, {r0['kind']}\n"
                  f"JONSWAP, {len(r0['seeds'])} seeds x {r0['seconds']:.0f} s each "
                  f"(* = a failure ended an episode)", fontsize=9)  # fmt: skip
     fig.colorbar(im, ax=ax, label="net electrical power (kW)")
@@ -192,9 +194,11 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--seconds", type=float, default=1200.0, help="scored time per seed (s)")
     ap.add_argument("--seeds", type=int, default=len(SEEDS), help="seeds per cell (2000..)")
     ap.add_argument("--kind", default="efficient_pto", help="baseline of controllers.gowec_v1")
+    ap.add_argument("--device", default=None, help="FloatingGOWEC-v0's device (its default)")
     a = ap.parse_args(argv)
     a.out.mkdir(parents=True, exist_ok=True)
-    rows = matrix(seeds=tuple(range(2000, 2000 + a.seeds)), seconds=a.seconds, kind=a.kind)
+    kw = {} if a.device is None else {"device": a.device}
+    rows = matrix(seeds=tuple(range(2000, 2000 + a.seeds)), seconds=a.seconds, kind=a.kind, **kw)
     (a.out / "gowec_power_matrix.json").write_text(json.dumps(rows, indent=1))
     plot(rows, a.out / "gowec_power_matrix.png")
     print(table(rows))

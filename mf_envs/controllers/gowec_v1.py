@@ -45,6 +45,7 @@ from mf_envs.controllers import register
 from mf_envs.controllers.gowec import PLLController, SquareWaveController
 from mf_envs.envs.gowec_v1.task import DECLARATION
 from mf_envs.physics.gowec.hydro.devices import DEVICES
+from mf_envs.physics.gowec.hydro.sea import N_KEEL, SP_CK, SP_YK
 
 ENV_ID = DECLARATION.env_id
 
@@ -70,10 +71,14 @@ def matched_pto(
 
 def _drag_k(raw: Any) -> float:
     """Still-water quadratic pitch damping K (N m s^2/rad^2) of the keel plate,
-    1/2 rho C_d 8 R^5 / 15 (`sea.drag_geometry`), 0 with the drag off."""
+    1/2 rho C_d 8 R^5 / 15 (`sea.drag_geometry`), 0 with the drag off; a box's (no radius),
+    its keel nodes' sum of c |y|^3 about the pitch axis e1, 1/2 rho C_d B L^4 / 32."""
     sp = raw.model.sp
     if sp[0] == 0.0:
         return 0.0
+    if not math.isfinite(raw.hull.radius):
+        keel = slice(SP_CK, SP_CK + N_KEEL)
+        return float(np.sum(sp[keel] * np.abs(sp[SP_YK : SP_YK + N_KEEL]) ** 3))
     return float(raw.model.drag_coefficient * 0.5 * raw.hull.rho * 8.0 * raw.hull.radius**5 / 15.0)
 
 

@@ -55,7 +55,7 @@ class GOWECV1Env(MFEnv):
     the substeps. The gimbals swing inside cushioned end stops (+-70 deg, 10 deg of cushion),
     and a supervisor takes the device into survival (PTO unloaded, gimbals braked, flywheels
     spinning) beyond its operating range (`physics.gowec.hydro.gimbal`).
-    `device="seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md has the rest.
+    `"iswec_box"`: ISWEC's 15 x 8 m box; `"seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md.
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: generator torque command / max_generator_torque. The drive adds
@@ -96,7 +96,7 @@ class GOWECV1Env(MFEnv):
 
     | argument | default | meaning |
     |---|---|---|
-    | device | "iswec_class" | named device (`hydro/devices.py`); None kwargs take its values |
+    | device | "iswec_class" | or "iswec_box", "seed_buoy" (`hydro/devices.py`): fills None kwargs |
     | sea.amplitude, .period, .direction | 1 m, 6 s, pi/2 | regular wave (Eq. 89) |
     | sea.significant_wave_height, .peak_period | None, 6 s | irregular sea (Hs, Tp) if Hs is set |
     | sea.spectrum, .gamma, .n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |
@@ -176,7 +176,7 @@ class GOWECV1Env(MFEnv):
 
     # ------------------------------------------------------------------ public quantities
     def hydrostatic_stiffness(self) -> float:
-        """C55 (N m/rad) of the hull (pitch = roll, axisymmetric)."""
+        """C55 (N m/rad) of the hull's pitch (= roll on a cylinder; a box's C44: model.p)."""
         return float(self.hull.stiffness)
 
     def natural_period(self) -> float:

@@ -138,7 +138,7 @@ class GOWECV1VectorEnv(PredrawnResets, BatchedVectorEnv):
         self._hi = self.single_observation_space.high.astype(np.float32)
         self._predraw_alloc(n, not env.irregular)
         if not env.irregular:  # the hull's excitation at the regular wave's frequency
-            self._X = env.model.hull_excitation(env.wave.omegas)
+            self._X = env.model.wave_excitation(env.wave.omegas, env.wave.direction)
 
     def _load(self, i: int) -> None:
         env, sea = self.template, self.sea

@@ -3,8 +3,9 @@
 Not in the seed (Rios 2017 ch. 3 Sec. 3.2.6 prescribes the buoy and notes that "for larger scale
 computations with a known buoy geometry, the impedance matrix must be accounted for"). Here a
 hull is described by its pitch coefficients about the centre of gravity G, one rotational degree
-of freedom (the hull is axisymmetric, so roll has the same coefficients; surge-pitch coupling is
-not modelled: the buoy rotates about G, its translation is held by the mooring):
+of freedom (the hull is axisymmetric, so roll has the same coefficients; a box's roll is a second
+table of this form, `axes.roll_hull`; surge-pitch coupling is not modelled here: the buoy rotates
+about G, its translation is held by the mooring; `three_dof` has the coupled tables):
 
     A(w)  added inertia (kg m^2)            A_inf = A(w -> inf), A_0 = A(w -> 0)
     B(w)  radiation damping (N m s/rad)     B >= 0, B -> 0 at both ends

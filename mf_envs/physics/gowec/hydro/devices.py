@@ -16,6 +16,10 @@
   each way, drag coefficient 1, the
   gimbal's end stops (+-70 deg, 10 deg of cushion), the survival brake and the operating range
   (sea height <= 2.5 m).
+- ``"iswec_box"``: the same gyro units, PTO, limits and supervisor on ISWEC's own hull, the
+  15 x 8 m box of 3.2 m draft (`three_dof.ISWEC_BOX_FILE`; its mass properties chosen,
+  docs/gowec_v1.md "ISWEC's box hull"), its length along the default sea (e2): pitch and roll
+  each with their own block (`axes`), roll's wave moment from the heading table.
 - ``"seed_buoy"``: the device of mf_envs 0.1-0.4: the 5 m cylinder of GOWEC-v0's irregular
   sea (converged BEM table) carrying the seed's mirrored pair of Seakeeper 26 rotors (Table
   3-1), 3 kW rotor loss, 5 %-of-critical linear viscous damping, no drag, no ramp, episode
@@ -29,13 +33,16 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 from mf_envs.physics.constants import RPM
 from mf_envs.physics.end_stops import size_cushion
 from mf_envs.physics.gowec.flywheel import FlywheelLoss
 from mf_envs.physics.gowec.hydro import DEFAULT_HULL_FILE, HullCoefficients
-from mf_envs.physics.gowec.hydro.three_dof import ISWEC_HULL_FILE, ThreeDofCoefficients
+from mf_envs.physics.gowec.hydro.axes import pitch_hull
+from mf_envs.physics.gowec.hydro.three_dof import (
+    ISWEC_BOX_FILE,
+    ISWEC_HULL_FILE,
+    ThreeDofCoefficients,
+)
 
 
 @dataclass(frozen=True)
@@ -52,7 +59,7 @@ class FloatingDevice:
 
     name: str
     hull_file: Path
-    three_dof: bool  # the hull file is a surge/heave/pitch table (`three_dof`), pitch used
+    three_dof: bool  # a surge/heave/pitch table (`three_dof`): pitch, and roll if it has sway/roll
     rotor_inertia: float  # kg m^2 (axial, per unit)
     rotor_speed: float  # rad/s
     gimbal_inertia: tuple[float, float, float]  # kg m^2 (gimbal frame, per unit)
@@ -112,21 +119,6 @@ class FloatingDevice:
         return self.rotor_inertia * self.rotor_speed
 
 
-def pitch_hull(c: ThreeDofCoefficients) -> HullCoefficients:
-    """The pitch block (mode 5 about G) of a surge/heave/pitch table as `HullCoefficients`
-    (A_0 taken as A55 at the table's lowest frequency; negative near-zero B55 at the table's
-    high end, where the mesh no longer resolves it, clipped to 0)."""
-    return HullCoefficients(
-        omega=c.omega, added_mass=c.added_mass[:, 2, 2],
-        damping=np.maximum(c.damping[:, 2, 2], 0.0), excitation=c.excitation[:, 2],
-        added_mass_inf=float(c.added_mass_inf[2, 2]),
-        added_mass_zero=float(c.added_mass[0, 2, 2]),
-        stiffness=float(c.hydrostatic_stiffness[2, 2]), inertia=float(c.mass_matrix[2, 2]),
-        mass=float(c.mass_matrix[0, 0]), rho=c.rho, g=c.g, radius=c.radius, draft=c.draft,
-        zg=c.zg, name=f"{c.name} (pitch)",
-    )  # fmt: skip
-
-
 # the ISWEC-class flywheel: a plain steel disc 2.4 m across and 0.35 m thick would be 12.4 t and
 # 8.95e3 kg m^2; with a heavier rim (chosen; docs/gowec_v1.md):
 ISWEC_ROTOR_INERTIA = 1.2e4  # kg m^2
@@ -139,9 +131,7 @@ _BEARINGS = 0.5 * 0.0018 * 137e3 * 0.3 * ISWEC_ROTOR_SPEED  # W: mu 0.0018, F 13
 ISWEC_FLYWHEEL_LOSS = FlywheelLoss.through(ISWEC_ROTOR_SPEED, _BEARINGS, 1400.0 - _BEARINGS, 100.0)
 ISWEC_SPEED_RANGE = (50.0 * RPM, ISWEC_ROTOR_SPEED)  # rad/s, the schedule's (chosen)
 
-DEVICES: dict[str, FloatingDevice] = {
-    "iswec_class": FloatingDevice(
-        name="iswec_class", hull_file=ISWEC_HULL_FILE, three_dof=True,
+_ISWEC = dict(
         rotor_inertia=ISWEC_ROTOR_INERTIA, rotor_speed=ISWEC_ROTOR_SPEED,
         gimbal_inertia=(4000.0, 4000.0, 4000.0), gyro_units=2, rotor_loss=None,
         max_generator_torque=1.5e5, max_generator_power=1.3e5, generator_efficiency=0.9,
@@ -151,6 +141,13 @@ DEVICES: dict[str, FloatingDevice] = {
         physics_dt=0.02, stop_angle=math.radians(70.0), brake_damping=5.0e5,
         max_operating_height=2.5, flywheel_loss=ISWEC_FLYWHEEL_LOSS,
         rotor_speed_range=ISWEC_SPEED_RANGE,
+)  # fmt: skip
+DEVICES: dict[str, FloatingDevice] = {
+    "iswec_class": FloatingDevice(
+        name="iswec_class", hull_file=ISWEC_HULL_FILE, three_dof=True, **_ISWEC,
+    ),
+    "iswec_box": FloatingDevice(
+        name="iswec_box", hull_file=ISWEC_BOX_FILE, three_dof=True, **_ISWEC,
     ),
     "seed_buoy": FloatingDevice(
         name="seed_buoy", hull_file=DEFAULT_HULL_FILE, three_dof=False,

@@ -20,11 +20,13 @@ and with B_k = d w_k / d u, h_k = J_k w_k, the B-matrix equations (Eqs. 73-75)
 
 With the dual configuration (`gyro_units` = 2, the seed's Fig. 3-2) a second unit turns
 at -phi with spin -psi' (a mirrored pair sharing one generator law); its roll and yaw reactions
-cancel those of the first, and Q_phi = -2 M_g. J_h = diag(I + A_inf, I + A_inf, I_z)
-(A_inf, the infinite-frequency added inertia, rides with the hull), mu = radiation memory
-from the state-space fit x' = Ar x + Br q', mu = Cr x (one copy per axis,
-`radiation.fit_radiation`), C the hydrostatic stiffness, M_x, M_y the wave excitation moments
-(`excitation_coefficients`), and an optional linear viscous damping b_v q' on each axis.
+cancel those of the first, and Q_phi = -2 M_g. Each tilt axis has its own block (`axes`):
+J_h = diag(I_1 + A_inf,1, I_2 + A_inf,2, I_z) (A_inf, the infinite-frequency added inertia,
+rides with the hull; `bodies`), mu = radiation memory from the axis' state-space fit
+x' = Ar x + Br q', mu = Cr x (`radiation.fit_radiation`), C the axis' hydrostatic stiffness
+(Q above: C_theta theta, C_rho rho); an axisymmetric hull's roll block is its pitch block, a box
+has a roll block of its own. M_x, M_y the wave excitation moments (`sea.excitation_coefficients`)
+and an optional linear viscous damping b_v q' on each axis.
 The PTO torque M_g = clip(tau_cmd + c phi' + k phi) (torque and power limits) is evaluated at every
 RK4 stage: a damper held over a control step is unstable once c dt / J > 2 (docs/design.md).
 `engine_model` builds the same system in the general multibody engine; a test checks the two.
@@ -56,8 +58,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from mf_envs._jit import kernel
-from mf_envs.frames.kernels import sincos_near
 from mf_envs.frames.steppers import make_rk4_given, rk4_work
+from mf_envs.physics.gowec.hydro.bodies import (  # noqa: F401 (mass_and_rhs: re-exported)
+    _mass_terms,
+    _solve_tridiag3,
+    mass_and_rhs,
+)
 from mf_envs.physics.gowec.hydro.gimbal import gimbal_loads, stop_dissipation
 from mf_envs.physics.gowec.hydro.radiation import block_rates, dot_block, radiation_rates4
 from mf_envs.physics.gowec.hydro.sea import (
@@ -78,16 +84,18 @@ N_SUPERVISOR = 1  # the supervisor's survival timer (s) after the energies (`gim
 
 @dataclass(frozen=True)
 class FloatingParams:
-    """Packed numbers of the fast path (SI). inertia = (I + A_inf, I_z) of the hull (kg m^2);
-    gyro = (Ja, Jt, Jg1, Jg2, Jg3) kg m^2; psid rad/s; stiffness C (N m/rad); viscous b_v
-    (N m s/rad); radiation (Ar (nr,nr), Br (nr,), Cr (nr,)); pto = (c N m s/rad, k N m/rad,
+    """Packed numbers of the fast path (SI), per tilt axis (theta, rho) where two. inertia =
+    (I_1 + A_inf,theta, I_z, I_2 + A_inf,rho) of the hull (kg m^2, `bodies`); gyro = (Ja, Jt,
+    Jg1, Jg2, Jg3) kg m^2; psid rad/s; stiffness (C_theta, C_rho) (N m/rad); viscous b_v
+    (N m s/rad); radiation (Ar (2, nr, nr), Br (2, nr), Cr (2, nr)), one fit per axis (the
+    lower-order one padded with inert states, `axes.stack_fits`); pto = (c N m s/rad, k N m/rad,
     max torque N m, max power W, eta_generator, eta_motor, then the end stops, brake and
     supervisor of `gimbal.PTO_NAMES`)."""
 
-    inertia: NDArray[np.float64]
+    inertia: NDArray[np.float64]  # (3,)
     gyro: NDArray[np.float64]  # (Ja, Jt, Jg1, Jg2, Jg3, n_units)
     psid: float
-    stiffness: float
+    stiffness: NDArray[np.float64]  # (2,)
     viscous: float
     Ar: NDArray[np.float64]
     Br: NDArray[np.float64]
@@ -97,7 +105,7 @@ class FloatingParams:
     @property
     def n_state(self) -> int:
         """Without the translation block (`FloatingModel.n_state` adds it)."""
-        return N_MECH + 2 * self.Ar.shape[0] + N_ENERGY + N_SUPERVISOR
+        return N_MECH + 2 * self.Ar.shape[1] + N_ENERGY + N_SUPERVISOR
 
 
 # the translation parameters `tp` (TP_LEN,) (`translation_params`): on, M1 = m + A11_inf (kg),
@@ -106,89 +114,6 @@ class FloatingParams:
 # the surge force, 51 from s' to the moment, 33 from z') and the stacked order nt
 TP_ON, TP_M1, TP_A15, TP_K, TP_M3, TP_C33, TP_O11, TP_O15, TP_O51, TP_O33, TP_NT = range(11)
 TP_LEN = 11
-
-
-@numba.njit(cache=True)
-def mass_and_rhs(q, u, inertia, gyro, psid):
-    """M* (3,3) and the velocity terms v (3,) = sum B^T (J B' u + w x h) of the module doc;
-    also the spin coupling S = sum_s s w_g3(s) (rad/s) and the gyro units' share of v (3,).
-    gyro = (Ja, Jt, Jg1, Jg2, Jg3, n_units); unit s = +1 has gimbal angle phi and spin psi',
-    unit s = -1 (dual configuration, ch. 3 Sec. 3.2.3) -phi and -psi'."""
-    m = _mass_terms(q[1], q[2], u[0], u[1], u[2], inertia, gyro, psid)
-    M = np.zeros((3, 3))
-    M[0, 0], M[1, 1], M[1, 2], M[2, 1], M[2, 2] = m[0], m[1], m[2], m[2], m[3]
-    return M, np.array([m[4], m[5], m[6]]), m[10], np.array([m[7], m[8], m[9]])
-
-
-@kernel(forceinline=True)
-def _mass_terms(ro, ph, th_d, ro_d, ph_d, inertia, gyro, psid, near=None):
-    """`mass_and_rhs` on scalars (the RK4 stages call it 4 times per substep; no arrays, so no
-    reference counting): returns (M00, M11, M12 = M21, M22 (M01 = M02 = 0: w_1 of every body
-    depends on theta' only), v (3), gy (3), S, the hull's M00 alone, and (cos b, sin b) of
-    units 1 and 2 (zeros for a missing unit)).
-
-    cos and sin of rho and phi: libm, or with near = (rho0, cos rho0, sin rho0, phi0, cos phi0,
-    sin phi0) at a Runge-Kutta step's start from those (`frames.kernels.sincos_near`: its
-    stages sit close to it); b = rho +- phi by the angle-addition formulas (round-off)."""
-    if near is None:
-        cr_, sr_ = math.cos(ro), math.sin(ro)
-        cp_, sp_ = math.cos(ph), math.sin(ph)
-    else:
-        cr_, sr_ = sincos_near(ro, near[0], near[1], near[2])
-        cp_, sp_ = sincos_near(ph, near[3], near[4], near[5])
-    Ih, Iz = inertia[0], inertia[1]
-    Ja, Jt, Jg1, Jg2, Jg3 = gyro[0], gyro[1], gyro[2], gyro[3], gyro[4]
-    # gimbal + rotor (principal in the gimbal frame): J1, J2, J3 (rotor spin added in h3)
-    G1, G2, G3 = Jg1 + Jt, Jg2 + Jt, Jg3 + Ja
-    m00 = Ih * cr_ * cr_ + Iz * sr_ * sr_
-    hull00, m11, m12, m22 = m00, Ih, 0.0, 0.0
-    # hull: w = (c th', ro', s th'), B'u = (-s ro' th', 0, c ro' th')
-    w1, w2, w3 = cr_ * th_d, ro_d, sr_ * th_d
-    d1, d3 = -sr_ * ro_d * th_d, cr_ * ro_d * th_d
-    e1 = Ih * d1 + (w2 * Iz * w3 - w3 * Ih * w2)
-    e2 = w3 * Ih * w1 - w1 * Iz * w3
-    e3 = Iz * d3 + (w1 * Ih * w2 - w2 * Ih * w1)
-    gy0, gy1, gy2, spin = 0.0, 0.0, 0.0, 0.0
-    c1, s1, c2, s2 = 0.0, 0.0, 0.0, 0.0
-    for k in range(int(gyro[5])):
-        sg = 1.0 - 2.0 * k
-        # w = (cb th', ro' + s ph', sb th'), b = ro + s phi, B'u = (-sb bd th', 0, cb bd th')
-        cb, sb = cr_ * cp_ - sg * (sr_ * sp_), sr_ * cp_ + sg * (cr_ * sp_)  # b = ro + sg phi
-        if k == 0:
-            c1, s1 = cb, sb
-        else:
-            c2, s2 = cb, sb
-        bd = ro_d + sg * ph_d
-        m00 += G1 * cb * cb + G3 * sb * sb
-        m11 += G2
-        m12 += sg * G2
-        m22 += G2
-        g1, g2, g3 = cb * th_d, bd, sb * th_d
-        h1, h2, h3 = G1 * g1, G2 * g2, G3 * g3 + sg * Ja * psid
-        f1 = G1 * (-sb * bd * th_d) + (g2 * h3 - g3 * h2)
-        f2 = g3 * h1 - g1 * h3
-        f3 = G3 * (cb * bd * th_d) + (g1 * h2 - g2 * h1)
-        gy0 += cb * f1 + sb * f3
-        gy1 += f2
-        gy2 += sg * f2
-        spin += sg * g3
-    v0, v1, v2 = cr_ * e1 + sr_ * e3 + gy0, e2 + gy1, 0.0 + gy2
-    return (m00, m11, m12, m22, v0, v1, v2, gy0, gy1, gy2, spin, hull00, c1, s1, c2, s2)
-
-
-@kernel(forceinline=True)
-def _solve_tridiag3(a00, a01, a11, a12, a22, b0, b1, b2):
-    """x with A x = b for the symmetric tridiagonal A = [[a00, a01, 0], [a01, a11, a12],
-    [0, a12, a22]] (the mass matrix of `mechanics`, positive definite): its cofactors over the
-    determinant: one division, where Gaussian elimination chains six (~14 cycles each, on every
-    RK4 stage's critical path). A singular A raises ZeroDivisionError (numba's float division;
-    `batch.step_row` catches it), a non-finite one gives a non-finite x: the env's failure
-    path."""
-    c00, c01, c02 = a11 * a22 - a12 * a12, -(a01 * a22), a01 * a12
-    c11, c12, c22 = a00 * a22, -(a00 * a12), a00 * a11 - a01 * a01
-    inv = 1.0 / (a00 * c00 + a01 * c01)
-    return ((c00 * b0 + c01 * b1 + c02 * b2) * inv, (c01 * b0 + c11 * b1 + c12 * b2) * inv,
-            (c02 * b0 + c12 * b1 + c22 * b2) * inv)  # fmt: skip
 
 
 @kernel(forceinline=True)
@@ -204,7 +129,7 @@ def mechanics(t, y, tau, args, inp, near=None):
     p_in, p_gy, psid, C, bv, Ar, _, Cr, pto = args[:9]
     sp, tp = args[13], args[14]
     mx, my = inp[0], inp[1]
-    nr = Ar.shape[0]
+    nr = Ar.shape[1]
     trans = tp[TP_ON] != 0.0
     b = N_MECH + 2 * nr  # translation block: s, z, s', z', stacked radiation states
     s_d, z_d = (y[b + 2], y[b + 3]) if trans else (0.0, 0.0)
@@ -212,11 +137,11 @@ def mechanics(t, y, tau, args, inp, near=None):
     m = _mass_terms(y[1], y[2], y[3], y[4], y[5], p_in, p_gy, psid, near)
     mu_t, mu_r = 0.0, 0.0
     for i in range(nr):
-        mu_t += Cr[i] * y[6 + i]
-        mu_r += Cr[i] * y[6 + nr + i]
+        mu_t += Cr[0, i] * y[6 + i]
+        mu_r += Cr[1, i] * y[6 + nr + i]
     Mg, Mb, Ms = gimbal_loads(y[2], y[5], tau, pto, y[energy_index(args) + N_ENERGY] > 0.0)
-    q0 = mx + dx - C * y[0] - mu_t - bv * y[3] - m[4]
-    q1 = my + dy - C * y[1] - mu_r - bv * y[4] - m[5]
+    q0 = mx + dx - C[0] * y[0] - mu_t - bv * y[3] - m[4]
+    q1 = my + dy - C[1] * y[1] - mu_r - bv * y[4] - m[5]
     q2 = p_gy[5] * (Ms - Mg - Mb) - m[6]
     a00, a01, a11 = m[0], 0.0, m[1]
     if not trans:
@@ -257,7 +182,7 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
     evaluates it once per stage time); no allocation, no temporaries."""
     p_gy, psid, Ar, Br, pto = args[1], args[2], args[5], args[6], args[8]
     bv = args[4]
-    nr = Ar.shape[0]
+    nr = Ar.shape[1]
     ud, m, mu_t, mu_r, Mg, drx, dry, tr, gl = mechanics(t, y, tau, args, inp, near)
     mx, my = inp[0], inp[1]
     for i in range(3):
@@ -269,10 +194,10 @@ def deriv_into(t, y, tau, args, inp, dy, near=None):
     for i in range(nr if nr != 4 else 0):  # radiation states: x' = A x + B u (no BLAS call)
         at, ar = 0.0, 0.0
         for j in range(nr):
-            at += Ar[i, j] * y[6 + j]
-            ar += Ar[i, j] * y[6 + nr + j]
-        dy[6 + i] = at + Br[i] * th_d
-        dy[6 + nr + i] = ar + Br[i] * ro_d
+            at += Ar[0, i, j] * y[6 + j]
+            ar += Ar[1, i, j] * y[6 + nr + j]
+        dy[6 + i] = at + Br[0, i] * th_d
+        dy[6 + nr + i] = ar + Br[1, i] * ro_d
     k = 6 + 2 * nr
     e_exc = mx * th_d + my * ro_d
     e_rad = mu_t * th_d + mu_r * ro_d
@@ -383,16 +308,16 @@ def pack(p: FloatingParams, om: NDArray, cp: NDArray, cr: NDArray, dk: NDArray, 
     """The argument tuple of `deriv` / `rk4_steps` for params p, excitation (om, cp, cr), the
     sea's per-component loads dk (n, N_LOADS) and the sea parameters sp (SP_LEN,)
     (`sea_inputs`), and the translation (tp, As, Bs, Cs) (`translation_params`)."""
-    return (p.inertia, p.gyro, float(p.psid), float(p.stiffness), float(p.viscous), p.Ar, p.Br,
+    return (p.inertia, p.gyro, float(p.psid), p.stiffness, float(p.viscous), p.Ar, p.Br,
             p.Cr, p.pto, om, cp, cr, dk, sp, *tr)  # fmt: skip
 
 
 @numba.njit(cache=True, inline="always")
 def energy_index(args):
     """Index of the integrated energies in the state: after the mechanical state, the two
-    rotational radiation copies and (when surge and heave are free) the translation block."""
+    tilt axes' radiation states and (when surge and heave are free) the translation block."""
     tp = args[14]
-    k = N_MECH + 2 * args[5].shape[0]
+    k = N_MECH + 2 * args[5].shape[1]
     if tp[TP_ON] != 0.0:
         k += 4 + int(tp[TP_NT])
     return k

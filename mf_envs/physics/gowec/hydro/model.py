@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from mf_envs.physics.end_stops import cushion_spring_energy
 from mf_envs.physics.gowec import GOWECParams
-from mf_envs.physics.gowec.hydro import HullCoefficients, gimbal, sea
+from mf_envs.physics.gowec.hydro import HullCoefficients, axes, gimbal, sea
 from mf_envs.physics.gowec.hydro import floating as fl
 from mf_envs.physics.gowec.hydro.radiation import RadiationFit, fit_radiation
 from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
@@ -28,7 +28,9 @@ PTO_FIELDS = gimbal.PTO_NAMES  # the drive, end stops, brake and supervisor (`gi
 class FloatingModel:
     """Floating buoy + gyro (`floating` module doc). `viscous_damping` (N m s/rad) is an extra
     linear damping per axis (0 = potential flow only); `pto` a dict of PTO_FIELDS (gains,
-    limits, efficiencies; the end stops, brake and supervisor optional: `gimbal`)."""
+    limits, efficiencies; the end stops, brake and supervisor optional: `gimbal`). `hull` is
+    the pitch block, used for roll too unless the `three_dof` table has the sway/roll data
+    (a box: `axes.roll_hull`, its own roll block and wave moments by heading)."""
 
     def __init__(
         self,
@@ -48,7 +50,12 @@ class FloatingModel:
         self.fit = radiation or fit_radiation(
             hull.omega, hull.added_mass, hull.damping, hull.added_mass_inf
         )
-        Iz = 0.5 * hull.mass * (hull.radius if math.isfinite(hull.radius) else 1.0) ** 2
+        self.roll = axes.roll_hull(three_dof)  # None: axisymmetric, roll = the pitch block
+        r = self.roll or hull
+        self.roll_fit = self.fit if self.roll is None else fit_radiation(
+            r.omega, r.added_mass, r.damping, r.added_mass_inf)  # fmt: skip
+        Ar, Br, Cr = axes.stack_fits(self.fit, self.roll_fit)
+        Iz = axes.yaw_inertia(hull, three_dof)
         if units not in (1, 2):
             raise ValueError(f"gyro_units: 1 or 2 (the seed's dual configuration), got {units!r}")
         g = np.array(
@@ -60,14 +67,16 @@ class FloatingModel:
         self.drag_coefficient = 0.0
         self.mooring_stiffness = 0.0  # N/m (`set_translation`)
         self.p = fl.FloatingParams(
-            inertia=np.array([hull.inertia + hull.added_mass_inf, Iz]),
+            inertia=np.array(
+                [hull.inertia + hull.added_mass_inf, Iz, r.inertia + r.added_mass_inf]
+            ),
             gyro=g,
             psid=float(gyro.rotor_speed) if gyroscopic else 0.0,  # `set_rotor_speed`
-            stiffness=float(hull.stiffness),
+            stiffness=np.array([hull.stiffness, r.stiffness], dtype=float),
             viscous=float(viscous_damping),
-            Ar=np.ascontiguousarray(self.fit.A, dtype=float),
-            Br=np.ascontiguousarray(self.fit.B[:, 0], dtype=float),
-            Cr=np.ascontiguousarray(self.fit.C[0], dtype=float),
+            Ar=Ar,
+            Br=Br,
+            Cr=Cr,
             pto=np.array(gimbal.pto_vector(pto), dtype=float),
         )
         self.set_sea(None)
@@ -100,13 +109,13 @@ class FloatingModel:
             self._cp = self._cr = np.zeros(0, dtype=complex)
             self._dk = np.zeros((0, sea.N_LOADS), dtype=complex)
             return
-        X = self.hull_excitation(wave.omegas)
+        X = self.wave_excitation(wave.omegas, wave.direction)
         self._om = np.asarray(wave.omegas, dtype=float)
         self._cp, self._cr = sea.excitation_coefficients(
             X, wave.amplitudes, wave.phases, wave.direction
         )
         self.sp = sea.drag_geometry(self.hull, self.drag_coefficient, float(self.sp[1]),
-                                   wave.direction)  # fmt: skip
+                                   wave.direction, axes.plan(self.three))  # fmt: skip
         self.sp[sea.SP_TRANS] = self._tr[0][fl.TP_ON]
         self._dk = sea.drag_velocity_coefficients(
             self.sp, self.hull, self._om, wave.amplitudes, wave.phases
@@ -153,14 +162,22 @@ class FloatingModel:
         (rad/s) of omegas (`HullCoefficients.at`)."""
         return np.array([self.hull.at(float(w))[2] for w in omegas])
 
+    def wave_excitation(self, omegas: NDArray, direction: float) -> NDArray[np.complex128]:
+        """What `sea.excitation_coefficients` takes for a sea towards `direction` (rad): the
+        pitch excitation (n,) of an axisymmetric hull, or (2, n) the moments about e1 and e2
+        from a box's heading table (`axes.directional_excitation`)."""
+        if self.roll is None:
+            return self.hull_excitation(omegas)
+        return axes.directional_excitation(self.three, omegas, direction)
+
     def set_viscous(self, damping: float) -> None:
         """Extra linear viscous damping b_v per axis (N m s/rad)."""
         self.p, self._packed = dataclasses.replace(self.p, viscous=float(damping)), None
 
     def set_radiation(self, on: bool) -> None:
         """Radiation memory on (the fit) or off (A_inf only: no wave damping)."""
-        Cr = self.fit.C[0] if on else np.zeros_like(self.fit.C[0])
-        Cr = np.ascontiguousarray(Cr, dtype=float)
+        Cr = axes.stack_fits(self.fit, self.roll_fit)[2]
+        Cr = Cr if on else np.zeros_like(Cr)
         self.p, self._packed = dataclasses.replace(self.p, Cr=Cr), None
 
     def set_pto(self, damping: float, stiffness: float) -> None:
@@ -237,11 +254,11 @@ class FloatingModel:
         if self.units != 1:
             raise ValueError("engine_model: the engine's tree holds one gyro unit (units=1)")
         Ja, Jt, Jg1, Jg2, Jg3 = p.gyro[:5]
-        Ih, Iz = p.inertia
+        Ih, Iz, Ir = p.inertia
         return Multibody(
             [
                 Body("pitch", 0.0, (0.0, 0.0, 0.0), Revolute((1, 0, 0))),
-                Body("hull", 1.0, (Ih, Ih, Iz), Revolute((0, 1, 0)), parent="pitch"),
+                Body("hull", 1.0, (Ih, Ir, Iz), Revolute((0, 1, 0)), parent="pitch"),
                 Body("gimbal", 1.0, (Jg1, Jg2, Jg3), Revolute((0, 1, 0)), parent="hull"),
                 Body(
                     "rotor",
@@ -342,10 +359,10 @@ def mechanical_energy(p: fl.FloatingParams, y: NDArray[np.float64], tp: NDArray 
     M, _, spin, _ = fl.mass_and_rhs(y[0:3], y[3:6], p.inertia, p.gyro, p.psid)
     u = y[3:6]
     kin = 0.5 * float(u @ M @ u) + p.gyro[0] * p.psid * spin
-    e = kin + 0.5 * p.stiffness * float(y[0] ** 2 + y[1] ** 2)
+    e = kin + 0.5 * float(p.stiffness[0] * y[0] ** 2 + p.stiffness[1] * y[1] ** 2)
     e += p.gyro[5] * cushion_spring_energy(y[2], p.pto[gimbal.PTO_STOP], p.pto[gimbal.PTO_KS])
     if tp is not None and tp[fl.TP_ON] != 0.0:
-        b = fl.N_MECH + 2 * p.Ar.shape[0]
+        b = fl.N_MECH + 2 * p.Ar.shape[1]
         s, z, sd, zd = y[b : b + 4]
         al_d = -(math.sin(direction) * y[3] - math.cos(direction) * y[4])
         e += 0.5 * tp[fl.TP_M1] * sd * sd + tp[fl.TP_A15] * sd * al_d + 0.5 * tp[fl.TP_M3] * zd * zd

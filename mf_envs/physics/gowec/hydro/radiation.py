@@ -119,14 +119,16 @@ def fit_radiation(
 # the radiation memory's state-space rates, inlined by `floating`'s RK4 stages
 @kernel(forceinline=True)
 def radiation_rates4(y, dy, Ar, Br, th_d, ro_d):
-    """`floating.deriv_into`'s radiation states of a 4th-order fit (pitch at y[6:10], roll at
-    y[10:14]), its loop's sums in its order, unrolled: 0.0 + sum_j A[i, j] x_j, then + B[i] u."""
+    """`floating.deriv_into`'s radiation states of 4th-order fits (pitch at y[6:10] with
+    Ar[0], Br[0], roll at y[10:14] with Ar[1], Br[1]), its loop's sums in its order, unrolled:
+    0.0 + sum_j A[i, j] x_j, then + B[i] u."""
     t0, t1, t2, t3 = y[6], y[7], y[8], y[9]
     r0, r1, r2, r3 = y[10], y[11], y[12], y[13]
     for i in range(4):
-        a0, a1, a2, a3 = Ar[i, 0], Ar[i, 1], Ar[i, 2], Ar[i, 3]
-        dy[6 + i] = (0.0 + a0 * t0 + a1 * t1 + a2 * t2 + a3 * t3) + Br[i] * th_d
-        dy[10 + i] = (0.0 + a0 * r0 + a1 * r1 + a2 * r2 + a3 * r3) + Br[i] * ro_d
+        a0, a1, a2, a3 = Ar[0, i, 0], Ar[0, i, 1], Ar[0, i, 2], Ar[0, i, 3]
+        dy[6 + i] = (0.0 + a0 * t0 + a1 * t1 + a2 * t2 + a3 * t3) + Br[0, i] * th_d
+        a0, a1, a2, a3 = Ar[1, i, 0], Ar[1, i, 1], Ar[1, i, 2], Ar[1, i, 3]
+        dy[10 + i] = (0.0 + a0 * r0 + a1 * r1 + a2 * r2 + a3 * r3) + Br[1, i] * ro_d
 
 
 @kernel(forceinline=True)

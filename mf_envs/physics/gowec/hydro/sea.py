@@ -22,8 +22,12 @@ def excitation_coefficients(
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
     """Complex moment coefficients (N m) c_i such that M(t) = sum Re(c_i e^{-i w_i t}) about e1
     (pitch) and e2 (roll) for components eta = a_i cos(k x.n - w_i t + eps_i) travelling in
-    `direction` (rad from x1). X (n,) is the hull's pitch excitation (about y, wave along +x) at
-    w_i; by axisymmetry the moment about e2 is X cos(direction) and about e1 -X sin(direction)."""
+    `direction` (rad from x1). X (n,) is an axisymmetric hull's pitch excitation (about y, wave
+    along +x) at w_i: the moment about e2 is X cos(direction) and about e1 -X sin(direction);
+    or X (2, n) the moments about e1 and e2 at that direction already (`axes`, a box)."""
+    if np.ndim(X) == 2:
+        return tuple(np.asarray(x) * np.asarray(amplitudes) * np.exp(1j * np.asarray(phases))
+                     for x in X)  # fmt: skip
     c = np.asarray(X) * np.asarray(amplitudes) * np.exp(1j * np.asarray(phases))
     return -math.sin(direction) * c, math.cos(direction) * c
 
@@ -140,7 +144,8 @@ def drag_loads(th_d, ro_d, s_d, z_d, inp, sp):
     return mx, my, fs, fz
 
 
-def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction: float) -> NDArray:
+def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction: float,
+                  plan: tuple[float, float] | None = None) -> NDArray:  # fmt: skip
     """The sea parameters `sp` (SP_LEN,) of `sea_inputs` / `drag_loads` for a vertical
     cylinder hull (radius R, draft d, z_G from `hull`) and drag coefficient C_d (0 = off):
     - keel plate: N_KEEL nodes on a ring of radius r* = R (32 / (25 pi))^(1/3) at angles
@@ -149,7 +154,13 @@ def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction:
       damping K = 1/2 rho C_d 8 R^5 / 15 exactly in still water about the axis across the
       wave direction; about the other axis the ring gives 2.598 / 2.5, 3.9 % more);
     - side: N_SIDE Gauss-Legendre nodes over the draft on the axis, projected width 2R;
-    - ramp time (s) of the incident wave, and the wave direction's cosine and sine."""
+    - ramp time (s) of the incident wave, and the wave direction's cosine and sine.
+    A box (plan = (length L, beam B) m, its length along e2: `axes`): the keel nodes at the
+    body-fixed angles pi/2 + j pi/3 on the ellipse of semi-axes a along e2 and b along e1,
+    a^3 = N L^3 / (32 S_c), b^3 = N B^3 / (32 S_s) (S_c, S_s the sums of |cos|^3, |sin|^3 of
+    j pi/3), each of area L B / N: the plate's integrals of |y|^3 (B L^4 / 32) and of |x|^3
+    (L B^4 / 32) exactly, so both axes' still-water quadratic damping; the side's width the
+    one facing the wave, B |sin| + L |cos| of the direction (chosen)."""
     sp = np.zeros(SP_LEN)
     sp[1] = ramp_seconds
     c, s = math.cos(direction), math.sin(direction)
@@ -157,18 +168,29 @@ def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction:
     if drag_coefficient <= 0.0:
         return sp
     R, d, zg, rho = float(hull.radius), float(hull.draft), float(hull.zg), float(hull.rho)
-    if not (math.isfinite(R) and math.isfinite(d) and math.isfinite(zg)):
+    if not ((plan is not None or math.isfinite(R)) and math.isfinite(d) and math.isfinite(zg)):
         raise ValueError("drag_coefficient: the hull has no radius/draft/zg (a user table "
                          "without geometry); quadratic drag needs them")  # fmt: skip
     sp[0] = 1.0
+    gl = np.array([-1.0, 1.0]) / math.sqrt(3.0)  # 2-point Gauss-Legendre on [-1, 1]
+    sp[SP_ZS : SP_ZS + N_SIDE] = -0.5 * d * (1.0 + gl) - zg
+    half = 0.5 * rho * drag_coefficient
+    if plan is not None:
+        L, B = plan
+        j = np.arange(N_KEEL) * (2.0 * math.pi / N_KEEL)
+        a = L * (N_KEEL / (32.0 * np.sum(np.abs(np.cos(j)) ** 3))) ** (1.0 / 3.0)
+        b = B * (N_KEEL / (32.0 * np.sum(np.abs(np.sin(j)) ** 3))) ** (1.0 / 3.0)
+        sp[SP_CK : SP_CK + N_KEEL] = half * L * B / N_KEEL
+        sp[SP_XK : SP_XK + N_KEEL] = b * np.cos(0.5 * math.pi + j)
+        sp[SP_YK : SP_YK + N_KEEL] = a * np.sin(0.5 * math.pi + j)
+        sp[SP_CS : SP_CS + N_SIDE] = half * (B * abs(s) + L * abs(c)) * d / N_SIDE
+        return sp
     ang = direction + np.arange(N_KEEL) * (2.0 * math.pi / N_KEEL)
     r = R * (32.0 / (25.0 * math.pi)) ** (1.0 / 3.0)
     sp[SP_CK : SP_CK + N_KEEL] = 0.5 * rho * drag_coefficient * math.pi * R * R / N_KEEL
     sp[SP_XK : SP_XK + N_KEEL] = r * np.cos(ang)
     sp[SP_YK : SP_YK + N_KEEL] = r * np.sin(ang)
-    gl = np.array([-1.0, 1.0]) / math.sqrt(3.0)  # 2-point Gauss-Legendre on [-1, 1]
     sp[SP_CS : SP_CS + N_SIDE] = 0.5 * rho * drag_coefficient * 2.0 * R * d / N_SIDE
-    sp[SP_ZS : SP_ZS + N_SIDE] = -0.5 * d * (1.0 + gl) - zg
     return sp
 
 
@@ -202,8 +224,10 @@ def translation_loads(dk: NDArray, three, om: NDArray, amp: NDArray, eps: NDArra
     om = np.asarray(om, dtype=float)
     c = np.asarray(amp, dtype=float) * np.exp(1j * np.asarray(eps, dtype=float))
     for col, mode in ((N_KEEL + N_SIDE, 0), (N_KEEL + N_SIDE + 1, 1)):
-        X = three.excitation[:, mode]
-        Xi = np.interp(om, three.omega, X.real, 0.0, 0.0) + 1j * np.interp(
-            om, three.omega, X.imag, 0.0, 0.0
-        )
-        dk[:, col] = Xi * c
+        dk[:, col] = interp_complex(om, three.omega, three.excitation[:, mode]) * c
+
+
+def interp_complex(w: NDArray, omega: NDArray, X: NDArray) -> NDArray[np.complex128]:
+    """X (complex, tabulated at omega) at the frequencies w, linear in its real and imaginary
+    parts, 0 outside the table."""
+    return np.interp(w, omega, X.real, 0.0, 0.0) + 1j * np.interp(w, omega, X.imag, 0.0, 0.0)
