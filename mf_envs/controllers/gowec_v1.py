@@ -301,7 +301,7 @@ def scheduled_speeds(raw: Any) -> np.ndarray:
     return math.copysign(1.0, psid) * np.geomspace(lo, hi, SPEEDS)
 
 
-def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
+def speed_search(raw: Any) -> dict[str, float]:
     """The flywheel speed and linear PTO of the highest predicted net electrical power inside
     the limits: `pto_search` at each of `scheduled_speeds` on the sea's linear model (H = J psi'
     and the running loss at each speed), the best kept (`_best`); where the next slower grid
@@ -309,7 +309,7 @@ def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
     the best inside the limits. ISWEC sets its flywheel speed with the PTO per sea state
     (module doc). Returns `pto_search`'s record with `speed` (rad/s)."""
     model = LinearModel(raw)
-    grid = [pto_search(raw, passive, model.at_speed(float(w))) for w in scheduled_speeds(raw)]
+    grid = [pto_search(raw, model=model.at_speed(float(w))) for w in scheduled_speeds(raw)]
     best = _best(grid)
     i = next(j for j, r in enumerate(grid) if r is best)
     if best["excess"] <= 1.0 and i > 0 and grid[i - 1]["net_W"] > best["net_W"]:
@@ -317,7 +317,7 @@ def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
         lo, hi = grid[i - 1]["speed"], best["speed"]
         for _ in range(REFINE):
             mid = math.copysign(math.sqrt(lo * hi), hi)
-            r = pto_search(raw, passive, model.at_speed(mid))
+            r = pto_search(raw, model=model.at_speed(mid))
             if r["excess"] <= 1.0:
                 best, hi = (r if r["net_W"] > best["net_W"] else best), mid
             else:
@@ -327,17 +327,16 @@ def speed_search(raw: Any, passive: bool = False) -> dict[str, float]:
 
 class EfficientPTOController:
     """The linear PTO and flywheel speed optimised for net electrical power in the sea of the
-    last reset (`speed_search`); `passive=True` the best pure damper at each speed. Gains and
-    speed set on the drive at reset; `prediction` holds the search's record (predicted net
-    power, W) to set beside the realised one."""
+    last reset (`speed_search`). Gains and speed set on the drive at reset; `prediction` holds
+    the search's record (predicted net power, W) to set beside the realised one."""
 
-    def __init__(self, env: Any, passive: bool = False) -> None:
-        self.env, self.passive = env, passive
+    def __init__(self, env: Any) -> None:
+        self.env = env
         self.c, self.k = 0.0, 0.0
         self.prediction: dict[str, float] = {}
 
     def reset(self) -> None:
-        self._apply(speed_search(self.env.unwrapped, self.passive))
+        self._apply(speed_search(self.env.unwrapped))
 
     def _apply(self, prediction: dict[str, float]) -> None:
         raw = self.env.unwrapped
@@ -357,13 +356,10 @@ class PassiveDamperController(EfficientPTOController):
     is this damper plus what an ISWEC-style drive adds: the flywheel speed chosen per sea and
     a spring where the model predicts one pays."""
 
-    def __init__(self, env: Any) -> None:
-        super().__init__(env, passive=True)
-
     def reset(self) -> None:
         raw = self.env.unwrapped
         raw.set_rotor_speed(float(raw.model.gyro.rotor_speed))
-        self._apply(dict(pto_search(raw, passive=True), speed=float(raw.model.psid)))
+        self._apply(pto_search(raw, passive=True))  # its record's speed: the rated one
 
 
 class LinearPTOController:

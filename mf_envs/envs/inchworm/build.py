@@ -57,9 +57,9 @@ GRIP_TIME_CONSTANT = 0.5  # s, the feet's engage/release time (presets.GRIP_TIME
 DEFAULT_EPISODE_STEPS = 400
 ALLOYS = {"HT": FLEXINOL_HT, "LT": FLEXINOL_LT}
 # default effort weight with `sma_wires`: MECHANICAL_EFFORT_SCALE x SMA_EFFORT_SCALE /
-# (m_A g L^2) per joule of electrical energy (docs/inchworm.md, "The buildable robot": an SMA crawler's
-# electrical cost of transport is ~4e3, so the mechanical scenes' weight would drown the
-# progress). Sized so that every wire at full duty for a whole default episode costs less
+# (m_A g L^2) per joule of electrical energy (docs/inchworm.md, "The buildable robot": an SMA
+# crawler's electrical cost of transport is ~4e3, so the mechanical scenes' weight would drown
+# the progress). Sized so that every wire at full duty for a whole default episode costs less
 # than the progress of a crawl at ~0.1 mm/s: a policy that crawls faster returns more than
 # any that stands still, whatever it spends
 SMA_EFFORT_SCALE = 2e-5

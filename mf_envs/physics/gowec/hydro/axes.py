@@ -33,36 +33,35 @@ from mf_envs.physics.gowec.hydro.three_dof import ThreeDofCoefficients
 ROLL, PITCH = 3, 4  # modes 4 and 5 in the heading table (modes 1..5)
 
 
-def pitch_hull(c: ThreeDofCoefficients) -> HullCoefficients:
-    """The pitch block (mode 5 about G) of a surge/heave/pitch table as `HullCoefficients`
-    (A_0 taken as A55 at the table's lowest frequency; negative near-zero B55 at the table's
-    high end, where the mesh no longer resolves it, clipped to 0)."""
+def _block(c: ThreeDofCoefficients, added, damping, excitation, a_inf: float, stiffness: float,
+           inertia: float, label: str) -> HullCoefficients:  # fmt: skip
+    """One tilt axis' block of a table as `HullCoefficients` (A_0 taken as the added inertia at
+    the table's lowest frequency; negative near-zero damping at the table's high end, where the
+    mesh no longer resolves it, clipped to 0)."""
     return HullCoefficients(
-        omega=c.omega, added_mass=c.added_mass[:, 2, 2],
-        damping=np.maximum(c.damping[:, 2, 2], 0.0), excitation=c.excitation[:, 2],
-        added_mass_inf=float(c.added_mass_inf[2, 2]),
-        added_mass_zero=float(c.added_mass[0, 2, 2]),
-        stiffness=float(c.hydrostatic_stiffness[2, 2]), inertia=float(c.mass_matrix[2, 2]),
-        mass=float(c.mass_matrix[0, 0]), rho=c.rho, g=c.g, radius=c.radius, draft=c.draft,
-        zg=c.zg, name=f"{c.name} (pitch)",
+        omega=c.omega, added_mass=added, damping=np.maximum(damping, 0.0), excitation=excitation,
+        added_mass_inf=float(a_inf), added_mass_zero=float(added[0]), stiffness=float(stiffness),
+        inertia=float(inertia), mass=float(c.mass_matrix[0, 0]), rho=c.rho, g=c.g,
+        radius=c.radius, draft=c.draft, zg=c.zg, name=f"{c.name} ({label})",
     )  # fmt: skip
+
+
+def pitch_hull(c: ThreeDofCoefficients) -> HullCoefficients:
+    """The pitch block (mode 5 about G) of a surge/heave/pitch table (`_block`)."""
+    return _block(c, c.added_mass[:, 2, 2], c.damping[:, 2, 2], c.excitation[:, 2],
+                  c.added_mass_inf[2, 2], c.hydrostatic_stiffness[2, 2], c.mass_matrix[2, 2],
+                  "pitch")  # fmt: skip
 
 
 def roll_hull(c: ThreeDofCoefficients | None) -> HullCoefficients | None:
-    """The roll block (mode 4 about G) of a table with the sway/roll data as `HullCoefficients`
-    (as `pitch_hull`; its excitation X4 in beam seas, heading pi/2), None without that data."""
+    """The roll block (mode 4 about G) of a table with the sway/roll data (`_block`; its
+    excitation X4 in beam seas, heading pi/2), None without that data."""
     if c is None or c.transverse_added_mass is None or c.heading_excitation is None:
         return None
-    return HullCoefficients(
-        omega=c.omega, added_mass=c.transverse_added_mass[:, 1, 1],
-        damping=np.maximum(c.transverse_damping[:, 1, 1], 0.0),
-        excitation=c.heading_excitation[:, -1, ROLL],
-        added_mass_inf=float(c.transverse_added_mass_inf[1, 1]),
-        added_mass_zero=float(c.transverse_added_mass[0, 1, 1]),
-        stiffness=float(c.transverse_hydrostatic_stiffness[1, 1]),
-        inertia=float(c.transverse_mass_matrix[1, 1]), mass=float(c.mass_matrix[0, 0]),
-        rho=c.rho, g=c.g, radius=c.radius, draft=c.draft, zg=c.zg, name=f"{c.name} (roll)",
-    )  # fmt: skip
+    return _block(c, c.transverse_added_mass[:, 1, 1], c.transverse_damping[:, 1, 1],
+                  c.heading_excitation[:, -1, ROLL], c.transverse_added_mass_inf[1, 1],
+                  c.transverse_hydrostatic_stiffness[1, 1], c.transverse_mass_matrix[1, 1],
+                  "roll")  # fmt: skip
 
 
 def plan(c: ThreeDofCoefficients | None) -> tuple[float, float] | None:

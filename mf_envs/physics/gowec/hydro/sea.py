@@ -187,10 +187,10 @@ def drag_geometry(hull, drag_coefficient: float, ramp_seconds: float, direction:
         return sp
     ang = direction + np.arange(N_KEEL) * (2.0 * math.pi / N_KEEL)
     r = R * (32.0 / (25.0 * math.pi)) ** (1.0 / 3.0)
-    sp[SP_CK : SP_CK + N_KEEL] = 0.5 * rho * drag_coefficient * math.pi * R * R / N_KEEL
+    sp[SP_CK : SP_CK + N_KEEL] = half * math.pi * R * R / N_KEEL
     sp[SP_XK : SP_XK + N_KEEL] = r * np.cos(ang)
     sp[SP_YK : SP_YK + N_KEEL] = r * np.sin(ang)
-    sp[SP_CS : SP_CS + N_SIDE] = 0.5 * rho * drag_coefficient * 2.0 * R * d / N_SIDE
+    sp[SP_CS : SP_CS + N_SIDE] = half * 2.0 * R * d / N_SIDE
     return sp
 
 
