@@ -21,10 +21,10 @@ CYLINDER_TRAJECTORIES = [
 
 @pytest.mark.parametrize("kwargs, seed, digest, ret", CYLINDER_TRAJECTORIES)
 def test_cylinder_device_is_bit_identical(kwargs, seed, digest, ret):
-    """The default device (`iswec_class`, axisymmetric: its roll block is its pitch block) steps
-    bit for bit as before the roll block, in a head sea and in an oblique irregular one (both
-    axes loaded), under a sine torque command."""
-    env = gym.make("FloatingGOWEC-v0", **kwargs).unwrapped
+    """The cylinder device (`iswec_class`, the default before the box; axisymmetric: its roll
+    block is its pitch block) steps bit for bit as before the roll block, in a head sea and in
+    an oblique irregular one (both axes loaded), under a sine torque command."""
+    env = gym.make("FloatingGOWEC-v0", device="iswec_class", **kwargs).unwrapped
     env.reset(seed=seed)
     total = 0.0
     for k in range(400):

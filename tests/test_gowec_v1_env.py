@@ -55,9 +55,16 @@ def test_api_contract():
     u = gym.make("FloatingGOWEC-v0", device="seed_buoy").unwrapped  # the 0.1-0.4 device's figures
     assert u.hydrostatic_stiffness() == load_hull().stiffness
     assert u.natural_period() == pytest.approx(5.427, rel=1e-3)
-    iswec = env.unwrapped  # the default: the ISWEC-class cylinder's pitch block
+    box = env.unwrapped  # the default: ISWEC's 15 x 8 m box, its length along the sea
+    # pitch C55 of the mesh against the exact box's rho g (B L^3 / 12 + V z_B) - m g z_G
+    L, B, d, zg, rho, g = 15.0, 8.0, 3.2, -0.5, 1025.0, 9.81
+    vol = L * B * d
+    exact = rho * g * (B * L**3 / 12 - vol * d / 2) - rho * vol * g * zg  # 18.377e6
+    assert box.hydrostatic_stiffness() == pytest.approx(exact, rel=1e-3)
+    assert box.natural_period() == pytest.approx(5.164, rel=1e-3)
+    iswec = gym.make("FloatingGOWEC-v0", device="iswec_class").unwrapped  # the cylinder
     # C55 of the mesh (8.0977e6) against the exact cylinder's rho g (I_wp + V z_B) - m g z_G
-    r, d, zg, rho, g = 6.0, 2.5, -0.5, 1025.0, 9.81
+    r, d = 6.0, 2.5
     vol = math.pi * r * r * d
     exact = rho * g * (math.pi * r**4 / 4 - vol * d / 2) - rho * vol * g * zg  # 8.1027e6
     assert iswec.hydrostatic_stiffness() == pytest.approx(exact, rel=1e-3)

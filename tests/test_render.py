@@ -188,6 +188,16 @@ def test_inchworm_window_follows_the_body_and_ground_ticks_move():
             lambda: draw_gowec(buoy_R=np.eye(3), gimbal_angle=0, wave_x=[1, 0], wave_z=[0, 0]),
             "wave_x",
         ),
+        (
+            lambda: draw_gowec(
+                buoy_R=np.eye(3),
+                gimbal_angle=0,
+                wave_x=[0, 1],
+                wave_z=[0, 0],
+                buoy_plan=(15.0, -8.0),
+            ),  # fmt: skip
+            "buoy_plan",
+        ),
         (lambda: draw_inchworm(centerline=np.zeros((5, 3)), x_head=0, x_tail=0), "centerline"),
         (lambda: draw_inchworm(centerline=np.zeros((5, 2)), x_head=np.nan, x_tail=0), "x_head"),
     ],
@@ -195,6 +205,24 @@ def test_inchworm_window_follows_the_body_and_ground_ticks_move():
 def test_bad_input_raises_valueerror_naming_it(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_box_hull_is_drawn_to_its_plan():
+    """`buoy_plan` draws ISWEC's box instead of the cylinder: a longer hull covers more of the
+    frame than a shorter one of the same beam, and both differ from the cylinder of that half
+    beam (its gear the same size)."""
+    kw = dict(buoy_R=np.eye(3), gimbal_angle=0.3, wave_x=_wave()[0], wave_z=_wave()[1], size=SIZE)
+    sky = draw_gowec(**kw, buoy_radius=4.0)[0, 0]
+    cyl, short, long = (draw_gowec(**kw, buoy_radius=4.0),
+                        draw_gowec(**kw, buoy_plan=(8.0, 8.0)),
+                        draw_gowec(**kw, buoy_plan=(15.0, 8.0)))  # fmt: skip
+
+    def hull_pixels(f):
+        return int(np.sum(np.all(np.abs(f.astype(int) - (230, 180, 60)) < 60, axis=-1)))
+
+    assert _changed_fraction(cyl, short) > 0 and _changed_fraction(short, long) > 0
+    assert hull_pixels(long) > hull_pixels(short) > 0
+    assert np.array_equal(sky, long[0, 0])
 
 
 def test_gif_round_trip(tmp_path):

@@ -56,7 +56,7 @@ ROWS = (
     Row("GOWEC-v0", "one gyroscope of a gyroscopic wave energy converter on a buoy rocked by a "
         "regular wave (§3.2)", "gimbal angle and rate, buoy rates",
         "generator torque on the gimbal", "power_ratio"),
-    Row("FloatingGOWEC-v0", "the GOWEC afloat: a 290 t cylinder of ISWEC's footprint (BEM, "
+    Row("FloatingGOWEC-v0", "the GOWEC afloat: ISWEC's 15 x 8 m, 394 t box hull (BEM, "
         "Cummins equation) with two gyro units, regular sea",
         "gimbal angle and rate, hull rates, pitch, roll, wave elevation",
         "generator torque (power-limited)", "net_power_of_ceiling"),

@@ -197,6 +197,7 @@ def draw_gowec(
     size: tuple[int, int] = (360, 480),
     wave_direction: float = np.pi / 2,
     buoy_radius: float | None = None,
+    buoy_plan: tuple[float, float] | None = None,
 ) -> np.ndarray:
     """The GOWEC buoy (ch.3 Fig. 2) riding a wave profile, gyro on its deck.
 
@@ -204,8 +205,10 @@ def draw_gowec(
     Eq. 30); rotor_angle psi (rad, about gimbal e3, Eq. 40); wave_x, wave_z: (n,) elevation
     profile (m) along the travel direction `wave_direction` (theta of Eq. 89, pi/2 = along x2,
     head-on), with the buoy at wave_x = 0. `buoy_radius` (m) defaults to 1/10 of the profile
-    span. The buoy is cut at the plane tangent to the wave under it; the view is from the side
-    of the wave so the profile reads as in a wave flume. Returns uint8 (H, W, 3).
+    span; `buoy_plan` (length along e2, beam along e1; m) draws a box hull of that plan instead
+    of the cylinder (its gear sized on the half beam). The buoy is cut at the plane tangent to
+    the wave under it; the view is from the side of the wave so the profile reads as in a wave
+    flume. Returns uint8 (H, W, 3).
     """
     R = _attitude("buoy_R", buoy_R)
     phi = finite_scalar("gimbal_angle", gimbal_angle)
@@ -215,12 +218,16 @@ def draw_gowec(
     size = check_size(size)
     span = float(s[-1] - s[0])
     rb = span / 10 if buoy_radius is None else positive_scalar("buoy_radius", buoy_radius)
+    if buoy_plan is not None:
+        length = positive_scalar("buoy_plan", buoy_plan[0])
+        rb = 0.5 * positive_scalar("buoy_plan", buoy_plan[1])
     eta0 = float(np.interp(0.0, s, z))
     slope = float(np.interp(0.0, s, np.gradient(z, s)))
     d = np.array([np.cos(theta), np.sin(theta), 0.0])
 
     deck = 0.32 * rb
-    buoy = meshes.cylinder(rb, deck, BUOY, segments=28)
+    buoy = (meshes.cylinder(rb, deck, BUOY, segments=28) if buoy_plan is None
+            else meshes.box(np.array([rb, 0.5 * length, deck]), BUOY))  # fmt: skip
     pivot = np.array([0.0, 0.0, deck + 0.62 * rb])
     gyro = gyro_mesh(phi, psi, 1.05 * rb).transformed(np.eye(3), pivot)
     gyro.extend(meshes.pedestal(pivot, 0.86 * rb, 0.66 * rb, 0.1 * rb, GIMBAL))

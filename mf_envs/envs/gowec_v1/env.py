@@ -47,15 +47,17 @@ _P = GOWECParams()
 class GOWECV1Env(MFEnv):
     """
     ## Description
-    The GOWEC of Rios (2017, Sec. 3.2) floating. Default `device="iswec_class"`: a cylinder of
-    ISWEC's footprint (radius 6 m, draft 2.5 m, 290 t; Capytaine BEM coefficients shipped) in
-    pitch theta (about e1), roll rho (about e2), surge and heave: Cummins equation with Morison
-    drag and a mooring spring, two-way coupled to a mirrored pair of gyros (H = 3.14e5 N m s
-    each) by the B-matrix equations (`physics.gowec.hydro.floating`); generator torque inside
-    the substeps. The gimbals swing inside cushioned end stops (+-70 deg, 10 deg of cushion),
-    and a supervisor takes the device into survival (PTO unloaded, gimbals braked, flywheels
-    spinning) beyond its operating range (`physics.gowec.hydro.gimbal`).
-    `"iswec_box"`: ISWEC's 15 x 8 m box; `"seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md.
+    The GOWEC of Rios (2017, Sec. 3.2) floating. Default `device="iswec_box"`: ISWEC's 15 x 8 m
+    box of 3.2 m draft (394 t; Capytaine BEM coefficients shipped, its length along the
+    default sea) in pitch theta (about e1), roll rho (about e2), surge and heave: Cummins
+    equation with Morison drag and a mooring spring, two-way coupled to a mirrored pair of
+    gyros (H = 3.14e5 N m s each) by the B-matrix equations (`physics.gowec.hydro.floating`);
+    generator torque inside the substeps. The gimbals swing inside cushioned end stops
+    (+-70 deg, 10 deg of cushion), and a supervisor takes the device into survival (PTO
+    unloaded, gimbals braked, flywheels spinning) beyond its operating range
+    (`physics.gowec.hydro.gimbal`).
+    `"iswec_class"`: the same units on a cylinder of ISWEC's footprint (radius 6 m, draft 2.5 m,
+    the default before the box); `"seed_buoy"`: the 0.1-0.4 device. docs/gowec_v1.md.
 
     ## Action Space
     `Box(-1, 1, (1,), float32)`: generator torque command / max_generator_torque. The drive adds
@@ -96,7 +98,7 @@ class GOWECV1Env(MFEnv):
 
     | argument | default | meaning |
     |---|---|---|
-    | device | "iswec_class" | or "iswec_box", "seed_buoy" (`hydro/devices.py`): fills None kwargs |
+    | device | "iswec_box" | or "iswec_class", "seed_buoy" (`hydro/devices.py`): fills None kwargs |
     | sea.amplitude, .period, .direction | 1 m, 6 s, pi/2 | regular wave (Eq. 89) |
     | sea.significant_wave_height, .peak_period | None, 6 s | irregular sea (Hs, Tp) if Hs is set |
     | sea.spectrum, .gamma, .n_components | "jonswap", 3.3, 64 | irregular-sea spectrum |

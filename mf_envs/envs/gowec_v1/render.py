@@ -9,6 +9,7 @@ import numpy as np
 
 from mf_envs.envs.gowec.render import wave_frame
 from mf_envs.physics import waves
+from mf_envs.physics.gowec.hydro import axes
 
 
 def draw_frame(env: Any) -> np.ndarray:
@@ -20,9 +21,10 @@ def draw_frame(env: Any) -> np.ndarray:
     text += f"  P = {env._last_power / 1e3:.2f} kW"
     # the real hull to scale: a window of a quarter wavelength (at least 5 radii) each side,
     # so the 5 m buoy is not a few pixels on a 110 m strip of a 6 s wave
-    r = env.buoy_radius or 0.0
+    plan = axes.plan(env.model.three)  # a box: (length, beam), its length along e2
+    r = env.buoy_radius or (0.5 * plan[0] if plan else 0.0)
     half = max(0.25 * float(waves.wavelength(env.wave_period)), 5.0 * r) if r > 0 else None
     return wave_frame(
         env.wave, env._t, env.wave_period, env.wave_direction, R, float(y[2]), env.model.psid,
-        r, text, half_width=half,
+        r, text, half_width=half, buoy_plan=plan,
     )  # fmt: skip

@@ -9,7 +9,6 @@ from typing import Any
 import numpy as np
 
 from mf_envs.envs.declaration import Ceiling, EnvDeclaration, Metric, Variant, shipped
-from mf_envs.physics.waves import group_velocity, wavenumber
 
 
 def episode_metrics(
@@ -29,22 +28,55 @@ def episode_metrics(
 
 
 def absorbed_power_bound(env: Any) -> float:
-    """Mean power (W) the hull can absorb from the episode's sea in linear potential flow, by any
-    motion of its modes: sum over the sea's components of J_i 3 / k_i, the capture-width limit
-    of an axisymmetric body in heave (1 / k = lambda / 2 pi) and surge with pitch (2 / k: both
-    radiate the same dipole, so together they absorb no more than either; Newman 1976, Falnes
-    2002 ch. 6), at the hull table's water depth h: w^2 = g k tanh(k h), J_i = rho g a_i^2 c_g / 2,
-    c_g = w / (2 k) (1 + 2 k h / sinh 2 k h). A device without surge and heave (no 3-DOF
-    table): the pitch-only `model.radiation_bound`. Every watt the gyros deliver comes out of
-    this, after radiation and drag."""
+    """Mean power (W) the gyros can take out of the episode's sea in linear potential flow, by
+    any torque on the hull's pitch and roll with its other modes as the env moves them: per
+    component of amplitude a, the conjugate match of each axis's Thevenin equivalent,
+    a^2 abs(X_eff)^2 / (8 R_eff) (Falnes 2002, Eq. 6.48). Pitch (about e1) with surge free on
+    its mooring eliminated, as the env couples them: X_eff = X5 - Z15 X1 / Z11 and
+    R_eff = Re(B55 - Z15^2 / Z11), with Z11 = B11 - i (w (m + A11) - K_mooring / w) and
+    Z15 = B15 - i w A15 (surge held: X5, B55); heave is uncoupled from pitch and roll, so no
+    torque of the gyros reaches it. Roll (about e2, sway held as in the env) of a hull with a
+    roll block: a^2 abs(X4)^2 / (8 B44) at the sea's heading; an axisymmetric hull's rotation
+    about the wave's crest is its pitch. A device without surge and heave (no 3-DOF table):
+    the pitch-only `model.radiation_bound`. Every watt the gyros deliver comes out of this,
+    after radiation and drag. Where surge and pitch radiate the same dipole (an axisymmetric
+    hull) it is the pitch-and-surge capture width lambda / pi less what the passive surge
+    takes; a hull long against the wave (ISWEC's box above 1.3 rad/s) radiates different
+    patterns in the two, and the bound follows its table, not that closed form."""
     u = env.unwrapped
-    three = getattr(u.model, "three", None)
+    model = u.model
+    three = getattr(model, "three", None)
     if three is None:
         return float(u.power_bound())
-    rho, g, h = float(three.rho), float(three.g), float(three.water_depth)
-    a, w = np.asarray(u.wave.amplitudes, float), np.asarray(u.wave.omegas, float)
-    k, group = wavenumber(w, h, g), group_velocity(w, h, g)  # finite depth (inf: deep water)
-    return float(np.sum(0.5 * rho * g * a * a * group * 3.0 / k))
+    a, om = np.asarray(u.wave.amplitudes, float), np.asarray(u.wave.omegas, float)
+    direction = float(u.wave_direction)
+    if model.roll is None:  # axisymmetric: the rotation about the crest axis takes it all
+        x_p = model.hull_excitation(om)
+        x_r = np.zeros_like(x_p)
+    else:  # the box: the moments about e1 (theta = -mode 5) and e2 at the sea's heading
+        x_p, x_r = model.wave_excitation(om, direction)
+        x_p = -x_p  # back to mode 5, the frame of the table's surge coupling
+    B_p = np.array([model.hull.at(float(w))[1] for w in om])
+    z_c = np.zeros(om.size, complex)
+    z_s = np.ones(om.size, complex)
+    x_1 = np.zeros(om.size, complex)
+    if model.translating:  # surge along the wave, on its mooring (the env's head-sea terms)
+        w0, A, B = three.omega, three.added_mass, three.damping
+
+        def at(y: np.ndarray) -> np.ndarray:
+            return np.interp(om, w0, y.real) + 1j * np.interp(om, w0, y.imag)
+
+        m = float(three.mass_matrix[0, 0])
+        z_s = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - model.mooring_stiffness / om)
+        z_c = at(0.5 * (B[:, 0, 2] + B[:, 2, 0])) - 1j * om * at(0.5 * (A[:, 0, 2] + A[:, 2, 0]))
+        x_1 = at(three.excitation[:, 0])
+    r_p = B_p - np.real(z_c * z_c / z_s)
+    pitch = np.abs(x_p - z_c * x_1 / z_s) ** 2 / (8.0 * r_p)
+    roll = 0.0
+    if model.roll is not None:
+        B_r = np.array([model.roll.at(float(w))[1] for w in om])
+        roll = np.where(B_r > 0.0, np.abs(x_r) ** 2 / (8.0 * np.maximum(B_r, 1e-300)), 0.0)
+    return float(np.sum(a * a * (pitch + roll)))
 
 
 def net_power_ceiling(env: Any) -> float:
@@ -58,8 +90,9 @@ def net_power_ceiling(env: Any) -> float:
 
 
 CEILING_NOTE = (
-    "eta_g min(P_abs, n P_rated) - rotor loss (`net_power_ceiling`): P_abs the capture-width "
-    "limit of heave, surge and pitch (3 lambda / 2 pi) in the episode's sea. Loss-inclusive, "
+    "eta_g min(P_abs, n P_rated) - rotor loss (`net_power_ceiling`): P_abs the most a torque on "
+    "the hull's pitch and roll can absorb from the episode's sea (the conjugate match of each "
+    "axis, surge passive on its mooring; about the capture width lambda / pi). Loss-inclusive, "
     "non-causal, loose: the gyros' coupling limits how much of it reaches the generator. It "
     "holds while the Morison drag dissipates over the episode (drag relative to the water "
     "could do work; the energy balance's dissipated term was positive in every test episode)"

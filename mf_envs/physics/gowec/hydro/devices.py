@@ -2,24 +2,24 @@
 
 `FloatingGOWEC-v0(device=...)` starts from one of these; any of its kwargs overrides a field.
 
-- ``"iswec_class"`` (the default): a device sized like ISWEC, the gyroscopic wave energy
-  converter of Politecnico di Torino / Wave for Energy deployed off Pantelleria in 2015 (hull
-  15 x 8 m in plan, 4.5 m high, 3.2 m draft, 35 m water depth, two gyroscope units with
-  flywheels over 2 m in diameter, slack mooring). Stand-in hull: the vertical cylinder of
-  the same footprint, radius 6 m, draft 2.5 m (`three_dof.ISWEC_HULL_FILE`, pitch block; why
-  a cylinder: docs/gowec_v1.md). What is chosen, not published (docs/gowec_v1.md says why):
+- ``"iswec_box"`` (the default): a device sized like ISWEC, the gyroscopic wave energy
+  converter of Politecnico di Torino / Wave for Energy deployed off Pantelleria in 2015, on
+  its own hull: the 15 x 8 m box of 3.2 m draft (4.5 m high) in 35 m of water
+  (`three_dof.ISWEC_BOX_FILE`; its mass properties chosen, docs/gowec_v1.md "ISWEC's box
+  hull"), its length along the default sea (e2): pitch and roll each with their own block
+  (`axes`), roll's wave moment from the heading table; two gyroscope units with flywheels over
+  2 m in diameter, slack mooring. What is chosen, not published (docs/gowec_v1.md says why):
   the flywheel (a steel disc 2.4 m across and 0.35 m thick, J = 1.2e4 kg m^2 at 250 rpm,
-  H = 3.14e5 N m s per unit), the gimbal frame's inertia, the PTO limits (50 kN m and 100 kW
+  H = 3.14e5 N m s per unit), the gimbal frame's inertia, the PTO limits (150 kN m and 130 kW
   per unit), the running loss (1.5 kW per unit at the rated 250 rpm: bearings by SKF's friction
   model plus seals and windage in the evacuated casing, growing with speed, `flywheel`) and the
   speed range the baseline schedules the flywheels over (50-250 rpm), 90 % drive efficiency
-  each way, drag coefficient 1, the
-  gimbal's end stops (+-70 deg, 10 deg of cushion), the survival brake and the operating range
-  (sea height <= 2.5 m).
-- ``"iswec_box"``: the same gyro units, PTO, limits and supervisor on ISWEC's own hull, the
-  15 x 8 m box of 3.2 m draft (`three_dof.ISWEC_BOX_FILE`; its mass properties chosen,
-  docs/gowec_v1.md "ISWEC's box hull"), its length along the default sea (e2): pitch and roll
-  each with their own block (`axes`), roll's wave moment from the heading table.
+  each way, drag coefficient 1, the gimbal's end stops (+-70 deg, 10 deg of cushion), the
+  survival brake and the operating range (sea height <= 2.5 m).
+- ``"iswec_class"``: the same gyro units, PTO, limits and supervisor on the stand-in hull the
+  default used before the box: the vertical cylinder of ISWEC's footprint, radius 6 m, draft
+  2.5 m (`three_dof.ISWEC_HULL_FILE`, axisymmetric: one pitch block for both axes; why a
+  cylinder: docs/gowec_v1.md).
 - ``"seed_buoy"``: the device of mf_envs 0.1-0.4: the 5 m cylinder of GOWEC-v0's irregular
   sea (converged BEM table) carrying the seed's mirrored pair of Seakeeper 26 rotors (Table
   3-1), 3 kW rotor loss, 5 %-of-critical linear viscous damping, no drag, no ramp, episode
@@ -159,4 +159,4 @@ DEVICES: dict[str, FloatingDevice] = {
         physics_dt=0.005, brake_damping=5.0e3,
     ),
 }  # fmt: skip
-DEFAULT_DEVICE = "iswec_class"
+DEFAULT_DEVICE = "iswec_box"
