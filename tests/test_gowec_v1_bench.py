@@ -32,7 +32,8 @@ def test_power_matrix_cell_within_the_bounds():
     u = env.unwrapped
     assert 0.0 < r["mech_W"] < motion_limited_bound(u.hull, u.wave, u.pitch_limit)
     assert r["capture_width_m"] == pytest.approx(r["mech_W"] / r["J_W_per_m"], rel=1e-12)
-    assert r["cwr"] == pytest.approx(r["capture_width_m"] / 12.0, rel=1e-12)
+    assert r["cwr"] == pytest.approx(r["capture_width_m"] / 8.0, rel=1e-12)  # the box's beam
+    assert power_matrix.hull_width("iswec_class") == 12.0  # the cylinder's diameter
     # net electrical = eta P+ - P- / eta - loss <= eta P_mech - loss (the flywheels' running
     # loss at the speed the baseline set for the sea: 3 kW for the pair at 250 rpm)
     assert 0.0 < r["loss_W"] <= 3000.0 + 1e-9

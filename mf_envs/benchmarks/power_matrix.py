@@ -10,8 +10,8 @@ Reported per cell: net electrical power (W, mean and spread over seeds), the con
 predicted net power (its linear model, `pto_search`), mechanical PTO power, capture width
 P_mech / J (m) with J the sea's energy flux at the hull table's water depth (35 m) by MHKiT
 (`mhkit.wave.resource.energy_flux` of the IEC JONSWAP spectrum, finite depth), capture-width
-ratio over the hull's width (12 m), the share of time in survival and of episodes ended by a
-failure.
+ratio over the hull's width across the sea (`hull_width`: the box's 8 m beam), the share of
+time in survival and of episodes ended by a failure.
 
     python -m mf_envs.benchmarks.power_matrix --out docs/img   # ~10 min on 2 cores
     python -m mf_envs.benchmarks.power_matrix --device iswec_box --out DIR   # another device
@@ -43,7 +43,6 @@ ENV_ID = "FloatingGOWEC-v0"
 HS = (1.0, 1.5, 2.0, 2.5)  # m
 TE = (4.0, 5.0, 6.0, 7.0, 8.0)  # s, energy period bins
 SEEDS = (2000, 2001, 2002)
-HULL_WIDTH = 12.0  # m, the ISWEC-class cylinder's diameter (capture-width ratio)
 GAMMA = 3.3
 N_COMPONENTS = 256  # the sea's components (the env's default 64 puts ~10 in the resonance band)
 WATER_DEPTH = 35.0  # m, the hull table's (Pantelleria site)
@@ -69,6 +68,17 @@ def energy_flux(hs: float, tp: float, depth: float = WATER_DEPTH) -> float:
     from mhkit.wave import resource
 
     return float(np.squeeze(resource.energy_flux(_spectrum(hs, tp), depth)))
+
+
+def hull_width(device: str | None = None) -> float:
+    """The hull's width across the default (head) sea (m), the capture-width ratio's: a box's
+    beam (its length lies along the sea), a cylinder's diameter."""
+    from mf_envs.physics.gowec.hydro import axes
+    from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE, DEVICES
+
+    dev = DEVICES[device or DEFAULT_DEVICE]
+    plan = axes.plan(dev.three_dof_table())
+    return plan[1] if plan is not None else 2.0 * float(dev.hull().radius)
 
 
 def cell(hs: float, tp: float, seed: int, seconds: float, kind: str, **kw: Any) -> dict:
@@ -119,6 +129,7 @@ def matrix(hs=HS, te=TE, seeds=SEEDS, seconds: float = 1200.0, kind: str = "effi
     from tqdm import tqdm
 
     rows, r = [], te_over_tp()
+    width = hull_width(kw.get("device"))
     jobs = [(h, e) for h in hs for e in te]
     for h, e in tqdm(jobs, desc=f"power matrix ({kind})", disable=not progress):
         tp = e / r
@@ -130,7 +141,7 @@ def matrix(hs=HS, te=TE, seeds=SEEDS, seconds: float = 1200.0, kind: str = "effi
         rows.append(dict(hs=h, te=e, tp=tp, kind=kind, net_W=float(pe.mean()),
                          net_std_W=float(pe.std()), predicted_W=pred,
                          mech_W=float(pm.mean()), J_W_per_m=J, capture_width_m=float(pm.mean()) / J,
-                         cwr=float(pm.mean()) / J / HULL_WIDTH,
+                         cwr=float(pm.mean()) / J / width, hull_width_m=width,
                          survival=float(np.mean([x["survival"] for x in runs])),
                          terminated=float(np.mean([x["terminated"] for x in runs])),
                          speed_rpm=[x["speed_rpm"] for x in runs],
@@ -163,6 +174,8 @@ def plot(rows: list[dict], path: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE
+
     hs = sorted({r["hs"] for r in rows})
     tp = sorted({r["te"] for r in rows})
     at = {(r["hs"], r["te"]): r for r in rows}
@@ -179,7 +192,7 @@ def plot(rows: list[dict], path: Path) -> Path:
     ax.set_xlabel("energy period Te (s)")
     ax.set_ylabel("significant wave height Hs (m)")
     r0 = rows[0]
-    ax.set_title(f"FloatingGOWEC-v0 ({r0.get('device', 'iswec_class')}): net electrical "
+    ax.set_title(f"FloatingGOWEC-v0 ({r0.get('device', DEFAULT_DEVICE)}): net electrical "
                  f"power, {r0['kind']}\n"
                  f"JONSWAP, {len(r0['seeds'])} seeds x {r0['seconds']:.0f} s each "
                  f"(* = a failure ended an episode)", fontsize=9)  # fmt: skip
@@ -197,7 +210,9 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--device", default=None, help="FloatingGOWEC-v0's device (its default)")
     a = ap.parse_args(argv)
     a.out.mkdir(parents=True, exist_ok=True)
-    kw = {} if a.device is None else {"device": a.device}
+    from mf_envs.physics.gowec.hydro.devices import DEFAULT_DEVICE
+
+    kw = {"device": a.device or DEFAULT_DEVICE}  # recorded in every row
     rows = matrix(seeds=tuple(range(2000, 2000 + a.seeds)), seconds=a.seconds, kind=a.kind, **kw)
     (a.out / "gowec_power_matrix.json").write_text(json.dumps(rows, indent=1))
     plot(rows, a.out / "gowec_power_matrix.png")

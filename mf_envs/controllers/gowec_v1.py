@@ -237,9 +237,10 @@ def pto_search(
 ) -> dict[str, float]:
     """The linear PTO of the highest predicted net electrical power inside the limits
     (`LinearModel.predict`), by a global grid search over the gains, polished by a bounded
-    scalar search on c around the grid's best: c on 41 log-spaced values over five decades
-    about the mechanical match's c* (`matched_pto`), k = k_c + s (k_c the centring spring,
-    `centring_stiffness`; s on 12 values from 0 to 4 (|k*| + c* w)); `passive`: k = k_c only
+    scalar search on c around the grid's best: c on 41 log-spaced values from c* / 300 to the
+    larger of 300 c* and 10 H (c* the mechanical match's, `matched_pto`), k = k_c + s (k_c
+    the centring spring, `centring_stiffness`; s on 12 values from 0 to 4 (|k*| + c* w));
+    `passive`: k = k_c only
     (the damper). The reactive PTO is kept only where its prediction is positive and
     REACTIVE_GAIN x above the damper's (the model is linear and the reactive branch the one it
     predicts least well); otherwise, and wherever the prediction is negative, the damper's
@@ -252,7 +253,10 @@ def pto_search(
     c0, k0 = matched_pto(raw, angular_momentum=model.H)
     c0 = max(c0, 1.0)
     kc = centring_stiffness(raw)
-    cs = np.geomspace(c0 / 300.0, c0 * 300.0, 41)
+    # up to at least 10 H, where the gimbal all but locks (phi' = H theta' / c): far from the
+    # hull's resonance c* is small, and the damping that keeps the swing inside its limits lies
+    # decades above it
+    cs = np.geomspace(c0 / 300.0, max(c0 * 300.0, 10.0 * abs(model.H)), 41)
 
     def polish(r: dict[str, float]) -> dict[str, float]:
         k = r["k"]
