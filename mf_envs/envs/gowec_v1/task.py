@@ -70,8 +70,10 @@ def absorbed_power_bound(env: Any) -> float:
         z_s = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - model.mooring_stiffness / om)
         z_c = at(0.5 * (B[:, 0, 2] + B[:, 2, 0])) - 1j * om * at(0.5 * (A[:, 0, 2] + A[:, 2, 0]))
         x_1 = at(three.excitation[:, 0])
-    r_p = B_p - np.real(z_c * z_c / z_s)
-    pitch = np.abs(x_p - z_c * x_1 / z_s) ** 2 / (8.0 * r_p)
+    r_p = B_p - np.real(z_c * z_c / z_s)  # above the table B = X = 0: those add nothing
+    x_eff = np.abs(x_p - z_c * x_1 / z_s) ** 2
+    inside = (r_p > 0.0) & (om < three.omega[-1])
+    pitch = np.where(inside, x_eff / (8.0 * np.maximum(r_p, 1e-300)), 0.0)
     roll = 0.0
     if model.roll is not None:
         B_r = np.array([model.roll.at(float(w))[1] for w in om])
