@@ -107,22 +107,8 @@ class LinearModel:
         wt = np.outer(om, t)  # Re(z e^{-i w t}) = Re z cos(w t) + Im z sin(w t): one real product
         self.e = np.ascontiguousarray(np.vstack([np.cos(wt), np.sin(wt)]))  # (2 n, samples)
         self.q = 1.0 if om.size == 1 else 0.99  # the excursions' peak: the 99th percentile
-        self.Zc, self.Zs = np.zeros(om.size, complex), np.ones(om.size, complex)
-        three = raw.model.three
-        if raw.model.translating and three is not None:  # surge along the wave, coupled
-            w0 = three.omega
-
-            def at(y: np.ndarray) -> np.ndarray:
-                return np.interp(om, w0, y.real) + 1j * np.interp(om, w0, y.imag)
-
-            A, B = three.added_mass, three.damping
-            a15, b15 = 0.5 * (A[:, 0, 2] + A[:, 2, 0]), 0.5 * (B[:, 0, 2] + B[:, 2, 0])
-            m = float(three.mass_matrix[0, 0])
-            k_moor = raw.model.mooring_stiffness
-            self.Zs = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - k_moor / om)
-            self.Zc = at(b15) - 1j * om * at(a15)
-            X1 = at(three.excitation[:, 0]) * amp
-            self.X = self.X - self.Zc * X1 / self.Zs  # the surge's share taken out of pitch
+        self.Zs, self.Zc, X1 = raw.model.surge_coupling(om)  # surge along the wave, coupled
+        self.X = self.X - self.Zc * (X1 * amp) / self.Zs  # the surge's share out of pitch
 
     def at_speed(self, speed: float) -> LinearModel:
         """This model with the flywheels at `speed` (rad/s): H = J psi' and the running loss
@@ -321,6 +307,9 @@ def speed_search(raw: Any) -> dict[str, float]:
     def at(speed: float) -> dict[str, float]:
         return pto_search(raw, model=model.at_speed(speed))
 
+    def between(x: float, w: float) -> float:  # the geometric mean of two speeds of one sign
+        return math.copysign(math.sqrt(x * w), w)
+
     grid = [at(float(w)) for w in scheduled_speeds(raw)]
     best = _best(grid)
     i = next(j for j, r in enumerate(grid) if r is best)
@@ -330,7 +319,7 @@ def speed_search(raw: Any) -> dict[str, float]:
         # the limits bind between the grid's speeds: bisect towards the slower one
         lo, hi = grid[i - 1]["speed"], best["speed"]
         for _ in range(REFINE):
-            mid = math.copysign(math.sqrt(lo * hi), hi)
+            mid = between(lo, hi)
             r = at(mid)
             if r["excess"] <= 1.0:
                 best, hi = (r if r["net_W"] > best["net_W"] else best), mid
@@ -338,20 +327,18 @@ def speed_search(raw: Any) -> dict[str, float]:
                 lo = mid
         return best
     # the optimum between the grid's speeds: REFINE rounds of the geometric midpoints on either
-    # side of the best, the bracket closing on the better one (inside the limits)
+    # side of the best, the bracket closing on the better one (inside the limits); at an end of
+    # the range that side's bracket is the best speed itself
     a, b = grid[max(i - 1, 0)]["speed"], grid[min(i + 1, len(grid) - 1)]["speed"]
     for _ in range(REFINE):
         w = best["speed"]
-        mids = [math.copysign(math.sqrt(x * w), w) for x in (a, b) if x != w]
-        cands = [r for r in map(at, mids) if r["excess"] <= 1.0 and r["net_W"] > best["net_W"]]
-        if cands:
-            new = max(cands, key=lambda r: r["net_W"])
-            a, b = (a, w) if abs(new["speed"]) < abs(w) else (w, b)
-            best = new
+        tried = [at(between(x, w)) for x in (a, b) if x != w]
+        better = [r for r in tried if r["excess"] <= 1.0 and r["net_W"] > best["net_W"]]
+        if better:
+            best = max(better, key=lambda r: r["net_W"])
+            a, b = (a, w) if abs(best["speed"]) < abs(w) else (w, b)
         else:
-            a, b = (mids[0], mids[-1]) if len(mids) == 2 else (a, b)
-            if len(mids) < 2:  # at an end of the range: close in on that side only
-                a, b = (w, mids[0]) if abs(mids[0]) > abs(w) else (mids[0], w)
+            a, b = between(a, w), between(b, w)
     return best
 
 

@@ -57,19 +57,7 @@ def absorbed_power_bound(env: Any) -> float:
         x_p, x_r = model.wave_excitation(om, direction)
         x_p = -x_p  # back to mode 5, the frame of the table's surge coupling
     B_p = np.array([model.hull.at(float(w))[1] for w in om])
-    z_c = np.zeros(om.size, complex)
-    z_s = np.ones(om.size, complex)
-    x_1 = np.zeros(om.size, complex)
-    if model.translating:  # surge along the wave, on its mooring (the env's head-sea terms)
-        w0, A, B = three.omega, three.added_mass, three.damping
-
-        def at(y: np.ndarray) -> np.ndarray:
-            return np.interp(om, w0, y.real) + 1j * np.interp(om, w0, y.imag)
-
-        m = float(three.mass_matrix[0, 0])
-        z_s = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - model.mooring_stiffness / om)
-        z_c = at(0.5 * (B[:, 0, 2] + B[:, 2, 0])) - 1j * om * at(0.5 * (A[:, 0, 2] + A[:, 2, 0]))
-        x_1 = at(three.excitation[:, 0])
+    z_s, z_c, x_1 = model.surge_coupling(om)  # surge along the wave on its mooring, or held
     r_p = B_p - np.real(z_c * z_c / z_s)  # above the table B = X = 0: those add nothing
     x_eff = np.abs(x_p - z_c * x_1 / z_s) ** 2
     inside = (r_p > 0.0) & (om < three.omega[-1])

@@ -170,6 +170,29 @@ class FloatingModel:
             return self.hull_excitation(omegas)
         return axes.directional_excitation(self.three, omegas, direction)
 
+    def surge_coupling(
+        self, omegas: NDArray
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128]]:
+        """(Z_s, Z_c, X_1) at each frequency (rad/s), e^{-i w t}: the surge impedance
+        Z_s = B11 - i (w (m + A11) - K_mooring / w), the surge-pitch coupling Z_c = B15 - i w A15
+        (the table's, symmetrised) and the surge excitation per metre of amplitude, with which a
+        frequency-domain pitch model eliminates the free surge (Z55 - Z_c^2 / Z_s and
+        X5 - Z_c X1 / Z_s); (1, 0, 0) with surge held."""
+        om = np.asarray(omegas, dtype=float)
+        if not self.translating:
+            zero = np.zeros(om.size, complex)
+            return np.ones(om.size, complex), zero, zero.copy()
+        three = self.three
+        w0, A, B = three.omega, three.added_mass, three.damping
+
+        def at(y: NDArray) -> NDArray[np.complex128]:
+            return np.interp(om, w0, y.real) + 1j * np.interp(om, w0, y.imag)
+
+        a15, b15 = 0.5 * (A[:, 0, 2] + A[:, 2, 0]), 0.5 * (B[:, 0, 2] + B[:, 2, 0])
+        m = float(three.mass_matrix[0, 0])
+        z_s = at(B[:, 0, 0]) - 1j * (om * (m + at(A[:, 0, 0])) - self.mooring_stiffness / om)
+        return z_s, at(b15) - 1j * om * at(a15), at(three.excitation[:, 0])
+
     def set_viscous(self, damping: float) -> None:
         """Extra linear viscous damping b_v per axis (N m s/rad)."""
         self.p, self._packed = dataclasses.replace(self.p, viscous=float(damping)), None
